@@ -1,0 +1,42 @@
+# Tessera's two commands on a fresh Debian 12 machine: `make demo` and `make test`. Everything else is a convenience.
+# Each target installs missing Debian packages first (scripts/install-deps.sh is idempotent and quiet when all is there).
+
+PREFIX ?= /usr/local
+JOBS ?= $(shell nproc)
+OUT ?= out
+CMAKE ?= cmake
+TESSERA := build/release/apps/tessera/tessera
+
+.PHONY: all deps build demo test bench asan install clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	@$(CMAKE) --preset release >/dev/null
+	@$(CMAKE) --build --preset release -j $(JOBS)
+
+demo: build
+	$(TESSERA) demo -o $(OUT)
+	@echo "demo pictures written to $(OUT)/ (open $(OUT)/index.html)"
+
+test: build
+	ctest --preset release
+
+bench: deps
+	@$(CMAKE) --preset bench >/dev/null
+	@$(CMAKE) --build --preset bench -j $(JOBS)
+	scripts/run-benchmarks.sh build/bench
+
+asan: deps
+	@$(CMAKE) --preset asan >/dev/null
+	@$(CMAKE) --build --preset asan -j $(JOBS)
+	ctest --preset asan
+
+install: build
+	$(CMAKE) --install build/release --prefix $(PREFIX)
+
+clean:
+	rm -rf build $(OUT)

@@ -1,0 +1,44 @@
+#pragma once
+// The CLI's command interface. Each command lives in commands/<name>.cpp and exposes one setup function that adds its
+// CLI11 subcommand; main.cpp holds the table of them (no if/else dispatch).
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "tessera/core/parse.hpp"
+
+namespace tessera::cli {
+
+/// Options every command accepts.
+struct CommonOptions {
+  int threads = 0;     ///< --threads N (0 = all cores)
+  bool quiet = false;  ///< --quiet: no progress bars
+  bool stats = false;  ///< --stats: machine-readable key=value figures on stdout
+};
+
+/// A command: its name, one-line summary and the function that adds its subcommand (options and callback) to the app.
+struct Command {
+  const char* name;
+  const char* summary;
+  void (*setup)(CLI::App& command, CommonOptions& common);
+};
+
+/// Adds --threads, --quiet and --stats to a (sub)command.
+void add_common_options(CLI::App& command, CommonOptions& common);
+
+/// Prints `key=value` lines on stdout (the --stats contract of DESIGN.md section 4).
+void print_stats(const std::vector<std::pair<std::string, std::string>>& stats);
+
+/// Formats a number for --stats: integers without a decimal point, others with up to 9 significant digits.
+std::string stat_value(double v);
+
+/// Parses a color given as r,g,b floats in [0,1] or #rrggbb. Throws InvalidInput naming `what`.
+struct Rgb {
+  float r, g, b;
+};
+Rgb parse_color(const std::string& text, const std::string& what);
+
+}  // namespace tessera::cli

@@ -1,0 +1,1 @@
+#include "tessera/math/types.hpp"

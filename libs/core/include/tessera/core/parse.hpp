@@ -1,0 +1,31 @@
+#pragma once
+// Strict text-to-number parsing for command-line values and text file formats.
+// Every function rejects trailing garbage, NaN and infinity, and throws InvalidInput naming `what`.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tessera {
+
+/// Parses a finite double ("1.5", "-2e3"). Throws InvalidInput "<what>: expected a number, got '<text>'".
+double parse_double(std::string_view text, std::string_view what);
+
+/// Parses a base-10 integer that fits in long long.
+long long parse_int(std::string_view text, std::string_view what);
+
+/// Parses `count` comma-separated finite doubles ("1,2,3"); count 0 accepts any number of at least one.
+std::vector<double> parse_doubles(std::string_view text, size_t count, std::string_view what);
+
+/// Parses "WxH" with both positive (at most 65536 each).
+struct Size2 {
+  int width, height;
+};
+Size2 parse_size(std::string_view text, std::string_view what);
+
+/// Splits on a delimiter, keeping empty fields.
+std::vector<std::string_view> split(std::string_view text, char delimiter);
+
+/// Removes leading and trailing ASCII white space.
+std::string_view trim(std::string_view text);
+
+}  // namespace tessera

@@ -1,0 +1,72 @@
+#include "tessera/core/parse.hpp"
+
+#include <charconv>
+#include <cmath>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera {
+
+std::string_view trim(std::string_view text) {
+  const auto is_space = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; };
+  while (!text.empty() && is_space(text.front())) text.remove_prefix(1);
+  while (!text.empty() && is_space(text.back())) text.remove_suffix(1);
+  return text;
+}
+
+std::vector<std::string_view> split(std::string_view text, char delimiter) {
+  std::vector<std::string_view> parts;
+  size_t start = 0;
+  for (;;) {
+    const size_t end = text.find(delimiter, start);
+    parts.push_back(text.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  return parts;
+}
+
+double parse_double(std::string_view text, std::string_view what) {
+  const std::string_view t = trim(text);
+  double value = 0;
+  const char* first = t.data();
+  if (!t.empty() && *first == '+') ++first;
+  const auto [end, ec] = std::from_chars(first, t.data() + t.size(), value);
+  if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(value))
+    throw InvalidInput(fmt::format("{}: expected a number, got '{}'", what, text));
+  return value;
+}
+
+long long parse_int(std::string_view text, std::string_view what) {
+  const std::string_view t = trim(text);
+  long long value = 0;
+  const char* first = t.data();
+  if (!t.empty() && *first == '+') ++first;
+  const auto [end, ec] = std::from_chars(first, t.data() + t.size(), value);
+  if (t.empty() || ec != std::errc() || end != t.data() + t.size())
+    throw InvalidInput(fmt::format("{}: expected an integer, got '{}'", what, text));
+  return value;
+}
+
+std::vector<double> parse_doubles(std::string_view text, size_t count, std::string_view what) {
+  const auto parts = split(text, ',');
+  if (count != 0 && parts.size() != count)
+    throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, count, text));
+  std::vector<double> values;
+  values.reserve(parts.size());
+  for (auto p : parts) values.push_back(parse_double(p, what));
+  return values;
+}
+
+Size2 parse_size(std::string_view text, std::string_view what) {
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string_view::npos)
+    throw InvalidInput(fmt::format("{}: expected WIDTHxHEIGHT, got '{}'", what, text));
+  const long long w = parse_int(text.substr(0, x), what);
+  const long long h = parse_int(text.substr(x + 1), what);
+  if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
+    throw InvalidInput(fmt::format("{}: width and height must be in 1..65536, got '{}'", what, text));
+  return {int(w), int(h)};
+}
+
+}  // namespace tessera
