@@ -12,8 +12,12 @@
 namespace tessera::cli {
 void setup_canvas(CLI::App&, CommonOptions&);
 void setup_color(CLI::App&, CommonOptions&);
+void setup_curve(CLI::App&, CommonOptions&);
 void setup_demo(CLI::App&, CommonOptions&);
+void setup_fractal(CLI::App&, CommonOptions&);
 void setup_gallery(CLI::App&, CommonOptions&);
+void setup_mesh(CLI::App&, CommonOptions&);
+void setup_patch(CLI::App&, CommonOptions&);
 
 namespace {
 const Command kCommands[] = {
@@ -21,6 +25,10 @@ const Command kCommands[] = {
     {"gallery", "Render every example and algorithm as a picture, with an index.html", setup_gallery},
     {"canvas", "2D canvas: rasterize an SVG drawing", setup_canvas},
     {"color", "Color-model conversions", setup_color},
+    {"mesh", "Mesh processing: info, convert, normals, smooth, subdivide, triangulate", setup_mesh},
+    {"curve", "Bezier curves: draw curves, control polygons and subdivision steps", setup_curve},
+    {"patch", "Bezier patches (.bpt) tessellated into a mesh", setup_patch},
+    {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension", setup_fractal},
 };
 }  // namespace
 }  // namespace tessera::cli

@@ -1,0 +1,4 @@
+#include "command.hpp"
+namespace tessera::cli {
+void setup_mesh_subdivide(CLI::App&, CommonOptions&) {}
+}

@@ -1,0 +1,2 @@
+#pragma once
+// Placeholder: the mesh preview renderer (owned by the mesh module's author).
