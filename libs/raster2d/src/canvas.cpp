@@ -1,1 +1,1 @@
-#include "tessera/image/image.hpp"
+// Placeholder: replaced by the module author.
