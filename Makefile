@@ -30,10 +30,11 @@ bench: deps
 	@$(CMAKE) --build --preset bench -j $(JOBS)
 	scripts/run-benchmarks.sh build/bench
 
+# AddressSanitizer + UBSan: builds and runs every module's unit tests.
 asan: deps
 	@$(CMAKE) --preset asan >/dev/null
-	@$(CMAKE) --build --preset asan -j $(JOBS)
-	ctest --preset asan
+	@$(CMAKE) --build --preset asan -j $(JOBS) --target unit_tests
+	ctest --preset asan -L unit
 
 install: build
 	$(CMAKE) --install build/release --prefix $(PREFIX)

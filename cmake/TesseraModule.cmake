@@ -47,8 +47,14 @@ function(tessera_add_tests module)
   target_compile_definitions(${target} PRIVATE TESSERA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                TESSERA_SHARED_DATA="${TESSERA_SHARED_DATA}")
   gtest_discover_tests(${target} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_MODE PRE_TEST
-                       PROPERTIES LABELS ${module})
+                       PROPERTIES LABELS "unit;${module}")
+  add_dependencies(unit_tests ${target})
 endfunction()
+
+# `unit_tests` builds every module's test program (the sanitizer run builds and runs only these).
+if(TESSERA_BUILD_TESTS AND NOT TARGET unit_tests)
+  add_custom_target(unit_tests)
+endif()
 
 # ../shared/data beside the checkout holds the optional real data sets; tests skip cleanly without it.
 get_filename_component(_shared_data "${CMAKE_SOURCE_DIR}/../shared/data" ABSOLUTE)
