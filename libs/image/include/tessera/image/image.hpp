@@ -2,9 +2,11 @@
 // Image<T>: a width x height grid of pixels, row 0 at the top, rows contiguous; and ImageView<T>, a window into one.
 //
 // Pixel (x, y) covers [x, x+1) x [y, y+1) and its center is (x + 0.5, y + 0.5) (DESIGN.md section 3).
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -18,11 +20,20 @@ namespace tessera {
 template <class T>
 class ImageView {
  public:
+  /// A view of `width` x `height` pixels starting at `data`; rows are `stride` pixels apart (stride >= width).
   ImageView(T* data, int width, int height, ptrdiff_t stride)
       : data_(data), width_(width), height_(height), stride_(stride) {}
+  /// A read-only view of a writable one.
+  template <class U>
+    requires std::is_same_v<T, const U>
+  ImageView(const ImageView<U>& other)  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
+      : data_(other.row(0)), width_(other.width()), height_(other.height()), stride_(other.stride()) {}
 
+  /// Size in pixels.
   int width() const { return width_; }
   int height() const { return height_; }
+  /// Pixels from one row to the next.
+  ptrdiff_t stride() const { return stride_; }
   /// Pixel (x, y); no bounds check (use contains()).
   T& operator()(int x, int y) const { return data_[y * stride_ + x]; }
   /// The first pixel of row y.
@@ -53,6 +64,7 @@ class Image {
  public:
   using Pixel = T;
 
+  /// An empty 0 x 0 image.
   Image() = default;
   /// A width x height image filled with `value`. Throws InvalidInput for negative or absurd sizes.
   Image(int width, int height, const T& value = T{}) : width_(width), height_(height) {
@@ -61,8 +73,10 @@ class Image {
     pixels_.assign(size_t(width) * size_t(height), value);
   }
 
+  /// Size in pixels.
   int width() const { return width_; }
   int height() const { return height_; }
+  /// True for a 0 x 0 (or 0 x n) image.
   bool empty() const { return pixels_.empty(); }
   /// Pixel (x, y); no bounds check (use contains()).
   T& operator()(int x, int y) { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }
@@ -72,6 +86,7 @@ class Image {
     if (!contains(x, y)) throw InvalidInput(fmt::format("pixel ({}, {}) is outside {}x{}", x, y, width_, height_));
     return (*this)(x, y);
   }
+  const T& at(int x, int y) const { return const_cast<Image&>(*this).at(x, y); }
   /// True when (x, y) is inside.
   bool contains(int x, int y) const { return x >= 0 && y >= 0 && x < width_ && y < height_; }
   /// The first pixel of row y.
@@ -86,6 +101,7 @@ class Image {
   ImageView<T> view() { return ImageView<T>(pixels_.data(), width_, height_, width_); }
   ImageView<const T> view() const { return ImageView<const T>(pixels_.data(), width_, height_, width_); }
   ImageView<T> view(int x, int y, int w, int h) { return view().sub(x, y, w, h); }
+  ImageView<const T> view(int x, int y, int w, int h) const { return view().sub(x, y, w, h); }
 
  private:
   int width_ = 0, height_ = 0;
