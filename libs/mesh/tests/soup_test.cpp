@@ -1,0 +1,57 @@
+#include "tessera/mesh/soup.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tessera/core/error.hpp"
+#include "tessera/mesh/primitives.hpp"
+
+namespace tessera {
+namespace {
+
+TEST(Soup, RoundTripThroughSoupWeldsBackToTheSameMesh) {
+  const PolyMesh cube = make_cube();
+  const PolygonSoup soup = to_soup(cube);
+  EXPECT_EQ(soup.points.size(), 24u);
+  EXPECT_EQ(soup.face_count(), 6u);
+  const PolyMesh welded = weld(soup);
+  EXPECT_EQ(welded.vertex_count(), 8u);
+  EXPECT_EQ(welded.face_count(), 6u);
+  for (size_t f = 0; f < 6; ++f)
+    for (size_t i = 0; i < 4; ++i)
+      EXPECT_EQ(welded.positions[welded.face(f)[i]], cube.positions[cube.face(f)[i]]);
+}
+
+TEST(Soup, ExactWeldingMergesSignedZeros) {
+  const std::vector<Vec3> points{Vec3(0.0, 1, 2), Vec3(-0.0, 1, 2), Vec3(0, 1, 2.0000001)};
+  const WeldedPoints w = weld_points(points);
+  EXPECT_EQ(w.points.size(), 2u);
+  EXPECT_EQ(w.remap, (std::vector<uint32_t>{0, 0, 1}));
+}
+
+TEST(Soup, ToleranceWeldingFindsNeighboursAcrossCells) {
+  // 0.0999 and 0.1001 lie in different cells of size 0.01 but within the tolerance.
+  const std::vector<Vec3> points{Vec3(0.0999, 0, 0), Vec3(0.1001, 0, 0), Vec3(0.2, 0, 0), Vec3(0.1, 0.005, -0.005)};
+  const WeldedPoints w = weld_points(points, 0.01);
+  EXPECT_EQ(w.points.size(), 2u);
+  EXPECT_EQ(w.remap, (std::vector<uint32_t>{0, 0, 1, 0}));
+  EXPECT_THROW(weld_points(points, -1), InvalidInput);
+}
+
+TEST(Soup, WeldingDropsCollapsedFacesAndRemapsTags) {
+  PolyMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1e-9, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)};
+  mesh.add_face({0, 1, 3});
+  mesh.add_face({0, 2, 1});  // collapses to an edge
+  mesh.add_face({2, 1, 4, 3});
+  mesh.corner_uvs.resize(mesh.face_vertices.size(), Vec2(0.5));
+  mesh.creases.push_back({2, 1, 3.0f});
+  weld_vertices(mesh, 1e-6);
+  EXPECT_EQ(mesh.vertex_count(), 4u);
+  ASSERT_EQ(mesh.face_count(), 2u);
+  EXPECT_EQ(mesh.face_size(1), 4u);
+  EXPECT_EQ(mesh.corner_uvs.size(), mesh.face_vertices.size());
+  EXPECT_EQ(mesh.creases[0].v0, 0u);
+}
+
+}  // namespace
+}  // namespace tessera
