@@ -1,0 +1,49 @@
+#include "tessera/fractal/draw.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera {
+namespace {
+
+TEST(Draw, UnitSquareMapsOntoThePictureWithYUp) {
+  const PictureFrame frame{100, 50, 10, {0, 0, 1, 1}};
+  EXPECT_EQ(to_pixels(frame, {0, 0}), Vec2(10, 40));
+  EXPECT_EQ(to_pixels(frame, {1, 1}), Vec2(90, 10));
+}
+
+TEST(Draw, CarpetPixelsAreExactAtPowersOfThree) {
+  // Depth 2 on 27 x 27: every remaining cell is a 3 x 3 block of ink; 64 cells of 9 pixels.
+  const PictureFrame frame{27, 27};
+  const Image<uint8_t> mask = ink_mask(draw_polygons(as_polygons(sierpinski_carpet(2)), frame));
+  int ink = 0;
+  for (uint8_t v : mask.pixels()) ink += v;
+  EXPECT_EQ(ink, 64 * 9);
+  EXPECT_EQ(mask(13, 13), 0);  // the middle ninth
+  EXPECT_EQ(mask(4, 4), 0);    // the middle of the top-left ninth
+  EXPECT_EQ(mask(0, 0), 1);
+}
+
+TEST(Draw, CurvesLeaveInkAlongThePolyline) {
+  const PictureFrame frame{64, 64, 4};
+  const ImageRGBA picture = draw_curve(hilbert_curve(2), false, frame, DrawStyle{{0, 0, 0}, {1, 1, 1}, 2.0, false});
+  const Image<uint8_t> mask = ink_mask(picture);
+  for (const Vec2& p : hilbert_curve(2)) {
+    const Vec2 q = to_pixels(frame, p);
+    EXPECT_EQ(mask(int(q.x), int(q.y)), 1) << q.x << "," << q.y;
+  }
+  EXPECT_EQ(mask(1, 1), 0);  // inside the margin
+  EXPECT_THROW(draw_curve({{0, 0}, {1, 1}}, false, frame, DrawStyle{{0, 0, 0}, {1, 1, 1}, 0.0, false}), InvalidInput);
+}
+
+TEST(Draw, InkMaskThresholdAndInvert) {
+  ImageRGBA picture(2, 1, Vec4f(1.0f));
+  picture(0, 0) = Vec4f(0.1f, 0.1f, 0.1f, 1.0f);
+  EXPECT_EQ(ink_mask(picture)(0, 0), 1);
+  EXPECT_EQ(ink_mask(picture)(1, 0), 0);
+  EXPECT_EQ(ink_mask(picture, 0.5f, true)(0, 0), 0);
+}
+
+}  // namespace
+}  // namespace tessera
