@@ -172,7 +172,7 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
   check_pixel_count(name, d.width, d.height);
   const long long maxval = in.integer("maxval", 1, 65535);
   const unsigned long long count = (unsigned long long)d.width * (unsigned long long)d.height * d.channels;
-  const float scale = 1.f / float(maxval);
+  const float divisor = float(maxval);
   if (binary) {
     in.end_of_header();
     const int bytes = maxval > 255 ? 2 : 1;
@@ -182,13 +182,13 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
     for (size_t i = 0; i < count; ++i) {
       const unsigned v = bytes == 2 ? (unsigned(p[2 * i]) << 8 | p[2 * i + 1]) : p[i];
       if (v > maxval) in.fail(in.offset() + i * bytes, fmt::format("sample {} exceeds maxval {}", v, maxval));
-      d.values[i] = float(v) * scale;
+      d.values[i] = float(v) / divisor;
     }
   } else {
     // Every ASCII sample takes at least one byte: a cheap bound before allocating.
     in.require(count, "the ASCII pixel data");
     d.values.resize(count);
-    for (size_t i = 0; i < count; ++i) d.values[i] = float(in.integer("a sample", 0, maxval)) * scale;
+    for (size_t i = 0; i < count; ++i) d.values[i] = float(in.integer("a sample", 0, maxval)) / divisor;
   }
   return d;
 }
@@ -233,12 +233,13 @@ struct StbFree {
   void operator()(void* p) const { stbi_image_free(p); }
 };
 
+// Interleaved RGBA samples divided by `divisor` (a division, so v/255 matches to_float exactly).
 template <class Sample>
-ImageRGBA from_interleaved_rgba(const Sample* p, int width, int height, float scale) {
+ImageRGBA from_interleaved_rgba(const Sample* p, int width, int height, float divisor) {
   ImageRGBA image(width, height);
   auto pixels = image.pixels();
   for (size_t i = 0; i < pixels.size(); ++i)
-    pixels[i] = glm::vec4(float(p[4 * i]), float(p[4 * i + 1]), float(p[4 * i + 2]), float(p[4 * i + 3])) * scale;
+    pixels[i] = glm::vec4(float(p[4 * i]), float(p[4 * i + 1]), float(p[4 * i + 2]), float(p[4 * i + 3])) / divisor;
   return image;
 }
 
@@ -249,7 +250,8 @@ ImageRGBA read_stb(std::string_view data, const std::string& name) {
   const int size = int(data.size());
   int width = 0, height = 0, channels = 0;
   const auto failed = [&] {
-    return InvalidInput(fmt::format("'{}': cannot decode image: {}", name, stbi_failure_reason()));
+    const char* reason = stbi_failure_reason();
+    return InvalidInput(fmt::format("'{}': cannot decode image: {}", name, reason ? reason : "unknown error"));
   };
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) throw failed();
   check_pixel_count(name, width, height);
@@ -261,11 +263,11 @@ ImageRGBA read_stb(std::string_view data, const std::string& name) {
   if (stbi_is_16_bit_from_memory(bytes, size)) {
     std::unique_ptr<stbi_us, StbFree> p(stbi_load_16_from_memory(bytes, size, &width, &height, &channels, 4));
     if (!p) throw failed();
-    return from_interleaved_rgba(p.get(), width, height, 1.f / 65535.f);
+    return from_interleaved_rgba(p.get(), width, height, 65535.f);
   }
   std::unique_ptr<stbi_uc, StbFree> p(stbi_load_from_memory(bytes, size, &width, &height, &channels, 4));
   if (!p) throw failed();
-  return from_interleaved_rgba(p.get(), width, height, 1.f / 255.f);
+  return from_interleaved_rgba(p.get(), width, height, 255.f);
 }
 
 // ---- writing ----

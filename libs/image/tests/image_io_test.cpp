@@ -1,1 +1,396 @@
+#include "tessera/image/image_io.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <optional>
+#include <random>
+#include <sstream>
+
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "tessera/color/srgb.hpp"
+#include "tessera/core/atomic_file.hpp"
+#include "tessera/image/metrics.hpp"
+
+namespace tessera {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::AllOf;
+using ::testing::HasSubstr;
+
+// Every test writes into its own fresh folder, removed afterwards.
+class ImageIo : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / fmt::format("tessera-image-{}-{}", ::getpid(), info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  fs::path path(const std::string& name) const { return dir_ / name; }
+  void write_bytes(const std::string& name, const std::string& bytes) const { write_file_atomic(path(name), bytes); }
+  size_t files_in_dir() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
+
+  fs::path dir_;
+};
+
+ImageRGBA8 random_rgba8(int width, int height, unsigned seed) {
+  std::mt19937 rng(seed);
+  ImageRGBA8 image(width, height);
+  for (glm::u8vec4& p : image.pixels()) p = glm::u8vec4(rng() & 255, rng() & 255, rng() & 255, rng() & 255);
+  return image;
+}
+
+ImageRGB random_rgb(int width, int height, unsigned seed, float lo, float hi) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> value(lo, hi);
+  ImageRGB image(width, height);
+  for (glm::vec3& p : image.pixels()) p = glm::vec3(value(rng), value(rng), value(rng));
+  return image;
+}
+
+ImageRGBA8 opaque(ImageRGBA8 image) {
+  for (glm::u8vec4& p : image.pixels()) p.w = 255;
+  return image;
+}
+
+// Runs a command and returns its stdout, or nullopt when it cannot run (no python3).
+std::optional<std::string> run(const std::string& command) {
+  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
+  if (!pipe) return std::nullopt;
+  std::string out;
+  char buffer[4096];
+  size_t n;
+  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
+  if (::pclose(pipe) != 0) return std::nullopt;
+  return out;
+}
+
+// The reference script run by the system Python when there is one (version-manager shims start slowly).
+const std::string kPngReference = (fs::exists("/usr/bin/python3") ? "/usr/bin/python3 " : "python3 ") +
+                                  std::string(TESSERA_SOURCE_DIR) + "/libs/image/tests/png_reference.py";
+
+uint32_t bits_of(float v) {
+  uint32_t b;
+  std::memcpy(&b, &v, 4);
+  return b;
+}
+
+TEST_F(ImageIo, PngRoundTripIsExact) {
+  const ImageRGBA8 image = random_rgba8(13, 7, 1);
+  write_image(path("a.png"), image);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(read_image(path("a.png"))), image), 0);
+  // Float RGB through PNG: values k/255 survive exactly, alpha reads 1.
+  const ImageRGBA reference = to_float(opaque(image));
+  write_image(path("b.png"), to_rgb(reference));
+  EXPECT_EQ(max_abs_difference(read_image(path("b.png")), reference), 0.0);
+}
+
+TEST_F(ImageIo, PngMatchesAnIndependentDecoder) {
+  const ImageRGBA8 image = random_rgba8(17, 9, 2);
+  write_image(path("a.png"), image);
+  const auto out = run(kPngReference + " decode " + path("a.png").string());
+  if (!out) GTEST_SKIP() << "python3 is not available";
+  std::istringstream in(*out);
+  int w = 0, h = 0, c = 0;
+  in >> w >> h >> c;
+  ASSERT_EQ(w, 17);
+  ASSERT_EQ(h, 9);
+  ASSERT_EQ(c, 4);
+  for (const glm::u8vec4& p : image.pixels())
+    for (int k = 0; k < 4; ++k) {
+      int v = -1;
+      in >> v;
+      ASSERT_EQ(v, p[k]);
+    }
+}
+
+TEST_F(ImageIo, ReadsPngsFromAnIndependentEncoder) {
+  if (!run(kPngReference + " encode " + path("a.png").string() + " 11 6"))
+    GTEST_SKIP() << "python3 is not available";
+  const ImageRGBA8 got = to_rgba8(read_image(path("a.png")));
+  ASSERT_EQ(got.width(), 11);
+  ASSERT_EQ(got.height(), 6);
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 11; ++x)  // the pattern of png_reference.py
+      ASSERT_EQ(got(x, y), glm::u8vec4((7 * x + 3 * y) % 256, (x * y) % 256, 255 - x, 200 + y)) << x << "," << y;
+  ASSERT_TRUE(run(kPngReference + " encode16 " + path("g.png").string() + " 9 4"));
+  const ImageRGBA gray = read_image(path("g.png"));
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 9; ++x) {
+      const float v = float((x * 4099 + y * 257) % 65536) / 65535.f;
+      ASSERT_EQ(gray(x, y), glm::vec4(v, v, v, 1.f)) << x << "," << y;
+    }
+}
+
+TEST_F(ImageIo, PpmAndPngAgree) {
+  const ImageRGB image = random_rgb(10, 6, 3, -0.2f, 1.2f);
+  write_image(path("a.ppm"), image);
+  write_image(path("a.png"), image);
+  const ImageRGBA ppm = read_image(path("a.ppm")), png = read_image(path("a.png"));
+  EXPECT_EQ(max_abs_difference(ppm, png), 0.0);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(ppm), to_rgba8(image)), 0);
+  // The P6 header is the plain one, and the first bytes are pixel (0, 0) of the top row.
+  const std::string bytes = read_file(path("a.ppm"));
+  const std::string header = "P6\n10 6\n255\n";
+  ASSERT_EQ(bytes.substr(0, header.size()), header);
+  const glm::u8vec4 first = to_rgba8(image)(0, 0);
+  EXPECT_EQ((unsigned char)bytes[header.size()], first.x);
+  EXPECT_EQ(bytes.size(), header.size() + 10 * 6 * 3);
+}
+
+TEST_F(ImageIo, ReadsPlainGrayAndSixteenBitNetpbm) {
+  write_bytes("p3.ppm", "P3\n# a comment\n2 1 # trailing comment\n10\n10 0 5\n0 10 1\n");
+  const ImageRGBA p3 = read_image(path("p3.ppm"));
+  ASSERT_EQ(p3.width(), 2);
+  EXPECT_EQ(p3(0, 0), glm::vec4(1.f, 0.f, 0.5f, 1.f));
+  EXPECT_EQ(p3(1, 0), glm::vec4(0.f, 1.f, 0.1f, 1.f));
+  write_bytes("p5.pgm", std::string("P5 2 2 255\n") + char(0) + char(255) + char(51) + char(102));
+  const ImageRGBA p5 = read_image(path("p5.pgm"));
+  EXPECT_EQ(p5(1, 0), glm::vec4(1.f, 1.f, 1.f, 1.f));
+  EXPECT_EQ(p5(0, 1), glm::vec4(0.2f, 0.2f, 0.2f, 1.f));
+  write_bytes("p2.pgm", "P2 1 2 4 1 4");
+  EXPECT_EQ(read_image(path("p2.pgm"))(0, 0), glm::vec4(0.25f, 0.25f, 0.25f, 1.f));
+  write_bytes("p6.ppm", std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) +
+                            char(0) + char(0));  // big-endian 1000, 500, 0
+  EXPECT_EQ(read_image(path("p6.ppm"))(0, 0), glm::vec4(1.f, 0.5f, 0.f, 1.f));
+}
+
+TEST_F(ImageIo, PfmRoundTripIsBitExactAndBottomRowFirst) {
+  ImageRGB image = random_rgb(5, 3, 4, -1e6f, 1e6f);
+  image(0, 0) = glm::vec3(std::numeric_limits<float>::denorm_min(), -0.f, 1e-30f);
+  image(4, 2) = glm::vec3(std::numeric_limits<float>::infinity(), std::numeric_limits<float>::max(), 1.f / 3);
+  write_image(path("a.pfm"), image);
+  const ImageRGBA back = read_image(path("a.pfm"));
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(bits_of(back(x, y)[c]), bits_of(image(x, y)[c])) << x << "," << y;
+  const std::string bytes = read_file(path("a.pfm"));
+  const std::string header = "PF\n5 3\n-1\n";
+  ASSERT_EQ(bytes.substr(0, header.size()), header);
+  ASSERT_EQ(bytes.size(), header.size() + 5 * 3 * 3 * 4);
+  // The first float stored is the red of the bottom-left pixel, little endian.
+  const uint32_t expected = bits_of(image(0, 2).x);
+  const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + header.size());
+  EXPECT_EQ(uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24, expected);
+}
+
+TEST_F(ImageIo, ReadsBigEndianPfm) {
+  // Positive scale: big endian. 1 x 2 gray, bottom row (2.0) first then the top row (-0.5).
+  write_bytes("be.pfm", std::string("Pf\n1 2\n1.0\n") + std::string("\x40\x00\x00\x00\xbf\x00\x00\x00", 8));
+  const DepthImage gray = read_pfm_gray(path("be.pfm"));
+  EXPECT_EQ(gray(0, 0), -0.5f);
+  EXPECT_EQ(gray(0, 1), 2.f);
+  EXPECT_EQ(read_image(path("be.pfm"))(0, 1), glm::vec4(2.f, 2.f, 2.f, 1.f));
+}
+
+TEST_F(ImageIo, GrayPfmRoundTrip) {
+  DepthImage depth(4, 3);
+  for (int i = 0; i < 12; ++i) depth.pixels()[size_t(i)] = 0.1f * float(i) - 0.3f;
+  write_pfm(path("d.pfm"), depth);
+  EXPECT_EQ(read_file(path("d.pfm")).substr(0, 3), "Pf\n");
+  const DepthImage back = read_pfm_gray(path("d.pfm"));
+  EXPECT_EQ(max_abs_difference(back, depth), 0.0);
+  // A color PFM reads as the mean of its channels.
+  ImageRGB rgb(1, 1, glm::vec3(0.f, 0.5f, 1.f));
+  write_image(path("c.pfm"), rgb);
+  EXPECT_EQ(read_pfm_gray(path("c.pfm"))(0, 0), 0.5f);
+  EXPECT_THROW(write_pfm(path("d.png"), depth), InvalidInput);
+}
+
+TEST_F(ImageIo, HdrKeepsRgbePrecision) {
+  ImageRGB image = random_rgb(9, 5, 5, 0.f, 1.f);
+  for (glm::vec3& p : image.pixels()) p = glm::exp2(p * 20.f - 10.f);  // 2^-10 .. 2^10
+  write_image(path("a.hdr"), image);
+  const ImageRGBA back = read_image(path("a.hdr"));
+  ASSERT_EQ(back.width(), 9);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 9; ++x) {
+      const glm::vec3 p = image(x, y);
+      const float largest = std::max({p.x, p.y, p.z});
+      for (int c = 0; c < 3; ++c)  // a shared exponent and 8-bit mantissas: error below largest / 128
+        EXPECT_NEAR(back(x, y)[c], p[c], largest / 128.f) << x << "," << y;
+      EXPECT_EQ(back(x, y).w, 1.f);
+    }
+}
+
+TEST_F(ImageIo, JpgIsClose) {
+  ImageRGB image(32, 24);
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) image(x, y) = glm::vec3(float(x) / 31.f, float(y) / 23.f, 0.5f);
+  write_image(path("a.jpg"), image);
+  write_image(path("b.JPEG"), image, {.jpeg_quality = 100});
+  EXPECT_GT(psnr(to_rgb(read_image(path("a.jpg"))), image), 35.0);
+  EXPECT_GT(psnr(to_rgb(read_image(path("b.JPEG"))), image), 40.0);
+  EXPECT_THROW(write_image(path("c.jpg"), image, {.jpeg_quality = 0}), InvalidInput);
+}
+
+TEST_F(ImageIo, BmpAndTgaRoundTrip) {
+  const ImageRGBA8 image = random_rgba8(6, 5, 6);
+  write_image(path("a.bmp"), image);
+  write_image(path("a.tga"), image);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(read_image(path("a.bmp"))), opaque(image)), 0);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(read_image(path("a.tga"))), image), 0);  // TGA keeps alpha
+}
+
+TEST_F(ImageIo, SrgbOptionEncodesAndNothingDecodesOnRead) {
+  const ImageRGB image(1, 1, glm::vec3(0.5f, 0.f, 1.f));
+  write_image(path("linear.png"), image);
+  write_image(path("srgb.png"), image, {.srgb = true});
+  EXPECT_EQ(to_rgba8(read_image(path("linear.png")))(0, 0), glm::u8vec4(128, 0, 255, 255));
+  const int encoded = int(std::lround(srgb_encode(0.5f) * 255.f));  // 188
+  EXPECT_EQ(to_rgba8(read_image(path("srgb.png")))(0, 0), glm::u8vec4(encoded, 0, 255, 255));
+}
+
+TEST(ImageConversions, ClampRoundAndKeepAlphaLinear) {
+  ImageRGBA image(4, 1);
+  image(0, 0) = glm::vec4(-1.f, 2.f, std::nanf(""), 0.5f);
+  image(1, 0) = glm::vec4(0.5f / 255.f - 1e-4f, 0.5f / 255.f + 1e-4f, 1.f, 1.f);
+  image(2, 0) = glm::vec4(0.25f, 0.5f, 0.75f, 0.25f);
+  image(3, 0) = glm::vec4(0.25f, 0.5f, 0.75f, 0.25f);
+  const ImageRGBA8 bytes = to_rgba8(image);
+  EXPECT_EQ(bytes(0, 0), glm::u8vec4(0, 255, 0, 128));
+  EXPECT_EQ(bytes(1, 0), glm::u8vec4(0, 1, 255, 255));
+  EXPECT_EQ(bytes(2, 0), glm::u8vec4(64, 128, 191, 64));
+  EXPECT_EQ(to_rgba8(image, true)(3, 0).w, 64);  // alpha is never sRGB-encoded
+  EXPECT_EQ(to_rgba8(to_rgb(image))(0, 0).w, 255);
+}
+
+TEST(ImageConversions, EightBitSurvivesFloatRoundTrips) {
+  ImageRGBA8 all(256, 1);
+  for (int v = 0; v < 256; ++v) all(v, 0) = glm::u8vec4(v, 255 - v, v, v);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(to_float(all)), all), 0);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(to_float(all, true), true), all), 0);
+  EXPECT_EQ(to_float(all, true)(255, 0), glm::vec4(1.f, 0.f, 1.f, 1.f));
+  EXPECT_EQ(to_rgba(to_rgb(to_float(all)))(7, 0).w, 1.f);
+}
+
+// ---- errors ----
+
+TEST_F(ImageIo, MissingFileIsAnIoErrorNamingIt) {
+  try {
+    read_image(path("missing.png"));
+    FAIL() << "expected IoError";
+  } catch (const IoError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("missing.png"));
+  }
+}
+
+TEST_F(ImageIo, UnknownExtensionListsTheSupportedOnes) {
+  write_bytes("a.gif", "GIF89a");
+  try {
+    read_image(path("a.gif"));
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("a.gif"), HasSubstr(".png"), HasSubstr(".pfm"), HasSubstr(".hdr")));
+  }
+  try {
+    write_image(path("b.gif"), ImageRGB(1, 1));
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("b.gif"), HasSubstr(".jpg"), HasSubstr("writing")));
+  }
+  EXPECT_FALSE(fs::exists(path("b.gif")));
+  EXPECT_THROW(write_image(path("noext"), ImageRGB(1, 1)), InvalidInput);
+}
+
+// Expects read_image(name) to throw InvalidInput whose message holds the file name and every `parts`.
+void expect_invalid(const fs::path& file, std::initializer_list<const char*> parts) {
+  try {
+    read_image(file);
+    ADD_FAILURE() << "expected InvalidInput for " << file;
+  } catch (const InvalidInput& e) {
+    EXPECT_THAT(e.what(), HasSubstr(file.filename().string()));
+    for (const char* part : parts) EXPECT_THAT(e.what(), HasSubstr(part));
+  }
+}
+
+TEST_F(ImageIo, TruncatedPfmNamesTheByteOffset) {
+  write_bytes("t.pfm", "PF\n2 2\n-1\n" + std::string(20, '\0'));  // needs 48 bytes of data
+  expect_invalid(path("t.pfm"), {"byte offset 30", "truncated", "48 bytes"});
+  write_bytes("h.pfm", "PF\n2 2\n");
+  expect_invalid(path("h.pfm"), {"byte offset 7", "scale"});
+  write_bytes("z.pfm", "PF\n2 2\n0\n");
+  expect_invalid(path("z.pfm"), {"nonzero"});
+  write_bytes("m.pfm", "P7\n2 2\n-1\n");
+  expect_invalid(path("m.pfm"), {"PF or Pf"});
+  write_bytes("w.pfm", "PF\n-2 2\n-1\n");
+  expect_invalid(path("w.pfm"), {"width"});
+  write_bytes("x.pfm", "PF\n2 two\n-1\n");
+  expect_invalid(path("x.pfm"), {"height"});
+}
+
+TEST_F(ImageIo, HostileSizesAreRejectedBeforeAllocating) {
+  write_bytes("big.pfm", "PF\n100000 100000\n-1\n1234");
+  expect_invalid(path("big.pfm"), {"100000x100000"});
+  write_bytes("wide.pfm", "PF\n200000000 1\n-1\n1234");
+  expect_invalid(path("wide.pfm"), {"truncated"});
+  write_bytes("big.ppm", "P6 16000 16000 255\nabc");
+  expect_invalid(path("big.ppm"), {"truncated"});
+  write_bytes("ascii.ppm", "P3 16000 16000 255\n1 2 3");
+  expect_invalid(path("ascii.ppm"), {"truncated"});
+  write_bytes("huge.ppm", "P6 99999999999999999999 1 255\n");
+  expect_invalid(path("huge.ppm"), {"width"});
+  // A PNG whose header claims 100000 x 100000 pixels (stb does not check CRCs); refused from the header alone.
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\0\0\0\x0dIHDR", 8) + std::string("\0\x01\x86\xa0\0\x01\x86\xa0\x08\x06\0\0\0", 13) +
+         std::string(4, '\0');
+  write_bytes("big.png", png);
+  expect_invalid(path("big.png"), {"cannot decode"});
+}
+
+TEST_F(ImageIo, MalformedNetpbmSaysWhatIsWrong) {
+  write_bytes("v.ppm", "P3 1 1 10\n1 11 2\n");
+  expect_invalid(path("v.ppm"), {"byte offset 12", "outside [0, 10]"});
+  write_bytes("s.ppm", "P3 2 1 10\n1 1 1 1 1\n");
+  expect_invalid(path("s.ppm"), {"truncated", "sample"});
+  write_bytes("m.ppm", "P6 1 1 70000\n");
+  expect_invalid(path("m.ppm"), {"maxval"});
+  write_bytes("b.ppm", std::string("P6 1 1 100\n") + char(101) + char(0) + char(0));
+  expect_invalid(path("b.ppm"), {"exceeds maxval"});
+  write_bytes("q.ppm", "Q6 1 1 255\n");
+  expect_invalid(path("q.ppm"), {"magic number"});
+}
+
+TEST_F(ImageIo, CorruptStbFilesNameTheFile) {
+  write_bytes("garbage.png", "this is not a png at all");
+  expect_invalid(path("garbage.png"), {"cannot decode"});
+  const ImageRGBA8 image = random_rgba8(16, 16, 7);
+  write_image(path("good.png"), image);
+  const std::string bytes = read_file(path("good.png"));
+  write_bytes("cut.png", bytes.substr(0, bytes.size() / 2));
+  expect_invalid(path("cut.png"), {"cannot decode"});
+  write_bytes("empty.jpg", "");
+  expect_invalid(path("empty.jpg"), {"cannot decode"});
+}
+
+TEST_F(ImageIo, FailedWritesLeaveNoFile) {
+  const ImageRGB image(2, 2, glm::vec3(0.5f));
+  EXPECT_THROW(write_image(path("no/such/dir/a.png"), image), IoError);
+  EXPECT_THROW(write_image(path("empty.png"), ImageRGB()), InvalidInput);
+  EXPECT_FALSE(fs::exists(path("empty.png")));
+  fs::create_directory(path("taken.pfm"));  // renaming over a folder fails after the data was written
+  EXPECT_THROW(write_image(path("taken.pfm"), image), IoError);
+  EXPECT_TRUE(fs::is_directory(path("taken.pfm")));
+  EXPECT_EQ(files_in_dir(), 1u);  // no temporary left behind
+}
+
+TEST_F(ImageIo, WritingReplacesAnExistingFileWhole) {
+  write_image(path("a.png"), ImageRGB(64, 64, glm::vec3(0.25f)));
+  write_image(path("a.png"), ImageRGB(2, 1, glm::vec3(1.f)));
+  const ImageRGBA back = read_image(path("a.png"));
+  EXPECT_EQ(back.width(), 2);
+  EXPECT_EQ(back(1, 0), glm::vec4(1.f));
+  EXPECT_EQ(files_in_dir(), 1u);
+}
+
+}  // namespace
+}  // namespace tessera
