@@ -1,0 +1,81 @@
+#include "tessera/mesh/convert.hpp"
+
+#include <array>
+#include <bit>
+#include <unordered_map>
+
+#include "tessera/mesh/triangulate.hpp"
+
+namespace tessera {
+namespace {
+
+/// A split vertex: the original vertex and the bit patterns of its corner's uv and normal.
+using CornerKey = std::array<uint64_t, 6>;
+
+struct CornerKeyHash {
+  size_t operator()(const CornerKey& k) const {
+    uint64_t h = 0x9E3779B97F4A7C15ULL;
+    for (uint64_t w : k) h = (h ^ w) * 0xBF58476D1CE4E5B9ULL, h ^= h >> 31;
+    return size_t(h);
+  }
+};
+
+}  // namespace
+
+TriMesh to_tri_mesh(const PolyMesh& poly) {
+  const PolyMesh mesh = poly.is_triangle_mesh() ? poly : triangulate(poly);
+  const bool corner_uv = !mesh.corner_uvs.empty(), corner_n = !mesh.corner_normals.empty();
+  const size_t nv = mesh.vertex_count();
+  TriMesh out;
+  if (!corner_uv && !corner_n) {
+    out.positions = mesh.positions;
+    out.indices = mesh.face_vertices;
+    out.normals = mesh.normals;
+    out.uvs = mesh.uvs;
+    out.colors = mesh.colors;
+    return out;
+  }
+  const auto copy_vertex = [&](uint32_t v, size_t corner) {
+    out.positions.push_back(mesh.positions[v]);
+    if (corner_uv)
+      out.uvs.push_back(mesh.corner_uvs[corner]);
+    else if (mesh.uvs.size() == nv && nv > 0)
+      out.uvs.push_back(mesh.uvs[v]);
+    if (corner_n)
+      out.normals.push_back(mesh.corner_normals[corner]);
+    else if (mesh.normals.size() == nv && nv > 0)
+      out.normals.push_back(mesh.normals[v]);
+    if (mesh.colors.size() == nv && nv > 0) out.colors.push_back(mesh.colors[v]);
+  };
+  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> split;
+  split.reserve(mesh.face_vertices.size());
+  out.indices.reserve(mesh.face_vertices.size());
+  for (size_t c = 0; c < mesh.face_vertices.size(); ++c) {
+    const uint32_t v = mesh.face_vertices[c];
+    CornerKey key{v, 0, 0, 0, 0, 0};
+    if (corner_uv) {
+      key[1] = std::bit_cast<uint64_t>(mesh.corner_uvs[c].x);
+      key[2] = std::bit_cast<uint64_t>(mesh.corner_uvs[c].y);
+    }
+    if (corner_n)
+      for (int i = 0; i < 3; ++i) key[size_t(3 + i)] = std::bit_cast<uint64_t>(mesh.corner_normals[c][i]);
+    const auto [it, inserted] = split.try_emplace(key, uint32_t(out.positions.size()));
+    if (inserted) copy_vertex(v, c);
+    out.indices.push_back(it->second);
+  }
+  return out;
+}
+
+PolyMesh to_poly_mesh(const TriMesh& mesh) {
+  PolyMesh out;
+  out.positions = mesh.positions;
+  out.normals = mesh.normals;
+  out.uvs = mesh.uvs;
+  out.colors = mesh.colors;
+  out.face_vertices = mesh.indices;
+  out.face_offsets.resize(mesh.triangle_count() + 1);
+  for (size_t t = 0; t <= mesh.triangle_count(); ++t) out.face_offsets[t] = uint32_t(3 * t);
+  return out;
+}
+
+}  // namespace tessera
