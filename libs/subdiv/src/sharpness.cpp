@@ -1,0 +1,54 @@
+#include "sharpness.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera::detail {
+
+LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& mesh, BoundaryInterpolation boundary)
+    : topology_(topology) {
+  for (const EdgeCrease& c : mesh.creases) {
+    if (std::isnan(c.sharpness))
+      throw InvalidInput(fmt::format("crease ({}, {}): sharpness is NaN", c.v0, c.v1));
+    const uint32_t e = topology.find_edge(c.v0, c.v1);
+    if (e == TopologyTables::kNone)
+      throw InvalidInput(fmt::format("crease ({}, {}) names no edge of the mesh", c.v0, c.v1));
+    if (c.sharpness > 0.0f && !topology.is_boundary_edge(e)) {
+      if (edges_.empty()) edges_.assign(topology.edge_count(), 0.0f);
+      edges_[e] = std::min(c.sharpness, kInfiniteSharpness);
+    }
+  }
+  for (const VertexCorner& c : mesh.corners) {
+    if (std::isnan(c.sharpness)) throw InvalidInput(fmt::format("corner {}: sharpness is NaN", c.v));
+    if (c.v >= topology.vertex_count())
+      throw InvalidInput(fmt::format("corner {} names no vertex (the mesh has {})", c.v, topology.vertex_count()));
+    if (c.sharpness > 0.0f) {
+      if (tagged_vertices_.empty()) tagged_vertices_.assign(topology.vertex_count(), 0.0f);
+      tagged_vertices_[c.v] = std::min(c.sharpness, kInfiniteSharpness);
+    }
+  }
+  vertices_ = tagged_vertices_;
+  if (boundary == BoundaryInterpolation::edge_and_corner) {
+    for (uint32_t v = 0; v < topology.vertex_count(); ++v) {
+      if (topology.is_boundary_vertex(v) && topology.ring_face_count(v) == 1) {
+        if (vertices_.empty()) vertices_.assign(topology.vertex_count(), 0.0f);
+        vertices_[v] = kInfiniteSharpness;
+      }
+    }
+  }
+}
+
+VertexRule LevelSharpness::rule(uint32_t v, std::span<float> ring) const {
+  const uint32_t n = topology_.ring_edge_count(v);
+  if (n == 0) return VertexRule::corner;
+  int sharp = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    ring[i] = edge(topology_.ring_edge(v, i));
+    sharp += ring[i] > 0.0f;
+  }
+  return vertex_rule(vertex(v), sharp);
+}
+
+}  // namespace tessera::detail

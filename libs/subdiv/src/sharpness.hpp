@@ -1,0 +1,53 @@
+#pragma once
+// The sharpness of every edge and vertex of one level, from a mesh's crease and corner tags, the boundary and the
+// boundary interpolation option; shared by the refinement driver and the limit masks.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/subdiv/rules.hpp"
+#include "tessera/subdiv/subdivide.hpp"
+#include "tessera/subdiv/topology.hpp"
+
+namespace tessera::detail {
+
+/// Per-edge and per-vertex sharpness of a level; empty arrays mean "all smooth" (boundary edges excepted).
+class LevelSharpness {
+ public:
+  /// Reads the tags of `mesh` over `topology`. Throws InvalidInput for a crease that names no edge, a corner that
+  /// names no vertex, or NaN sharpness.
+  LevelSharpness(const TopologyTables& topology, const PolyMesh& mesh, BoundaryInterpolation boundary);
+
+  /// Sharpness of edge e: infinite on a boundary, else its tag (0 when untagged).
+  float edge(uint32_t e) const {
+    if (topology_.is_boundary_edge(e)) return kInfiniteSharpness;
+    return edges_.empty() ? 0.0f : edges_[e];
+  }
+  /// Sharpness of vertex v: its corner tag, infinite for a boundary corner under edge_and_corner.
+  float vertex(uint32_t v) const { return vertices_.empty() ? 0.0f : vertices_[v]; }
+  /// True when some interior edge or some vertex is tagged (else every interior vertex is smooth).
+  bool any() const { return !edges_.empty() || !vertices_.empty(); }
+  /// The explicit (interior) edge tags, empty when none.
+  std::span<const float> edges() const { return edges_; }
+  /// The corner tags as given (without boundary corners), empty when none.
+  std::span<const float> tagged_vertices() const { return tagged_vertices_; }
+
+  /// The rule of vertex v, with the sharpness of its ring edges written to `ring` (ring_edge_count(v) entries).
+  VertexRule rule(uint32_t v, std::span<float> ring) const;
+
+ private:
+  const TopologyTables& topology_;
+  std::vector<float> edges_, vertices_, tagged_vertices_;
+};
+
+/// The ring indices of the first and last sharp entry of `sharpness` (the two edges of a crease).
+inline void crease_ends(std::span<const float> sharpness, uint32_t ends[2]) {
+  uint32_t a = 0, b = uint32_t(sharpness.size()) - 1;
+  while (sharpness[a] <= 0.0f) ++a;
+  while (sharpness[b] <= 0.0f) --b;
+  ends[0] = a;
+  ends[1] = b;
+}
+
+}  // namespace tessera::detail

@@ -1,0 +1,98 @@
+#include "tessera/subdiv/topology.hpp"
+
+#include <gtest/gtest.h>
+
+#include "fixtures.hpp"
+#include "tessera/core/error.hpp"
+
+namespace tessera {
+namespace {
+
+TopologyTables tables(const PolyMesh& m) { return {m.face_offsets, m.face_vertices, m.vertex_count()}; }
+
+TEST(TopologyTables, CubeCounts) {
+  const TopologyTables t = tables(test::cube());
+  EXPECT_EQ(t.vertex_count(), 8u);
+  EXPECT_EQ(t.face_count(), 6u);
+  EXPECT_EQ(t.edge_count(), 12u);
+  EXPECT_EQ(t.max_valence(), 3u);
+  for (uint32_t v = 0; v < 8; ++v) {
+    EXPECT_FALSE(t.is_boundary_vertex(v));
+    EXPECT_EQ(t.ring_face_count(v), 3u);
+    EXPECT_EQ(t.ring_edge_count(v), 3u);
+  }
+  for (uint32_t e = 0; e < 12; ++e) EXPECT_FALSE(t.is_boundary_edge(e));
+  // Edges are numbered in order of first appearance: face 0 = (0, 3, 2, 1).
+  EXPECT_EQ(t.edge_vertices(0), (std::array<uint32_t, 2>{0, 3}));
+  EXPECT_EQ(t.edge_vertices(3), (std::array<uint32_t, 2>{1, 0}));
+  EXPECT_EQ(t.find_edge(3, 0), 0u);
+  EXPECT_EQ(t.find_edge(0, 6), TopologyTables::kNone);
+}
+
+TEST(TopologyTables, RingsAreCounterclockwiseAndConsistent) {
+  for (const PolyMesh& m : {test::cube(), test::grid(4, 3), test::house(), test::icosahedron()}) {
+    const TopologyTables t = tables(m);
+    for (uint32_t v = 0; v < t.vertex_count(); ++v) {
+      const auto ring = t.ring_corners(v);
+      for (uint32_t i = 0; i < ring.size(); ++i) {
+        const uint32_t k = ring[i];
+        EXPECT_EQ(t.corner_vertex(k), v);
+        // Face i lies between edge i (its outgoing edge at v) and edge i+1 (its incoming edge at v).
+        EXPECT_EQ(t.ring_edge(v, i), t.corner_edge(k));
+        EXPECT_EQ(t.ring_edge(v, (i + 1) % t.ring_edge_count(v)), t.corner_edge(t.prev_corner(k)));
+      }
+      // Counterclockwise seen from outside: edge 0 x edge 1 points along face 0's (Newell) normal.
+      if (t.ring_edge_count(v) >= 2) {
+        const Vec3 a = m.positions[t.ring_neighbor(v, 0)] - m.positions[v];
+        const Vec3 b = m.positions[t.ring_neighbor(v, 1)] - m.positions[v];
+        Vec3 normal(0.0);
+        const auto face = m.face(t.corner_face(ring[0]));
+        for (size_t i = 0; i < face.size(); ++i)
+          normal += glm::cross(m.positions[face[i]], m.positions[face[(i + 1) % face.size()]]);
+        EXPECT_GT(glm::dot(glm::cross(a, b), normal), 0.0) << "vertex " << v;
+      }
+    }
+  }
+}
+
+TEST(TopologyTables, GridBoundary) {
+  const TopologyTables t = tables(test::grid(4, 3));
+  EXPECT_EQ(t.edge_count(), 4u * 4u + 5u * 3u);
+  int boundary_edges = 0;
+  for (uint32_t e = 0; e < t.edge_count(); ++e) boundary_edges += t.is_boundary_edge(e);
+  EXPECT_EQ(boundary_edges, 2 * (4 + 3));
+  // Corner vertex 0: one face, two boundary edges; edge 0 is the leading boundary edge (0 -> 1).
+  EXPECT_TRUE(t.is_boundary_vertex(0));
+  EXPECT_EQ(t.ring_face_count(0), 1u);
+  EXPECT_EQ(t.ring_edge_count(0), 2u);
+  EXPECT_EQ(t.ring_neighbor(0, 0), 1u);
+  EXPECT_EQ(t.ring_neighbor(0, 1), 5u);
+  // Bottom edge vertex 2: faces 1 and 2, edges to 3, 7, 1 in counterclockwise order.
+  EXPECT_EQ(t.ring_face_count(2), 2u);
+  EXPECT_EQ(t.ring_neighbor(2, 0), 3u);
+  EXPECT_EQ(t.ring_neighbor(2, 1), 7u);
+  EXPECT_EQ(t.ring_neighbor(2, 2), 1u);
+  EXPECT_FALSE(t.is_boundary_vertex(6));
+  EXPECT_EQ(t.ring_edge_count(6), 4u);
+}
+
+TEST(TopologyTables, RejectsBadFacesAndNonManifolds) {
+  EXPECT_THROW(TopologyTables({0, 2}, {0, 1}, 2), InvalidInput);           // a 2-gon
+  EXPECT_THROW(TopologyTables({0, 3}, {0, 1, 5}, 3), InvalidInput);        // index out of range
+  EXPECT_THROW(TopologyTables({0, 4}, {0, 1, 2, 1}, 3), InvalidInput);     // repeated vertex
+  EXPECT_THROW(TopologyTables({0, 3, 6}, {0, 1, 2, 0, 1, 3}, 4), TopologyError);  // same edge, same direction
+  // Three triangles on edge 0-1.
+  EXPECT_THROW(TopologyTables({0, 3, 6, 9}, {0, 1, 2, 1, 0, 3, 1, 0, 4}, 5), TopologyError);
+  // Two triangles touching at vertex 0 only (a bowtie).
+  EXPECT_THROW(TopologyTables({0, 3, 6}, {0, 1, 2, 0, 3, 4}, 5), TopologyError);
+}
+
+TEST(TopologyTables, IsolatedVerticesHaveEmptyRings) {
+  const TopologyTables t({0, 3}, {0, 1, 2}, 4);
+  EXPECT_EQ(t.ring_face_count(3), 0u);
+  EXPECT_EQ(t.ring_edge_count(3), 0u);
+  EXPECT_EQ(t.edge_count(), 3u);
+}
+
+}  // namespace
+}  // namespace tessera
