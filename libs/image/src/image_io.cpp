@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <climits>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -30,7 +31,7 @@ struct FormatEntry {
   bool writable;  // every entry is readable
 };
 
-constexpr FormatEntry kFormats[] = {
+constexpr FormatEntry formats[] = {
     {".png", Format::png, true},  {".jpg", Format::jpg, true},  {".jpeg", Format::jpg, true},
     {".bmp", Format::bmp, true},  {".tga", Format::tga, true},  {".hdr", Format::hdr, true},
     {".ppm", Format::ppm, true},  {".pgm", Format::ppm, false}, {".pnm", Format::ppm, false},
@@ -44,7 +45,7 @@ Format format_of(const std::filesystem::path& path, bool writing) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   std::string supported;
-  for (const FormatEntry& entry : kFormats) {
+  for (const FormatEntry& entry : formats) {
     if (writing && !entry.writable) continue;
     if (entry.extension == ext) return entry.format;
     supported += (supported.empty() ? "" : ", ") + std::string(entry.extension);
@@ -346,7 +347,7 @@ bool is_float_format(Format format) { return format == Format::hdr || format == 
 uint8_t to_byte(float v) {
   if (!(v > 0.f)) return 0;  // also NaN
   if (v >= 1.f) return 255;
-  return uint8_t(v * 255.f + 0.5f);
+  return uint8_t(std::lround(v * 255.f));
 }
 
 glm::u8vec4 encode_pixel(const glm::vec4& p, bool srgb) {

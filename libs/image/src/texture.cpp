@@ -5,12 +5,10 @@
 #include <limits>
 
 #include "tessera/core/error.hpp"
+#include "tessera/math/types.hpp"
 
 namespace tessera {
 namespace {
-
-constexpr double kTwoPi = 6.283185307179586476925;
-constexpr double kPi = 3.141592653589793238463;
 
 // A texel-space coordinate split into floor(x) and x - floor(x). NaN reads texel 0 and huge values are clamped far
 // outside any texture (wrapping then folds them back), so no input is undefined behavior.
@@ -87,17 +85,17 @@ void check_nonempty(const ImageRGBA& image, const char* what) {
 
 }  // namespace
 
-std::vector<ImageRGBA> build_mipmaps(const ImageRGBA& image) {
+std::vector<ImageRGBA> build_mipmaps(ImageRGBA image) {
   check_nonempty(image, "build_mipmaps");
   std::vector<ImageRGBA> levels;
-  levels.push_back(image);
+  levels.push_back(std::move(image));
   while (levels.back().width() > 1 || levels.back().height() > 1) levels.push_back(reduce(levels.back()));
   return levels;
 }
 
 Texture2D::Texture2D(ImageRGBA image, const Sampler& sampler) : sampler_(sampler) {
   check_nonempty(image, "Texture2D");
-  levels_ = build_mipmaps(image);
+  levels_ = build_mipmaps(std::move(image));
 }
 
 const ImageRGBA& Texture2D::level(int i) const {
@@ -149,11 +147,11 @@ float Texture2D::lod(glm::vec2 duv_dx, glm::vec2 duv_dy) const {
 
 glm::vec2 latlong_uv(glm::vec3 direction) {
   const double x = direction.x, y = direction.y, z = direction.z;
-  return {float(0.5 + std::atan2(x, -z) / kTwoPi), float(0.5 + std::atan2(y, std::hypot(x, z)) / kPi)};
+  return {float(0.5 + std::atan2(x, -z) / (2.0 * kPi)), float(0.5 + std::atan2(y, std::hypot(x, z)) / kPi)};
 }
 
 glm::vec3 latlong_direction(glm::vec2 uv) {
-  const double phi = (double(uv.x) - 0.5) * kTwoPi, theta = (double(uv.y) - 0.5) * kPi;
+  const double phi = (double(uv.x) - 0.5) * (2.0 * kPi), theta = (double(uv.y) - 0.5) * kPi;
   return {float(std::cos(theta) * std::sin(phi)), float(std::sin(theta)), float(-std::cos(theta) * std::cos(phi))};
 }
 

@@ -78,7 +78,7 @@ class Texture2D {
 /// each size, rounding down, to 1 at least (OpenGL's rule). An even size averages pairs; an odd size 2n+1 -> n uses
 /// the three-tap box of width (2n+1)/n, weights (n - i, n, i + 1)/(2n + 1), so every level keeps the image's mean
 /// exactly. Throws InvalidInput for an empty image.
-std::vector<ImageRGBA> build_mipmaps(const ImageRGBA& image);
+std::vector<ImageRGBA> build_mipmaps(ImageRGBA image);
 
 /// Lat-long (equirectangular) mapping of unit directions, right-handed, y up: the image center (0.5, 0.5) looks
 /// down -z, u grows with the azimuth toward +x (u = 0.75 is +x, u = 0 and 1 are +z), v = 1 is +y (top row) and v = 0
