@@ -47,7 +47,7 @@ function(tessera_add_tests module)
   target_compile_definitions(${target} PRIVATE TESSERA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                TESSERA_SHARED_DATA="${TESSERA_SHARED_DATA}")
   gtest_discover_tests(${target} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_MODE PRE_TEST
-                       PROPERTIES LABELS "unit;${module}")
+                       PROPERTIES LABELS "unit\\;${module}")
   add_dependencies(unit_tests ${target})
 endfunction()
 
