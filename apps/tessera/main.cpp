@@ -18,6 +18,7 @@ void setup_fractal(CLI::App&, CommonOptions&);
 void setup_gallery(CLI::App&, CommonOptions&);
 void setup_mesh(CLI::App&, CommonOptions&);
 void setup_patch(CLI::App&, CommonOptions&);
+void setup_volume(CLI::App&, CommonOptions&);
 
 namespace {
 const Command kCommands[] = {
@@ -29,6 +30,7 @@ const Command kCommands[] = {
     {"curve", "Bezier curves: draw curves, control polygons and subdivision steps", setup_curve},
     {"patch", "Bezier patches (.bpt) tessellated into a mesh", setup_patch},
     {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension", setup_fractal},
+    {"volume", "Volume data: info, slice, contour (marching squares), isosurface (marching cubes), render", setup_volume},
 };
 }  // namespace
 }  // namespace tessera::cli

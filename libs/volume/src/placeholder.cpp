@@ -1,0 +1,1 @@
+#include "tessera/mesh/poly_mesh.hpp"
