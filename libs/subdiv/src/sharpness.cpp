@@ -9,6 +9,10 @@ namespace tessera::detail {
 
 LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& mesh, BoundaryInterpolation boundary)
     : topology_(topology) {
+  auto touch = [&](uint32_t v) {
+    if (touched_.empty()) touched_.assign(topology.vertex_count(), uint8_t(0));
+    touched_[v] = 1;
+  };
   for (const EdgeCrease& c : mesh.creases) {
     if (std::isnan(c.sharpness))
       throw InvalidInput(fmt::format("crease ({}, {}): sharpness is NaN", c.v0, c.v1));
@@ -18,6 +22,8 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     if (c.sharpness > 0.0f && !topology.is_boundary_edge(e)) {
       if (edges_.empty()) edges_.assign(topology.edge_count(), 0.0f);
       edges_[e] = std::min(c.sharpness, kInfiniteSharpness);
+      touch(c.v0);
+      touch(c.v1);
     }
   }
   for (const VertexCorner& c : mesh.corners) {
@@ -27,6 +33,7 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     if (c.sharpness > 0.0f) {
       if (tagged_vertices_.empty()) tagged_vertices_.assign(topology.vertex_count(), 0.0f);
       tagged_vertices_[c.v] = std::min(c.sharpness, kInfiniteSharpness);
+      touch(c.v);
     }
   }
   vertices_ = tagged_vertices_;

@@ -26,8 +26,10 @@ class LevelSharpness {
   }
   /// Sharpness of vertex v: its corner tag, infinite for a boundary corner under edge_and_corner.
   float vertex(uint32_t v) const { return vertices_.empty() ? 0.0f : vertices_[v]; }
-  /// True when some interior edge or some vertex is tagged (else every interior vertex is smooth).
-  bool any() const { return !edges_.empty() || !vertices_.empty(); }
+  /// False when vertex v certainly follows the smooth rule: interior, no tag on it or on its edges.
+  bool may_be_sharp(uint32_t v) const {
+    return topology_.is_boundary_vertex(v) || (!touched_.empty() && touched_[v] != 0);
+  }
   /// The explicit (interior) edge tags, empty when none.
   std::span<const float> edges() const { return edges_; }
   /// The corner tags as given (without boundary corners), empty when none.
@@ -39,6 +41,7 @@ class LevelSharpness {
  private:
   const TopologyTables& topology_;
   std::vector<float> edges_, vertices_, tagged_vertices_;
+  std::vector<uint8_t> touched_;  // per vertex: tagged, or an end of a tagged edge (empty when nothing is tagged)
 };
 
 /// The ring indices of the first and last sharp entry of `sharpness` (the two edges of a crease).

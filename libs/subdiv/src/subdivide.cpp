@@ -159,7 +159,7 @@ class LevelRefiner {
   VertexMask vertex_mask(uint32_t v, std::vector<float>& buffer) const {
     if constexpr (Rules::kLinear) return {};
     const uint32_t faces = t_.ring_face_count(v), edges = t_.ring_edge_count(v);
-    if (!sharp_.any() && !t_.is_boundary_vertex(v) && faces > 0) return rules_.smooth_vertex(faces);
+    if (!sharp_.may_be_sharp(v) && faces > 0) return rules_.smooth_vertex(faces);
     if (edges == 0) return corner_vertex_mask();
     const std::span<float> parent(buffer.data(), edges), child(buffer.data() + edges, edges);
     const VertexRule parent_rule = sharp_.rule(v, parent);

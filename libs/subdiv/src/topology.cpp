@@ -22,9 +22,9 @@ constexpr uint64_t kNoError = ~uint64_t(0);
 
 }  // namespace
 
-TopologyTables::TopologyTables(std::vector<uint32_t> face_offsets, std::vector<uint32_t> face_vertices,
+TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
                                size_t vertex_count)
-    : face_offsets_(std::move(face_offsets)), face_vertices_(std::move(face_vertices)) {
+    : face_offsets_(face_offsets), face_vertices_(face_vertices) {
   if (face_offsets_.empty() || face_offsets_.front() != 0 || face_offsets_.back() != face_vertices_.size())
     throw InvalidInput("subdivision: face offsets do not match the face-vertex list");
   if (vertex_count >= kNone || face_vertices_.size() >= kNone)
@@ -33,7 +33,10 @@ TopologyTables::TopologyTables(std::vector<uint32_t> face_offsets, std::vector<u
 
   // Faces: at least 3 distinct vertices, all in range.
   std::atomic<uint64_t> bad_face{kNoError};
-  corner_faces_.resize(face_vertices_.size());
+  uniform_size_ = faces > 0 ? face_offsets_[1] - face_offsets_[0] : 0;
+  for (int64_t f = 1; f < faces && uniform_size_ != 0; ++f)
+    if (face_offsets_[f + 1] - face_offsets_[f] != uniform_size_) uniform_size_ = 0;
+  if (uniform_size_ == 0) corner_faces_.resize(face_vertices_.size());
   parallel_for(0, faces, kGrain, [&](int64_t b, int64_t e) {
     for (int64_t f = b; f < e; ++f) {
       const uint32_t o = face_offsets_[f], end = face_offsets_[f + 1];
@@ -42,7 +45,7 @@ TopologyTables::TopologyTables(std::vector<uint32_t> face_offsets, std::vector<u
       for (uint32_t i = 0; ok && i < n; ++i) {
         ok = face_vertices_[o + i] < vertex_count;
         for (uint32_t j = 0; ok && j < i; ++j) ok = face_vertices_[o + i] != face_vertices_[o + j];
-        corner_faces_[o + i] = uint32_t(f);
+        if (uniform_size_ == 0) corner_faces_[o + i] = uint32_t(f);
       }
       if (!ok) {
         atomic_min(bad_face, uint64_t(f));
@@ -58,12 +61,12 @@ TopologyTables::TopologyTables(std::vector<uint32_t> face_offsets, std::vector<u
   }
 
   // Corners grouped by vertex (counting sort, in corner order so the result is deterministic).
-  vertex_offsets_.assign(vertex_count + 1, 0);
+  vertex_offsets_.assign(vertex_count + 1, 0u);
   for (uint32_t v : face_vertices_) ++vertex_offsets_[v + 1];
   for (size_t v = 0; v < vertex_count; ++v) vertex_offsets_[v + 1] += vertex_offsets_[v];
-  std::vector<uint32_t> by_vertex(face_vertices_.size());
+  detail::RawVector<uint32_t> by_vertex(face_vertices_.size());
   {
-    std::vector<uint32_t> fill(vertex_offsets_.begin(), vertex_offsets_.end() - 1);
+    detail::RawVector<uint32_t> fill(vertex_offsets_.begin(), vertex_offsets_.end() - 1);
     for (uint32_t k = 0; k < face_vertices_.size(); ++k) by_vertex[fill[face_vertices_[k]]++] = k;
   }
 
@@ -115,16 +118,12 @@ void TopologyTables::build_edges() {
   uint32_t edges = 0;
   for (uint32_t k = 0; k < corners; ++k)
     if (twins_[k] == kNone || k < twins_[k]) corner_edges_[k] = edges++;
-  edge_vertices_.resize(2 * size_t(edges));
   edge_corners_.resize(edges);
   parallel_for(0, int64_t(corners), kGrain, [&](int64_t b, int64_t e) {
     for (int64_t c = b; c < e; ++c) {
       const auto k = uint32_t(c);
       if (twins_[k] == kNone || k < twins_[k]) {
-        const uint32_t edge = corner_edges_[k];
-        edge_vertices_[2 * size_t(edge)] = face_vertices_[k];
-        edge_vertices_[2 * size_t(edge) + 1] = face_vertices_[next_corner(k)];
-        edge_corners_[edge] = k;
+        edge_corners_[corner_edges_[k]] = k;
       } else {
         corner_edges_[k] = corner_edges_[twins_[k]];
       }
@@ -135,7 +134,7 @@ void TopologyTables::build_edges() {
 void TopologyTables::build_rings() {
   // ring_corners_ holds each vertex's corners in corner order; walk them counterclockwise in place of that order.
   const int64_t vertices = int64_t(vertex_count());
-  boundary_vertex_.assign(vertex_count(), 0);
+  boundary_vertex_.assign(vertex_count(), uint8_t(0));
   std::atomic<uint64_t> bad_vertex{kNoError};
   std::atomic<uint32_t> max_valence{0};
   parallel_for(0, vertices, 1024, [&](int64_t b, int64_t e) {

@@ -45,7 +45,8 @@ TEST(CatmullClark, CubeCornerFollowsTheNotesVertexRuleWithNeighbourEnds) {
   EXPECT_NEAR(corner.z, 5.0 / 9.0, 1e-15);
   // Face point of the top face and edge point of edge 4-5: (v0 + v1 + f0 + f1)/4.
   EXPECT_EQ(out.positions[8 + 1], Vec3(0, 0, 1));
-  const TopologyTables t(cube().face_offsets, cube().face_vertices, 8);
+  const PolyMesh c = cube();
+  const TopologyTables t(c.face_offsets, c.face_vertices, 8);
   const uint32_t e = t.find_edge(4, 5);
   const Vec3 expected = (Vec3(-1, -1, 1) + Vec3(1, -1, 1) + Vec3(0, 0, 1) + Vec3(0, -1, 0)) / 4.0;
   EXPECT_EQ(out.positions[8 + 6 + e], expected);

@@ -8,10 +8,20 @@
 namespace tessera {
 namespace {
 
-TopologyTables tables(const PolyMesh& m) { return {m.face_offsets, m.face_vertices, m.vertex_count()}; }
+// A mesh with its tables (which view the mesh's face arrays).
+struct Built {
+  explicit Built(PolyMesh m) : mesh(std::move(m)), tables(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count()) {}
+  PolyMesh mesh;
+  TopologyTables tables;
+};
+
+void build(const std::vector<uint32_t>& offsets, const std::vector<uint32_t>& vertices, size_t vertex_count) {
+  const TopologyTables t(offsets, vertices, vertex_count);
+}
 
 TEST(TopologyTables, CubeCounts) {
-  const TopologyTables t = tables(test::cube());
+  const Built b(test::cube());
+  const TopologyTables& t = b.tables;
   EXPECT_EQ(t.vertex_count(), 8u);
   EXPECT_EQ(t.face_count(), 6u);
   EXPECT_EQ(t.edge_count(), 12u);
@@ -31,7 +41,7 @@ TEST(TopologyTables, CubeCounts) {
 
 TEST(TopologyTables, RingsAreCounterclockwiseAndConsistent) {
   for (const PolyMesh& m : {test::cube(), test::grid(4, 3), test::house(), test::icosahedron()}) {
-    const TopologyTables t = tables(m);
+    const TopologyTables t(m.face_offsets, m.face_vertices, m.vertex_count());
     for (uint32_t v = 0; v < t.vertex_count(); ++v) {
       const auto ring = t.ring_corners(v);
       for (uint32_t i = 0; i < ring.size(); ++i) {
@@ -56,7 +66,8 @@ TEST(TopologyTables, RingsAreCounterclockwiseAndConsistent) {
 }
 
 TEST(TopologyTables, GridBoundary) {
-  const TopologyTables t = tables(test::grid(4, 3));
+  const Built b(test::grid(4, 3));
+  const TopologyTables& t = b.tables;
   EXPECT_EQ(t.edge_count(), 4u * 4u + 5u * 3u);
   int boundary_edges = 0;
   for (uint32_t e = 0; e < t.edge_count(); ++e) boundary_edges += t.is_boundary_edge(e);
@@ -77,18 +88,19 @@ TEST(TopologyTables, GridBoundary) {
 }
 
 TEST(TopologyTables, RejectsBadFacesAndNonManifolds) {
-  EXPECT_THROW(TopologyTables({0, 2}, {0, 1}, 2), InvalidInput);           // a 2-gon
-  EXPECT_THROW(TopologyTables({0, 3}, {0, 1, 5}, 3), InvalidInput);        // index out of range
-  EXPECT_THROW(TopologyTables({0, 4}, {0, 1, 2, 1}, 3), InvalidInput);     // repeated vertex
-  EXPECT_THROW(TopologyTables({0, 3, 6}, {0, 1, 2, 0, 1, 3}, 4), TopologyError);  // same edge, same direction
+  EXPECT_THROW(build({0, 2}, {0, 1}, 2), InvalidInput);           // a 2-gon
+  EXPECT_THROW(build({0, 3}, {0, 1, 5}, 3), InvalidInput);        // index out of range
+  EXPECT_THROW(build({0, 4}, {0, 1, 2, 1}, 3), InvalidInput);     // repeated vertex
+  EXPECT_THROW(build({0, 3, 6}, {0, 1, 2, 0, 1, 3}, 4), TopologyError);  // same edge, same direction
   // Three triangles on edge 0-1.
-  EXPECT_THROW(TopologyTables({0, 3, 6, 9}, {0, 1, 2, 1, 0, 3, 1, 0, 4}, 5), TopologyError);
+  EXPECT_THROW(build({0, 3, 6, 9}, {0, 1, 2, 1, 0, 3, 1, 0, 4}, 5), TopologyError);
   // Two triangles touching at vertex 0 only (a bowtie).
-  EXPECT_THROW(TopologyTables({0, 3, 6}, {0, 1, 2, 0, 3, 4}, 5), TopologyError);
+  EXPECT_THROW(build({0, 3, 6}, {0, 1, 2, 0, 3, 4}, 5), TopologyError);
 }
 
 TEST(TopologyTables, IsolatedVerticesHaveEmptyRings) {
-  const TopologyTables t({0, 3}, {0, 1, 2}, 4);
+  const std::vector<uint32_t> offsets{0, 3}, vertices{0, 1, 2};
+  const TopologyTables t(offsets, vertices, 4);
   EXPECT_EQ(t.ring_face_count(3), 0u);
   EXPECT_EQ(t.ring_edge_count(3), 0u);
   EXPECT_EQ(t.edge_count(), 3u);

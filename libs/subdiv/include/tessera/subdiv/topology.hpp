@@ -8,10 +8,36 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace tessera {
+
+namespace detail {
+/// An allocator whose resize() leaves new elements uninitialized (for arrays that are written in full afterwards).
+template <class T>
+struct NoInitAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = NoInitAllocator<U>;
+  };
+  NoInitAllocator() = default;
+  template <class U>
+  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+};
+template <class T>
+using RawVector = std::vector<T, NoInitAllocator<T>>;
+}  // namespace detail
 
 class TopologyTables {
  public:
@@ -19,13 +45,15 @@ class TopologyTables {
   static constexpr uint32_t kNone = 0xffffffffu;
 
   /// Builds the tables of faces given by `face_offsets` (F + 1 entries, from 0) and `face_vertices`, in parallel.
+  /// The tables keep views of both arrays, which must outlive them and stay unchanged.
   /// Throws InvalidInput for a face with fewer than 3 vertices, a repeated vertex or an index >= vertex_count, and
   /// TopologyError for a non-manifold edge or vertex or neighbours of opposite orientation.
-  TopologyTables(std::vector<uint32_t> face_offsets, std::vector<uint32_t> face_vertices, size_t vertex_count);
+  TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
+                 size_t vertex_count);
 
   size_t vertex_count() const { return vertex_offsets_.size() - 1; }
   size_t face_count() const { return face_offsets_.size() - 1; }
-  size_t edge_count() const { return edge_vertices_.size() / 2; }
+  size_t edge_count() const { return edge_corners_.size(); }
   size_t corner_count() const { return face_vertices_.size(); }
 
   /// Face f's vertices in order, its size and the index of its first corner.
@@ -34,24 +62,31 @@ class TopologyTables {
   }
   uint32_t face_size(size_t f) const { return face_offsets_[f + 1] - face_offsets_[f]; }
   uint32_t face_offset(size_t f) const { return face_offsets_[f]; }
-  const std::vector<uint32_t>& face_offsets() const { return face_offsets_; }
-  const std::vector<uint32_t>& face_vertices() const { return face_vertices_; }
 
   /// Corner k's vertex, face, following and preceding corner in its face, and the edge from it to the next corner.
   uint32_t corner_vertex(uint32_t k) const { return face_vertices_[k]; }
-  uint32_t corner_face(uint32_t k) const { return corner_faces_[k]; }
+  uint32_t corner_face(uint32_t k) const {
+    if (uniform_size_ == 4) return k >> 2;
+    return uniform_size_ != 0 ? k / uniform_size_ : corner_faces_[k];
+  }
   uint32_t next_corner(uint32_t k) const {
-    return k + 1 == face_offsets_[corner_faces_[k] + 1] ? face_offsets_[corner_faces_[k]] : k + 1;
+    if (uniform_size_ == 4) return (k & ~3u) | ((k + 1) & 3u);
+    const uint32_t f = corner_face(k);
+    return k + 1 == face_offsets_[f + 1] ? face_offsets_[f] : k + 1;
   }
   uint32_t prev_corner(uint32_t k) const {
-    return k == face_offsets_[corner_faces_[k]] ? face_offsets_[corner_faces_[k] + 1] - 1 : k - 1;
+    if (uniform_size_ == 4) return (k & ~3u) | ((k - 1) & 3u);
+    const uint32_t f = corner_face(k);
+    return k == face_offsets_[f] ? face_offsets_[f + 1] - 1 : k - 1;
   }
   uint32_t corner_edge(uint32_t k) const { return corner_edges_[k]; }
   /// The corner of the neighbouring face that runs the same edge the other way, or kNone on a boundary.
   uint32_t twin(uint32_t k) const { return twins_[k]; }
 
   /// Edge e's two vertices (in the direction of its first corner).
-  std::array<uint32_t, 2> edge_vertices(size_t e) const { return {edge_vertices_[2 * e], edge_vertices_[2 * e + 1]}; }
+  std::array<uint32_t, 2> edge_vertices(size_t e) const {
+    return {face_vertices_[edge_corners_[e]], face_vertices_[next_corner(edge_corners_[e])]};
+  }
   /// Edge e's corners: [0] in its first face, [1] in the second face or kNone on a boundary.
   std::array<uint32_t, 2> edge_corners(size_t e) const { return {edge_corners_[e], twins_[edge_corners_[e]]}; }
   bool is_boundary_edge(size_t e) const { return twins_[edge_corners_[e]] == kNone; }
@@ -84,12 +119,13 @@ class TopologyTables {
   void build_edges();
   void build_rings();
 
-  std::vector<uint32_t> face_offsets_, face_vertices_;
-  std::vector<uint32_t> corner_faces_, corner_edges_, twins_;
-  std::vector<uint32_t> edge_vertices_;  // 2 per edge
-  std::vector<uint32_t> edge_corners_;   // the first corner of every edge
-  std::vector<uint32_t> vertex_offsets_, ring_corners_;
-  std::vector<uint8_t> boundary_vertex_;
+  std::span<const uint32_t> face_offsets_, face_vertices_;
+  uint32_t uniform_size_ = 0;                   // the size of every face, 0 when sizes differ
+  detail::RawVector<uint32_t> corner_faces_;    // empty when every face has uniform_size_ corners
+  detail::RawVector<uint32_t> corner_edges_, twins_;
+  detail::RawVector<uint32_t> edge_corners_;    // the first corner of every edge
+  detail::RawVector<uint32_t> vertex_offsets_, ring_corners_;
+  detail::RawVector<uint8_t> boundary_vertex_;
   uint32_t max_valence_ = 0;
 };
 
