@@ -77,26 +77,35 @@ void escape_points_refill(const PointBatch& batch, const IterationLimits& limits
     }
     if (any == 0 && it != soonest) continue;
 
-    // Slow path: write the finished points, refill their lanes, reload the registers.
+    // Slow path: write the finished points (escaped, or at their deadline), refill their lanes.
+    unsigned done[V];
+#pragma GCC unroll 16
+    for (int v = 0; v < V; ++v) done[v] = escaped[v];
+    bool oldest_done = it == soonest;
+    if (oldest_done)
+      for (int s = 0; s < S; ++s)
+        if (deadline[s] == it) done[s / W] |= 1u << (s % W);
 #pragma GCC unroll 16
     for (int v = 0; v < V; ++v) {
+      if (done[v] == 0) continue;
       Ops::store(xs + v * W, x[v]), Ops::store(ys + v * W, y[v]), Ops::store(yys + v * W, yy[v]);
       Ops::store(mags + v * W, m[v]);
-    }
-    for (int s = 0; s < S; ++s) {
-      const bool out = (escaped[s / W] >> (s % W)) & 1u;
-      if (!out && deadline[s] != it) continue;
-      const size_t i = point[s];
-      batch.iterations[i] = uint32_t(it - (deadline[s] - limits.max_iterations));
-      batch.norm2[i] = mags[s];
-      --live;
-      fill(s);
-    }
-    soonest = kNever;
-    for (int s = 0; s < S; ++s) soonest = deadline[s] < soonest ? deadline[s] : soonest;
-#pragma GCC unroll 16
-    for (int v = 0; v < V; ++v)
+      for (unsigned bits = done[v]; bits != 0; bits &= bits - 1) {
+        const int s = v * W + __builtin_ctz(bits);
+        const size_t i = point[s];
+        batch.iterations[i] = uint32_t(it - (deadline[s] - limits.max_iterations));
+        batch.norm2[i] = mags[s];
+        oldest_done |= deadline[s] == soonest;
+        --live;
+        fill(s);
+      }
       x[v] = Ops::load(xs + v * W), y[v] = Ops::load(ys + v * W), yy[v] = Ops::load(yys + v * W);
+    }
+    // Deadlines are handed out in increasing order, so the soonest one only moves when its slot finished.
+    if (oldest_done) {
+      soonest = kNever;
+      for (int s = 0; s < S; ++s) soonest = deadline[s] < soonest ? deadline[s] : soonest;
+    }
   }
 }
 

@@ -77,7 +77,9 @@ TEST(EscapeTime, InteriorChecksDoNotChangeTheSet) {
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
       ASSERT_EQ(a.inside(x, y), b.inside(x, y)) << x << "," << y;
-      if (!a.inside(x, y)) ASSERT_EQ(a.iterations(x, y), b.iterations(x, y));
+      if (!a.inside(x, y)) {
+        ASSERT_EQ(a.iterations(x, y), b.iterations(x, y));
+      }
     }
 }
 

@@ -18,9 +18,13 @@ TEST(SelfSimilar, CantorSetCountsAndMeasure) {
     for (size_t i = 0; i < set.size(); ++i) {
       // Every left end times 3^n is an integer without the digit 1 in base 3.
       auto k = int64_t(std::llround(set[i].a * std::pow(3.0, n)));
-      for (int d = 0; d < n; ++d, k /= 3) ASSERT_NE(k % 3, 1);
+      for (int d = 0; d < n; ++d, k /= 3) {
+        ASSERT_NE(k % 3, 1);
+      }
       EXPECT_NEAR(set[i].b - set[i].a, std::pow(3.0, -n), 1e-15);
-      if (i > 0) EXPECT_GT(set[i].a, set[i - 1].b);  // disjoint, left to right
+      if (i > 0) {
+        EXPECT_GT(set[i].a, set[i - 1].b);  // disjoint, left to right
+      }
       total += set[i].b - set[i].a;
     }
     EXPECT_NEAR(total, cantor_measure(n), 1e-13);
@@ -43,7 +47,9 @@ TEST(SelfSimilar, CantorDustAndCarpetAreas) {
       cells.insert({i, j});
       // No removed middle: at no level are both digits 1.
       long a = i, b = j;
-      for (int d = 0; d < n; ++d, a /= 3, b /= 3) ASSERT_FALSE(a % 3 == 1 && b % 3 == 1);
+      for (int d = 0; d < n; ++d, a /= 3, b /= 3) {
+        ASSERT_FALSE(a % 3 == 1 && b % 3 == 1);
+      }
     }
     EXPECT_EQ(cells.size(), carpet.size());
     EXPECT_NEAR(area, carpet_area(n), 1e-13);
@@ -93,7 +99,9 @@ void expect_space_filling(const std::vector<Vec2>& curve, int cells_per_side) {
   for (size_t i = 0; i < curve.size(); ++i) {
     const long x = std::lround(curve[i].x * cells_per_side - 0.5), y = std::lround(curve[i].y * cells_per_side - 0.5);
     seen.insert({x, y});
-    if (i > 0) ASSERT_NEAR(glm::distance(curve[i], curve[i - 1]), 1.0 / cells_per_side, 1e-12) << i;
+    if (i > 0) {
+      ASSERT_NEAR(glm::distance(curve[i], curve[i - 1]), 1.0 / cells_per_side, 1e-12) << i;
+    }
   }
   EXPECT_EQ(seen.size(), curve.size());  // every cell exactly once
 }
