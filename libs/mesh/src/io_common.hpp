@@ -34,8 +34,9 @@ namespace tessera::mesh_io {
 /// of the data or (when comments are on) at '#'. Numbers are parsed in place with std::from_chars.
 class TextCursor {
  public:
-  TextCursor(std::string_view data, const std::string& name, bool hash_comments)
-      : p_(data.data()), end_(data.data() + data.size()), name_(name), comments_(hash_comments) {}
+  /// A cursor at the start of `data`, which is line `first_line` of the file `name` (for messages).
+  TextCursor(std::string_view data, const std::string& name, bool hash_comments, long first_line = 1)
+      : p_(data.data()), end_(data.data() + data.size()), line_(first_line), name_(name), comments_(hash_comments) {}
 
   bool at_end() const { return p_ == end_; }
   long line() const { return line_; }
@@ -126,7 +127,7 @@ class TextCursor {
 
   const char* p_;
   const char* end_;
-  long line_ = 1;
+  long line_;
   const std::string& name_;
   bool comments_;
 };

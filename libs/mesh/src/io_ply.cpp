@@ -206,7 +206,7 @@ class BinarySource {
 /// Values from an ASCII body: one row per line.
 class AsciiSource {
  public:
-  AsciiSource(std::string_view body, long first_line, const std::string& name) : in_(body, name, false), line0_(first_line - 1) {
+  AsciiSource(std::string_view body, long first_line, const std::string& name) : in_(body, name, false, first_line) {
     in_.skip_empty_lines();
   }
 
@@ -222,12 +222,11 @@ class AsciiSource {
     in_.skip_empty_lines();
   }
   size_t remaining() const { return in_.remaining(); }
-  [[noreturn]] void fail(const std::string& what) const { mesh_io::fail_at_line(in_.name(), line0_ + in_.line(), what); }
+  [[noreturn]] void fail(const std::string& what) const { in_.fail(what); }
   static size_t min_item_bytes(PlyType) { return 2; }
 
  private:
   TextCursor in_;
-  long line0_;
 };
 
 template <class Source>

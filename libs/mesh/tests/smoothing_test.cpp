@@ -1,0 +1,83 @@
+#include "tessera/mesh/smoothing.hpp"
+
+#include <gtest/gtest.h>
+
+#include "tessera/core/error.hpp"
+#include "tessera/core/rng.hpp"
+#include "tessera/mesh/measure.hpp"
+#include "tessera/mesh/normals.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/mesh/topology.hpp"
+#include "tessera/mesh/triangulate.hpp"
+
+namespace tessera {
+namespace {
+
+/// A unit sphere of triangles with every vertex moved radially by up to +-3%.
+PolyMesh noisy_sphere() {
+  PolyMesh sphere = triangulate(make_quad_sphere(12));
+  Rng rng(7);
+  for (Vec3& p : sphere.positions) p *= 1.0 + rng.uniform(-0.03, 0.03);
+  return sphere;
+}
+
+/// The mean of 1 - cos(dihedral angle) over the edges: 0 for a plane, small for a fine smooth surface.
+double roughness(const PolyMesh& mesh) {
+  const EdgeTable edges = build_edge_table(mesh);
+  const std::vector<Vec3> normals = face_normals(mesh);
+  double sum = 0;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const uint32_t f0 = edges.face_of_corner[edges.half_edges[edges.offsets[e]]];
+    const uint32_t f1 = edges.face_of_corner[edges.half_edges[edges.offsets[e] + 1]];
+    sum += 1 - glm::dot(normals[f0], normals[f1]);
+  }
+  return sum / double(edges.size());
+}
+
+double volume_after(SmoothingMethod method, int iterations) {
+  PolyMesh mesh = noisy_sphere();
+  smooth(mesh, {method, iterations});
+  return signed_volume(mesh);
+}
+
+TEST(Smoothing, LaplacianShrinksTaubinKeepsTheVolume) {
+  const double v0 = signed_volume(noisy_sphere());
+  const double laplacian_loss = 1 - volume_after(SmoothingMethod::Laplacian, 30) / v0;
+  const double cotangent_loss = 1 - volume_after(SmoothingMethod::Cotangent, 30) / v0;
+  const double taubin_loss = std::abs(1 - volume_after(SmoothingMethod::Taubin, 30) / v0);
+  RecordProperty("laplacian_volume_loss", std::to_string(laplacian_loss));
+  RecordProperty("cotangent_volume_loss", std::to_string(cotangent_loss));
+  RecordProperty("taubin_volume_loss", std::to_string(taubin_loss));
+  EXPECT_GT(laplacian_loss, 0.05);
+  EXPECT_GT(cotangent_loss, 0.05);
+  EXPECT_LT(taubin_loss, 0.1 * laplacian_loss);
+}
+
+TEST(Smoothing, EveryMethodRemovesNoise) {
+  const double before = roughness(noisy_sphere());
+  for (SmoothingMethod m : {SmoothingMethod::Laplacian, SmoothingMethod::Cotangent, SmoothingMethod::Taubin}) {
+    PolyMesh mesh = noisy_sphere();
+    int calls = 0;
+    smooth(mesh, {m, 10}, [&](int step) { calls = step; });
+    EXPECT_EQ(calls, 10);
+    EXPECT_LT(roughness(mesh), 0.2 * before);
+  }
+}
+
+TEST(Smoothing, TheNotesUniformStepWithLambdaOneIsTheNeighbourAverage) {
+  PolyMesh grid = make_grid(2, 2);
+  grid.positions[4].y = 1;  // the center vertex, neighbours at y = 0
+  smooth(grid, {SmoothingMethod::Laplacian, 1, 1.0});
+  EXPECT_NEAR(grid.positions[4].y, 0, 1e-15);
+  EXPECT_EQ(grid.positions[0], Vec3(-1, 0, -1));  // boundary vertices stay
+}
+
+TEST(Smoothing, RejectsBadParameters) {
+  PolyMesh m = make_cube();
+  EXPECT_THROW(smooth(m, {SmoothingMethod::Laplacian, -1}), InvalidInput);
+  EXPECT_THROW(smooth(m, {SmoothingMethod::Laplacian, 1, 0.0}), InvalidInput);
+  EXPECT_THROW(smooth(m, {SmoothingMethod::Taubin, 1, 0.5, -0.4}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace tessera
