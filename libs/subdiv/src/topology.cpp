@@ -60,30 +60,39 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
                                    f, vertex_count));
   }
 
-  // Corners grouped by vertex (counting sort, in corner order so the result is deterministic).
+  // Corners grouped by vertex (a parallel counting sort; the order inside a group does not matter, see build_rings).
+  const int64_t corners = int64_t(face_vertices_.size());
   vertex_offsets_.assign(vertex_count + 1, 0u);
-  for (uint32_t v : face_vertices_) ++vertex_offsets_[v + 1];
+  parallel_for(0, corners, 4 * kGrain, [&](int64_t b, int64_t e) {
+    for (int64_t k = b; k < e; ++k)
+      std::atomic_ref<uint32_t>(vertex_offsets_[face_vertices_[k] + 1]).fetch_add(1, std::memory_order_relaxed);
+  });
   for (size_t v = 0; v < vertex_count; ++v) vertex_offsets_[v + 1] += vertex_offsets_[v];
   detail::RawVector<uint32_t> by_vertex(face_vertices_.size());
   {
     detail::RawVector<uint32_t> fill(vertex_offsets_.begin(), vertex_offsets_.end() - 1);
-    for (uint32_t k = 0; k < face_vertices_.size(); ++k) by_vertex[fill[face_vertices_[k]]++] = k;
+    parallel_for(0, corners, 4 * kGrain, [&](int64_t b, int64_t e) {
+      for (int64_t k = b; k < e; ++k)
+        by_vertex[std::atomic_ref<uint32_t>(fill[face_vertices_[k]]).fetch_add(1, std::memory_order_relaxed)] =
+            uint32_t(k);
+    });
   }
 
   // Twins: corner a->b finds the corner b->a among b's corners.
-  twins_.assign(face_vertices_.size(), kNone);
+  twins_.resize(face_vertices_.size());
   std::atomic<uint64_t> bad_corner{kNoError};
-  const int64_t corners = int64_t(face_vertices_.size());
   parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
     for (int64_t k = b; k < e; ++k) {
       const uint32_t a = face_vertices_[k], to = face_vertices_[next_corner(uint32_t(k))];
+      uint32_t twin = kNone;
       for (uint32_t i = vertex_offsets_[to]; i < vertex_offsets_[to + 1]; ++i) {
         const uint32_t j = by_vertex[i];
         if (face_vertices_[next_corner(j)] == a) {
-          if (twins_[k] != kNone) atomic_min(bad_corner, uint64_t(k));
-          twins_[k] = j;
+          if (twin != kNone) atomic_min(bad_corner, uint64_t(k));
+          twin = j;
         }
       }
+      twins_[k] = twin;
     }
   });
   parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
@@ -115,19 +124,32 @@ void TopologyTables::build_edges() {
   // An edge belongs to its first corner in face order; numbering follows that order.
   const size_t corners = face_vertices_.size();
   corner_edges_.resize(corners);
-  uint32_t edges = 0;
-  for (uint32_t k = 0; k < corners; ++k)
-    if (twins_[k] == kNone || k < twins_[k]) corner_edges_[k] = edges++;
-  edge_corners_.resize(edges);
-  parallel_for(0, int64_t(corners), kGrain, [&](int64_t b, int64_t e) {
+  auto owns = [&](uint32_t k) { return twins_[k] == kNone || k < twins_[k]; };
+  // A parallel prefix sum over fixed chunks (the same numbering for any thread count).
+  const int64_t chunks = (int64_t(corners) + kGrain - 1) / kGrain;
+  std::vector<uint32_t> first_edge(size_t(chunks) + 1, 0);
+  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
     for (int64_t c = b; c < e; ++c) {
-      const auto k = uint32_t(c);
-      if (twins_[k] == kNone || k < twins_[k]) {
-        edge_corners_[corner_edges_[k]] = k;
-      } else {
-        corner_edges_[k] = corner_edges_[twins_[k]];
-      }
+      uint32_t n = 0;
+      for (auto k = uint32_t(c * kGrain); k < std::min<uint64_t>(corners, uint64_t(c + 1) * kGrain); ++k) n += owns(k);
+      first_edge[size_t(c) + 1] = n;
     }
+  });
+  for (size_t c = 0; c < size_t(chunks); ++c) first_edge[c + 1] += first_edge[c];
+  edge_corners_.resize(first_edge.back());
+  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c) {
+      uint32_t edge = first_edge[size_t(c)];
+      for (auto k = uint32_t(c * kGrain); k < std::min<uint64_t>(corners, uint64_t(c + 1) * kGrain); ++k)
+        if (owns(k)) {
+          corner_edges_[k] = edge;
+          edge_corners_[edge++] = k;
+        }
+    }
+  });
+  parallel_for(0, int64_t(corners), kGrain, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c)
+      if (!owns(uint32_t(c))) corner_edges_[c] = corner_edges_[twins_[c]];
   });
 }
 
@@ -143,12 +165,15 @@ void TopologyTables::build_rings() {
     for (int64_t v = b; v < e; ++v) {
       const uint32_t first = vertex_offsets_[v], n = vertex_offsets_[v + 1] - first;
       if (n == 0) continue;
-      // The first face counterclockwise is the one whose outgoing edge is a boundary edge (if any).
+      // The first face counterclockwise is the one whose outgoing edge is a boundary edge; an interior ring starts
+      // at the vertex's first corner in face order (deterministic whatever the order of the group).
       uint32_t start = ring_corners_[first], starts = 0;
       for (uint32_t i = 0; i < n; ++i) {
         const uint32_t k = ring_corners_[first + i];
         if (twins_[k] == kNone) {
           if (starts++ == 0) start = k;
+        } else if (starts == 0) {
+          start = std::min(start, k);
         }
       }
       ring.clear();
