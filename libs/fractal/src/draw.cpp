@@ -1,5 +1,7 @@
 #include "tessera/fractal/draw.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
@@ -23,6 +25,20 @@ ImageRGBA paper(const PictureFrame& frame, const Vec3f& color) {
 }
 
 }  // namespace
+
+PictureFrame frame_around(const std::vector<Vec2>& points, int width, int height, double margin) {
+  if (points.empty()) throw InvalidInput("cannot frame an empty set of points");
+  Vec2 lo = points.front(), hi = points.front();
+  for (const Vec2& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+  PictureFrame frame{width, height, margin, {}};
+  check_frame(frame);
+  // Plane units per pixel: the larger of the two directions' needs, so that everything fits.
+  const double inner_w = width - 2 * margin, inner_h = height - 2 * margin;
+  const double unit = std::max({(hi.x - lo.x) / inner_w, (hi.y - lo.y) / inner_h, 1e-300});
+  const Vec2 center = 0.5 * (lo + hi);
+  frame.window = {center.x - 0.5 * inner_w * unit, center.y - 0.5 * inner_h * unit, inner_w * unit, inner_h * unit};
+  return frame;
+}
 
 Vec2 to_pixels(const PictureFrame& frame, Vec2 p) {
   const double sx = (frame.width - 2 * frame.margin) / frame.window.w;

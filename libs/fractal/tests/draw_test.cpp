@@ -13,6 +13,14 @@ TEST(Draw, UnitSquareMapsOntoThePictureWithYUp) {
   EXPECT_EQ(to_pixels(frame, {1, 1}), Vec2(90, 10));
 }
 
+TEST(Draw, FrameAroundKeepsTheAspectAndCenters) {
+  const PictureFrame frame = frame_around({{0, 0}, {2, 1}}, 100, 100, 10);
+  EXPECT_EQ(to_pixels(frame, {0, 0.5}), Vec2(10, 50));
+  EXPECT_EQ(to_pixels(frame, {2, 0.5}), Vec2(90, 50));
+  EXPECT_NEAR(to_pixels(frame, {1, 1}).y, 30, 1e-12);  // 40 pixels per unit in both directions
+  EXPECT_THROW(frame_around({}, 100, 100, 10), InvalidInput);
+}
+
 TEST(Draw, CarpetPixelsAreExactAtPowersOfThree) {
   // Depth 2 on 27 x 27: every remaining cell is a 3 x 3 block of ink; 64 cells of 9 pixels.
   const PictureFrame frame{27, 27};

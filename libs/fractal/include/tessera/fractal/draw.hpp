@@ -26,6 +26,10 @@ struct DrawStyle {
   bool antialias = false;         ///< area coverage; without it a pixel is ink iff its center is (exact for masks)
 };
 
+/// A frame whose window holds every point with equal scale in x and y (centered, the picture's aspect kept), inside
+/// `margin` pixels. Throws InvalidInput when there are no points or the picture is too small for the margin.
+PictureFrame frame_around(const std::vector<Vec2>& points, int width, int height, double margin);
+
 /// The pixel position of plane point p. Throws nothing.
 Vec2 to_pixels(const PictureFrame& frame, Vec2 p);
 
