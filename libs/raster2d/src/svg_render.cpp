@@ -104,21 +104,24 @@ double max_stretch(const glm::dmat2& a) {
   return std::sqrt(s + std::sqrt(std::max(0.0, s * s - det * det)));
 }
 
-// The stroke outline in device space. SVG strokes are shapes of user space: each device polyline is mapped back by
-// the inverse of the linear part a, stroked with the user-space width, and the outline mapped forward by a (exact for
-// non-uniform scales and skews). A singular a squashes the shape to a line and draws nothing.
-Path stroke_outline(const std::vector<SvgPolyline>& lines, const Box& box, const Box& image_box,
-                    const StrokeStyle& style, const glm::dmat2& a) {
+// The stroke outline in device space. SVG strokes are shapes of user space, so each device polyline is mapped into
+// the pen space (user space scaled uniformly by the largest stretch s of the linear part a, where one unit is at most
+// one device pixel and stroke_path's tolerances hold in pixels), stroked with the width times s, and the outline
+// mapped back: exact for non-uniform scales and skews. A singular a squashes the shape to a line and draws nothing.
+Path stroke_outline(const std::vector<SvgPolyline>& lines, const Box& box, const Box& image_box, StrokeStyle style,
+                    const glm::dmat2& a) {
   Path outline;
   if (glm::determinant(a) == 0) return outline;
-  const glm::dmat2 inverse = glm::inverse(a);
+  const double s = max_stretch(a);
+  const glm::dmat2 to_pen = s * glm::inverse(a), from_pen = a / s;
+  style.width *= s;
   for (const SvgPolyline& line : lines) {
     std::vector<Vec2> points = clip_to_box(line.points, line.closed, box);
     if (points.size() < 2) continue;
-    for (Vec2& p : points) p = inverse * p;
+    for (Vec2& p : points) p = to_pen * p;
     for (const auto& contour : stroke_path(points, line.closed, style).contours) {
       std::vector<Vec2> device(contour.size());
-      std::transform(contour.begin(), contour.end(), device.begin(), [&](const Vec2& p) { return a * p; });
+      std::transform(contour.begin(), contour.end(), device.begin(), [&](const Vec2& p) { return from_pen * p; });
       outline.contours.push_back(clip_to_box(device, true, image_box));
     }
   }

@@ -512,11 +512,12 @@ TEST(SvgRender, WithoutAntialiasingCoverageIsThePixelCenterRule) {
 
 struct Difference {
   double rmse = 0;        // over the RGB channels, values in [0, 1]
+  double max = 0;         // largest channel difference
   double bad_pixels = 0;  // fraction of pixels with a channel off by more than 0.25
 };
 
 Difference compare(const ImageRGBA& a, const ImageRGBA& b) {
-  double sum = 0;
+  double sum = 0, max = 0;
   size_t bad = 0;
   for (int y = 0; y < a.height(); ++y)
     for (int x = 0; x < a.width(); ++x) {
@@ -527,9 +528,10 @@ Difference compare(const ImageRGBA& a, const ImageRGBA& b) {
         worst = std::max(worst, std::abs(d));
       }
       bad += worst > 0.25;
+      max = std::max(max, worst);
     }
   const double n = double(a.width()) * a.height();
-  return {std::sqrt(sum / (3 * n)), double(bad) / n};
+  return {std::sqrt(sum / (3 * n)), max, double(bad) / n};
 }
 
 bool have_rsvg() { return std::system("command -v rsvg-convert >/dev/null 2>&1") == 0; }
@@ -618,17 +620,27 @@ const ReferenceCase kReferenceCases[] = {
       <rect x="80" y="20" width="80" height="20" fill="dimgrey"/></svg>)~"},
 };
 
+void expect_close_to_rsvg(const std::string& name, const std::string& svg) {
+  const auto [ours, theirs] = render_both(name, svg);
+  ASSERT_EQ(ours.width(), theirs.width());
+  ASSERT_EQ(ours.height(), theirs.height());
+  const Difference d = compare(ours, theirs);
+  std::printf("[ rsvg     ] %-10s RMSE %.4f, max %.3f, pixels off by > 25%%: %.3f%%\n", name.c_str(), d.rmse, d.max,
+              100 * d.bad_pixels);
+  EXPECT_LT(d.rmse, 0.015) << name;
+  EXPECT_LT(d.bad_pixels, 0.001) << name;
+}
+
 TEST(SvgReference, AntialiasedOutputMatchesRsvgConvert) {
   if (!have_rsvg()) GTEST_SKIP() << "rsvg-convert (Debian package librsvg2-bin) is not installed";
-  for (const ReferenceCase& c : kReferenceCases) {
-    const auto [ours, theirs] = render_both(c.name, c.svg);
-    ASSERT_EQ(ours.width(), theirs.width());
-    ASSERT_EQ(ours.height(), theirs.height());
-    const Difference d = compare(ours, theirs);
-    std::printf("[ rsvg     ] %-10s RMSE %.4f, pixels off by > 25%%: %.3f%%\n", c.name, d.rmse, 100 * d.bad_pixels);
-    EXPECT_LT(d.rmse, 0.03) << c.name;
-    EXPECT_LT(d.bad_pixels, 0.005) << c.name;
-  }
+  for (const ReferenceCase& c : kReferenceCases) expect_close_to_rsvg(c.name, c.svg);
+}
+
+TEST(SvgReference, DemoDrawingMatchesRsvgConvert) {
+  if (!have_rsvg()) GTEST_SKIP() << "rsvg-convert (Debian package librsvg2-bin) is not installed";
+  std::ifstream in(std::string(TESSERA_SOURCE_DIR) + "/examples/data/tiger-lite.svg");
+  ASSERT_TRUE(in) << "examples/data/tiger-lite.svg";
+  expect_close_to_rsvg("tiger-lite", std::string(std::istreambuf_iterator<char>(in), {}));
 }
 
 }  // namespace
