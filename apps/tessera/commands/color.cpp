@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "tessera/color/color.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/core/error.hpp"
 
@@ -46,8 +47,8 @@ std::string convert_row(const std::vector<double>& in, ColorModel from, ColorMod
   for (size_t i = 0; i < out.size(); ++i) {
     std::string text = format_number(out[i]);
     if (int(i) == hue_index(to)) {
-      // A hue just below a full turn can round up to it when printed: [0, full turn) wraps it to 0.
-      text = format_number(out[i] * full_turn(unit));
+      // Hues print in [0, full turn): wrapped (also when from == to), and 0 where printing would round up to a turn.
+      text = format_number(wrap_hue(out[i]) * full_turn(unit));
       if (std::stod(text) >= full_turn(unit)) text = "0";
     }
     line += (i ? "," : "") + text;
