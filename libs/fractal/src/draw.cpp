@@ -30,7 +30,7 @@ PictureFrame frame_around(const std::vector<Vec2>& points, int width, int height
   if (points.empty()) throw InvalidInput("cannot frame an empty set of points");
   Vec2 lo = points.front(), hi = points.front();
   for (const Vec2& p : points) lo = glm::min(lo, p), hi = glm::max(hi, p);
-  PictureFrame frame{width, height, margin, {}};
+  PictureFrame frame{width, height, margin};
   check_frame(frame);
   // Plane units per pixel: the larger of the two directions' needs, so that everything fits.
   const double inner_w = width - 2 * margin, inner_h = height - 2 * margin;
