@@ -1,0 +1,33 @@
+#pragma once
+// Marching cubes (Lorensen & Cline 1987, the notes' chapter on iso-surfaces): an indexed triangle mesh of the iso
+// surface value == iso of a volume.
+//
+// Rule for samples equal to the iso value: a voxel is inside when value >= iso, and an edge is cut when exactly one
+// end is inside. The cut parameter t = (iso - a) / (b - a) is clamped into [kEdgeNudge, 1 - kEdgeNudge], so a vertex
+// never lands exactly on a voxel: vertices on different edges are distinct points, and since no three points in the
+// interiors of distinct cube edges are collinear, no triangle has zero area.
+#include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/volume/volume.hpp"
+
+namespace tessera {
+
+/// How far (as a fraction of the edge) a vertex is kept from the voxels at the edge's ends.
+inline constexpr double kEdgeNudge = 1e-5;
+
+/// Settings of marching_cubes().
+struct MarchingCubesOptions {
+  float iso = 0.0f;          ///< the iso value; inside is value >= iso
+  bool topological = false;  ///< resolve ambiguous faces by the asymptotic decider (Nielson & Hamann 1991)
+  bool normals = true;       ///< per-vertex normals from the interpolated central-difference gradient
+  int slab_layers = 8;       ///< cell layers per parallel work item (any value gives the same mesh)
+};
+
+/// Extracts the iso-surface as a triangle mesh in world coordinates (origin + spacing * voxel). Each cut edge gives
+/// one shared vertex; triangles are counterclockwise seen from the outside (value < iso), and normals point outside.
+/// Classic mode uses mc::classic_table(); topological mode decides every ambiguous face by its bilinear saddle value
+/// and splits polygons that would share a diagonal with a neighbour, so closed surfaces are closed 2-manifolds.
+/// Parallel over slabs of z layers; the result is identical for any thread count. Volumes under 2 voxels along an
+/// axis give an empty mesh.
+PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options = {});
+
+}  // namespace tessera

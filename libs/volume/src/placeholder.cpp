@@ -1,1 +1,0 @@
-#include "tessera/mesh/poly_mesh.hpp"

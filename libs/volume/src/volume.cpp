@@ -1,0 +1,121 @@
+#include "tessera/volume/volume.hpp"
+
+namespace tessera {
+
+std::string voxel_type_name(VoxelType type) {
+  switch (type) {
+    case VoxelType::UInt8: return "uint8";
+    case VoxelType::UInt16: return "uint16";
+    case VoxelType::Int16: return "int16";
+    case VoxelType::Float32: return "float32";
+  }
+  return "?";
+}
+
+VoxelType parse_voxel_type(const std::string& name) {
+  if (name == "uint8" || name == "uchar" || name == "unsigned char" || name == "uint8_t") return VoxelType::UInt8;
+  if (name == "uint16" || name == "ushort" || name == "unsigned short" || name == "uint16_t") return VoxelType::UInt16;
+  if (name == "int16" || name == "short" || name == "signed short" || name == "int16_t") return VoxelType::Int16;
+  if (name == "float32" || name == "float") return VoxelType::Float32;
+  throw InvalidInput(fmt::format("unknown voxel type '{}' (expected uint8, uint16, int16 or float32)", name));
+}
+
+size_t voxel_size(VoxelType type) {
+  switch (type) {
+    case VoxelType::UInt8: return 1;
+    case VoxelType::UInt16:
+    case VoxelType::Int16: return 2;
+    case VoxelType::Float32: return 4;
+  }
+  return 0;
+}
+
+uint64_t checked_voxel_count(const glm::ivec3& dims) {
+  if (dims.x < 1 || dims.y < 1 || dims.z < 1)
+    throw InvalidInput(fmt::format("volume dimensions must be positive, got {}x{}x{}", dims.x, dims.y, dims.z));
+  // Each factor is < 2^31, so the product of two fits in 64 bits; check before the third multiplication.
+  const uint64_t xy = uint64_t(dims.x) * uint64_t(dims.y);
+  if (xy > kMaxVoxels || xy * uint64_t(dims.z) > kMaxVoxels)
+    throw InvalidInput(fmt::format("volume dimensions {}x{}x{} exceed the limit of {} voxels", dims.x, dims.y, dims.z,
+                                   kMaxVoxels));
+  return xy * uint64_t(dims.z);
+}
+
+VoxelType voxel_type(const AnyVolume& v) { return VoxelType(v.index()); }
+
+Volume<float> to_float(const AnyVolume& any) {
+  return std::visit(
+      [](const auto& v) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, Volume<float>>) {
+          return v;
+        } else {
+          Volume<float> out(v.dims(), 0.0f, v.spacing(), v.origin());
+          std::transform(v.voxels().begin(), v.voxels().end(), out.voxels().begin(), [](auto x) { return float(x); });
+          return out;
+        }
+      },
+      any);
+}
+
+const glm::ivec3& dims_of(const AnyVolume& v) {
+  return std::visit([](const auto& x) -> const glm::ivec3& { return x.dims(); }, v);
+}
+const Vec3& spacing_of(const AnyVolume& v) {
+  return std::visit([](const auto& x) -> const Vec3& { return x.spacing(); }, v);
+}
+const Vec3& origin_of(const AnyVolume& v) {
+  return std::visit([](const auto& x) -> const Vec3& { return x.origin(); }, v);
+}
+
+template <class T>
+std::pair<double, double> value_range(const Volume<T>& v) {
+  if (v.empty()) throw InvalidInput("value range of an empty volume");
+  const auto [lo, hi] = std::minmax_element(v.voxels().begin(), v.voxels().end());
+  return {double(*lo), double(*hi)};
+}
+
+template <class T>
+std::vector<uint64_t> histogram(const Volume<T>& v, int bins, double lo, double hi) {
+  if (bins < 1 || !(lo < hi))
+    throw InvalidInput(fmt::format("histogram needs bins >= 1 and lo < hi, got {} bins over [{}, {}]", bins, lo, hi));
+  std::vector<uint64_t> counts(size_t(bins), 0);
+  const double scale = double(bins) / (hi - lo);
+  for (const T x : v.voxels()) {
+    const double b = std::floor((double(x) - lo) * scale);
+    counts[size_t(std::clamp(b, 0.0, double(bins - 1)))]++;
+  }
+  return counts;
+}
+
+Axis parse_axis(const std::string& text) {
+  if (text == "x" || text == "X") return Axis::X;
+  if (text == "y" || text == "Y") return Axis::Y;
+  if (text == "z" || text == "Z") return Axis::Z;
+  throw InvalidInput(fmt::format("axis: expected x, y or z, got '{}'", text));
+}
+
+template <class T>
+DepthImage slice(const Volume<T>& v, Axis axis, int index) {
+  const glm::ivec3 d = v.dims();
+  const int a = int(axis);
+  if (index < 0 || index >= d[a])
+    throw InvalidInput(fmt::format("slice {} is outside the volume's {} range [0, {})", index, "xyz"[a], d[a]));
+  const int w = axis == Axis::X ? d.y : d.x, h = axis == Axis::Z ? d.y : d.z;
+  DepthImage out(w, h);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      out(i, j) = float(axis == Axis::Z ? v(i, j, index) : axis == Axis::Y ? v(i, index, j) : v(index, i, j));
+  return out;
+}
+
+#define TESSERA_VOLUME_INSTANTIATE(T)                                                \
+  template std::pair<double, double> value_range(const Volume<T>&);                 \
+  template std::vector<uint64_t> histogram(const Volume<T>&, int, double, double); \
+  template DepthImage slice(const Volume<T>&, Axis, int);
+TESSERA_VOLUME_INSTANTIATE(uint8_t)
+TESSERA_VOLUME_INSTANTIATE(uint16_t)
+TESSERA_VOLUME_INSTANTIATE(int16_t)
+TESSERA_VOLUME_INSTANTIATE(float)
+#undef TESSERA_VOLUME_INSTANTIATE
+
+}  // namespace tessera
