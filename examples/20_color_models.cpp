@@ -31,7 +31,7 @@ using tessera::kPi;
 using tessera::Vec2;
 using tessera::Vec3;
 
-const Vec3 kInk(0.08, 0.08, 0.1);         // lines and text
+const Vec3 kInk(0.08, 0.08, 0.1);          // lines and text
 const Vec3 kBackground(0.95, 0.95, 0.95);  // behind the 3D solids
 
 // ---- 2D drawing helpers: blend, antialiased lines and rings, a 5x7 bitmap font -------------------------------
@@ -137,8 +137,8 @@ Vec3 chromaticity_color(const Vec2& xy) {
 }
 
 ImageRGB chromaticity_diagram() {
-  constexpr double kScale = 640;             // pixels per unit of x and y
-  constexpr double kLeft = 70, kTop = 24;    // the plot's origin is at (kLeft, kTop + 0.9 kScale)
+  constexpr double kScale = 640;           // pixels per unit of x and y
+  constexpr double kLeft = 70, kTop = 24;  // the plot's origin is at (kLeft, kTop + 0.9 kScale)
   const auto to_pixel = [&](const Vec2& xy) { return Vec2(kLeft + xy.x * kScale, kTop + (0.9 - xy.y) * kScale); };
   const auto to_xy = [&](double px, double py) { return Vec2((px - kLeft) / kScale, 0.9 - (py - kTop) / kScale); };
   ImageRGB image(int(kLeft + 0.8 * kScale + 24), int(kTop + 0.9 * kScale + 64), glm::vec3(1.0f));
@@ -305,8 +305,10 @@ struct Camera {
   Vec3 eye, forward, right, up;
   double tan_half_fov;
   Camera(const Vec3& eye_, const Vec3& target, double fov_degrees)
-      : eye(eye_), forward(glm::normalize(target - eye_)),
-        right(glm::normalize(glm::cross(forward, Vec3(0, 1, 0)))), up(glm::cross(right, forward)),
+      : eye(eye_),
+        forward(glm::normalize(target - eye_)),
+        right(glm::normalize(glm::cross(forward, Vec3(0, 1, 0)))),
+        up(glm::cross(right, forward)),
         tan_half_fov(std::tan(tessera::radians(fov_degrees) / 2)) {}
   // The eye ray's direction through (px, py) of a w x h image.
   Vec3 ray(double px, double py, int w, int h) const {
@@ -399,7 +401,8 @@ ImageRGB rgb_cube() {
     cutaway.cut.push_back({n, -0.5});  // the octant where every coordinate >= 0.5
   }
   const Vec3 center(0.5);
-  const Camera from_white(center + Vec3(2.4, 1.9, 3.0), center, 36), from_black(center - Vec3(2.4, 1.9, 3.0), center, 36);
+  const Camera from_white(center + Vec3(2.4, 1.9, 3.0), center, 36),
+      from_black(center - Vec3(2.4, 1.9, 3.0), center, 36);
   return side_by_side({render(cube, from_white, 400, 400, cube_labels()),
                        render(cube, from_black, 400, 400, cube_labels()),
                        render(cutaway, from_white, 400, 400, cube_labels())});
@@ -431,7 +434,8 @@ double hex_hue(const Vec2& q) {
   const Vec2 on_edge = q / n;
   const double angle = std::atan2(q.y, q.x);
   const int k = std::min(5, int(std::floor(tessera::wrap_hue(angle / (2 * kPi)) * 6)));
-  const Vec2 vk(std::cos(k * kPi / 3), std::sin(k * kPi / 3)), vk1(std::cos((k + 1) * kPi / 3), std::sin((k + 1) * kPi / 3));
+  const Vec2 vk(std::cos(k * kPi / 3), std::sin(k * kPi / 3)),
+      vk1(std::cos((k + 1) * kPi / 3), std::sin((k + 1) * kPi / 3));
   return (k + std::clamp(glm::dot(on_edge - vk, vk1 - vk), 0.0, 1.0)) / 6;  // edge length 1
 }
 
@@ -467,8 +471,8 @@ std::vector<Label> hue_labels(double y, const Vec3& black, const Vec3& white) {
 // sides (1); H around. The color of a point is hsv_to_rgb(H, S, V).
 ImageRGB hsv_cone() {
   Solid cone;
-  add_hexagon_sides(cone.body, 1.0, 0.0);         // hex_norm <= V
-  cone.body.push_back({Vec3(0, 1, 0), 1.0});      // V <= 1
+  add_hexagon_sides(cone.body, 1.0, 0.0);     // hex_norm <= V
+  cone.body.push_back({Vec3(0, 1, 0), 1.0});  // V <= 1
   cone.color = [](const Vec3& p) {
     const Vec2 q = plane_coords(p);
     const double v = std::max(p.y, 0.0), s = v > 0 ? std::min(hex_norm(q) / v, 1.0) : 0.0;

@@ -1,15 +1,16 @@
 // tessera color convert --from M --to M [--values a,b,c] [--hue degrees|turns|radians]: color-model conversions of
 // one color (--values) or of CSV rows read from stdin, one converted row per line on stdout (docs/color.md).
+#include "tessera/color/color.hpp"
+
+#include <fmt/format.h>
+
 #include <cmath>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "command.hpp"
-#include "tessera/color/color.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/core/error.hpp"
 

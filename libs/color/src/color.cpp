@@ -1,9 +1,9 @@
 #include "tessera/color/color.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/color/chromaticity.hpp"
 #include "tessera/core/error.hpp"
@@ -24,9 +24,12 @@ HueChroma hue_chroma(const Vec3& rgb) {
   if (range == 0) return {0.0, maxc, minc};
   const double rc = (maxc - rgb.x) / range, gc = (maxc - rgb.y) / range, bc = (maxc - rgb.z) / range;
   double h;
-  if (rgb.x == maxc) h = bc - gc;
-  else if (rgb.y == maxc) h = 2.0 + rc - bc;
-  else h = 4.0 + gc - rc;
+  if (rgb.x == maxc)
+    h = bc - gc;
+  else if (rgb.y == maxc)
+    h = 2.0 + rc - bc;
+  else
+    h = 4.0 + gc - rc;
   return {wrap_hue(h / 6.0), maxc, minc};
 }
 
@@ -99,12 +102,18 @@ Vec3 hsv_to_rgb(const Vec3& hsv) {
   const double f = h6 - sector;
   const double p = v * (1.0 - s), q = v * (1.0 - s * f), t = v * (1.0 - s * (1.0 - f));
   switch (sector) {
-    case 0: return {v, t, p};
-    case 1: return {q, v, p};
-    case 2: return {p, v, t};
-    case 3: return {p, q, v};
-    case 4: return {t, p, v};
-    default: return {v, p, q};
+    case 0:
+      return {v, t, p};
+    case 1:
+      return {q, v, p};
+    case 2:
+      return {p, v, t};
+    case 3:
+      return {p, q, v};
+    case 4:
+      return {t, p, v};
+    default:
+      return {v, p, q};
   }
 }
 

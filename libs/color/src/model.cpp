@@ -97,9 +97,12 @@ void convert_many(ColorModel from, ColorModel to, std::span<const double> in, st
 
 double full_turn(HueUnit unit) {
   switch (unit) {
-    case HueUnit::Degrees: return 360.0;
-    case HueUnit::Turns: return 1.0;
-    case HueUnit::Radians: return 2.0 * kPi;
+    case HueUnit::Degrees:
+      return 360.0;
+    case HueUnit::Turns:
+      return 1.0;
+    case HueUnit::Radians:
+      return 2.0 * kPi;
   }
   throw InternalError("full_turn: unknown hue unit");
 }

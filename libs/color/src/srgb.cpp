@@ -27,17 +27,9 @@ float srgb_decode(float encoded) { return decode(encoded); }
 double srgb_encode(double linear) { return encode(linear); }
 double srgb_decode(double encoded) { return decode(encoded); }
 
-glm::vec3 srgb_encode(const glm::vec3& linear) {
-  return {encode(linear.x), encode(linear.y), encode(linear.z)};
-}
-glm::vec3 srgb_decode(const glm::vec3& encoded) {
-  return {decode(encoded.x), decode(encoded.y), decode(encoded.z)};
-}
-glm::dvec3 srgb_encode(const glm::dvec3& linear) {
-  return {encode(linear.x), encode(linear.y), encode(linear.z)};
-}
-glm::dvec3 srgb_decode(const glm::dvec3& encoded) {
-  return {decode(encoded.x), decode(encoded.y), decode(encoded.z)};
-}
+glm::vec3 srgb_encode(const glm::vec3& linear) { return {encode(linear.x), encode(linear.y), encode(linear.z)}; }
+glm::vec3 srgb_decode(const glm::vec3& encoded) { return {decode(encoded.x), decode(encoded.y), decode(encoded.z)}; }
+glm::dvec3 srgb_encode(const glm::dvec3& linear) { return {encode(linear.x), encode(linear.y), encode(linear.z)}; }
+glm::dvec3 srgb_decode(const glm::dvec3& encoded) { return {decode(encoded.x), decode(encoded.y), decode(encoded.z)}; }
 
 }  // namespace tessera

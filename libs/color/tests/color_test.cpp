@@ -1,5 +1,9 @@
 // Color-model conversions: round trips, the notes' edge cases, Python's colorsys as a reference (HSV, HLS, YIQ),
 // the IEC 61966-2-1 matrix and white point, and the CIE 1931 data.
+#include "tessera/color/color.hpp"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,10 +12,7 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "tessera/color/chromaticity.hpp"
-#include "tessera/color/color.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/error.hpp"
@@ -152,9 +153,8 @@ std::vector<std::array<double, 15>> colorsys_reference(const std::vector<Vec3>& 
               "    vals += colorsys.hsv_to_rgb(r, g, b) + colorsys.hls_to_rgb(r, g, b)\n"
               "    out.write(' '.join(repr(v) for v in vals) + '\\n')\n";
   }
-  const std::string command =
-      fmt::format("'{}' '{}' '{}' '{}'", python, (dir / "reference.py").string(), (dir / "in.txt").string(),
-                  (dir / "out.txt").string());
+  const std::string command = fmt::format("'{}' '{}' '{}' '{}'", python, (dir / "reference.py").string(),
+                                          (dir / "in.txt").string(), (dir / "out.txt").string());
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   std::vector<std::array<double, 15>> rows;
   std::ifstream out(dir / "out.txt");
