@@ -1,0 +1,123 @@
+#include "tessera/volume/volume_io.hpp"
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "tessera/core/atomic_file.hpp"
+#include "tessera/volume/procedural.hpp"
+
+namespace tessera {
+namespace {
+
+std::filesystem::path scratch(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / fmt::format("tessera_volume_io_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+template <class T>
+const Volume<T>& as(const AnyVolume& v) {
+  return std::get<Volume<T>>(v);
+}
+
+TEST(VolumeIo, RawDecodesBothByteOrdersAndSkipsHeaders) {
+  const std::string bytes("HDR\x01\x02\x03\x04\x05\x06\x07\x08", 11);
+  RawLayout layout{.dims = {2, 2, 1}, .type = VoxelType::UInt16, .endian = Endian::Big, .header_skip = 3};
+  const auto big = as<uint16_t>(decode_raw(bytes, layout, "t.raw"));
+  EXPECT_EQ(big(0, 0, 0), 0x0102);
+  EXPECT_EQ(big(1, 1, 0), 0x0708);
+  layout.endian = Endian::Little;
+  EXPECT_EQ(as<uint16_t>(decode_raw(bytes, layout, "t.raw"))(0, 0, 0), 0x0201);
+}
+
+TEST(VolumeIo, ShortRawFileNamesSizesAndOffset) {
+  RawLayout layout{.dims = {4, 4, 4}, .type = VoxelType::Int16};
+  try {
+    decode_raw(std::string(100, '\0'), layout, "short.raw");
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("short.raw: file is too short"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("128 bytes"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(checked_voxel_count({1 << 30, 1 << 30, 1 << 30}), InvalidInput);
+  EXPECT_THROW(checked_voxel_count({0, 4, 4}), InvalidInput);
+}
+
+TEST(VolumeIo, NrrdRoundTripAttachedGzipAndDetached) {
+  const Volume<float> sphere = make_sphere(9);
+  for (const char* name : {"a.nrrd", "b.nhdr"})
+    for (bool gz : {false, true}) {
+      const auto path = scratch(name);
+      write_nrrd(path, sphere, gz);
+      const auto back = as<float>(read_nrrd(path));
+      EXPECT_EQ(back.dims(), sphere.dims());
+      EXPECT_NEAR(back.spacing().x, sphere.spacing().x, 1e-9);
+      EXPECT_NEAR(back.origin().y, -1.0, 1e-12);
+      EXPECT_TRUE(std::equal(back.voxels().begin(), back.voxels().end(), sphere.voxels().begin()));
+    }
+  Volume<int16_t> v(glm::ivec3(3, 2, 2));
+  v(2, 1, 1) = -1234;
+  write_nrrd(scratch("s.nrrd"), v);
+  EXPECT_EQ(as<int16_t>(read_volume(scratch("s.nrrd").string()))(2, 1, 1), -1234);
+  write_raw(scratch("s.raw"), v, Endian::Big);
+  EXPECT_EQ(as<int16_t>(read_raw(scratch("s.raw"), {.dims = {3, 2, 2}, .type = VoxelType::Int16, .endian = Endian::Big}))(2, 1, 1), -1234);
+}
+
+TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
+  const auto message = [](const std::string& text) {
+    try {
+      parse_nrrd(text, "h.nrrd");
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 99999999999 2 2\n\n").find("h.nrrd:4"), std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1073741824 1073741824 64\n\n").find("exceed"), std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\nabc").find("data starts at byte offset 62"),
+            std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1000 1000 1000\nencoding: gzip\n\nxx").find("cannot hold"),
+            std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: double\n").find("h.nrrd:2"), std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"), std::string::npos);
+  EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
+}
+
+TEST(VolumeIo, FuzzCorpusParsesOrThrowsErrors) {
+  const auto dir = std::filesystem::path(TESSERA_SOURCE_DIR) / "fuzz/corpus/nrrd";
+  int parsed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    try {
+      parse_nrrd(read_file(entry.path()), entry.path().string());
+      ++parsed;
+    } catch (const Error&) {
+    }
+  }
+  EXPECT_GE(parsed, 3);
+}
+
+TEST(VolumeIo, MetaImageHeadsqFromSharedData) {
+  const auto path = std::filesystem::path(TESSERA_SHARED_DATA) / "volumes/headsq_64x64x93_int16le.mhd";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not present";
+  const AnyVolume v = read_volume(path.string());
+  ASSERT_EQ(voxel_type(v), VoxelType::Int16);
+  EXPECT_EQ(dims_of(v), glm::ivec3(64, 64, 93));
+  EXPECT_DOUBLE_EQ(spacing_of(v).z, 1.5);
+  const auto [lo, hi] = value_range(as<int16_t>(v));
+  EXPECT_EQ(lo, 0);
+  EXPECT_EQ(hi, 3926);
+}
+
+TEST(VolumeIo, ProceduralNamesAndRawWithoutDims) {
+  const AnyVolume v = read_volume("torus:12");
+  EXPECT_EQ(dims_of(v), glm::ivec3(12));
+  EXPECT_THROW(read_volume("noise:1"), InvalidInput);
+  write_file_atomic(scratch("x.raw"), std::string(8, '\0'));
+  EXPECT_THROW(read_volume(scratch("x.raw").string()), InvalidInput);
+}
+
+}  // namespace
+}  // namespace tessera
