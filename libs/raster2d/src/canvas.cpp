@@ -78,15 +78,15 @@ void Canvas::stroke_device(const std::vector<Vec2>& points, bool closed) {
     paint(stroke_path(points, closed, style), FillRule::NonZero, color);
     return;
   }
-  // Hairlines: the notes' DDA line or Wu's line, in pixel-index coordinates (centers at integers).
-  const float weight = float(std::min(1.0, width_px));
-  auto plot = [&](int x, int y, float intensity) { write_pixel(x, y, color, smooth_ ? intensity * weight : 1.0f); };
-  const Vec2 half(0.5, 0.5);
-  const size_t segments = closed && points.size() > 2 ? points.size() : points.size() - 1;
   if (points.size() == 1) {
     point_device(points[0]);
     return;
   }
+  // Hairlines: the notes' DDA line or Wu's line, in pixel-index coordinates (centers at integers).
+  const float weight = float(width_px);
+  auto plot = [&](int x, int y, float intensity) { write_pixel(x, y, color, smooth_ ? intensity * weight : 1.0f); };
+  const Vec2 half(0.5, 0.5);
+  const size_t segments = closed && points.size() > 2 ? points.size() : points.size() - 1;
   for (size_t i = 0; i < segments; ++i) {
     const Vec2 a = points[i] - half, b = points[(i + 1) % points.size()] - half;
     if (smooth_)
