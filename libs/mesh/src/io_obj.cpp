@@ -31,11 +31,35 @@ struct CornerRefs {
   void add(size_t corner, int32_t ref) {
     if (ref >= 0 && !any) {
       any = true;
-      refs.assign(corner, -1);
+      refs.resize(corner, -1);
     }
     if (any) refs.push_back(ref);
   }
 };
+
+/// The number of lines starting with v, vt, vn and f (bounded by the size of the data, so safe to reserve).
+struct LineCounts {
+  size_t v = 0, vt = 0, vn = 0, f = 0;
+};
+
+LineCounts count_lines(std::string_view data) {
+  LineCounts n;
+  const char* p = data.data();
+  const char* end = p + data.size();
+  while (p < end) {
+    if (end - p >= 2) {
+      if (p[0] == 'v' && (p[1] == ' ' || p[1] == '\t')) ++n.v;
+      if (p[0] == 'f' && (p[1] == ' ' || p[1] == '\t')) ++n.f;
+      if (end - p >= 3 && p[0] == 'v' && (p[2] == ' ' || p[2] == '\t')) {
+        n.vt += p[1] == 't';
+        n.vn += p[1] == 'n';
+      }
+    }
+    const void* nl = std::memchr(p, '\n', size_t(end - p));
+    p = nl == nullptr ? end : static_cast<const char*>(nl) + 1;
+  }
+  return n;
+}
 
 /// A 1-based (or negative, relative) OBJ index into a list of `count` items, as a 0-based index.
 int32_t resolve_index(TextCursor& in, long long index, size_t count, const char* what) {
@@ -142,6 +166,15 @@ PolyMesh read_obj(std::string_view data, const std::string& name) {
   std::vector<Vec2> uvs;
   std::vector<Vec3> normals;
   CornerRefs uv_refs, normal_refs;
+  // One quick pass counting the statements saves the reallocation copies of growing arrays (a third of the time).
+  const LineCounts counts = count_lines(data);
+  mesh.positions.reserve(counts.v);
+  uvs.reserve(counts.vt);
+  normals.reserve(counts.vn);
+  mesh.face_offsets.reserve(counts.f + 1);
+  mesh.face_vertices.reserve(3 * counts.f);
+  if (counts.vt > 0) uv_refs.refs.reserve(3 * counts.f);
+  if (counts.vn > 0) normal_refs.refs.reserve(3 * counts.f);
   while (!in.at_end()) {
     if (in.at_line_end()) {
       in.next_line();

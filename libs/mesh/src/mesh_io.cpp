@@ -5,12 +5,54 @@
 #include <array>
 #include <cctype>
 
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fmt/format.h>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
 
 namespace tessera {
+namespace {
+
+/// A whole file mapped read-only into memory (no zero-filled buffer, no copy); regular non-empty files only.
+class MappedFile {
+ public:
+  explicit MappedFile(const std::filesystem::path& path) {
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw IoError(fmt::format("cannot open '{}': {}", path.string(), std::strerror(errno)));
+    struct stat st {};
+    if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+      void* p = ::mmap(nullptr, size_t(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+      if (p != MAP_FAILED) {
+        data_ = static_cast<const char*>(p);
+        size_ = size_t(st.st_size);
+      }
+    }
+    ::close(fd);
+    if (data_ == nullptr) fallback_ = read_file(path);  // empty files, pipes, file systems without mmap
+  }
+  ~MappedFile() {
+    if (data_ != nullptr) ::munmap(const_cast<char*>(data_), size_);
+  }
+  MappedFile(const MappedFile&) = delete;
+  MappedFile& operator=(const MappedFile&) = delete;
+
+  std::string_view view() const { return data_ != nullptr ? std::string_view(data_, size_) : std::string_view(fallback_); }
+
+ private:
+  const char* data_ = nullptr;
+  size_t size_ = 0;
+  std::string fallback_;
+};
+
+}  // namespace
 
 MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
@@ -34,7 +76,8 @@ PolyMesh read_mesh(std::string_view data, MeshFormat format, const std::string& 
 
 PolyMesh read_mesh(const std::filesystem::path& path) {
   const MeshFormat format = mesh_format_from_path(path);
-  return read_mesh(read_file(path), format, path.string());
+  const MappedFile file(path);
+  return read_mesh(file.view(), format, path.string());
 }
 
 void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
