@@ -48,9 +48,10 @@ TESSERA_EXAMPLE(ex34_creases, "34_creases", "Sharp and semi-sharp creases and co
     const PolyMesh mesh = catmull_clark_subdivide(creased_cube(s), 3);
     const std::string name = s >= 10.0f ? "inf" : fmt::format("{:g}", s);
     gallery.add("34_creases_s" + name + ".png", examples::render_preview(mesh, options),
-                s >= 10.0f ? std::string("Infinitely sharp creases and corner: the tagged edges stay straight.")
-                           : fmt::format("Crease and corner sharpness {:g}: the sharp rule {:g} time(s), then smooth "
-                                         "(three Catmull-Clark levels).",
-                                         s, s));
+                s >= 10.0f  ? std::string("Infinitely sharp creases and corner: the tagged edges never soften.")
+                : s == 0.0f ? std::string("Sharpness 0: no crease, the smooth Catmull-Clark surface (level 3).")
+                            : fmt::format("Crease and corner sharpness {:g}: the sharp rule {:g} time(s), then smooth "
+                                          "(three Catmull-Clark levels).",
+                                          s, s));
   }
 }

@@ -1,3 +1,88 @@
 #!/usr/bin/env bash
-# Placeholder: replaced by the module author.
-exit 0
+# `tessera mesh subdivide` end to end: a cube OBJ through every scheme, face counts checked by counting `f ` lines,
+# crease tags, the limit option, --stats, and clear errors (exit 1) and usage errors (exit 2).
+# Usage: subdiv.sh TESSERA_BINARY SCRATCH_DIR
+set -euo pipefail
+bin=$1
+dir=$2
+mkdir -p "$dir"
+
+fail() {
+  echo "subdiv.sh: $*" >&2
+  exit 1
+}
+faces() { grep -c '^f ' "$1"; }
+expect_faces() {  # FILE COUNT
+  local n
+  n=$(faces "$1")
+  [ "$n" = "$2" ] || fail "$1: expected $2 faces, got $n"
+}
+
+cat >"$dir/cube.obj" <<'EOF'
+# the box [-1,1]^3, faces counterclockwise seen from outside
+v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 3 4 8 7
+f 1 5 8 4
+f 2 3 7 6
+EOF
+# The same cube as 12 triangles, and open (no top face) for boundaries.
+awk '/^v /{print} /^f /{print "f "$2" "$3" "$4; print "f "$2" "$4" "$5}' "$dir/cube.obj" >"$dir/cube_tris.obj"
+grep -v '^f 5 6 7 8$' "$dir/cube.obj" >"$dir/open_box.obj"
+# Creases (OpenSubdiv's tags, 0-based): the top ring infinitely sharp, one corner.
+{ cat "$dir/cube.obj"; echo "t crease 2/1/0 4 5 10"; echo "t crease 2/1/0 5 6 10"; echo "t crease 2/1/0 6 7 10"
+  echo "t crease 2/1/0 7 4 10"; echo "t corner 1/1/0 0 10"; } >"$dir/creased.obj"
+
+"$bin" mesh subdivide "$dir/cube.obj" -o "$dir/cc.obj" --scheme catmull-clark --levels 2 --quiet
+expect_faces "$dir/cc.obj" 96
+"$bin" mesh subdivide "$dir/cube.obj" -o "$dir/mid.obj" --scheme midpoint --levels 1 --quiet
+expect_faces "$dir/mid.obj" 24
+"$bin" mesh subdivide "$dir/cube_tris.obj" -o "$dir/loop.obj" --scheme loop --levels 2 --quiet
+expect_faces "$dir/loop.obj" 192
+"$bin" mesh subdivide "$dir/cube_tris.obj" -o "$dir/loop_orig.obj" --scheme loop --loop-beta loop --quiet
+expect_faces "$dir/loop_orig.obj" 48
+"$bin" mesh subdivide "$dir/open_box.obj" -o "$dir/open.obj" --levels 2 --boundary edge-and-corner --quiet
+expect_faces "$dir/open.obj" 80
+"$bin" mesh subdivide "$dir/creased.obj" -o "$dir/creased_out.obj" --levels 1 --crease-method chaikin --quiet
+expect_faces "$dir/creased_out.obj" 24
+# The sharp corner (vertex 0) stays put.
+[ "$(grep '^v ' "$dir/creased_out.obj" | head -1 | awk '{print ($2 == -1 && $3 == -1 && $4 == -1) ? "ok" : $0}')" = ok ] ||
+  fail "the tagged corner moved"
+"$bin" mesh subdivide "$dir/cube.obj" -o "$dir/limit.obj" --levels 1 --limit --quiet
+expect_faces "$dir/limit.obj" 24
+
+# --stats: key=value lines on stdout.
+stats=$("$bin" mesh subdivide "$dir/cube.obj" -o "$dir/stats.obj" --levels 3 --stats --quiet)
+grep -qx 'faces=384' <<<"$stats" || fail "--stats: expected faces=384, got: $stats"
+grep -qx 'vertices=386' <<<"$stats" || fail "--stats: expected vertices=386, got: $stats"
+grep -q '^seconds=' <<<"$stats" || fail "--stats: no seconds"
+if "$bin" mesh info --help >/dev/null 2>&1; then
+  "$bin" mesh info "$dir/stats.obj" --stats | grep -qx 'faces=384' || fail "mesh info disagrees on the face count"
+fi
+
+# Errors: exit 1 with a clear message; usage errors exit 2.
+expect_error() {  # CODE PATTERN COMMAND...
+  local code=$1 pattern=$2 status=0
+  shift 2
+  "$@" >"$dir/out.txt" 2>"$dir/err.txt" || status=$?
+  [ "$status" = "$code" ] || fail "expected exit $code, got $status: $*"
+  grep -qi -- "$pattern" "$dir/err.txt" || fail "expected '$pattern' in: $(cat "$dir/err.txt")"
+}
+expect_error 1 'triangle' "$bin" mesh subdivide "$dir/cube.obj" -o "$dir/x.obj" --scheme loop --quiet
+expect_error 1 'tessera: error' "$bin" mesh subdivide "$dir/missing.obj" -o "$dir/x.obj" --quiet
+expect_error 1 'no smooth limit' "$bin" mesh subdivide "$dir/cube.obj" -o "$dir/x.obj" --scheme midpoint --limit --quiet
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\nf 2 1 3\n' >"$dir/nonmanifold.obj"
+expect_error 1 'non-manifold' "$bin" mesh subdivide "$dir/nonmanifold.obj" -o "$dir/x.obj" --quiet
+expect_error 2 'scheme' "$bin" mesh subdivide "$dir/cube.obj" -o "$dir/x.obj" --scheme butterfly
+expect_error 2 'levels' "$bin" mesh subdivide "$dir/cube.obj" -o "$dir/x.obj" --levels 13
+[ ! -e "$dir/x.obj" ] || fail "a failed run left an output file"
+echo "subdiv.sh: all checks passed"
