@@ -2,14 +2,14 @@
 // Tessera's own writers, read by Tessera and by tinyobjloader (the peer, Debian libtinyobjloader-dev) in one run.
 // After the Google Benchmark table, the OBJ speedup over tinyobjloader is printed as key=value lines.
 //   bench_mesh_io [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+#include <tiny_obj_loader.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
-
-#include <benchmark/benchmark.h>
-#include <tiny_obj_loader.h>
 
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
@@ -66,7 +66,8 @@ void run(benchmark::State& state, const fs::path& path, size_t (*load)(const fs:
     if (faces != files().triangles) state.SkipWithError("wrong face count");
     benchmark::DoNotOptimize(faces);
   }
-  state.counters["tris_per_s"] = benchmark::Counter(double(files().triangles), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["tris_per_s"] =
+      benchmark::Counter(double(files().triangles), benchmark::Counter::kIsIterationInvariantRate);
   state.counters["MB_per_s"] =
       benchmark::Counter(double(fs::file_size(path)) / 1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
@@ -104,8 +105,9 @@ int main(int argc, char** argv) {
   const double tessera_obj = best_seconds([&] { load_tessera(f.obj); }, 5);
   const double tinyobj_obj = best_seconds([&] { load_tinyobj(f.obj); }, 5);
   const double tessera_ply = best_seconds([&] { load_tessera(f.ply); }, 5);
-  std::printf("obj_tessera_s=%.4f\nobj_tinyobjloader_s=%.4f\nobj_speedup_vs_tinyobjloader=%.2f\nply_binary_tessera_s=%.4f\n",
-              tessera_obj, tinyobj_obj, tinyobj_obj / tessera_obj, tessera_ply);
+  std::printf(
+      "obj_tessera_s=%.4f\nobj_tinyobjloader_s=%.4f\nobj_speedup_vs_tinyobjloader=%.2f\nply_binary_tessera_s=%.4f\n",
+      tessera_obj, tinyobj_obj, tinyobj_obj / tessera_obj, tessera_ply);
   benchmark::Shutdown();
   fs::remove(f.obj);
   fs::remove(f.ply);

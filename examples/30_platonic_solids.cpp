@@ -34,14 +34,14 @@ ImageRGB contact_sheet(const std::vector<PolyMesh>& meshes, int columns, int siz
 
 TESSERA_EXAMPLE(ex30_platonic_solids, "30_platonic_solids", "Platonic solids and primitive meshes") {
   using namespace tessera;
-  gallery.add("30_platonic_solids.png",
-              examples::contact_sheet({make_tetrahedron(), make_cube(), make_octahedron(), make_dodecahedron(),
-                                       make_icosahedron()},
-                                      5, 240),
-              "The five platonic solids (tetrahedron, cube, octahedron, dodecahedron, icosahedron), circumradius 1.");
+  gallery.add(
+      "30_platonic_solids.png",
+      examples::contact_sheet(
+          {make_tetrahedron(), make_cube(), make_octahedron(), make_dodecahedron(), make_icosahedron()}, 5, 240),
+      "The five platonic solids (tetrahedron, cube, octahedron, dodecahedron, icosahedron), circumradius 1.");
   gallery.add("30_primitives.png",
-              examples::contact_sheet({make_uv_sphere(24, 12), make_quad_sphere(6), make_cylinder(24),
-                                       make_cone(24), make_torus(1.0, 0.35, 32, 16), make_grid(8, 8)},
+              examples::contact_sheet({make_uv_sphere(24, 12), make_quad_sphere(6), make_cylinder(24), make_cone(24),
+                                       make_torus(1.0, 0.35, 32, 16), make_grid(8, 8)},
                                       3, 240),
               "Primitives: UV sphere (fans at the poles), quad sphere, cylinder, cone, torus and grid.");
 }

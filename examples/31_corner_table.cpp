@@ -14,13 +14,15 @@ namespace tessera::examples {
 namespace {
 
 constexpr int kSize = 720;
-constexpr double kScale = 170.0;  // pixels per mesh unit
+constexpr double kScale = 170.0;                    // pixels per mesh unit
 const Vec2 kOrigin(kSize / 2.0, kSize / 2.0 - 40);  // where vertex 0 goes (the mesh reaches lower than higher)
 
 Vec2 to_pixels(const Vec3& p) { return {kOrigin.x + kScale * p.x, kOrigin.y - kScale * p.y}; }
 
 void fill_triangle(ImageRGB& img, Vec2 a, Vec2 b, Vec2 c, const Vec3f& color) {
-  const auto edge = [](const Vec2& p, const Vec2& q, const Vec2& r) { return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x); };
+  const auto edge = [](const Vec2& p, const Vec2& q, const Vec2& r) {
+    return (q.x - p.x) * (r.y - p.y) - (q.y - p.y) * (r.x - p.x);
+  };
   const double area = edge(a, b, c);
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x) {
@@ -60,7 +62,8 @@ void arc_arrow(ImageRGB& img, Vec2 center, double radius, double a0, double a1, 
   a1 -= gap;
   const auto at = [&](double a) { return center + radius * Vec2(std::cos(a), -std::sin(a)); };
   const int steps = int(radius * (a1 - a0) / 2) + 1;
-  for (int i = 0; i < steps; ++i) line(img, at(a0 + (a1 - a0) * i / steps), at(a0 + (a1 - a0) * (i + 1) / steps), 3, color);
+  for (int i = 0; i < steps; ++i)
+    line(img, at(a0 + (a1 - a0) * i / steps), at(a0 + (a1 - a0) * (i + 1) / steps), 3, color);
   const Vec2 tip = at(a1), d = glm::normalize(tip - at(a1 - 0.05)), side(-d.y, d.x);
   line(img, tip, tip - 12.0 * d + 6.0 * side, 3, color);
   line(img, tip, tip - 12.0 * d - 6.0 * side, 3, color);
@@ -68,11 +71,10 @@ void arc_arrow(ImageRGB& img, Vec2 center, double radius, double a0, double a1, 
 
 /// Draws a non-negative integer centered at `center` with a 3x5 bitmap font scaled `scale` times.
 void number(ImageRGB& img, Vec2 center, uint32_t value, int scale, const Vec3f& color) {
-  static constexpr std::array<uint16_t, 10> kGlyphs{// 15 bits per digit, rows of 3 from the top, msb first
-                                                    0b111101101101111, 0b010110010010111, 0b111001111100111,
-                                                    0b111001111001111, 0b101101111001001, 0b111100111001111,
-                                                    0b111100111101111, 0b111001001001001, 0b111101111101111,
-                                                    0b111101111001111};
+  static constexpr std::array<uint16_t, 10> kGlyphs{
+      // 15 bits per digit, rows of 3 from the top, msb first
+      0b111101101101111, 0b010110010010111, 0b111001111100111, 0b111001111001111, 0b101101111001001,
+      0b111100111001111, 0b111100111101111, 0b111001001001001, 0b111101111101111, 0b111101111001111};
   const std::string digits = std::to_string(value);
   const int w = int(digits.size()) * 4 * scale - scale, h = 5 * scale;
   const int x0 = int(center.x) - w / 2, y0 = int(center.y) - h / 2;
@@ -117,15 +119,18 @@ TESSERA_EXAMPLE(ex31_corner_table, "31_corner_table", "Corner table: corners, op
     return to_pixels(glm::mix(t.position(c), centroid, 0.5));
   };
   for (uint32_t tri = 0; tri < t.triangle_count(); ++tri)
-    fill_triangle(img, to_pixels(t.position(3 * tri)), to_pixels(t.position(3 * tri + 1)), to_pixels(t.position(3 * tri + 2)),
-                  tri < 6 ? Vec3f(0.82f, 0.89f, 0.98f) : Vec3f(0.9f, 0.9f, 0.9f));
+    fill_triangle(img, to_pixels(t.position(3 * tri)), to_pixels(t.position(3 * tri + 1)),
+                  to_pixels(t.position(3 * tri + 2)), tri < 6 ? Vec3f(0.82f, 0.89f, 0.98f) : Vec3f(0.9f, 0.9f, 0.9f));
   for (uint32_t c = 0; c < t.corner_count(); ++c)
     line(img, to_pixels(t.position(c)), to_pixels(t.position(CornerTable::next(c))), 2, Vec3f(0.2f));
   // The swing cycle of vertex 0 (red arcs through its corners) and one opposite pair (green: corner 25 and its
   // opposite across edge 5-6).
   const Vec3f red(0.85f, 0.1f, 0.1f), green(0.0f, 0.55f, 0.2f), blue(0.1f, 0.2f, 0.8f);
   const Vec2 center = to_pixels(t.geometry()[0]);
-  const auto angle = [&](uint32_t c) { const Vec2 d = corner_point(c) - center; return std::atan2(-d.y, d.x); };
+  const auto angle = [&](uint32_t c) {
+    const Vec2 d = corner_point(c) - center;
+    return std::atan2(-d.y, d.x);
+  };
   const double radius = glm::distance(corner_point(t.corners_around(0).front()), center);
   for (uint32_t c : t.corners_around(0)) arc_arrow(img, center, radius, angle(c), angle(t.swing(c)), 0.3, red);
   arrow(img, corner_point(25), corner_point(t.opposite(25)), 16, green);

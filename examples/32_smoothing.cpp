@@ -29,10 +29,9 @@ TESSERA_EXAMPLE(ex32_smoothing, "32_smoothing", "Laplacian and Taubin smoothing"
 
   ImageRGB sheet(4 * options.width, options.height, Vec3f(1.0f));
   std::string caption = "A noisy sphere (left), then 20 steps of";
-  const std::pair<const char*, SmoothingMethod> methods[] = {
-      {"uniform Laplacian", SmoothingMethod::Laplacian},
-      {"cotangent Laplacian", SmoothingMethod::Cotangent},
-      {"Taubin lambda|mu", SmoothingMethod::Taubin}};
+  const std::pair<const char*, SmoothingMethod> methods[] = {{"uniform Laplacian", SmoothingMethod::Laplacian},
+                                                             {"cotangent Laplacian", SmoothingMethod::Cotangent},
+                                                             {"Taubin lambda|mu", SmoothingMethod::Taubin}};
   const auto paste = [&](const ImageRGB& tile, int column) {
     for (int y = 0; y < tile.height(); ++y)
       for (int x = 0; x < tile.width(); ++x) sheet(column * options.width + x, y) = tile(x, y);
@@ -42,9 +41,14 @@ TESSERA_EXAMPLE(ex32_smoothing, "32_smoothing", "Laplacian and Taubin smoothing"
     PolyMesh mesh = noisy;
     smooth(mesh, {methods[i].second, 20});
     paste(examples::render_preview(mesh, options), i + 1);
-    caption += fmt::format("{} {} (volume {:+.1f}%)", i == 0 ? "" : i == 2 ? ", and" : ",", methods[i].first,
-                           100.0 * (signed_volume(mesh) / v0 - 1.0));
+    caption += fmt::format("{} {} (volume {:+.1f}%)",
+                           i == 0   ? ""
+                           : i == 2 ? ", and"
+                                    : ",",
+                           methods[i].first, 100.0 * (signed_volume(mesh) / v0 - 1.0));
   }
-  gallery.add("32_smoothing.png", sheet, caption + ", all seen by the same camera: the Laplacian shrinks the ball, "
-                                                   "Taubin's alternating steps keep its size.");
+  gallery.add("32_smoothing.png", sheet,
+              caption +
+                  ", all seen by the same camera: the Laplacian shrinks the ball, "
+                  "Taubin's alternating steps keep its size.");
 }

@@ -13,7 +13,7 @@
 namespace tessera::examples {
 namespace {
 
-constexpr int kSamples = 2;            // supersampling per axis
+constexpr int kSamples = 2;              // supersampling per axis
 constexpr float kWireDepthBias = 2e-3f;  // lines win over the surface they lie on (normalized device depth)
 
 /// A camera looking at the mesh's bounding sphere from direction (1, 0.8, 1.6), the sphere filling the view.
@@ -47,7 +47,9 @@ float edge(const ScreenVertex& a, const ScreenVertex& b, float px, float py) {
 class Target {
  public:
   Target(int width, int height, const Vec3f& background)
-      : width_(width), height_(height), color_(size_t(width) * height, background),
+      : width_(width),
+        height_(height),
+        color_(size_t(width) * height, background),
         depth_(size_t(width) * height, std::numeric_limits<float>::infinity()) {}
 
   /// Fills the triangle with a constant color where it is nearer than the z-buffer (either winding).
@@ -77,7 +79,8 @@ class Target {
       const float x = a.x + t * (b.x - a.x) - 0.5f * kSamples, y = a.y + t * (b.y - a.y) - 0.5f * kSamples;
       const float z = a.z + t * (b.z - a.z);
       for (int dy = 0; dy < kSamples; ++dy)
-        for (int dx = 0; dx < kSamples; ++dx) plot(int(std::lround(x)) + dx, int(std::lround(y)) + dy, z, color, kWireDepthBias);
+        for (int dx = 0; dx < kSamples; ++dx)
+          plot(int(std::lround(x)) + dx, int(std::lround(y)) + dy, z, color, kWireDepthBias);
     }
   }
 

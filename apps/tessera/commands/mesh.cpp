@@ -1,8 +1,8 @@
 // tessera mesh info|convert|normals|smooth|subdivide|triangulate
+#include <fmt/format.h>
+
 #include <memory>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
@@ -34,7 +34,9 @@ void add_in_out(CLI::App& command, InOut& io) {
 
 void write_output(const InOut& io, const PolyMesh& mesh) { write_mesh(io.output, mesh, {!io.ascii}); }
 
-std::string vec_value(const Vec3& v) { return fmt::format("{},{},{}", stat_value(v.x), stat_value(v.y), stat_value(v.z)); }
+std::string vec_value(const Vec3& v) {
+  return fmt::format("{},{},{}", stat_value(v.x), stat_value(v.y), stat_value(v.z));
+}
 
 void run_info(const std::string& input, bool stats) {
   const PolyMesh mesh = read_mesh(input);
@@ -68,8 +70,9 @@ void run_info(const std::string& input, bool stats) {
 }
 
 void setup_info(CLI::App& mesh, CommonOptions& common) {
-  CLI::App* cmd = mesh.add_subcommand("info", "Print counts, topology (Euler characteristic, genus, boundaries), bounds, "
-                                              "area and volume; --stats for key=value lines");
+  CLI::App* cmd = mesh.add_subcommand("info",
+                                      "Print counts, topology (Euler characteristic, genus, boundaries), bounds, "
+                                      "area and volume; --stats for key=value lines");
   auto input = std::make_shared<std::string>();
   cmd->add_option("input", *input, "Input mesh")->required();
   cmd->callback([input, &common] { run_info(*input, common.stats); });
@@ -88,8 +91,8 @@ void setup_normals(CLI::App& mesh) {
   auto weighting = std::make_shared<NormalWeighting>(NormalWeighting::Area);
   add_in_out(*cmd, *io);
   cmd->add_option("--weighting", *weighting, "Face normal weights: area or angle")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, NormalWeighting>{{"area", NormalWeighting::Area},
-                                                                                  {"angle", NormalWeighting::Angle}}));
+      ->transform(CLI::CheckedTransformer(
+          std::map<std::string, NormalWeighting>{{"area", NormalWeighting::Area}, {"angle", NormalWeighting::Angle}}));
   cmd->callback([io, weighting] {
     PolyMesh m = read_mesh(io->input);
     compute_vertex_normals(m, *weighting);
@@ -103,9 +106,10 @@ void setup_smooth(CLI::App& mesh) {
   auto options = std::make_shared<SmoothingOptions>();
   add_in_out(*cmd, *io);
   cmd->add_option("--method", options->method, "laplacian, cotangent or taubin")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, SmoothingMethod>{{"laplacian", SmoothingMethod::Laplacian},
-                                                                                  {"cotangent", SmoothingMethod::Cotangent},
-                                                                                  {"taubin", SmoothingMethod::Taubin}}))
+      ->transform(
+          CLI::CheckedTransformer(std::map<std::string, SmoothingMethod>{{"laplacian", SmoothingMethod::Laplacian},
+                                                                         {"cotangent", SmoothingMethod::Cotangent},
+                                                                         {"taubin", SmoothingMethod::Taubin}}))
       ->required();
   cmd->add_option("--iterations", options->iterations, "Smoothing steps (Taubin: lambda/mu pairs)")
       ->required()
@@ -123,7 +127,8 @@ void setup_smooth(CLI::App& mesh) {
 }
 
 void setup_triangulate(CLI::App& mesh) {
-  CLI::App* cmd = mesh.add_subcommand("triangulate", "Split polygons into triangles (fan if convex, ear clipping if not)");
+  CLI::App* cmd =
+      mesh.add_subcommand("triangulate", "Split polygons into triangles (fan if convex, ear clipping if not)");
   auto io = std::make_shared<InOut>();
   add_in_out(*cmd, *io);
   cmd->callback([io] { write_output(*io, triangulate(read_mesh(io->input))); });

@@ -1,8 +1,8 @@
 #include "tessera/mesh/corner_table.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "tessera/core/error.hpp"
 
@@ -55,14 +55,16 @@ CornerTable::CornerTable(const PolyMesh& mesh) : g_(mesh.positions), v_(mesh.fac
 
 CornerTable::CornerTable(std::vector<Vec3> geometry, std::vector<uint32_t> vertices)
     : g_(std::move(geometry)), v_(std::move(vertices)) {
-  if (v_.size() % 3 != 0) throw TopologyError(fmt::format("a corner table needs 3 corners per triangle, got {}", v_.size()));
+  if (v_.size() % 3 != 0)
+    throw TopologyError(fmt::format("a corner table needs 3 corners per triangle, got {}", v_.size()));
   build();
 }
 
 void CornerTable::build() {
   if (v_.size() >= kNoCorner) throw TopologyError("too many corners for 32-bit corner indices");
   for (uint32_t x : v_)
-    if (x >= g_.size()) throw TopologyError(fmt::format("corner vertex {} is out of range ({} vertices)", x, g_.size()));
+    if (x >= g_.size())
+      throw TopologyError(fmt::format("corner vertex {} is out of range ({} vertices)", x, g_.size()));
   o_ = build_opposites(v_, g_.size(), &unpaired_shared_);
   // A corner per vertex, turned clockwise as far as the fan allows (at most the vertex's corner count of steps).
   std::vector<uint32_t> valence(g_.size(), 0);

@@ -1,6 +1,8 @@
 #pragma once
 // Shared pieces of the mesh readers and writers: error helpers, a text cursor over a memory buffer (line counting,
 // std::from_chars numbers) and little/big endian scalars.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -12,8 +14,6 @@
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
@@ -95,7 +95,8 @@ class TextCursor {
     const char* start = p_ + (*p_ == '+' ? 1 : 0);
     const auto [next, ec] = std::from_chars(start, end_, v);
     if (ec != std::errc() || !ends_token(next)) return false;
-    if (!std::isfinite(v)) fail(fmt::format("expected a finite number, got '{}'", std::string_view(p_, size_t(next - p_))));
+    if (!std::isfinite(v))
+      fail(fmt::format("expected a finite number, got '{}'", std::string_view(p_, size_t(next - p_))));
     p_ = next;
     return true;
   }
@@ -135,8 +136,9 @@ class TextCursor {
 /// Reads a scalar of type T stored at `p` in little (or big) endian byte order.
 template <class T>
 T load_scalar(const char* p, bool big_endian) {
-  using U = std::conditional_t<sizeof(T) == 1, uint8_t,
-                               std::conditional_t<sizeof(T) == 2, uint16_t, std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
+  using U = std::conditional_t<
+      sizeof(T) == 1, uint8_t,
+      std::conditional_t<sizeof(T) == 2, uint16_t, std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
   U u;
   std::memcpy(&u, p, sizeof(U));
   if (big_endian != (std::endian::native == std::endian::big)) {

@@ -17,9 +17,10 @@ using mesh_io::TextCursor;
 /// free-form geometry, lines, points, rendering attributes). They are skipped; anything else unknown is an error.
 bool is_ignored_statement(std::string_view key) {
   static constexpr std::array<std::string_view, 36> kIgnored{
-      "o",     "g",     "s",     "mg",   "usemtl", "mtllib",  "usemap",   "maplib", "shadow_obj", "trace_obj", "lod",  "bevel",
-      "c_interp", "d_interp", "cstype", "deg", "bmat",   "step",    "curv",     "curv2",  "surf",       "parm",      "trim", "hole",
-      "scrv",  "sp",    "end",   "con",  "call",   "csh",     "vp",       "ctech",  "stech",      "l",         "p",    "res"};
+      "o",         "g",     "s",     "mg",       "usemtl",   "mtllib", "usemap", "maplib", "shadow_obj",
+      "trace_obj", "lod",   "bevel", "c_interp", "d_interp", "cstype", "deg",    "bmat",   "step",
+      "curv",      "curv2", "surf",  "parm",     "trim",     "hole",   "scrv",   "sp",     "end",
+      "con",       "call",  "csh",   "vp",       "ctech",    "stech",  "l",      "p",      "res"};
   return std::find(kIgnored.begin(), kIgnored.end(), key) != kIgnored.end();
 }
 
@@ -73,11 +74,13 @@ void parse_face(TextCursor& in, PolyMesh& mesh, size_t uv_count, size_t normal_c
   const size_t first = mesh.face_vertices.size();
   while (!in.at_line_end()) {
     const size_t corner = mesh.face_vertices.size();
-    mesh.face_vertices.push_back(uint32_t(resolve_index(in, in.integer("a vertex index"), mesh.positions.size(), "vertex")));
+    mesh.face_vertices.push_back(
+        uint32_t(resolve_index(in, in.integer("a vertex index"), mesh.positions.size(), "vertex")));
     int32_t uv = -1, normal = -1;
     if (in.peek() == '/') {
       in.advance();
-      if (in.peek() != '/') uv = resolve_index(in, in.integer("a texture coordinate index", true), uv_count, "texture coordinate");
+      if (in.peek() != '/')
+        uv = resolve_index(in, in.integer("a texture coordinate index", true), uv_count, "texture coordinate");
       if (in.peek() == '/') {
         in.advance();
         normal = resolve_index(in, in.integer("a normal index", true), normal_count, "normal");

@@ -25,8 +25,9 @@ OffLayout parse_keyword(TextCursor& in, std::string_view key) {
   layout.color = take("C");
   layout.normal = take("N");
   if (k != "OFF")
-    in.fail(fmt::format("expected the keyword OFF (optionally ST, C, N prefixes; 4OFF and nOFF are not supported), got '{}'",
-                        key.substr(0, 40)));
+    in.fail(fmt::format(
+        "expected the keyword OFF (optionally ST, C, N prefixes; 4OFF and nOFF are not supported), got '{}'",
+        key.substr(0, 40)));
   return layout;
 }
 
@@ -74,7 +75,8 @@ PolyMesh read_off(std::string_view data, const std::string& name) {
       const double scale = rest[0] > 1 || rest[1] > 1 || rest[2] > 1 ? 1.0 / 255.0 : 1.0;
       mesh.colors.emplace_back(rest[0] * scale, rest[1] * scale, rest[2] * scale);
     } else if (n_color != 0) {
-      in.fail(fmt::format("unexpected number after the vertex (the header is '{}OFF' style without colors)", layout.texture ? "ST" : ""));
+      in.fail(fmt::format("unexpected number after the vertex (the header is '{}OFF' style without colors)",
+                          layout.texture ? "ST" : ""));
     }
     if (layout.texture) mesh.uvs.emplace_back(rest[n_rest - 2], rest[n_rest - 1]);
     in.end_line("a vertex");
@@ -83,7 +85,8 @@ PolyMesh read_off(std::string_view data, const std::string& name) {
   for (size_t f = 0; f < nf; ++f) {
     in.skip_empty_lines();
     const long long n = in.integer("a face vertex count");
-    if (n < 3 || size_t(n) > in.remaining() / 2) in.fail(fmt::format("a face needs 3 or more vertices (that fit the file), got {}", n));
+    if (n < 3 || size_t(n) > in.remaining() / 2)
+      in.fail(fmt::format("a face needs 3 or more vertices (that fit the file), got {}", n));
     for (long long i = 0; i < n; ++i) {
       const long long v = in.integer("a vertex index");
       if (v < 0 || size_t(v) >= nv) in.fail(fmt::format("vertex index {} is out of range (0..{})", v, long(nv) - 1));

@@ -26,10 +26,22 @@ bool is_float(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64
 
 std::optional<PlyType> parse_type(std::string_view s) {
   static constexpr std::array<std::pair<std::string_view, PlyType>, 16> kNames{{
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},    {"uint8", PlyType::UInt8},
-      {"short", PlyType::Int16},   {"int16", PlyType::Int16},     {"ushort", PlyType::UInt16},  {"uint16", PlyType::UInt16},
-      {"int", PlyType::Int32},     {"int32", PlyType::Int32},     {"uint", PlyType::UInt32},    {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64}, {"float64", PlyType::Float64},
+      {"char", PlyType::Int8},
+      {"int8", PlyType::Int8},
+      {"uchar", PlyType::UInt8},
+      {"uint8", PlyType::UInt8},
+      {"short", PlyType::Int16},
+      {"int16", PlyType::Int16},
+      {"ushort", PlyType::UInt16},
+      {"uint16", PlyType::UInt16},
+      {"int", PlyType::Int32},
+      {"int32", PlyType::Int32},
+      {"uint", PlyType::UInt32},
+      {"uint32", PlyType::UInt32},
+      {"float", PlyType::Float32},
+      {"float32", PlyType::Float32},
+      {"double", PlyType::Float64},
+      {"float64", PlyType::Float64},
   }};
   for (const auto& [name, type] : kNames)
     if (name == s) return type;
@@ -41,9 +53,23 @@ enum Slot : int8_t { kSkip = -1, kX, kY, kZ, kNx, kNy, kNz, kU, kV, kRed, kGreen
 
 Slot vertex_slot(std::string_view name) {
   static constexpr std::array<std::pair<std::string_view, Slot>, 17> kNames{{
-      {"x", kX},      {"y", kY},          {"z", kZ},         {"nx", kNx},        {"ny", kNy},       {"nz", kNz},
-      {"u", kU},      {"v", kV},          {"s", kU},         {"t", kV},          {"texture_u", kU}, {"texture_v", kV},
-      {"red", kRed},  {"green", kGreen},  {"blue", kBlue},   {"diffuse_red", kRed}, {"diffuse_green", kGreen},
+      {"x", kX},
+      {"y", kY},
+      {"z", kZ},
+      {"nx", kNx},
+      {"ny", kNy},
+      {"nz", kNz},
+      {"u", kU},
+      {"v", kV},
+      {"s", kU},
+      {"t", kV},
+      {"texture_u", kU},
+      {"texture_v", kV},
+      {"red", kRed},
+      {"green", kGreen},
+      {"blue", kBlue},
+      {"diffuse_red", kRed},
+      {"diffuse_green", kGreen},
   }};
   for (const auto& [n, slot] : kNames)
     if (n == name) return slot;
@@ -157,7 +183,8 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
         if (p.slot >= kX && p.slot <= kZ) xyz[size_t(p.slot)] = true;
       if (!(xyz[0] && xyz[1] && xyz[2])) fail_at_line(name, e.line, "the vertex element needs properties x, y and z");
     }
-    if (e.name == "face" && std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.face_indices; }))
+    if (e.name == "face" &&
+        std::none_of(e.properties.begin(), e.properties.end(), [](const PlyProperty& p) { return p.face_indices; }))
       fail_at_line(name, e.line, "the face element needs a list property vertex_indices");
   }
   header.body = in.position();
@@ -176,14 +203,30 @@ class BinarySource {
     if (size_t(end_ - p_) < n) fail(fmt::format("expected {}, but the file ends", what));
     double v = 0;
     switch (t) {
-      case PlyType::Int8: v = double(int8_t(*p_)); break;
-      case PlyType::UInt8: v = double(uint8_t(*p_)); break;
-      case PlyType::Int16: v = mesh_io::load_scalar<int16_t>(p_, big_); break;
-      case PlyType::UInt16: v = mesh_io::load_scalar<uint16_t>(p_, big_); break;
-      case PlyType::Int32: v = mesh_io::load_scalar<int32_t>(p_, big_); break;
-      case PlyType::UInt32: v = mesh_io::load_scalar<uint32_t>(p_, big_); break;
-      case PlyType::Float32: v = mesh_io::load_scalar<float>(p_, big_); break;
-      case PlyType::Float64: v = mesh_io::load_scalar<double>(p_, big_); break;
+      case PlyType::Int8:
+        v = double(int8_t(*p_));
+        break;
+      case PlyType::UInt8:
+        v = double(uint8_t(*p_));
+        break;
+      case PlyType::Int16:
+        v = mesh_io::load_scalar<int16_t>(p_, big_);
+        break;
+      case PlyType::UInt16:
+        v = mesh_io::load_scalar<uint16_t>(p_, big_);
+        break;
+      case PlyType::Int32:
+        v = mesh_io::load_scalar<int32_t>(p_, big_);
+        break;
+      case PlyType::UInt32:
+        v = mesh_io::load_scalar<uint32_t>(p_, big_);
+        break;
+      case PlyType::Float32:
+        v = mesh_io::load_scalar<float>(p_, big_);
+        break;
+      case PlyType::Float64:
+        v = mesh_io::load_scalar<double>(p_, big_);
+        break;
     }
     if (!std::isfinite(v)) fail(fmt::format("expected {}, got a non-finite number", what));
     p_ += n;
@@ -274,7 +317,8 @@ void read_body(Source& src, const std::vector<PlyElement>& elements, bool binary
       mesh.positions.emplace_back(row[kX], row[kY], row[kZ]);
       if (present[kNx] && present[kNy] && present[kNz]) mesh.normals.emplace_back(row[kNx], row[kNy], row[kNz]);
       if (present[kU] && present[kV]) mesh.uvs.emplace_back(row[kU], row[kV]);
-      if (present[kRed] && present[kGreen] && present[kBlue]) mesh.colors.emplace_back(row[kRed], row[kGreen], row[kBlue]);
+      if (present[kRed] && present[kGreen] && present[kBlue])
+        mesh.colors.emplace_back(row[kRed], row[kGreen], row[kBlue]);
     }
     if (is_vertex) vertices_read = true;
   }
@@ -296,7 +340,8 @@ PolyMesh read_ply(std::string_view data, const std::string& name) {
   // Faces listed before their vertices are checked now that the vertex count is known.
   for (uint32_t v : mesh.face_vertices)
     if (v >= mesh.positions.size())
-      throw InvalidInput(located(name, fmt::format("vertex index {} is out of range (0..{})", v, long(mesh.positions.size()) - 1)));
+      throw InvalidInput(
+          located(name, fmt::format("vertex index {} is out of range (0..{})", v, long(mesh.positions.size()) - 1)));
   return mesh;
 }
 
@@ -327,7 +372,8 @@ void write_ply(std::ostream& out, const PolyMesh& mesh, bool binary) {
       w.print("{} {} {}", p.x, p.y, p.z);
       if (normals) w.print(" {} {} {}", mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z);
       if (uvs) w.print(" {} {}", mesh.uvs[v].x, mesh.uvs[v].y);
-      if (colors) w.print(" {} {} {}", color_byte(mesh.colors[v].x), color_byte(mesh.colors[v].y), color_byte(mesh.colors[v].z));
+      if (colors)
+        w.print(" {} {} {}", color_byte(mesh.colors[v].x), color_byte(mesh.colors[v].y), color_byte(mesh.colors[v].z));
       w.print("\n");
     }
     for (size_t f = 0; f < mesh.face_count(); ++f) {

@@ -35,7 +35,8 @@ PolygonSoup read_binary(std::string_view data, const std::string& name) {
 void expect(TextCursor& in, std::string_view word) {
   in.skip_empty_lines();
   const std::string_view got = in.token();
-  if (got != word) in.fail(fmt::format("expected '{}', got '{}'", word, got.empty() ? in.preview() : std::string(got.substr(0, 40))));
+  if (got != word)
+    in.fail(fmt::format("expected '{}', got '{}'", word, got.empty() ? in.preview() : std::string(got.substr(0, 40))));
 }
 
 PolygonSoup read_ascii(std::string_view data, const std::string& name) {
@@ -80,14 +81,16 @@ PolygonSoup read_ascii(std::string_view data, const std::string& name) {
 }  // namespace
 
 PolyMesh read_stl(std::string_view data, const std::string& name) {
-  const bool binary_size = data.size() >= kHeaderBytes &&
-                           (data.size() - kHeaderBytes) / kTriangleBytes == mesh_io::load_scalar<uint32_t>(data.data() + 80, false) &&
-                           (data.size() - kHeaderBytes) % kTriangleBytes == 0;
+  const bool binary_size =
+      data.size() >= kHeaderBytes &&
+      (data.size() - kHeaderBytes) / kTriangleBytes == mesh_io::load_scalar<uint32_t>(data.data() + 80, false) &&
+      (data.size() - kHeaderBytes) % kTriangleBytes == 0;
   size_t start = 0;
   while (start < data.size() && std::isspace(static_cast<unsigned char>(data[start]))) ++start;
   const bool ascii = !binary_size && data.substr(start, 5) == "solid";
   if (!binary_size && !ascii) {
-    if (data.size() < kHeaderBytes) mesh_io::fail_at_byte(name, long(data.size()), "expected an 84-byte binary STL header or 'solid'");
+    if (data.size() < kHeaderBytes)
+      mesh_io::fail_at_byte(name, long(data.size()), "expected an 84-byte binary STL header or 'solid'");
     const auto count = mesh_io::load_scalar<uint32_t>(data.data() + 80, false);
     mesh_io::fail_at_byte(name, long(data.size()),
                           fmt::format("expected {} bytes for {} binary STL triangles (84 + 50 n), the file has {}",
@@ -104,7 +107,8 @@ void write_stl(std::ostream& out, const PolyMesh& mesh, bool binary) {
     w.print("solid tessera\n");
     for (size_t f = 0; f < tris.face_count(); ++f) {
       w.print("facet normal {} {} {}\nouter loop\n", normals[f].x, normals[f].y, normals[f].z);
-      for (uint32_t v : tris.face(f)) w.print("vertex {} {} {}\n", tris.positions[v].x, tris.positions[v].y, tris.positions[v].z);
+      for (uint32_t v : tris.face(f))
+        w.print("vertex {} {} {}\n", tris.positions[v].x, tris.positions[v].y, tris.positions[v].z);
       w.print("endloop\nendfacet\n");
     }
     w.print("endsolid tessera\n");

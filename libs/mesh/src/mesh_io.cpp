@@ -1,19 +1,17 @@
 // Format dispatch by extension, and file access for the mesh readers and writers.
 #include "tessera/mesh/mesh_io.hpp"
 
-#include <algorithm>
-#include <array>
-#include <cctype>
-
-#include <cerrno>
-#include <cstring>
-
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <fmt/format.h>
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
@@ -44,7 +42,9 @@ class MappedFile {
   MappedFile(const MappedFile&) = delete;
   MappedFile& operator=(const MappedFile&) = delete;
 
-  std::string_view view() const { return data_ != nullptr ? std::string_view(data_, size_) : std::string_view(fallback_); }
+  std::string_view view() const {
+    return data_ != nullptr ? std::string_view(data_, size_) : std::string_view(fallback_);
+  }
 
  private:
   const char* data_ = nullptr;
@@ -66,10 +66,14 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
 
 PolyMesh read_mesh(std::string_view data, MeshFormat format, const std::string& name) {
   switch (format) {
-    case MeshFormat::Obj: return read_obj(data, name);
-    case MeshFormat::Ply: return read_ply(data, name);
-    case MeshFormat::Off: return read_off(data, name);
-    case MeshFormat::Stl: return read_stl(data, name);
+    case MeshFormat::Obj:
+      return read_obj(data, name);
+    case MeshFormat::Ply:
+      return read_ply(data, name);
+    case MeshFormat::Off:
+      return read_off(data, name);
+    case MeshFormat::Stl:
+      return read_stl(data, name);
   }
   throw InvalidInput(fmt::format("{}: unknown mesh format", name));
 }
@@ -82,10 +86,18 @@ PolyMesh read_mesh(const std::filesystem::path& path) {
 
 void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
   switch (format) {
-    case MeshFormat::Obj: write_obj(out, mesh); return;
-    case MeshFormat::Ply: write_ply(out, mesh, options.binary); return;
-    case MeshFormat::Off: write_off(out, mesh); return;
-    case MeshFormat::Stl: write_stl(out, mesh, options.binary); return;
+    case MeshFormat::Obj:
+      write_obj(out, mesh);
+      return;
+    case MeshFormat::Ply:
+      write_ply(out, mesh, options.binary);
+      return;
+    case MeshFormat::Off:
+      write_off(out, mesh);
+      return;
+    case MeshFormat::Stl:
+      write_stl(out, mesh, options.binary);
+      return;
   }
 }
 

@@ -1,10 +1,10 @@
 #include "tessera/mesh/primitives.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/mesh/normals.hpp"
@@ -29,7 +29,8 @@ void orient_convex(PolyMesh& mesh) {
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const auto face = mesh.face(f);
     if (glm::dot(face_area_vector(mesh, f), mesh.positions[face[0]]) < 0)
-      std::reverse(mesh.face_vertices.begin() + mesh.face_offsets[f], mesh.face_vertices.begin() + mesh.face_offsets[f + 1]);
+      std::reverse(mesh.face_vertices.begin() + mesh.face_offsets[f],
+                   mesh.face_vertices.begin() + mesh.face_offsets[f + 1]);
   }
 }
 
@@ -140,7 +141,9 @@ PolyMesh make_dodecahedron() {
     const Vec3 e1 = glm::normalize(glm::cross(axis, std::abs(axis.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0)));
     const Vec3 e2 = glm::cross(axis, e1);
     auto& ring = faces_at[v];
-    const auto angle = [&](uint32_t f) { return std::atan2(glm::dot(mesh.positions[f], e2), glm::dot(mesh.positions[f], e1)); };
+    const auto angle = [&](uint32_t f) {
+      return std::atan2(glm::dot(mesh.positions[f], e2), glm::dot(mesh.positions[f], e1));
+    };
     std::sort(ring.begin(), ring.end(), [&](uint32_t a, uint32_t b) { return angle(a) < angle(b); });
     mesh.add_face(ring);
   }
@@ -244,7 +247,8 @@ PolyMesh make_torus(double major_radius, double minor_radius, int n, int m) {
   require(n >= 3 && n <= 1 << 14, "torus ring segments", n);
   require(m >= 3 && m <= 1 << 14, "torus tube segments", m);
   if (!(minor_radius > 0 && minor_radius < major_radius && std::isfinite(major_radius)))
-    throw InvalidInput(fmt::format("torus radii must satisfy 0 < r < R, got R = {}, r = {}", major_radius, minor_radius));
+    throw InvalidInput(
+        fmt::format("torus radii must satisfy 0 < r < R, got R = {}, r = {}", major_radius, minor_radius));
   // Vertex (i, j): u = 2 pi i / n around the ring (from +z toward +x), v = 2 pi j / m around the tube (0 outside,
   // growing upward there). Seen from outside i grows to the right and j upward: the grid quads are counterclockwise.
   PolyMesh mesh;

@@ -1,8 +1,8 @@
 #include "tessera/mesh/smoothing.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
+
+#include <cmath>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -54,11 +54,13 @@ void cotangent_weights(const PolyMesh& tris, const EdgeTable& edges, std::vector
 }  // namespace
 
 void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function<void(int)>& progress) {
-  if (options.iterations < 0) throw InvalidInput(fmt::format("smoothing iterations must be >= 0, got {}", options.iterations));
+  if (options.iterations < 0)
+    throw InvalidInput(fmt::format("smoothing iterations must be >= 0, got {}", options.iterations));
   if (!(options.lambda > 0 && options.lambda <= 1))
     throw InvalidInput(fmt::format("smoothing lambda must be in (0, 1], got {}", options.lambda));
   if (options.method == SmoothingMethod::Taubin && !(options.mu < -options.lambda && options.mu >= -1))
-    throw InvalidInput(fmt::format("Taubin mu must be in [-1, -lambda), got {} (lambda {})", options.mu, options.lambda));
+    throw InvalidInput(
+        fmt::format("Taubin mu must be in [-1, -lambda), got {} (lambda {})", options.mu, options.lambda));
 
   const bool cotangent = options.method == SmoothingMethod::Cotangent;
   const PolyMesh tris = cotangent ? triangulate(mesh) : PolyMesh{};

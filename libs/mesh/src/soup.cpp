@@ -1,12 +1,12 @@
 #include "tessera/mesh/soup.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <bit>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 

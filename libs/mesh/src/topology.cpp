@@ -174,7 +174,8 @@ std::vector<std::vector<uint32_t>> boundary_loops(const PolyMesh& mesh, const Ed
 bool is_consistently_oriented(const PolyMesh& mesh, const EdgeTable& edges) {
   for (size_t e = 0; e < edges.size(); ++e) {
     if (edges.kind(e) != EdgeKind::Manifold) continue;
-    if (mesh.face_vertices[edges.half_edges[edges.offsets[e]]] == mesh.face_vertices[edges.half_edges[edges.offsets[e] + 1]])
+    if (mesh.face_vertices[edges.half_edges[edges.offsets[e]]] ==
+        mesh.face_vertices[edges.half_edges[edges.offsets[e] + 1]])
       return false;
   }
   return true;

@@ -21,7 +21,9 @@ bool project_to_plane(std::span<const Vec3> points, std::vector<Vec2>& out) {
   return true;
 }
 
-double cross2(const Vec2& a, const Vec2& b, const Vec2& c) { return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x); }
+double cross2(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+}
 
 bool convex_2d(const std::vector<Vec2>& p) {
   double scale = 0;

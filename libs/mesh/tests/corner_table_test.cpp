@@ -27,7 +27,7 @@ std::vector<uint32_t> notes_opposites(const std::vector<uint32_t>& v) {
 }
 
 std::vector<PolyMesh> manifold_fixtures() {
-  return {triangulate(make_icosahedron()), triangulate(make_cube()), triangulate(make_uv_sphere(10, 6)),
+  return {triangulate(make_icosahedron()),       triangulate(make_cube()),     triangulate(make_uv_sphere(10, 6)),
           triangulate(make_torus(1, 0.3, 9, 7)), triangulate(make_grid(4, 3)), triangulate(make_cylinder(7, false)),
           triangulate(make_dodecahedron())};
 }

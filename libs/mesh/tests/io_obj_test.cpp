@@ -1,7 +1,7 @@
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "shared_data.hpp"
 #include "tessera/core/error.hpp"
@@ -37,15 +37,16 @@ TEST(ObjReader, ReadsPolygonsNegativeIndicesAndIgnoresGroupsAndMaterials) {
 }
 
 TEST(ObjReader, ConsistentReferencesBecomePerVertexOthersFaceVarying) {
-  const PolyMesh per_vertex = read_obj(
-      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n", "t.obj");
+  const PolyMesh per_vertex =
+      read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nf 1/1/1 2/2/1 3/3/1\n", "t.obj");
   EXPECT_EQ(per_vertex.uvs.size(), 3u);
   EXPECT_EQ(per_vertex.uvs[1], Vec2(1, 0));
   EXPECT_EQ(per_vertex.normals.size(), 3u);
   EXPECT_TRUE(per_vertex.corner_uvs.empty());
   // Vertex 1 uses vt 2 in one face and vt 4 in the other: a seam.
-  const PolyMesh seam = read_obj(
-      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\nf 1/1 2/2 3/3\nf 2/4 4/2 3/3\n", "t.obj");
+  const PolyMesh seam =
+      read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.5\nf 1/1 2/2 3/3\nf 2/4 4/2 3/3\n",
+               "t.obj");
   EXPECT_TRUE(seam.uvs.empty());
   ASSERT_EQ(seam.corner_uvs.size(), 6u);
   EXPECT_EQ(seam.corner_uvs[3], Vec2(0.5, 0.5));
@@ -80,7 +81,8 @@ TEST(ObjReader, ErrorsNameTheLineAndWhatWasExpected) {
   EXPECT_THAT(error_of("v 0 0 0\nbogus 1 2\n"), HasSubstr("t.obj:2: unknown OBJ statement 'bogus'"));
   EXPECT_THAT(error_of("v 0 0 0\nv 1 0 0\nf 1 2\n"), HasSubstr("at least 3 vertices"));
   EXPECT_THAT(error_of("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1/x 2 3\n"), HasSubstr("expected a texture coordinate index"));
-  EXPECT_THAT(error_of("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1/1 2 3\n"), HasSubstr("texture coordinate index 1 is out of range"));
+  EXPECT_THAT(error_of("v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1/1 2 3\n"),
+              HasSubstr("texture coordinate index 1 is out of range"));
   EXPECT_THAT(error_of("v 0 0 0 extra\n"), HasSubstr("t.obj:1: unexpected 'extra'"));
   EXPECT_THAT(error_of("v 0 0 0\nt crease 2/1/0 0 5 1\n"), HasSubstr("tag vertex index 5 is out of range"));
   EXPECT_THAT(error_of("v 0 0 0\nv 1 0 0\nt crease 2/1/0 0 1\n"), HasSubstr("expected a tag sharpness"));

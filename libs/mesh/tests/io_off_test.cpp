@@ -1,7 +1,7 @@
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "shared_data.hpp"
 #include "tessera/core/error.hpp"
@@ -29,24 +29,28 @@ TEST(OffReader, PlainColorAndNormalVariants) {
   EXPECT_EQ(plain.face_size(0), 4u);
   const PolyMesh inline_counts = read_off("OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "t.off");
   EXPECT_EQ(inline_counts.face_count(), 1u);
-  const PolyMesh colored = read_off("COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2\n", "t.off");
+  const PolyMesh colored =
+      read_off("COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 255 255\n3 0 1 2\n", "t.off");
   ASSERT_EQ(colored.colors.size(), 3u);
   EXPECT_EQ(colored.colors[1], Vec3(0, 1, 0));
   const PolyMesh normals = read_off("NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n", "t.off");
   ASSERT_EQ(normals.normals.size(), 3u);
-  const PolyMesh textured = read_off("STCNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1 0.5 0.5\n1 0 0 0 0 1 1 1 1 1 0\n0 1 0 0 0 1 1 1 1 0 1\n3 0 1 2\n", "t.off");
+  const PolyMesh textured = read_off(
+      "STCNOFF\n3 1 0\n0 0 0 0 0 1 1 1 1 0.5 0.5\n1 0 0 0 0 1 1 1 1 1 0\n0 1 0 0 0 1 1 1 1 0 1\n3 0 1 2\n", "t.off");
   EXPECT_EQ(textured.uvs[0], Vec2(0.5, 0.5));
   EXPECT_EQ(textured.colors[0], Vec3(1, 1, 1));
 }
 
 TEST(OffReader, ErrorsNameTheLine) {
   EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0\n0 1 0\n3 0 1 2\n"), HasSubstr("t.off:4: expected a vertex coordinate"));
-  EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"), HasSubstr("t.off:6: vertex index 3 is out of range"));
+  EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+              HasSubstr("t.off:6: vertex index 3 is out of range"));
   EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n"), HasSubstr("expected a face vertex count"));
   EXPECT_THAT(error_of("OFF\n900000000 1 0\n0 0 0\n"), HasSubstr("larger than the rest of the file"));
   EXPECT_THAT(error_of("4OFF\n"), HasSubstr("t.off:1: expected the keyword OFF"));
   EXPECT_THAT(error_of("OFF\n1 0 0\n0 inf 0\n"), HasSubstr("finite"));
-  EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\nextra\n"), HasSubstr("t.off:7: expected the end of the file"));
+  EXPECT_THAT(error_of("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\nextra\n"),
+              HasSubstr("t.off:7: expected the end of the file"));
 }
 
 TEST(OffWriter, RoundTrips) {

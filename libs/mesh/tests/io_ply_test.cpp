@@ -1,7 +1,7 @@
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "shared_data.hpp"
 #include "tessera/core/error.hpp"
@@ -82,8 +82,9 @@ TEST(PlyReader, BinaryLittleAndBigEndianWithAnyIndexTypes) {
 }
 
 TEST(PlyReader, HostileAndTruncatedFilesAreRejectedWithTheirPlace) {
-  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                             "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const std::string header =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
   std::string body;
   for (int i = 0; i < 9; ++i) put(body, float(i), false);
   std::string face;
@@ -98,13 +99,15 @@ TEST(PlyReader, HostileAndTruncatedFilesAreRejectedWithTheirPlace) {
   EXPECT_THAT(error_of(header + body + bad), HasSubstr("vertex index 7 is out of range"));
   // A huge element count is refused before any allocation.
   EXPECT_THAT(error_of("ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
-                       "property float y\nproperty float z\nend_header\n" + body),
+                       "property float y\nproperty float z\nend_header\n" +
+                       body),
               HasSubstr("declares 4000000000 rows"));
   // A huge list count.
   std::string huge;
   put(huge, uint32_t(0xFFFFFFFF), false);
   EXPECT_THAT(error_of("ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n" + huge),
+                       "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n" +
+                       huge),
               HasSubstr("list count"));
   // NaN coordinates.
   std::string nan_body = body;
@@ -114,8 +117,9 @@ TEST(PlyReader, HostileAndTruncatedFilesAreRejectedWithTheirPlace) {
   EXPECT_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                        "end_header\n0 nan 0\n"),
               HasSubstr("t.ply:8: expected a finite number"));
-  EXPECT_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"),
-              HasSubstr("needs properties x, y and z"));
+  EXPECT_THAT(
+      error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+      HasSubstr("needs properties x, y and z"));
   EXPECT_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                        "end_header\n0 0\n\n\n\n"),
               HasSubstr("t.ply:8: expected a property value"));

@@ -1,7 +1,7 @@
-#include <sstream>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <sstream>
 
 #include "tessera/core/error.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -43,8 +43,9 @@ TEST(Stl, BinaryAndAsciiRoundTripsWeldIntoAClosedMesh) {
 }
 
 TEST(Stl, AsciiWithIndentationAndSeveralSolids) {
-  const std::string one = "solid a\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n"
-                          "      vertex 0 1 0\n    endloop\n  endfacet\nendsolid a\n";
+  const std::string one =
+      "solid a\n  facet normal 0 0 1\n    outer loop\n      vertex 0 0 0\n      vertex 1 0 0\n"
+      "      vertex 0 1 0\n    endloop\n  endfacet\nendsolid a\n";
   EXPECT_EQ(read_stl(one + one, "t.stl").face_count(), 2u);
 }
 

@@ -1,11 +1,12 @@
-#include <filesystem>
+#include "tessera/mesh/mesh_io.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
-#include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/primitives.hpp"
 
 namespace tessera {
@@ -16,7 +17,8 @@ namespace fs = std::filesystem;
 class MeshFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / fmt::format("tessera-mesh-io-{}", ::testing::UnitTest::GetInstance()->random_seed());
+    dir_ = fs::temp_directory_path() /
+           fmt::format("tessera-mesh-io-{}", ::testing::UnitTest::GetInstance()->random_seed());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

@@ -29,8 +29,8 @@ TEST(Normals, AngleWeightingIgnoresHowAFaceIsSplit) {
   // A box corner where the top face is split into two triangles: area weights are unchanged by the split but angle
   // weights see the top face once (90 degrees in total), so the angle-weighted corner normal stays on the diagonal.
   PolyMesh corner;
-  corner.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 0),
-                      Vec3(0, 1, 1)};
+  corner.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1),
+                      Vec3(1, 0, 1), Vec3(1, 1, 0), Vec3(0, 1, 1)};
   corner.add_face({0, 2, 5, 1});  // z = 0 plane, normal -z
   corner.add_face({0, 1, 4, 3});  // y = 0 plane, normal -y
   corner.add_face({0, 3, 6});     // x = 0 plane, normal -x, as two triangles

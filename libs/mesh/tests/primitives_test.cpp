@@ -1,9 +1,9 @@
 #include "tessera/mesh/primitives.hpp"
 
+#include <gtest/gtest.h>
+
 #include <map>
 #include <utility>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -78,7 +78,8 @@ TEST(Primitives, ClosedSolidsHaveCountsEulerCharacteristicAndPositiveVolume) {
 }
 
 TEST(Primitives, PlatonicSolidsHaveUnitCircumradiusAndRegularFaces) {
-  for (const PolyMesh& mesh : {make_tetrahedron(), make_cube(), make_octahedron(), make_dodecahedron(), make_icosahedron()}) {
+  for (const PolyMesh& mesh :
+       {make_tetrahedron(), make_cube(), make_octahedron(), make_dodecahedron(), make_icosahedron()}) {
     for (const Vec3& p : mesh.positions) EXPECT_NEAR(glm::length(p), 1.0, 1e-12);
     const auto face0 = mesh.face(0);
     const double edge = glm::distance(mesh.positions[face0[0]], mesh.positions[face0[1]]);

@@ -17,8 +17,7 @@ TEST(Soup, RoundTripThroughSoupWeldsBackToTheSameMesh) {
   EXPECT_EQ(welded.vertex_count(), 8u);
   EXPECT_EQ(welded.face_count(), 6u);
   for (size_t f = 0; f < 6; ++f)
-    for (size_t i = 0; i < 4; ++i)
-      EXPECT_EQ(welded.positions[welded.face(f)[i]], cube.positions[cube.face(f)[i]]);
+    for (size_t i = 0; i < 4; ++i) EXPECT_EQ(welded.positions[welded.face(f)[i]], cube.positions[cube.face(f)[i]]);
 }
 
 TEST(Soup, ExactWeldingMergesSignedZeros) {

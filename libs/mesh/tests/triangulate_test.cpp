@@ -1,7 +1,8 @@
 #include "tessera/mesh/triangulate.hpp"
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/normals.hpp"
@@ -21,7 +22,8 @@ TEST(Triangulate, ConvexFacesGetTheNotesFan) {
   EXPECT_TRUE(is_convex_polygon(hexagon));
   const auto tris = triangulate_polygon(hexagon);
   ASSERT_EQ(tris.size(), 4u);  // s - 2 triangles, s - 3 diagonals from corner 0
-  for (size_t i = 0; i < tris.size(); ++i) EXPECT_EQ(tris[i], (std::array<uint32_t, 3>{0, uint32_t(i + 1), uint32_t(i + 2)}));
+  for (size_t i = 0; i < tris.size(); ++i)
+    EXPECT_EQ(tris[i], (std::array<uint32_t, 3>{0, uint32_t(i + 1), uint32_t(i + 2)}));
 }
 
 TEST(Triangulate, ConcaveFacesAreEarClippedInTheirPlane) {
@@ -51,7 +53,8 @@ TEST(Triangulate, MeshesKeepAreaTopologyAndCornerData) {
   EXPECT_EQ(analyze_topology(tris).euler, 2);
   const PolyMesh dodeca = triangulate(make_dodecahedron());
   EXPECT_EQ(dodeca.face_count(), 36u);
-  for (size_t f = 0; f < dodeca.face_count(); ++f) EXPECT_GT(glm::dot(face_normal(dodeca, f), dodeca.positions[dodeca.face(f)[0]]), 0);
+  for (size_t f = 0; f < dodeca.face_count(); ++f)
+    EXPECT_GT(glm::dot(face_normal(dodeca, f), dodeca.positions[dodeca.face(f)[0]]), 0);
 }
 
 }  // namespace

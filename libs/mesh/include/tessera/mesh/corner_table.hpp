@@ -7,12 +7,12 @@
 //   prev(c)  = next(next(c))                    right(c) = next(c).opposite   (the notes' right)
 //   opposite(c) = O[c]                          swing(c) = next(c).opposite.next
 //
-// For triangle (v, a, b) with c at v: right(c) lies across edge v-b, left(c) across edge v-a (the notes' formulas,
-// kept literally; docs/mesh.md has a figure). swing(c) is the corner at the same vertex in the next triangle counterclockwise around the vertex (seen from
-// outside, for a consistently counterclockwise mesh); unswing(c) = prev(c).opposite.prev turns clockwise. A
-// corner whose opposite edge is a boundary edge — or a non-manifold edge, shared by more than two triangles or by
-// two triangles of opposite orientation — has no opposite: O holds kNoCorner there, and every operator that would
-// cross it returns kNoCorner.
+// For triangle (v, a, b) with c at v: right(c) lies across edge v-b, left(c) across edge v-a (the notes'
+// formulas, kept literally; docs/mesh.md has a figure). swing(c) is the corner at the same vertex in the next
+// triangle counterclockwise around the vertex (seen from outside, for a consistently counterclockwise mesh);
+// unswing(c) = prev(c).opposite.prev turns clockwise. A corner facing a boundary edge — or a non-manifold edge,
+// shared by more than two triangles or by two triangles running the same way — has no opposite: O holds kNoCorner
+// there, and every operator that would cross it returns kNoCorner.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -45,9 +45,7 @@ struct PolyMesh {
   /// Number of vertices of face f.
   uint32_t face_size(size_t f) const { return face_offsets[f + 1] - face_offsets[f]; }
   /// The vertex indices of face f, in order (counterclockwise seen from outside).
-  std::span<const uint32_t> face(size_t f) const {
-    return {face_vertices.data() + face_offsets[f], face_size(f)};
-  }
+  std::span<const uint32_t> face(size_t f) const { return {face_vertices.data() + face_offsets[f], face_size(f)}; }
   /// Appends a face.
   void add_face(std::span<const uint32_t> vertices) {
     face_vertices.insert(face_vertices.end(), vertices.begin(), vertices.end());

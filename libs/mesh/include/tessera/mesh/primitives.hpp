@@ -8,7 +8,7 @@ namespace tessera {
 /// Platonic solids with circumradius 1 (every vertex at distance 1 from the origin). The counting primitives below
 /// throw InvalidInput when a count is out of range.
 PolyMesh make_tetrahedron();
-PolyMesh make_cube();          ///< 8 vertices, 6 quads, circumradius 1 (edge 2/sqrt(3))
+PolyMesh make_cube();  ///< 8 vertices, 6 quads, circumradius 1 (edge 2/sqrt(3))
 PolyMesh make_octahedron();
 PolyMesh make_dodecahedron();  ///< 12 pentagons
 PolyMesh make_icosahedron();
