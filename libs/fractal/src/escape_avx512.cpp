@@ -20,7 +20,7 @@ struct Avx512Ops {
 }  // namespace
 
 void escape_points_avx512(const PointBatch& batch, const IterationLimits& limits) {
-  escape_points_refill<Avx512Ops, 4>(batch, limits);
+  escape_points_refill<Avx512Ops, 6>(batch, limits);
 }
 
 }  // namespace tessera::detail

@@ -14,7 +14,10 @@
 namespace tessera {
 namespace detail {
 
-void escape_points_scalar(const PointBatch& batch, const IterationLimits& limits) {
+// Two clones chosen at load time: with FMA hardware std::fma is one instruction, without it a (correctly rounded)
+// library call; the results are the same bits either way.
+__attribute__((target_clones("fma", "default"))) void escape_points_scalar(const PointBatch& batch,
+                                                                           const IterationLimits& limits) {
   for (size_t i = 0; i < batch.count; ++i) {
     double x = batch.zr[i], y = batch.zi[i];
     const double cr = batch.cr[i], ci = batch.ci[i];

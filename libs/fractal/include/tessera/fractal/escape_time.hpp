@@ -79,8 +79,8 @@ bool julia_is_connected(std::complex<double> c, int max_iterations = 10000);
 /// True when c lies in the main cardioid or the period-2 bulb of the Mandelbrot set (closed-form tests).
 bool in_cardioid_or_bulb(std::complex<double> c);
 
-/// The sum over pixels of the iterations each one ran (max_iterations for points inside, 0 for interior-checked ones
-/// counted as not iterated): the work figure of a benchmark.
+/// The sum of the escape counts over all pixels (max_iterations for every inside point, also for those the interior
+/// checks decided without iterating: a benchmark that counts work turns the checks off).
 uint64_t iteration_count(const EscapeImage& image);
 
 /// Area of the Mandelbrot set by pixel counting: the square [-2, 0.5] x [-1.25, 1.25] (which holds the whole set) on
