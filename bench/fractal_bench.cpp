@@ -8,14 +8,13 @@
 //
 //   cmake -S . -B build/bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
 //   ninja -C build/bench bench_fractal && build/bench/bench/bench_fractal
+#include <benchmark/benchmark.h>
 #include <immintrin.h>
 
 #include <cstdio>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <benchmark/benchmark.h>
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/fractal/escape_time.hpp"
@@ -73,9 +72,12 @@ struct Chains {
 
 Chains chains(SimdPath path) {
   switch (path) {
-    case SimdPath::Avx512: return {chains_avx512, 8, 24};
-    case SimdPath::Avx2: return {chains_avx2, 4, 12};
-    default: return {chains_scalar, 1, 12};
+    case SimdPath::Avx512:
+      return {chains_avx512, 8, 24};
+    case SimdPath::Avx2:
+      return {chains_avx2, 4, 12};
+    default:
+      return {chains_scalar, 1, 12};
   }
 }
 
@@ -163,8 +165,10 @@ int main(int argc, char** argv) {
     if (std::fscanf(f, "%lf", &load) != 1) load = 0;
     std::fclose(f);
   }
-  std::printf("\nper core (CPU time): peak = FMA chains, share = 8 flops x iter/s / peak; scaling on wall time "
-              "(load average %.1f)\n", load);
+  std::printf(
+      "\nper core (CPU time): peak = FMA chains, share = 8 flops x iter/s / peak; scaling on wall time "
+      "(load average %.1f)\n",
+      load);
   std::printf("%-10s %-7s %12s %12s %10s %14s %14s %9s\n", "workload", "path", "peak Gflop/s", "Giter/s", "of peak",
               "wall 1T Git/s", "wall 2T Git/s", "2T scale");
   for (SimdPath p : paths) {

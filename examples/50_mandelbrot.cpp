@@ -12,7 +12,8 @@ TESSERA_EXAMPLE(ex50_mandelbrot, "50_mandelbrot", "Mandelbrot set: overview, Sea
   EscapeOptions options;
   options.max_iterations = 1000;
   ColorOptions colors;
-  gallery.add("50_mandelbrot_overview.png", colorize(mandelbrot(ComplexView{{-0.65, 0.0}, 3.2, 800, 600}, options), colors),
+  gallery.add("50_mandelbrot_overview.png",
+              colorize(mandelbrot(ComplexView{{-0.65, 0.0}, 3.2, 800, 600}, options), colors),
               "The Mandelbrot set, -2.25..0.95 wide: the main cardioid, the period-2 bulb and the antenna");
 
   options.max_iterations = 3000;
@@ -24,8 +25,8 @@ TESSERA_EXAMPLE(ex50_mandelbrot, "50_mandelbrot", "Mandelbrot set: overview, Sea
   options.max_iterations = 12000;
   colors.palette = Palette::Classic;
   colors.period = 20;
-  gallery.add("50_mandelbrot_deep_zoom.png",
-              colorize(mandelbrot(ComplexView{{-0.743643887037151, 0.131825904205330}, 2e-9, 800, 600}, options),
-                       colors),
-              "A deep zoom: 2e-9 wide around -0.743643887037151 + 0.131825904205330i, 12000 iterations");
+  gallery.add(
+      "50_mandelbrot_deep_zoom.png",
+      colorize(mandelbrot(ComplexView{{-0.743643887037151, 0.131825904205330}, 2e-9, 800, 600}, options), colors),
+      "A deep zoom: 2e-9 wide around -0.743643887037151 + 0.131825904205330i, 12000 iterations");
 }

@@ -1,9 +1,9 @@
 // Example 51: Julia sets (the notes: z0 comes from the screen position, one c for the whole picture, in the box
 // (-1.5, -1.5)..(1.5, 1.5)). The notes' test: the Julia set of c is connected when the orbit of z0 = 0 stays near the
 // origin (c is then in the Mandelbrot set), otherwise it is "fractal dust". Two of each, labelled by c.
-#include <string>
-
 #include <fmt/format.h>
+
+#include <string>
 
 #include "gallery.hpp"
 #include "tessera/fractal/coloring.hpp"
@@ -33,8 +33,7 @@ TESSERA_EXAMPLE(ex51_julia, "51_julia", "Julia sets: two connected, two dust") {
     const bool connected = julia_is_connected(k.c);
     gallery.add(fmt::format("51_julia_{}.png", k.name), picture,
                 fmt::format("c = {} {} {}i: {} (orbit of 0 {})", k.c.real(), k.c.imag() < 0 ? '-' : '+',
-                            std::abs(k.c.imag()), connected ? "connected" : "dust",
-                            connected ? "bounded" : "escapes"));
+                            std::abs(k.c.imag()), connected ? "connected" : "dust", connected ? "bounded" : "escapes"));
     for (int y = 0; y < side; ++y)
       for (int x = 0; x < side; ++x) mosaic(x + (i % 2) * side, y + (i / 2) * side) = picture(x, y);
   }

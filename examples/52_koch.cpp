@@ -35,7 +35,8 @@ TESSERA_EXAMPLE(ex52_koch, "52_koch", "von Koch snowflake, levels 0-4") {
   gallery.add("52_koch_levels.png", to_rgb(strip),
               fmt::format("Koch snowflake levels 0-4: lengths 3, 4, 5.33, 7.11, 9.48; area ratio to the triangle "
                           "1, 1.33, 1.48, 1.55, 1.58 -> 8/5"));
-  gallery.add("52_koch_overlay.png", to_rgb(overlay), "Levels 0 (dark) to 4 (light) nested: each level adds a band of bumps around the one before");
+  gallery.add("52_koch_overlay.png", to_rgb(overlay),
+              "Levels 0 (dark) to 4 (light) nested: each level adds a band of bumps around the one before");
   const PictureFrame curve_frame{900, 300, 10, {0.0, -0.05, 1.0, 1.0 / 3.0}};
   DrawStyle style;
   style.antialias = true;

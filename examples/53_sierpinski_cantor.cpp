@@ -25,7 +25,8 @@ TESSERA_EXAMPLE(ex53_sierpinski_cantor, "53_sierpinski_cantor", "Sierpinski carp
   std::vector<Rect> bars;
   const int levels = 6;
   for (int k = 0; k <= levels; ++k)
-    for (const Interval& i : cantor_set(k)) bars.push_back({i.a, 1.0 - (k + 0.8) / (levels + 1), i.b - i.a, 0.45 / (levels + 1)});
+    for (const Interval& i : cantor_set(k))
+      bars.push_back({i.a, 1.0 - (k + 0.8) / (levels + 1), i.b - i.a, 0.45 / (levels + 1)});
   style.ink = {0.1f, 0.1f, 0.1f};
   style.antialias = false;
   gallery.add("53_cantor_set.png", to_rgb(draw_polygons(as_polygons(bars), {745, 300, 8, {0, 0, 1, 1}}, style)),

@@ -25,7 +25,8 @@ std::vector<tessera::Vec3f> face_colors(const tessera::PolyMesh& mesh) {
 
 }  // namespace
 
-TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains", "Fractal mountains: 1D profile, 2D mountain, height map") {
+TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains",
+                "Fractal mountains: 1D profile, 2D mountain, height map") {
   using namespace tessera;
   // (a) 1D profiles for three roughness values, layered like ridges (rougher in front).
   ImageRGBA profile(900, 360, Vec4f(0.85f, 0.92f, 1.0f, 1.0f));
@@ -68,7 +69,8 @@ TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains", "Fractal mountai
   preview.camera = camera;
   gallery.add("55_triangle_mountain.png", examples::render_preview(mountain, preview),
               fmt::format("2D midpoint subdivision of a triangle, depth 6: {} triangles, {} shared vertices, no "
-                          "cracks", mountain.face_count(), mountain.vertex_count()));
+                          "cracks",
+                          mountain.face_count(), mountain.vertex_count()));
 
   // (c) diamond-square height map and its mesh.
   options.depth = 8;

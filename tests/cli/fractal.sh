@@ -61,7 +61,7 @@ expect_error() {
   grep -q "tessera: error:" "$dir/err.txt" || fail "no error message: $*"
 }
 expect_error "$tessera" fractal mandelbrot -o "$dir/x.png" --scale abc
-expect_error "$tessera" fractal mandelbrot -o "$dir/x.png" --size -5x10
+expect_error "$tessera" fractal mandelbrot -o "$dir/x.png" --size=-5x10
 expect_error "$tessera" fractal mandelbrot -o "$dir/x.png" --iterations 0
 expect_error "$tessera" fractal julia -o "$dir/x.png" --c 1
 expect_error "$tessera" fractal sierpinski -o "$dir/x.png" --depth 99

@@ -1,11 +1,11 @@
 // tessera fractal mandelbrot|julia|cantor|sierpinski|koch|hilbert|peano|terrain -o OUT [options] [--stats] and
 // tessera fractal dimension IMAGE [--stats] (docs/fractal.md). Numbers are parsed strictly: a bad number, size or
 // depth is an error (exit 1) naming the option.
+#include <fmt/format.h>
+
 #include <chrono>
 #include <memory>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
@@ -137,8 +137,8 @@ void setup_julia(CLI::App& fractal, CommonOptions& common) {
 
 void setup_cantor(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
-  CLI::App* sub = add_figure(fractal, "cantor", "Cantor set levels 0..depth stacked, or --dust: 2D Cantor dust", o,
-                             "5", "729x729");
+  CLI::App* sub =
+      add_figure(fractal, "cantor", "Cantor set levels 0..depth stacked, or --dust: 2D Cantor dust", o, "5", "729x729");
   auto dust = std::make_shared<bool>(false);
   sub->add_flag("--dust", *dust, "Draw the 2D Cantor dust (Cantor set x Cantor set) at --depth");
   sub->callback([o, dust, &common] {
@@ -238,8 +238,7 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
   CLI::App* sub = fractal.add_subcommand(
       "terrain", "Fractal mountains: 1D midpoint profile, 2D triangle subdivision or diamond-square grid");
   o->depth = "7", o->size = "800x400";
-  sub->add_option("-o,--output", o->output, "Output: a mesh (.obj .ply .off .stl) or a picture (.png ...)")
-      ->required();
+  sub->add_option("-o,--output", o->output, "Output: a mesh (.obj .ply .off .stl) or a picture (.png ...)")->required();
   sub->add_option("--method", o->method, "midpoint (1D profile), triangles or diamond-square")->capture_default_str();
   sub->add_option("--depth", o->depth, "Subdivision levels")->capture_default_str();
   sub->add_option("--roughness", o->roughness, "Range factor per level in (0, 1); 0.5 halves (the notes)")
@@ -259,7 +258,8 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       const auto heights = midpoint_displacement_1d(options);
       // The profile as a filled mountain: the height polyline closed along the bottom.
       std::vector<Vec2> outline;
-      for (size_t i = 0; i < heights.size(); ++i) outline.push_back({double(i) / double(heights.size() - 1), heights[i]});
+      for (size_t i = 0; i < heights.size(); ++i)
+        outline.push_back({double(i) / double(heights.size() - 1), heights[i]});
       outline.push_back({1.0, -0.6}), outline.push_back({0.0, -0.6});
       const Size2 size = parse_size(o->size, "--size");
       DrawStyle style;

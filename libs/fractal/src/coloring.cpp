@@ -1,9 +1,9 @@
 #include "tessera/fractal/coloring.hpp"
 
+#include <fmt/format.h>
+
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -23,10 +23,14 @@ const Ramp& ramp(Palette palette) {
                            Vec3f{0.65f, 0.95f, 0.95f}, Vec3f{0.15f, 0.35f, 0.60f}};
   static const Ramp kGray{Vec3f{0.0f}, Vec3f{0.35f}, Vec3f{0.7f}, Vec3f{1.0f}, Vec3f{0.5f}};
   switch (palette) {
-    case Palette::Fire: return kFire;
-    case Palette::Ocean: return kOcean;
-    case Palette::Gray: return kGray;
-    default: return kClassic;
+    case Palette::Fire:
+      return kFire;
+    case Palette::Ocean:
+      return kOcean;
+    case Palette::Gray:
+      return kGray;
+    default:
+      return kClassic;
   }
 }
 
@@ -34,10 +38,14 @@ const Ramp& ramp(Palette palette) {
 
 std::string_view palette_name(Palette palette) {
   switch (palette) {
-    case Palette::Fire: return "fire";
-    case Palette::Ocean: return "ocean";
-    case Palette::Gray: return "gray";
-    default: return "classic";
+    case Palette::Fire:
+      return "fire";
+    case Palette::Ocean:
+      return "ocean";
+    case Palette::Gray:
+      return "gray";
+    default:
+      return "classic";
   }
 }
 

@@ -1,9 +1,9 @@
 #include "tessera/fractal/dimension.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 
@@ -36,8 +36,8 @@ BoxCountResult box_counting_dimension(const Image<uint8_t>& mask, const BoxCount
     if (result.sizes.empty() || size != result.sizes.back()) result.sizes.push_back(size);
   }
   if (result.sizes.size() < 2)
-    throw InvalidInput(fmt::format("box counting needs at least two box sizes between {} and {} pixels",
-                                   options.min_box, max_box));
+    throw InvalidInput(
+        fmt::format("box counting needs at least two box sizes between {} and {} pixels", options.min_box, max_box));
   // Least squares of u = log N against t = log(1/s).
   double st = 0, su = 0, stt = 0, stu = 0;
   for (int s : result.sizes) {

@@ -1,8 +1,8 @@
 #include "tessera/fractal/draw.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "tessera/core/error.hpp"
 #include "tessera/raster2d/path.hpp"
@@ -14,8 +14,8 @@ void check_frame(const PictureFrame& frame) {
   if (frame.width <= 0 || frame.height <= 0 || frame.width > 65536 || frame.height > 65536)
     throw InvalidInput(fmt::format("picture size {}x{} is invalid (1..65536 each)", frame.width, frame.height));
   if (!(frame.margin >= 0) || 2 * frame.margin >= std::min(frame.width, frame.height))
-    throw InvalidInput(fmt::format("picture margin {} does not fit a {}x{} picture", frame.margin, frame.width,
-                                   frame.height));
+    throw InvalidInput(
+        fmt::format("picture margin {} does not fit a {}x{} picture", frame.margin, frame.width, frame.height));
   if (!(frame.window.w > 0) || !(frame.window.h > 0)) throw InvalidInput("picture window must have a positive size");
 }
 

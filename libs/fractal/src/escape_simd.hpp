@@ -57,7 +57,8 @@ void escape_points_refill(const PointBatch& batch, const IterationLimits& limits
   D x[V], y[V], yy[V], m[V];
   const D bailout2 = Ops::set1(limits.bailout2);
 #pragma GCC unroll 16
-  for (int v = 0; v < V; ++v) x[v] = Ops::load(xs + v * W), y[v] = Ops::load(ys + v * W), yy[v] = Ops::load(yys + v * W);
+  for (int v = 0; v < V; ++v)
+    x[v] = Ops::load(xs + v * W), y[v] = Ops::load(ys + v * W), yy[v] = Ops::load(yys + v * W);
 
   while (live > 0) {
     ++it;

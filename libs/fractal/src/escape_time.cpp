@@ -1,11 +1,11 @@
 #include "tessera/fractal/escape_time.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "escape_points.hpp"
 #include "tessera/core/error.hpp"
@@ -48,9 +48,12 @@ PointLoop point_loop(SimdPath path) {
   if (!simd_supported(path))
     throw InvalidInput(fmt::format("this CPU cannot run the {} escape-time loop", simd_name(path)));
   switch (path) {
-    case SimdPath::Avx512: return detail::escape_points_avx512;
-    case SimdPath::Avx2: return detail::escape_points_avx2;
-    default: return detail::escape_points_scalar;
+    case SimdPath::Avx512:
+      return detail::escape_points_avx512;
+    case SimdPath::Avx2:
+      return detail::escape_points_avx2;
+    default:
+      return detail::escape_points_scalar;
   }
 }
 
@@ -135,9 +138,12 @@ std::complex<double> ComplexView::pixel_center(int x, int y) const {
 
 bool simd_supported(SimdPath path) {
   switch (path) {
-    case SimdPath::Avx512: return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
-    case SimdPath::Avx2: return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-    default: return true;
+    case SimdPath::Avx512:
+      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
+    case SimdPath::Avx2:
+      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+    default:
+      return true;
   }
 }
 
@@ -149,10 +155,14 @@ SimdPath best_simd_path() {
 
 std::string_view simd_name(SimdPath path) {
   switch (path) {
-    case SimdPath::Scalar: return "scalar";
-    case SimdPath::Avx2: return "avx2";
-    case SimdPath::Avx512: return "avx512";
-    default: return "auto";
+    case SimdPath::Scalar:
+      return "scalar";
+    case SimdPath::Avx2:
+      return "avx2";
+    case SimdPath::Avx512:
+      return "avx512";
+    default:
+      return "auto";
   }
 }
 
@@ -185,7 +195,7 @@ bool in_cardioid_or_bulb(std::complex<double> c) {
   const double xq = x - 0.25;
   const double q = xq * xq + y * y;
   if (q * (q + xq) <= 0.25 * y * y) return true;  // main cardioid
-  return (x + 1) * (x + 1) + y * y <= 0.0625;       // period-2 bulb: |c + 1| <= 1/4
+  return (x + 1) * (x + 1) + y * y <= 0.0625;     // period-2 bulb: |c + 1| <= 1/4
 }
 
 uint64_t iteration_count(const EscapeImage& image) {

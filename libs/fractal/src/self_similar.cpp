@@ -1,9 +1,9 @@
 #include "tessera/fractal/self_similar.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 
@@ -202,7 +202,8 @@ double snowflake_area_ratio(int depth) { return 1.0 + 0.6 * (1.0 - std::pow(4.0 
 
 double similarity_dimension(double copies, double scale) {
   if (!(copies >= 1) || !(scale > 1) || !std::isfinite(copies) || !std::isfinite(scale))
-    throw InvalidInput(fmt::format("similarity dimension needs copies >= 1 and scale > 1, got {} and {}", copies, scale));
+    throw InvalidInput(
+        fmt::format("similarity dimension needs copies >= 1 and scale > 1, got {} and {}", copies, scale));
   return std::log(copies) / std::log(scale);
 }
 

@@ -1,11 +1,11 @@
 #include "tessera/fractal/terrain.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/rng.hpp"

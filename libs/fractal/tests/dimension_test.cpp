@@ -1,8 +1,8 @@
 #include "tessera/fractal/dimension.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "tessera/core/error.hpp"
 #include "tessera/fractal/draw.hpp"

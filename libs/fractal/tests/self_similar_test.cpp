@@ -1,9 +1,9 @@
 #include "tessera/fractal/self_similar.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <set>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 
@@ -135,12 +135,12 @@ TEST(SelfSimilar, PeanoCurveVisitsEveryCellOnce) {
 }
 
 TEST(SelfSimilar, SimilarityDimensions) {
-  EXPECT_NEAR(similarity_dimension(4, 3), 1.2619, 5e-5);   // Koch
-  EXPECT_NEAR(similarity_dimension(8, 3), 1.8928, 5e-5);   // carpet
-  EXPECT_NEAR(similarity_dimension(2, 3), 0.6309, 5e-5);   // Cantor set
-  EXPECT_NEAR(similarity_dimension(3, 2), 1.5850, 5e-5);   // Sierpinski triangle
-  EXPECT_NEAR(similarity_dimension(9, 3), 2.0, 1e-15);     // Peano: fills the square
-  EXPECT_NEAR(similarity_dimension(4, 2), 2.0, 1e-15);     // the notes' square scaled 2x -> 4 copies
+  EXPECT_NEAR(similarity_dimension(4, 3), 1.2619, 5e-5);  // Koch
+  EXPECT_NEAR(similarity_dimension(8, 3), 1.8928, 5e-5);  // carpet
+  EXPECT_NEAR(similarity_dimension(2, 3), 0.6309, 5e-5);  // Cantor set
+  EXPECT_NEAR(similarity_dimension(3, 2), 1.5850, 5e-5);  // Sierpinski triangle
+  EXPECT_NEAR(similarity_dimension(9, 3), 2.0, 1e-15);    // Peano: fills the square
+  EXPECT_NEAR(similarity_dimension(4, 2), 2.0, 1e-15);    // the notes' square scaled 2x -> 4 copies
   EXPECT_THROW(similarity_dimension(4, 1), InvalidInput);
 }
 

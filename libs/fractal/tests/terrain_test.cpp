@@ -1,9 +1,9 @@
 #include "tessera/fractal/terrain.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <map>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 

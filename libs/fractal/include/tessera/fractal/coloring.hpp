@@ -31,8 +31,8 @@ double smooth_iteration(uint32_t n, double norm2, double escape_radius);
 /// How escape times become colors.
 struct ColorOptions {
   Palette palette = Palette::Classic;
-  double period = 12;          ///< the palette repeats every `period` units of sqrt(nu) (> 0)
-  double phase = 0;            ///< palette offset in [0, 1)
+  double period = 12;              ///< the palette repeats every `period` units of sqrt(nu) (> 0)
+  double phase = 0;                ///< palette offset in [0, 1)
   Vec3f inside{0.0f, 0.0f, 0.0f};  ///< color of points that never escaped
 };
 

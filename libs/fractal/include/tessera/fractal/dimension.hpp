@@ -10,9 +10,9 @@ namespace tessera {
 
 /// Which box sizes are counted: min_box, min_box * factor, ... (rounded, distinct) up to max_box.
 struct BoxCountOptions {
-  int min_box = 2;      ///< smallest box side in pixels (>= 1); 1 only sees single pixels, the raster's own scale
-  int max_box = 0;      ///< largest box side in pixels; 0 = a quarter of the image's shorter side (at least min_box)
-  double factor = 2;    ///< ratio between successive sizes (> 1); 3 suits pictures of triadic sets (Cantor, Koch)
+  int min_box = 2;    ///< smallest box side in pixels (>= 1); 1 only sees single pixels, the raster's own scale
+  int max_box = 0;    ///< largest box side in pixels; 0 = a quarter of the image's shorter side (at least min_box)
+  double factor = 2;  ///< ratio between successive sizes (> 1); 3 suits pictures of triadic sets (Cantor, Koch)
 };
 
 /// The counts and the fitted dimension.

@@ -12,9 +12,9 @@ namespace tessera {
 
 /// Where the geometry lands: `window` of the plane (y up) maps onto the picture inside a margin (y down).
 struct PictureFrame {
-  int width = 512;               ///< pixels (> 0)
-  int height = 512;              ///< pixels (> 0)
-  double margin = 0;             ///< pixels left free on every side (>= 0)
+  int width = 512;                  ///< pixels (> 0)
+  int height = 512;                 ///< pixels (> 0)
+  double margin = 0;                ///< pixels left free on every side (>= 0)
   Rect window{0.0, 0.0, 1.0, 1.0};  ///< the part of the plane shown, stretched to fill the picture
 };
 

@@ -48,9 +48,9 @@ SimdPath parse_simd_path(std::string_view name);
 
 /// Settings of an escape-time computation.
 struct EscapeOptions {
-  int max_iterations = 1000;    ///< iteration cap (>= 1); points that have not escaped by then are inside
-  double escape_radius = 256;   ///< R in [2, 1e6]: |z| > R escapes (a large R makes smooth coloring smoother)
-  bool interior_checks = true;  ///< Mandelbrot only: c in the main cardioid or period-2 bulb is inside at once
+  int max_iterations = 1000;       ///< iteration cap (>= 1); points that have not escaped by then are inside
+  double escape_radius = 256;      ///< R in [2, 1e6]: |z| > R escapes (a large R makes smooth coloring smoother)
+  bool interior_checks = true;     ///< Mandelbrot only: c in the main cardioid or period-2 bulb is inside at once
   SimdPath simd = SimdPath::Auto;  ///< which loop runs; throws InvalidInput when the CPU lacks it
 };
 
