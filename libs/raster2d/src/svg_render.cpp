@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "tessera/curves/flatten.hpp"
+#include "tessera/curves/bezier.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/raster2d/svg.hpp"
 
@@ -21,27 +21,50 @@ struct Box {
 // True when all points lie beyond one side of the box: a curve whose control polygon is that far out cannot touch the
 // box, and replacing it by its chord keeps every winding number inside the box (the chord lies in the same half-plane,
 // and a horizontal ray from a point inside crosses both the same number of times, signed).
-bool beyond_one_side(const Box& box, std::initializer_list<Vec2> points) {
+bool beyond_one_side(const Box& box, const std::vector<Vec2>& points) {
   const auto all = [&](auto&& pred) { return std::all_of(points.begin(), points.end(), pred); };
   return all([&](const Vec2& p) { return p.x < box.lo.x; }) || all([&](const Vec2& p) { return p.x > box.hi.x; }) ||
          all([&](const Vec2& p) { return p.y < box.lo.y; }) || all([&](const Vec2& p) { return p.y > box.hi.y; });
 }
 
-// Flattens subpaths mapped through m; with a cull box, curves entirely beyond one of its sides become chords.
+// Curves larger than this many box sizes are split before flattening (see flatten_curve).
+constexpr double kSplitFactor = 64;
+
+// Appends the flattened curve (device coordinates) to `out`. With a cull box, a curve beyond one side of it becomes its
+// chord, and a curve far larger than the box is split in halves (de Casteljau) first, so that only the pieces near
+// the box are flattened finely: bounded work for absurd coordinates. Smaller curves are flattened whole, exactly as
+// flatten_cubic does.
+void flatten_curve(const Bezier2& curve, double tolerance, const Box* cull, int depth, std::vector<Vec2>& out) {
+  if (cull) {
+    if (beyond_one_side(*cull, curve.points)) return out.push_back(curve.back());
+    Vec2 lo = curve.front(), hi = curve.front();
+    for (const Vec2& p : curve.points) lo = glm::min(lo, p), hi = glm::max(hi, p);
+    const Vec2 extent = hi - lo, box = cull->hi - cull->lo;
+    if (depth < 64 && std::max(extent.x, extent.y) > kSplitFactor * std::max(box.x, box.y)) {
+      const auto [first, second] = split(curve, 0.5);
+      flatten_curve(first, tolerance, cull, depth + 1, out);
+      flatten_curve(second, tolerance, cull, depth + 1, out);
+      return;
+    }
+  }
+  flatten(curve, tolerance, out);
+}
+
+// Flattens subpaths mapped through m (quadratics degree-elevated to cubics, as flatten_quadratic does); with a cull
+// box, curves are culled and split as flatten_curve describes.
 std::vector<SvgPolyline> flatten(const std::vector<SvgSubpath>& subpaths, const Mat3& m, double tolerance,
                                  const Box* cull) {
   std::vector<SvgPolyline> lines;
   for (const SvgSubpath& sub : subpaths) {
     SvgPolyline line{{transform_point(m, sub.start)}, sub.closed};
     for (const SvgSegment& s : sub.segments) {
-      const Vec2 p0 = line.points.back(), c1 = transform_point(m, s.c1), c2 = transform_point(m, s.c2),
-                 end = transform_point(m, s.end);
-      if (s.kind == SvgSegment::Kind::Line || (cull && beyond_one_side(*cull, {p0, c1, c2, end})))
+      const Vec2 p0 = line.points.back(), c1 = transform_point(m, s.c1), end = transform_point(m, s.end);
+      if (s.kind == SvgSegment::Kind::Line)
         line.points.push_back(end);
       else if (s.kind == SvgSegment::Kind::Quadratic)
-        flatten_quadratic(p0, c1, end, tolerance, line.points);
+        flatten_curve(elevate_degree(quadratic(p0, c1, end)), tolerance, cull, 0, line.points);
       else
-        flatten_cubic(p0, c1, c2, end, tolerance, line.points);
+        flatten_curve(cubic(p0, c1, transform_point(m, s.c2), end), tolerance, cull, 0, line.points);
     }
     lines.push_back(std::move(line));
   }

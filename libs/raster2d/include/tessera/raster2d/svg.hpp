@@ -124,7 +124,7 @@ struct SvgPolyline {
 };
 
 /// Maps subpaths through `to_device` (control points map exactly: Bezier curves are affine invariant) and flattens
-/// each curve with flatten_quadratic/flatten_cubic within `tolerance` device pixels.
+/// each curve within `tolerance` device pixels by the curves module's flatten (as flatten_cubic; quadratics elevated).
 std::vector<SvgPolyline> flatten_svg_subpaths(const std::vector<SvgSubpath>& subpaths, const Mat3& to_device,
                                               double tolerance);
 
