@@ -21,7 +21,9 @@ struct PreviewOptions {
   std::vector<Vec3f> face_colors;            ///< optional per-face colors (overrides `color`)
 };
 
-/// Renders a polygon mesh: flat shading, z-buffer, back faces shaded darker, wireframe edges with depth test.
+/// Renders a polygon mesh: flat shading, z-buffer, back faces shaded darker, wireframe edges with depth test; polygons
+/// are fan-triangulated, faces with a vertex outside the near/far range are skipped. The camera's aspect is set from
+/// width / height. Rendered with 2 x 2 samples per pixel.
 ImageRGB render_preview(const PolyMesh& mesh, const PreviewOptions& options = {});
 
 }  // namespace tessera::examples

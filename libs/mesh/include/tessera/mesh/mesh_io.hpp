@@ -41,7 +41,8 @@ void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, cons
 /// relative to the end), OpenSubdiv's tags `t crease 2/1/0 v0 v1 s` and `t corner 1/1/0 v s` (0-based; chains of
 /// n vertices with 1 or n-1 sharpnesses accepted), comments. o/g/s/usemtl/mtllib and the other statements of the
 /// OBJ specification are ignored; an unknown statement is an error. uv and normal references become per-vertex
-/// properties when every vertex always uses the same one, face-varying (corner_uvs/corner_normals) otherwise.
+/// properties when every vertex always uses the same one, face-varying (corner_uvs/corner_normals) otherwise;
+/// they are dropped when some corners have none.
 PolyMesh read_obj(std::string_view data, const std::string& name);
 /// Writes OBJ with shortest round-trip numbers: positions (and colors), uvs and normals per vertex or per corner,
 /// faces, crease and corner tags.
