@@ -8,5 +8,5 @@ cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
 cmake -S "$source/tests/install/consumer" -B "$scratch/consumer" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$scratch/prefix" >/dev/null
 cmake --build "$scratch/consumer" >/dev/null
-"$scratch/consumer/consumer"
+(cd "$scratch" && "$scratch/consumer/consumer")
 "$scratch/prefix/bin/tessera" --version

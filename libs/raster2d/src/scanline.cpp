@@ -85,11 +85,17 @@ bool inside(FillRule rule, int winding) { return rule == FillRule::NonZero ? win
 
 // ---- Aliased: the notes' edge table and active edge list ----------------------------------------------------------
 
+// The notes step x by dx/dy per scanline. Accumulating that increment drifts (1/3 is not a binary fraction), which
+// moves pixel centers lying exactly on an edge to the wrong side; so x is evaluated from the edge's endpoints on every
+// scanline instead, x0 + ((y - y0) dx) / dy, which is exact whenever the true intersection is representable.
 struct ActiveEdge {
-  double x;      // intersection with the current scanline's center line
-  double dxdy;   // the notes' x increment per scanline
-  int row_end;   // first row whose center is at or below the edge's lower end
+  double x;       // intersection with the current scanline's center line
+  double x0, y0;  // upper endpoint
+  double dx, dy;  // x1 - x0, y1 - y0 (dy > 0)
+  int row_end;    // first row whose center is at or below the edge's lower end
   int winding;
+
+  double x_at(double y) const { return x0 + ((y - y0) * dx) / dy; }
 };
 
 void scan_band_aliased(const EdgeTable& table, const int* first, const int* last, int r0, int r1, FillRule rule,
@@ -101,8 +107,7 @@ void scan_band_aliased(const EdgeTable& table, const int* first, const int* last
     const int row_begin = first_center_at_or_after(e.y0, r0, r1);
     const int row_end = first_center_at_or_after(e.y1, r0, r1);
     if (row_begin >= row_end) continue;
-    const double x = e.x0 + (row_begin + 0.5 - e.y0) * e.dxdy;
-    pending.push_back({row_begin, ActiveEdge{x, e.dxdy, row_end, e.winding}});
+    pending.push_back({row_begin, ActiveEdge{0, e.x0, e.y0, e.x1 - e.x0, e.y1 - e.y0, row_end, e.winding}});
   }
   std::stable_sort(pending.begin(), pending.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
 
@@ -111,6 +116,7 @@ void scan_band_aliased(const EdgeTable& table, const int* first, const int* last
   for (int y = r0; y < r1 && (next < pending.size() || !active.empty()); ++y) {
     std::erase_if(active, [y](const ActiveEdge& e) { return e.row_end <= y; });
     for (; next < pending.size() && pending[next].first == y; ++next) active.push_back(pending[next].second);
+    for (ActiveEdge& e : active) e.x = e.x_at(y + 0.5);
     // Insertion sort: the order barely changes from one scanline to the next.
     for (size_t i = 1; i < active.size(); ++i)
       for (size_t j = i; j > 0 && active[j].x < active[j - 1].x; --j) std::swap(active[j], active[j - 1]);
@@ -132,7 +138,6 @@ void scan_band_aliased(const EdgeTable& table, const int* first, const int* last
       const int x0 = first_center_at_or_after(span_start, 0, width);
       if (x0 < width) sink(y, x0, width, nullptr);
     }
-    for (ActiveEdge& e : active) e.x += e.dxdy;
   }
 }
 

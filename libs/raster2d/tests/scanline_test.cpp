@@ -145,6 +145,14 @@ TEST(Scanline, PixelCenterRuleOnExactEdges) {
     }
 }
 
+TEST(Scanline, TiesOnSlopesThatAreNotBinaryFractionsStayExact) {
+  // A star whose edges have slope dx/dy = 1/3: accumulating x += 1/3 per scanline drifts, and the center (51.5, 9.5),
+  // exactly on the right edge from (50, 5) to (61, 38), would be filled. Row 9 spans [48.5, 51.5): pixels 48..50.
+  Counts counts(100, 50);
+  counts.scan(Path{{{{50, 5}, {61, 38}, {33, 17}, {67, 17}, {39, 38}}}}, FillRule::NonZero, false);
+  for (int x = 40; x < 60; ++x) EXPECT_EQ(counts.writes(x, 9), x >= 48 && x <= 50 ? 1 : 0) << x;
+}
+
 TEST(Scanline, AntialiasedCoverageMatchesSupersampledOracle) {
   std::mt19937 rng(13);
   for (int trial = 0; trial < 6; ++trial) {
