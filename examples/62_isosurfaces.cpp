@@ -1,4 +1,5 @@
 // Marching cubes: a CT head's skin and bone (shared data when present, else a procedural phantom) and a gyroid.
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 
@@ -27,8 +28,12 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   options.camera = Camera{};
   const Vec3 lo = ct.origin(), hi = ct.to_world(Vec3(ct.dims() - 1)), mid = 0.5 * (lo + hi);
   options.camera->center = mid;
-  options.camera->eye = mid + Vec3(0.9, -2.2, 0.6) * glm::length(hi - lo) * 0.9;
+  // The CT's z runs from the neck up, so "up" on screen is -z; the face looks toward -y. Frame the volume's bounding
+  // sphere and light from the viewer's upper left.
+  const Vec3 view_dir = glm::normalize(Vec3(0.45, -1.0, -0.25));
+  options.camera->eye = mid + view_dir * (0.5 * glm::length(hi - lo) / std::sin(options.camera->fovy / 2));
   options.camera->up = {0, 0, -1};
+  options.light_dir = glm::normalize(view_dir + Vec3(-0.6, 0.0, -0.6));
   options.camera->near = 1;
   options.camera->far = 1e4;
   options.color = {0.9f, 0.72f, 0.62f};
