@@ -37,6 +37,27 @@ Vec3 normal_at(const BezierPatch& patch, double u, double v, double scale) {
       u, v, Interval{0, 1}, Interval{0, 1}, scale);
 }
 
+// The signed volume of the triangles about the centroid of all control points (divergence theorem).
+double signed_volume_about_centroid(std::span<const BezierPatch> patches, const TriMesh& mesh) {
+  Vec3 centroid(0.0);
+  for (const BezierPatch& patch : patches)
+    for (const Vec3& p : patch.points) centroid += p;
+  centroid /= double(std::max<size_t>(1, 16 * patches.size()));
+  double volume = 0;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const Vec3 a = mesh.positions[mesh.indices[3 * t]] - centroid, b = mesh.positions[mesh.indices[3 * t + 1]] - centroid,
+               c = mesh.positions[mesh.indices[3 * t + 2]] - centroid;
+    volume += glm::dot(a, glm::cross(b, c)) / 6;
+  }
+  return volume;
+}
+
+// Turns the mesh inside out: negated normals, reversed triangles.
+void flip(TriMesh& mesh) {
+  for (Vec3& n : mesh.normals) n = -n;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) std::swap(mesh.indices[3 * t + 1], mesh.indices[3 * t + 2]);
+}
+
 }  // namespace
 
 Vec3 evaluate_four_curves(const BezierPatch& patch, double u, double v) {
@@ -119,7 +140,6 @@ TriMesh tessellate(std::span<const BezierPatch> patches, const PatchTessellation
   mesh.normals.resize(first_vertex.back());
   mesh.uvs.resize(first_vertex.back());
   mesh.indices.resize(first_index.back());
-  const double sign = options.flip_normals ? -1.0 : 1.0;
   parallel_for(0, int64_t(patches.size()), 1, [&](int64_t begin, int64_t end) {
     for (int64_t p = begin; p < end; ++p) {
       const BezierPatch& patch = patches[size_t(p)];
@@ -131,7 +151,7 @@ TriMesh tessellate(std::span<const BezierPatch> patches, const PatchTessellation
           const double u = double(i) / n, v = double(j) / n;
           const size_t k = base + size_t(i) * size_t(n + 1) + size_t(j);
           mesh.positions[k] = evaluate_bernstein(patch, u, v);
-          mesh.normals[k] = sign * normal_at(patch, u, v, scale);
+          mesh.normals[k] = normal_at(patch, u, v, scale);
           mesh.uvs[k] = Vec2(u, v);
         }
       uint32_t* out = mesh.indices.data() + first_index[size_t(p)];
@@ -140,12 +160,14 @@ TriMesh tessellate(std::span<const BezierPatch> patches, const PatchTessellation
           const auto a = uint32_t(base + size_t(i) * size_t(n + 1) + size_t(j));
           const uint32_t b = a + uint32_t(n + 1), c = b + 1, d = a + 1;
           // (u, v) -> (u + du, v) -> (u + du, v + dv) is counterclockwise around ∂u x ∂v.
-          const std::array<uint32_t, 6> quad =
-              options.flip_normals ? std::array<uint32_t, 6>{a, c, b, a, d, c} : std::array<uint32_t, 6>{a, b, c, a, c, d};
+          const std::array<uint32_t, 6> quad{a, b, c, a, c, d};
           out = std::copy(quad.begin(), quad.end(), out);
         }
     }
   });
+  if (options.orientation == PatchOrientation::Flipped ||
+      (options.orientation == PatchOrientation::Outward && signed_volume_about_centroid(patches, mesh) < 0))
+    flip(mesh);
   return mesh;
 }
 

@@ -14,10 +14,11 @@ class Tokenizer {
  public:
   Tokenizer(std::string_view text, const std::string& name) : text_(text), name_(name) {}
 
-  /// The next token, or throws "name:LINE: expected <what>, got end of file".
+  /// The next token, or throws "name:LINE: expected <what>, got end of file" (LINE: that of the last token).
   std::string_view next(const std::string& what) {
     skip_space();
     if (pos_ == text_.size()) throw InvalidInput(located(where(), fmt::format("expected {}, got end of file", what)));
+    token_line_ = line_;
     const size_t start = pos_;
     while (pos_ < text_.size() && !is_space(text_[pos_])) ++pos_;
     return text_.substr(start, pos_ - start);
@@ -26,12 +27,13 @@ class Tokenizer {
   void expect_end() {
     skip_space();
     if (pos_ != text_.size()) {
+      token_line_ = line_;
       const std::string_view rest = text_.substr(pos_, 20);
       throw InvalidInput(located(where(), fmt::format("expected end of file after the last patch, got '{}'", rest)));
     }
   }
   /// "name:LINE" of the last token read.
-  std::string where() const { return at_line(name_, line_); }
+  std::string where() const { return at_line(name_, token_line_); }
   size_t remaining() const { return text_.size() - pos_; }
 
  private:
@@ -43,7 +45,8 @@ class Tokenizer {
   std::string_view text_;
   const std::string& name_;
   size_t pos_ = 0;
-  long line_ = 1;
+  long line_ = 1;        // line of the read position
+  long token_line_ = 1;  // line of the last token
 };
 
 // The fewest bytes one patch can take: 2 + 48 tokens of at least one character, each after a separator.

@@ -132,9 +132,10 @@ TEST(BezierPatch, UniformTessellationCountsAndNormals) {
       }
     }
   }
-  const TriMesh flipped = tessellate(patches, PatchTessellation{.steps = 2, .flip_normals = true});
+  const TriMesh flipped = tessellate(patches, PatchTessellation{.steps = 2, .orientation = PatchOrientation::Flipped});
   const TriMesh plain = tessellate(patches, PatchTessellation{.steps = 2});
   EXPECT_EQ(flipped.normals[5], -plain.normals[5]);
+  EXPECT_EQ(flipped.indices[1], plain.indices[2]);
   EXPECT_THROW(tessellate(patches, PatchTessellation{.steps = 0}), InvalidInput);
 }
 
@@ -186,6 +187,53 @@ TEST(BezierPatch, TeapotFromSharedDataWhenPresent) {
   }
   // The lid's tip (patches 21-24, u = 0) and the bottom's center (29-32) have vertical normals.
   for (const size_t p : {20u, 28u}) EXPECT_GT(std::abs(patch_normal(patches[p], 0, 0.5).z), 0.99);
+  // Newell's data is wound so that du x dv points inside; Outward flips it.
+  const TriMesh outward = tessellate(patches, PatchTessellation{.steps = 6, .orientation = PatchOrientation::Outward});
+  EXPECT_EQ(outward.normals[0], -m.normals[0]);
+  EXPECT_GT(patch_normal(patches[20], 0, 0.5).z, 0.99) << "given: the lid's normal points into the pot";
+}
+
+// A closed model: four dome quarters turned about z, and the same turned upside down (a rotation about x, so the
+// winding stays outward). Transposing every net (P_ij <-> P_ji) swaps u and v and so turns it inside out.
+std::vector<BezierPatch> closed_domes(bool transposed) {
+  std::vector<BezierPatch> patches;
+  BezierPatch quarter = dome(false);
+  for (int q = 0; q < 4; ++q) {
+    patches.push_back(quarter);
+    BezierPatch lower = quarter;
+    for (Vec3& p : lower.points) p = Vec3(p.x, -p.y, -p.z);
+    patches.push_back(lower);
+    for (Vec3& p : quarter.points) p = Vec3(-p.y, p.x, p.z);
+  }
+  if (transposed)
+    for (BezierPatch& patch : patches) {
+      const BezierPatch copy = patch;
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) patch.at(j, i) = copy.at(i, j);
+    }
+  return patches;
+}
+
+double signed_volume(const TriMesh& m) {
+  double volume = 0;
+  for (size_t t = 0; t < m.triangle_count(); ++t)
+    volume += glm::dot(m.positions[m.indices[3 * t]],
+                       glm::cross(m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]])) / 6;
+  return volume;
+}
+
+TEST(BezierPatch, OutwardOrientationOfAClosedModel) {
+  const auto outward = closed_domes(false), inward = closed_domes(true);
+  const auto volume = [](const std::vector<BezierPatch>& patches, PatchOrientation orientation) {
+    return signed_volume(tessellate(patches, PatchTessellation{.steps = 8, .orientation = orientation}));
+  };
+  // Each dome (radius 1, height 1) holds more than its inscribed cone (π/3) and less than its cylinder (π).
+  EXPECT_GT(volume(outward, PatchOrientation::AsGiven), 2 * kPi / 3);
+  EXPECT_LT(volume(outward, PatchOrientation::AsGiven), 2 * kPi);
+  EXPECT_LT(volume(outward, PatchOrientation::Flipped), 0);
+  EXPECT_LT(volume(inward, PatchOrientation::AsGiven), 0);
+  EXPECT_NEAR(volume(inward, PatchOrientation::Outward), volume(outward, PatchOrientation::Outward), 1e-9);
+  EXPECT_GT(volume(outward, PatchOrientation::Outward), 0);
 }
 
 }  // namespace
