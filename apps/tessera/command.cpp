@@ -9,9 +9,13 @@
 namespace tessera::cli {
 
 void add_common_options(CLI::App& command, CommonOptions& common) {
-  command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  command.add_flag("--quiet", common.quiet, "No progress bar");
-  command.add_flag("--stats", common.stats, "Print key=value figures on stdout");
+  if (command.get_option_no_throw("--threads") == nullptr)
+    command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+  if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress bar");
+  if (command.get_option_no_throw("--stats") == nullptr)
+    command.add_flag("--stats", common.stats, "Print key=value figures on stdout");
+  // Nested commands (`tessera mesh info`) get them too, so that their --help lists them.
+  for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) add_common_options(*sub, common);
 }
 
 void print_stats(const std::vector<std::pair<std::string, std::string>>& stats) {

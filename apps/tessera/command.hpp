@@ -26,7 +26,7 @@ struct Command {
   void (*setup)(CLI::App& command, CommonOptions& common);
 };
 
-/// Adds --threads, --quiet and --stats to a (sub)command.
+/// Adds --threads, --quiet and --stats to a command and to each of its nested subcommands.
 void add_common_options(CLI::App& command, CommonOptions& common);
 
 /// Prints `key=value` lines on stdout (the --stats contract of DESIGN.md section 4).

@@ -43,9 +43,9 @@ int main(int argc, char** argv) {
   CommonOptions common;
   for (const Command& c : kCommands) {
     CLI::App* sub = app.add_subcommand(c.name, c.summary);
-    add_common_options(*sub, common);
     sub->fallthrough();  // options of `tessera X` also work after a nested `tessera X Y`
     c.setup(*sub, common);
+    add_common_options(*sub, common);
   }
   // Apply --threads/--quiet before any callback runs (CLI11 runs callbacks after parsing all options).
   std::unique_ptr<tessera::ThreadLimit> limit;
