@@ -1,7 +1,7 @@
-// Example 40: Bezier curves as the notes draw them. A cubic with its control polygon and convex hull, and de Casteljau's
-// construction at t = 1/2 (midpoints of the legs, midpoints of those, and their midpoint Q(1/2)) and at t = 3/4; the
-// two halves of the subdivision at 1/2, each a Bezier curve of its own; and a chain of cubics made C1 by reflecting
-// each segment's last leg through the joint.
+// Example 40: Bezier curves as the notes draw them. A cubic with its control polygon and convex hull, and de
+// Casteljau's construction at t = 1/2 (midpoints of the legs, midpoints of those, and their midpoint Q(1/2)) and at t =
+// 3/4; the two halves of the subdivision at 1/2, each a Bezier curve of its own; and a chain of cubics made C1 by
+// reflecting each segment's last leg through the joint.
 #include <string>
 
 #include "gallery.hpp"
@@ -21,7 +21,8 @@ void add_figure(Gallery& gallery, const std::string& stem, const CurveFigure& fi
 }  // namespace
 }  // namespace tessera::examples
 
-TESSERA_EXAMPLE(ex40_bezier_curves, "40_bezier_curves", "Bezier curves: de Casteljau construction, subdivision, chains") {
+TESSERA_EXAMPLE(ex40_bezier_curves, "40_bezier_curves",
+                "Bezier curves: de Casteljau construction, subdivision, chains") {
   using namespace tessera;
   const Bezier2 notes = cubic(Vec2(40, 340), Vec2(90, 60), Vec2(330, 40), Vec2(370, 330));
   for (const double t : {0.5, 0.75}) {

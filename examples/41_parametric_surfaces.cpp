@@ -30,8 +30,9 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0) {
 }  // namespace
 }  // namespace tessera::examples
 
-TESSERA_EXAMPLE(ex41_parametric_surfaces, "41_parametric_surfaces", "Parametric surfaces: parallelogram, cylinder, "
-                                                                    "sphere") {
+TESSERA_EXAMPLE(ex41_parametric_surfaces, "41_parametric_surfaces",
+                "Parametric surfaces: parallelogram, cylinder, "
+                "sphere") {
   using namespace tessera;
   const std::vector<TriMesh> surfaces{
       tessellate(parallelogram(Vec3(-1, -0.8, 0), Vec3(1.2, -0.8, 0.3), Vec3(-0.4, 0.9, 0)), 8, 8),

@@ -19,7 +19,8 @@ namespace {
 // the apex like the teapot's lid). Sets `teapot`.
 std::vector<BezierPatch> load_patches(bool& teapot) {
   const char* env = std::getenv("TESSERA_SHARED_DATA");
-  for (const std::filesystem::path& dir : {std::filesystem::path(env ? env : ""), std::filesystem::path("../shared/data")})
+  for (const std::filesystem::path& dir :
+       {std::filesystem::path(env ? env : ""), std::filesystem::path("../shared/data")})
     if (!dir.empty() && std::filesystem::exists(dir / "bezier/teapot.bpt")) {
       teapot = true;
       return read_bpt(dir / "bezier/teapot.bpt");

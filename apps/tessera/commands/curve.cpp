@@ -1,11 +1,11 @@
 // tessera curve --points x,y,x,y,... -o OUT.png|OUT.svg [--steps N] [--t T] [--split] [--size WxH]: draws a Bezier
 // curve of any degree with its control polygon, convex hull and de Casteljau construction at t (docs/curves.md).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "tessera/core/atomic_file.hpp"
@@ -72,8 +72,9 @@ void setup_curve(CLI::App& curve, CommonOptions& common) {
       ->capture_default_str();
   curve.add_flag("--split", opt->split, "Also draw the control polygons of the two halves split at --t");
   curve.add_option("--size", opt->size, "Picture size WxH")->capture_default_str();
-  curve.footer("Stats (--stats): degree length.\n"
-               "Example: tessera curve --points 40,360,80,40,320,40,360,360 --t 0.75 --split -o curve.png");
+  curve.footer(
+      "Stats (--stats): degree length.\n"
+      "Example: tessera curve --points 40,360,80,40,320,40,360,360 --t 0.75 --split -o curve.png");
   curve.callback([opt, &common] { run_curve(*opt, common); });
 }
 

@@ -27,8 +27,8 @@ void run_patch(const PatchOptions& opt, const CommonOptions& common) {
   const PatchOrientation orientation = opt.orient == "flip"      ? PatchOrientation::Flipped
                                        : opt.orient == "outward" ? PatchOrientation::Outward
                                                                  : PatchOrientation::AsGiven;
-  const TriMesh tris = tessellate(
-      patches, PatchTessellation{.steps = opt.tess, .tolerance = opt.tolerance, .orientation = orientation});
+  const TriMesh tris =
+      tessellate(patches, PatchTessellation{.steps = opt.tess, .tolerance = opt.tolerance, .orientation = orientation});
   const PolyMesh mesh = to_poly_mesh(tris);
   write_mesh(opt.output, mesh);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -49,16 +49,19 @@ void setup_patch(CLI::App& patch, CommonOptions& common) {
   patch.add_option("--tess", opt->tess, "Samples per patch side: an (N+1)x(N+1) grid of (u, v) per patch")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-  patch.add_option("--tolerance", opt->tolerance,
-                   "Adaptive: per patch the fewest steps (at most --tess) keeping the mesh within this distance")
+  patch
+      .add_option("--tolerance", opt->tolerance,
+                  "Adaptive: per patch the fewest steps (at most --tess) keeping the mesh within this distance")
       ->check(CLI::NonNegativeNumber);
-  patch.add_option("--orient", opt->orient,
-                   "Normals as du x dv (given), reversed (flip), or whichever points out of the model (outward)")
+  patch
+      .add_option("--orient", opt->orient,
+                  "Normals as du x dv (given), reversed (flip), or whichever points out of the model (outward)")
       ->check(CLI::IsMember({"given", "flip", "outward"}))
       ->capture_default_str();
-  patch.footer("Stats (--stats): patches tris verts area seconds.\n"
-               "Example: tessera patch teapot.bpt -o teapot.obj --tess 16 --orient outward --stats\n"
-               "(Newell's teapot data is wound so that du x dv points inside.)");
+  patch.footer(
+      "Stats (--stats): patches tris verts area seconds.\n"
+      "Example: tessera patch teapot.bpt -o teapot.obj --tess 16 --orient outward --stats\n"
+      "(Newell's teapot data is wound so that du x dv points inside.)");
   patch.callback([opt, &common] { run_patch(*opt, common); });
 }
 

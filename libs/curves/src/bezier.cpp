@@ -1,9 +1,9 @@
 #include "tessera/curves/bezier.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 
@@ -271,25 +271,25 @@ BezierCurve<P> g1_continuation(const BezierCurve<P>& previous, double length, co
   return cubic(previous.back(), previous.back() + length * direction, p3, p4);
 }
 
-#define TESSERA_BEZIER_INSTANTIATE(P)                                                                      \
-  template P evaluate_bernstein(const BezierCurve<P>&, double);                                           \
-  template P evaluate_de_casteljau(const BezierCurve<P>&, double);                                        \
-  template std::vector<std::vector<P>> de_casteljau_levels(const BezierCurve<P>&, double);                \
-  template std::vector<P> power_coefficients(const BezierCurve<P>&);                                      \
-  template P evaluate_horner(std::span<const P>, double);                                                 \
-  template P evaluate_horner(const BezierCurve<P>&, double);                                              \
-  template std::vector<P> evaluate_forward_differences(const BezierCurve<P>&, int);                       \
-  template std::vector<P> forward_difference_start(const BezierCurve<P>&, double);                        \
-  template std::pair<BezierCurve<P>, BezierCurve<P>> split(const BezierCurve<P>&, double);                \
-  template BezierCurve<P> elevate_degree(const BezierCurve<P>&);                                          \
-  template BezierCurve<P> derivative(const BezierCurve<P>&);                                              \
-  template P unit_tangent(const BezierCurve<P>&, double);                                                 \
-  template void flatten(const BezierCurve<P>&, double, std::vector<P>&);                                  \
-  template BezierCurve<P> quadratic(const P&, const P&, const P&);                                        \
-  template BezierCurve<P> cubic(const P&, const P&, const P&, const P&);                                  \
-  template Continuity joint_continuity(const BezierCurve<P>&, const BezierCurve<P>&, double);             \
-  template Continuity chain_continuity(std::span<const BezierCurve<P>>, double);                          \
-  template BezierCurve<P> c1_continuation(const BezierCurve<P>&, const P&, const P&);                     \
+#define TESSERA_BEZIER_INSTANTIATE(P)                                                         \
+  template P evaluate_bernstein(const BezierCurve<P>&, double);                               \
+  template P evaluate_de_casteljau(const BezierCurve<P>&, double);                            \
+  template std::vector<std::vector<P>> de_casteljau_levels(const BezierCurve<P>&, double);    \
+  template std::vector<P> power_coefficients(const BezierCurve<P>&);                          \
+  template P evaluate_horner(std::span<const P>, double);                                     \
+  template P evaluate_horner(const BezierCurve<P>&, double);                                  \
+  template std::vector<P> evaluate_forward_differences(const BezierCurve<P>&, int);           \
+  template std::vector<P> forward_difference_start(const BezierCurve<P>&, double);            \
+  template std::pair<BezierCurve<P>, BezierCurve<P>> split(const BezierCurve<P>&, double);    \
+  template BezierCurve<P> elevate_degree(const BezierCurve<P>&);                              \
+  template BezierCurve<P> derivative(const BezierCurve<P>&);                                  \
+  template P unit_tangent(const BezierCurve<P>&, double);                                     \
+  template void flatten(const BezierCurve<P>&, double, std::vector<P>&);                      \
+  template BezierCurve<P> quadratic(const P&, const P&, const P&);                            \
+  template BezierCurve<P> cubic(const P&, const P&, const P&, const P&);                      \
+  template Continuity joint_continuity(const BezierCurve<P>&, const BezierCurve<P>&, double); \
+  template Continuity chain_continuity(std::span<const BezierCurve<P>>, double);              \
+  template BezierCurve<P> c1_continuation(const BezierCurve<P>&, const P&, const P&);         \
   template BezierCurve<P> g1_continuation(const BezierCurve<P>&, double, const P&, const P&);
 
 TESSERA_BEZIER_INSTANTIATE(Vec2)

@@ -1,9 +1,9 @@
 #include "tessera/curves/bezier_patch.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "normal_fallback.hpp"
 #include "tessera/core/error.hpp"
@@ -45,7 +45,8 @@ double signed_volume_about_centroid(std::span<const BezierPatch> patches, const 
   centroid /= double(std::max<size_t>(1, 16 * patches.size()));
   double volume = 0;
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const Vec3 a = mesh.positions[mesh.indices[3 * t]] - centroid, b = mesh.positions[mesh.indices[3 * t + 1]] - centroid,
+    const Vec3 a = mesh.positions[mesh.indices[3 * t]] - centroid,
+               b = mesh.positions[mesh.indices[3 * t + 1]] - centroid,
                c = mesh.positions[mesh.indices[3 * t + 2]] - centroid;
     volume += glm::dot(a, glm::cross(b, c)) / 6;
   }
@@ -99,9 +100,7 @@ PatchSample evaluate_with_partials(const BezierPatch& patch, double u, double v)
   return s;
 }
 
-Vec3 patch_normal(const BezierPatch& patch, double u, double v) {
-  return normal_at(patch, u, v, control_scale(patch));
-}
+Vec3 patch_normal(const BezierPatch& patch, double u, double v) { return normal_at(patch, u, v, control_scale(patch)); }
 
 int flatness_steps(const BezierPatch& patch, double tolerance, int max_steps) {
   if (!(tolerance > 0)) throw InvalidInput(fmt::format("flatness_steps: tolerance {} is not positive", tolerance));
@@ -111,8 +110,8 @@ int flatness_steps(const BezierPatch& patch, double tolerance, int max_steps) {
       if (i < 2) uu = std::max(uu, glm::length(patch.at(i + 2, j) - 2.0 * patch.at(i + 1, j) + patch.at(i, j)));
       if (j < 2) vv = std::max(vv, glm::length(patch.at(i, j + 2) - 2.0 * patch.at(i, j + 1) + patch.at(i, j)));
       if (i < 3 && j < 3)
-        uv = std::max(uv, glm::length(patch.at(i + 1, j + 1) - patch.at(i + 1, j) - patch.at(i, j + 1) +
-                                      patch.at(i, j)));
+        uv = std::max(uv,
+                      glm::length(patch.at(i + 1, j + 1) - patch.at(i + 1, j) - patch.at(i, j + 1) + patch.at(i, j)));
     }
   const double bound = 6 * uu + 2 * 9 * uv + 6 * vv;  // M_uu + 2 M_uv + M_vv
   const double n = std::ceil(std::sqrt(bound / (8 * tolerance)));

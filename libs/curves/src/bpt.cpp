@@ -58,11 +58,10 @@ std::vector<BezierPatch> parse_bpt(std::string_view text, const std::string& nam
   Tokenizer tokens(text, name);
   const std::string_view count_text = tokens.next("the patch count");
   const long long count = parse_int(count_text, located(tokens.where(), "the patch count"));
-  if (count < 0)
-    throw InvalidInput(located(tokens.where(), fmt::format("expected a patch count >= 0, got {}", count)));
+  if (count < 0) throw InvalidInput(located(tokens.where(), fmt::format("expected a patch count >= 0, got {}", count)));
   if (size_t(count) > tokens.remaining() / kMinPatchBytes)
-    throw InvalidInput(located(tokens.where(), fmt::format("patch count {} needs at least {} bytes, {} are left",
-                                                           count, kMinPatchBytes, tokens.remaining())));
+    throw InvalidInput(located(tokens.where(), fmt::format("patch count {} needs at least {} bytes, {} are left", count,
+                                                           kMinPatchBytes, tokens.remaining())));
   std::vector<BezierPatch> patches(static_cast<size_t>(count));
   for (size_t p = 0; p < patches.size(); ++p) {
     for (const char* axis : {"u", "v"}) {

@@ -1,9 +1,9 @@
 #include "tessera/curves/convex.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 
@@ -13,8 +13,8 @@ namespace {
 template <class P>
 P combine_impl(std::span<const P> points, std::span<const double> weights) {
   if (points.empty() || points.size() != weights.size())
-    throw InvalidInput(fmt::format("combine: {} points and {} weights (need the same, at least one)", points.size(),
-                                   weights.size()));
+    throw InvalidInput(
+        fmt::format("combine: {} points and {} weights (need the same, at least one)", points.size(), weights.size()));
   P sum(0.0);
   for (size_t i = 0; i < points.size(); ++i) sum += weights[i] * points[i];
   return sum;
@@ -66,7 +66,8 @@ std::array<double, 3> barycentric(const Vec3& q, const Vec3& p1, const Vec3& p2,
 
 std::vector<Vec2> convex_hull(std::span<const Vec2> points) {
   std::vector<Vec2> sorted(points.begin(), points.end());
-  std::sort(sorted.begin(), sorted.end(), [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  std::sort(sorted.begin(), sorted.end(),
+            [](const Vec2& a, const Vec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   sorted.erase(std::unique(sorted.begin(), sorted.end()), sorted.end());
   if (sorted.size() < 3) return sorted;
   std::vector<Vec2> hull(2 * sorted.size());

@@ -22,9 +22,10 @@ std::string points_attr(const std::vector<Vec2>& points) {
 }
 
 std::string polyline(const std::vector<Vec2>& points, const char* color, double width) {
-  return fmt::format("<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" "
-                     "stroke-linejoin=\"round\" stroke-linecap=\"round\"/>\n",
-                     points_attr(points), color, width);
+  return fmt::format(
+      "<polyline points=\"{}\" fill=\"none\" stroke=\"{}\" stroke-width=\"{}\" "
+      "stroke-linejoin=\"round\" stroke-linecap=\"round\"/>\n",
+      points_attr(points), color, width);
 }
 
 std::string dots(const std::vector<Vec2>& points, const char* color, double radius) {
@@ -57,8 +58,7 @@ std::string curve_figure_svg(const CurveFigure& figure) {
     if (curve.points.empty()) throw InvalidInput("curve figure: a curve has no control points");
     if (figure.show_hull) {
       const std::vector<Vec2> hull = convex_hull(curve.points);
-      if (hull.size() >= 3)
-        svg += fmt::format("<polygon points=\"{}\" fill=\"{}\"/>\n", points_attr(hull), kHull);
+      if (hull.size() >= 3) svg += fmt::format("<polygon points=\"{}\" fill=\"{}\"/>\n", points_attr(hull), kHull);
     }
   }
   for (const Bezier2& curve : figure.curves) {

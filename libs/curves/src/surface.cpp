@@ -1,10 +1,10 @@
 #include "tessera/curves/surface.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "normal_fallback.hpp"
 #include "tessera/core/error.hpp"
@@ -40,8 +40,8 @@ std::array<Vec3, 2> finite_difference_partials(const ParametricSurface& surface,
 
 Vec3 normal_at(const ParametricSurface& surface, double s, double t, double scale) {
   if (surface.normal) return surface.normal(s, t);
-  return detail::normal_with_fallback([&](double a, double b) { return finite_difference_partials(surface, a, b); },
-                                      s, t, surface.s, surface.t, scale);
+  return detail::normal_with_fallback([&](double a, double b) { return finite_difference_partials(surface, a, b); }, s,
+                                      t, surface.s, surface.t, scale);
 }
 
 void require_surface(const ParametricSurface& surface) {
@@ -58,15 +58,17 @@ ParametricSurface parallelogram(const Vec3& p1, const Vec3& p2, const Vec3& p3) 
   const Vec3 n = glm::cross(e1, e2);
   if (!(glm::length(n) > 1e-300)) throw InvalidInput("parallelogram: the three corners are collinear");
   const Vec3 unit = glm::normalize(n);
-  return {[=](double s, double t) { return p1 + s * e1 + t * e2; }, [=](double, double) { return unit; }, {0, 1},
-          {0, 1}};
+  return {
+      [=](double s, double t) { return p1 + s * e1 + t * e2; }, [=](double, double) { return unit; }, {0, 1}, {0, 1}};
 }
 
 ParametricSurface cylinder(double radius, double height) {
   if (!(radius > 0) || !(height > 0))
     throw InvalidInput(fmt::format("cylinder: radius {} and height {} must be positive", radius, height));
   return {[=](double s, double t) { return Vec3(radius * std::cos(s), radius * std::sin(s), height * t); },
-          [](double s, double) { return Vec3(std::cos(s), std::sin(s), 0.0); }, {0, 2 * kPi}, {0, 1}};
+          [](double s, double) { return Vec3(std::cos(s), std::sin(s), 0.0); },
+          {0, 2 * kPi},
+          {0, 1}};
 }
 
 ParametricSurface sphere(double radius) {

@@ -1,11 +1,11 @@
 #include "tessera/curves/bezier_patch.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/curves/bpt.hpp"
@@ -190,7 +190,7 @@ TEST(BezierPatch, TeapotFromSharedDataWhenPresent) {
   // Newell's data is wound so that du x dv points inside; Outward flips it.
   const TriMesh outward = tessellate(patches, PatchTessellation{.steps = 6, .orientation = PatchOrientation::Outward});
   EXPECT_EQ(outward.normals[0], -m.normals[0]);
-  EXPECT_GT(patch_normal(patches[20], 0, 0.5).z, 0.99) << "given: the lid's normal points into the pot";
+  EXPECT_LT(patch_normal(patches[20], 0, 0.5).z, -0.99) << "as given, the lid tip's normal points into the pot";
 }
 
 // A closed model: four dome quarters turned about z, and the same turned upside down (a rotation about x, so the
@@ -218,7 +218,8 @@ double signed_volume(const TriMesh& m) {
   double volume = 0;
   for (size_t t = 0; t < m.triangle_count(); ++t)
     volume += glm::dot(m.positions[m.indices[3 * t]],
-                       glm::cross(m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]])) / 6;
+                       glm::cross(m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]])) /
+              6;
   return volume;
 }
 

@@ -1,11 +1,11 @@
 #include "tessera/curves/bezier.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 

@@ -1,10 +1,10 @@
 #include "tessera/curves/bpt.hpp"
 
-#include <filesystem>
-#include <random>
-
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+
+#include <filesystem>
+#include <random>
 
 #include "tessera/core/error.hpp"
 
@@ -69,7 +69,8 @@ TEST(Bpt, ErrorsSayWhereAndWhatWasExpected) {
   EXPECT_THAT(parse_error(one_patch() + "extra"), HasSubstr("t.bpt:19: expected end of file after the last patch"));
   std::string truncated = one_patch();
   truncated.resize(truncated.size() - 5);
-  EXPECT_THAT(parse_error(truncated), HasSubstr("t.bpt:18: expected z of control point 16 of patch 1, got end of file"));
+  EXPECT_THAT(parse_error(truncated),
+              HasSubstr("t.bpt:18: expected z of control point 16 of patch 1, got end of file"));
   std::string nan = one_patch();
   nan.replace(nan.find("0.5"), 3, "nan");
   EXPECT_THAT(parse_error(nan), HasSubstr("expected a number, got 'nan'"));

@@ -1,8 +1,8 @@
 #include "tessera/curves/convex.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 #include "tessera/core/error.hpp"
 

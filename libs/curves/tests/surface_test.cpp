@@ -1,8 +1,8 @@
 #include "tessera/curves/surface.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "tessera/core/error.hpp"
 
@@ -61,7 +61,7 @@ TEST(Surface, CylinderAndSphereOfTheNotes) {
     }
   const auto sp = sphere(2);
   EXPECT_LT(glm::length(sp.position(1.0, kPi / 2) - Vec3(0, 0, 2)), 1e-12);  // t = π/2 is the north pole
-  EXPECT_LT(glm::length(sp.position(0.0, 0.0) - Vec3(2, 0, 0)), 1e-12);     // t = 0 the equator
+  EXPECT_LT(glm::length(sp.position(0.0, 0.0) - Vec3(2, 0, 0)), 1e-12);      // t = 0 the equator
   const TriMesh m = tessellate(sp, 64, 32);
   for (const Vec3& p : m.positions) EXPECT_NEAR(glm::length(p), 2.0, 1e-12);
   double area = 0;

@@ -20,7 +20,9 @@ template <class P>
 struct BezierCurve {
   std::vector<P> points;  ///< control points P_0..P_n
 
+  /// n, one less than the number of control points.
   int degree() const { return int(points.size()) - 1; }
+  /// The first and last control points, Q(0) and Q(1). Precondition: not empty.
   const P& front() const { return points.front(); }
   const P& back() const { return points.back(); }
 };

@@ -69,10 +69,10 @@ struct PatchTessellation {
 };
 
 /// Tessellates patches into one TriMesh: per patch, (n+1)² vertices with position, unit normal and uv = (u, v), and
-/// 2n² triangles counterclockwise around the normal, patch after patch (uniform: n = steps), in parallel over patches. Shared patch borders are
-/// not welded (their vertices coincide to round-off) and collapsed rows keep their zero-area triangles, so the counts
-/// are exact. Throws InvalidInput unless steps is in 1..1024 and tolerance >= 0, or when the mesh would exceed 2^32
-/// vertices.
+/// 2n² triangles counterclockwise around the normal, patch after patch (uniform: n = steps), in parallel over patches.
+/// Shared patch borders are not welded (their vertices coincide to round-off) and collapsed rows keep their zero-area
+/// triangles, so the counts are exact. Throws InvalidInput unless steps is in 1..1024 and tolerance >= 0, or when the
+/// mesh would exceed 2^32 vertices.
 TriMesh tessellate(std::span<const BezierPatch> patches, const PatchTessellation& options = {});
 
 /// The control nets as a polygon mesh: per patch its 16 points and 9 quads (for pictures of the construction).
