@@ -33,7 +33,8 @@ endfunction()
 
 # tessera_add_tests(<module> SOURCES <name>_test.cpp... [DEPS <target>...])
 #
-# One GoogleTest executable per module (fewer links on a 2-core machine); each TEST becomes its own ctest entry.
+# One GoogleTest executable per module (fewer links on a 2-core machine); each TEST becomes its own ctest entry,
+# labelled `unit`.
 # Tests run with the source tree as working directory and TESSERA_SHARED_DATA pointing at ../shared/data.
 function(tessera_add_tests module)
   if(NOT TESSERA_BUILD_TESTS)
@@ -46,8 +47,9 @@ function(tessera_add_tests module)
                                           tessera_build_flags)
   target_compile_definitions(${target} PRIVATE TESSERA_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                                TESSERA_SHARED_DATA="${TESSERA_SHARED_DATA}")
+  # Test names carry the module ("mesh.CornerTable.Swing"): select a module with `ctest -R '^mesh\.'`.
   gtest_discover_tests(${target} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR} DISCOVERY_MODE PRE_TEST
-                       PROPERTIES LABELS "unit\\;${module}")
+                       TEST_PREFIX "${module}." PROPERTIES LABELS unit)
   add_dependencies(unit_tests ${target})
 endfunction()
 
