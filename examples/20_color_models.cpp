@@ -28,6 +28,7 @@ namespace {
 
 using tessera::ImageRGB;
 using tessera::kPi;
+using tessera::examples::side_by_side;
 using tessera::Vec2;
 using tessera::Vec3;
 
@@ -358,20 +359,6 @@ ImageRGB render(const Solid& solid, const Camera& camera, int w, int h, const st
     draw_label(image, label.text, camera.project(label.text_at, w, h), kBackground);
   }
   return image;
-}
-
-// Places panels side by side.
-ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {
-  int w = 0;
-  for (const ImageRGB& p : panels) w += p.width();
-  ImageRGB out(w, panels.front().height());
-  int x0 = 0;
-  for (const ImageRGB& p : panels) {
-    for (int y = 0; y < p.height(); ++y)
-      for (int x = 0; x < p.width(); ++x) out(x0 + x, y) = p(x, y);
-    x0 += p.width();
-  }
-  return out;
 }
 
 // (b) The RGB cube [0,1]^3 with R along x, G along y (up), B along z; the color of a point is the point.

@@ -12,12 +12,6 @@ namespace tessera::examples {
 namespace {
 
 /// Copies `tile` into `sheet` with its top-left corner at (x0, y0).
-void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0) {
-  for (int y = 0; y < tile.height(); ++y)
-    for (int x = 0; x < tile.width(); ++x)
-      if (sheet.contains(x0 + x, y0 + y)) sheet(x0 + x, y0 + y) = tile(x, y);
-}
-
 /// Renders meshes into a grid of `columns` tiles of size x size pixels.
 ImageRGB contact_sheet(const std::vector<PolyMesh>& meshes, int columns, int size) {
   const int rows = int((meshes.size() + size_t(columns) - 1) / size_t(columns));

@@ -69,11 +69,6 @@ void reverse_faces(PolyMesh& mesh) {
   mesh = reversed;
 }
 
-void paste(ImageRGB& sheet, const ImageRGB& tile, int x0) {
-  for (int y = 0; y < tile.height(); ++y)
-    for (int x = 0; x < tile.width(); ++x) sheet(x0 + x, y) = tile(x, y);
-}
-
 }  // namespace
 }  // namespace tessera::examples
 

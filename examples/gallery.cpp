@@ -69,6 +69,24 @@ void Gallery::write_index(const std::string& title) const {
   write_file_atomic(dir_ / "index.html", html.str());
 }
 
+void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0) {
+  for (int y = 0; y < tile.height(); ++y)
+    for (int x = 0; x < tile.width(); ++x)
+      if (sheet.contains(x0 + x, y0 + y)) sheet(x0 + x, y0 + y) = tile(x, y);
+}
+
+ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {
+  int width = 0, height = 0;
+  for (const ImageRGB& p : panels) width += p.width(), height = std::max(height, p.height());
+  ImageRGB sheet(width, height, glm::vec3(1.0f));
+  int x0 = 0;
+  for (const ImageRGB& p : panels) {
+    paste(sheet, p, x0);
+    x0 += p.width();
+  }
+  return sheet;
+}
+
 int register_example(const Example& example) {
   registry().push_back(example);
   return 0;

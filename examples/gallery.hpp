@@ -42,6 +42,11 @@ class Gallery {
   std::vector<std::pair<size_t, std::string>> sections_;  // (first picture index, title)
 };
 
+/// Copies `tile` into `sheet` with its top-left corner at (x0, y0), clipped to the sheet (contact sheets of panels).
+void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0 = 0);
+/// Panels placed left to right, top-aligned, on a white sheet as tall as the tallest. Precondition: not empty.
+ImageRGB side_by_side(const std::vector<ImageRGB>& panels);
+
 /// A registered example: `name` is its file stem ("01_pixels"), `title` a line for the gallery.
 struct Example {
   const char* name;

@@ -349,7 +349,7 @@ ElementKind element_kind(std::string_view name) {
   return ElementKind::Unsupported;
 }
 
-// Properties that change the picture but are not implemented: counted as warnings when not "none".
+// Properties that change the picture but are unsupported: counted as warnings when not "none".
 bool is_unsupported_property(std::string_view name) {
   static constexpr std::string_view kNames[] = {"stroke-dasharray", "clip-path", "mask",      "filter",
                                                 "marker",           "marker-start", "marker-mid", "marker-end"};
