@@ -37,8 +37,8 @@ TEST(Bpt, ParsesThePointOrder) {
   EXPECT_EQ(patches[0].at(2, 3), Vec3(3, 2, 0.5));
   EXPECT_TRUE(parse_bpt("0\n").empty());
   // Any white space separates tokens.
-  std::string crlf = one_patch();
-  for (size_t at = crlf.find('\n'); at != std::string::npos; at = crlf.find('\n', at + 2)) crlf.insert(at, "\r");
+  std::string crlf;
+  for (char ch : one_patch()) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
   EXPECT_EQ(parse_bpt(crlf)[0].points, patches[0].points);
 }
 

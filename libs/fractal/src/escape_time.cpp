@@ -1,6 +1,7 @@
 #include "tessera/fractal/escape_time.hpp"
 
 #include <fmt/format.h>
+#include <tbb/enumerable_thread_specific.h>
 
 #include <algorithm>
 #include <atomic>
@@ -106,8 +107,10 @@ EscapeImage escape_image(const ComplexView& view, const EscapeOptions& options, 
   EscapeImage out{Image<uint32_t>(view.width, view.height), Image<float>(view.width, view.height),
                   options.max_iterations, options.escape_radius};
   const bool checks = options.interior_checks && julia_c == nullptr;
+  tbb::enumerable_thread_specific<Batch> batches;  // one per worker thread
   parallel_for(0, view.height, kRowsPerTask, [&](int64_t y0, int64_t y1) {
-    Batch batch;
+    Batch& batch = batches.local();  // reused from strip to strip: no allocation per task once it has grown
+    batch.clear();
     for (int y = int(y0); y < int(y1); ++y)
       for (int x = 0; x < view.width; ++x) {
         const std::complex<double> p = view.pixel_center(x, y);
@@ -212,8 +215,10 @@ double mandelbrot_area(int size, const EscapeOptions& options) {
   const detail::IterationLimits limits{uint32_t(options.max_iterations), options.escape_radius * options.escape_radius};
   const ComplexView view{{-0.75, 0.0}, 2.5, size, size};
   std::atomic<int64_t> inside{0};
+  tbb::enumerable_thread_specific<Batch> batches;  // one per worker thread
   parallel_for(0, size / 2, kRowsPerTask, [&](int64_t y0, int64_t y1) {
-    Batch batch;
+    Batch& batch = batches.local();
+    batch.clear();
     int64_t count = 0;
     for (int y = int(y0); y < int(y1); ++y)
       for (int x = 0; x < size; ++x) {

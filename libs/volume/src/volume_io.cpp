@@ -60,7 +60,6 @@ Vec3 parse_vector3(std::string_view text, const std::string& where) {
   for (char& c : cleaned)
     if (c == '(' || c == ')' || c == ',') c = ' ';
   std::istringstream in(cleaned);
-  Vec3 v;
   std::string a, b, c;
   if (!(in >> a >> b >> c)) throw InvalidInput(located(where, fmt::format("expected 3 numbers, got '{}'", text)));
   return {parse_double(a, where), parse_double(b, where), parse_double(c, where)};
