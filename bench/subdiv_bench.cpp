@@ -8,11 +8,12 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 
-#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "tessera/core/parallel.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/mesh/triangulate.hpp"
 #include "tessera/subdiv/subdivide.hpp"
 
 namespace {
@@ -27,24 +28,11 @@ constexpr int kLevels = 4;
 // and two corners.
 PolyMesh cage(bool triangles) {
   const int n = 100, m = triangles ? 50 : 100;
-  PolyMesh mesh;
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const double u = 2.0 * kPi * i / n, v = 2.0 * kPi * j / m;
-      mesh.positions.push_back({(2.0 + 0.7 * std::cos(v)) * std::cos(u), 0.7 * std::sin(v),
-                                (2.0 + 0.7 * std::cos(v)) * std::sin(u)});
-    }
+  PolyMesh torus = make_torus(2.0, 0.7, n, m);  // vertex (i, j) is i * m + j
+  torus.normals.clear();                         // positions only, as OpenSubdiv gets
+  torus.corner_uvs.clear();
+  PolyMesh mesh = triangles ? triangulate(torus) : std::move(torus);
   auto id = [&](int i, int j) { return uint32_t((i % n) * m + (j % m)); };
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < m; ++j) {
-      const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if (triangles) {
-        mesh.add_face({a, d, c});
-        mesh.add_face({a, c, b});
-      } else {
-        mesh.add_face({a, d, c, b});
-      }
-    }
   const float sharpness[] = {2.0f, 3.5f, 10.0f};
   for (int r = 0; r < 3; ++r)
     for (int i = 0; i < n; ++i) mesh.creases.push_back({id(i, r * m / 3), id(i + 1, r * m / 3), sharpness[r]});
