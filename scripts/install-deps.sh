@@ -11,7 +11,7 @@ packages=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin
   # reference peers (tests and benchmarks only, never the implementation)
-  libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9
+  libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
 )
 
 missing=()

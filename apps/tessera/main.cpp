@@ -10,6 +10,7 @@
 #include "tessera/core/progress.hpp"
 
 namespace tessera::cli {
+void setup_bench(CLI::App&, CommonOptions&);
 void setup_canvas(CLI::App&, CommonOptions&);
 void setup_color(CLI::App&, CommonOptions&);
 void setup_curve(CLI::App&, CommonOptions&);
@@ -18,6 +19,9 @@ void setup_fractal(CLI::App&, CommonOptions&);
 void setup_gallery(CLI::App&, CommonOptions&);
 void setup_mesh(CLI::App&, CommonOptions&);
 void setup_patch(CLI::App&, CommonOptions&);
+void setup_raster(CLI::App&, CommonOptions&);
+void setup_render(CLI::App&, CommonOptions&);
+void setup_trace(CLI::App&, CommonOptions&);
 void setup_volume(CLI::App&, CommonOptions&);
 
 namespace {
@@ -31,6 +35,10 @@ const Command kCommands[] = {
     {"patch", "Bezier patches (.bpt) tessellated into a mesh", setup_patch},
     {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension", setup_fractal},
     {"volume", "Volume data: info, slice, contour (marching squares), isosurface (marching cubes), render", setup_volume},
+    {"raster", "Z-buffered 3D rasterization of a mesh (flat, Gouraud or Phong shading)", setup_raster},
+    {"render", "Render a scene file or a built-in scene (ray tracing or rasterization)", setup_render},
+    {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
+    {"bench", "Measure hot paths: bench raycast MESH (rays per second)", setup_bench},
 };
 }  // namespace
 }  // namespace tessera::cli

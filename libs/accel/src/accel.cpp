@@ -1,0 +1,1 @@
+// Placeholder until the accel module lands.
