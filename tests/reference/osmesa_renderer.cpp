@@ -1,0 +1,179 @@
+#include "osmesa_renderer.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <mutex>
+#include <string>
+
+#include <GL/osmesa.h>
+#include <fmt/format.h>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera::reference {
+
+GlMesh::GlMesh(const TriMesh& mesh) : indices(mesh.indices) {
+  const auto to_floats = [](const std::vector<Vec3>& v) {
+    std::vector<float> out;
+    out.reserve(v.size() * 3);
+    for (const Vec3& p : v) out.insert(out.end(), {float(p.x), float(p.y), float(p.z)});
+    return out;
+  };
+  positions = to_floats(mesh.positions);
+  normals = to_floats(mesh.normals);
+  colors = to_floats(mesh.colors);
+}
+
+namespace {
+
+// LP_NUM_THREADS as it was when the first context was created (llvmpipe creates one screen per process then).
+std::once_flag g_first_context;
+int g_rasterizer_threads = -1;
+
+void load_matrix(GLenum mode, const Mat4f& m) {
+  glMatrixMode(mode);
+  glLoadMatrixf(glm::value_ptr(m));
+}
+
+}  // namespace
+
+struct OsmesaContext::Impl {
+  OSMesaContext context = nullptr;
+};
+
+OsmesaContext::OsmesaContext(int width, int height, int rasterizer_threads)
+    : width_(width), height_(height), buffer_(size_t(width) * size_t(height) * 4), impl_(std::make_unique<Impl>()) {
+  if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("OSMesa: bad size {}x{}", width, height));
+  std::call_once(g_first_context, [&] {
+    if (rasterizer_threads >= 0) setenv("LP_NUM_THREADS", std::to_string(rasterizer_threads).c_str(), 1);
+    const char* env = std::getenv("LP_NUM_THREADS");
+    g_rasterizer_threads = env != nullptr ? std::atoi(env) : -1;
+  });
+  // RGBA, 24-bit depth, no stencil or accumulation buffer.
+  impl_->context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  if (impl_->context == nullptr) throw Error("OSMesa: OSMesaCreateContextExt failed");
+  if (!OSMesaMakeCurrent(impl_->context, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
+    OSMesaDestroyContext(impl_->context);
+    throw Error("OSMesa: OSMesaMakeCurrent failed");
+  }
+  GLint depth_bits = 0;
+  glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
+  if (depth_bits != 24) {
+    OSMesaDestroyContext(impl_->context);
+    throw Error(fmt::format("OSMesa: expected a 24-bit depth buffer, got {} bits", depth_bits));
+  }
+  glViewport(0, 0, width, height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+}
+
+OsmesaContext::~OsmesaContext() { OSMesaDestroyContext(impl_->context); }
+
+int OsmesaContext::rasterizer_threads() { return g_rasterizer_threads; }
+
+void OsmesaContext::begin(const GlState& s) {
+  load_matrix(GL_PROJECTION, s.projection);
+  // The light is placed in eye space: glLightfv(GL_POSITION) transforms by the model-view in force.
+  load_matrix(GL_MODELVIEW, Mat4f(1.0f));
+  if (s.lighting) {
+    glEnable(GL_LIGHTING);
+    glEnable(GL_LIGHT0);
+    glLightfv(GL_LIGHT0, GL_POSITION, glm::value_ptr(s.light.position));
+    glLightfv(GL_LIGHT0, GL_AMBIENT, glm::value_ptr(s.light.ambient));
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, glm::value_ptr(s.light.diffuse));
+    glLightfv(GL_LIGHT0, GL_SPECULAR, glm::value_ptr(s.light.specular));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(s.material.ambient));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(s.material.diffuse));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(s.material.specular));
+    glMaterialfv(GL_FRONT_AND_BACK, GL_EMISSION, glm::value_ptr(s.material.emission));
+    glMaterialf(GL_FRONT_AND_BACK, GL_SHININESS, s.material.shininess);
+    glEnable(GL_NORMALIZE);  // normals renormalized after the normal matrix (the conventions' rule 1)
+  } else {
+    glDisable(GL_LIGHTING);
+  }
+  load_matrix(GL_MODELVIEW, s.modelview);
+  glShadeModel(s.smooth ? GL_SMOOTH : GL_FLAT);
+  if (s.cull_back) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+  } else {
+    glDisable(GL_CULL_FACE);
+  }
+  if (s.depth_test) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+  } else {
+    glDisable(GL_DEPTH_TEST);
+  }
+  glColor3f(s.color.x, s.color.y, s.color.z);
+  if (s.clear) {
+    glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  }
+}
+
+void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
+  const bool normals = !mesh.normals.empty(), colors = !mesh.colors.empty();
+  if (submit == GlSubmit::Immediate) {
+    const float* p = mesh.positions.data();
+    const float* n = mesh.normals.data();
+    const float* c = mesh.colors.data();
+    glBegin(GL_TRIANGLES);
+    for (const uint32_t i : mesh.indices) {
+      if (normals) glNormal3fv(n + 3 * size_t(i));
+      if (colors) glColor3fv(c + 3 * size_t(i));
+      glVertex3fv(p + 3 * size_t(i));
+    }
+    glEnd();
+    return;
+  }
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, mesh.positions.data());
+  if (normals) {
+    glEnableClientState(GL_NORMAL_ARRAY);
+    glNormalPointer(GL_FLOAT, 0, mesh.normals.data());
+  }
+  if (colors) {
+    glEnableClientState(GL_COLOR_ARRAY);
+    glColorPointer(3, GL_FLOAT, 0, mesh.colors.data());
+  }
+  glDrawElements(GL_TRIANGLES, GLsizei(mesh.indices.size()), GL_UNSIGNED_INT, mesh.indices.data());
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glDisableClientState(GL_COLOR_ARRAY);
+}
+
+void OsmesaContext::finish() { glFinish(); }
+
+GlFrame OsmesaContext::read() const {
+  glFinish();
+  GlFrame frame;
+  frame.width = width_;
+  frame.height = height_;
+  const size_t w = size_t(width_), h = size_t(height_);
+  std::vector<uint8_t> rgb(w * h * 3);
+  std::vector<uint32_t> depth(w * h);
+  glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, depth.data());
+  if (const GLenum error = glGetError(); error != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:x}", error));
+  frame.rgb.resize(rgb.size());
+  frame.depth.resize(depth.size());
+  for (size_t row = 0; row < h; ++row) {  // GL row 0 is the bottom
+    const size_t gl_row = h - 1 - row;
+    std::copy_n(rgb.begin() + std::ptrdiff_t(gl_row * w * 3), w * 3, frame.rgb.begin() + std::ptrdiff_t(row * w * 3));
+    // GL_UNSIGNED_INT scales depth to 32 bits; the top 24 are the stored value.
+    for (size_t x = 0; x < w; ++x) frame.depth[row * w + x] = depth[gl_row * w + x] >> 8;
+  }
+  return frame;
+}
+
+GlFrame render_osmesa(const TriMesh& mesh, int width, int height, const GlState& state, GlSubmit submit) {
+  OsmesaContext context(width, height);
+  context.begin(state);
+  context.draw(GlMesh(mesh), submit);
+  return context.read();
+}
+
+}  // namespace tessera::reference
