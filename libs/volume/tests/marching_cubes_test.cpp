@@ -94,18 +94,28 @@ TEST(MarchingCubesTable, MatchesVtkOnAll256CasesWithRandomValues) {
     size_t tris = 0;
     double area = 0;
     ASSERT_TRUE(in >> tris >> area);
+    // The same triangles (as sets of the cube edges their corners lie on) as vtkMarchingCubes, case by case.
+    std::set<std::array<int, 3>> theirs, ours;
+    for (size_t t = 0; t < tris; ++t) {
+      std::array<int, 3> tri{};
+      ASSERT_TRUE(in >> tri[0] >> tri[1] >> tri[2]);
+      std::sort(tri.begin(), tri.end());
+      theirs.insert(tri);
+    }
+    for (const auto& t : mc::classic_table()[size_t(c)].triangles) {
+      std::array<int, 3> tri{t[0], t[1], t[2]};
+      std::sort(tri.begin(), tri.end());
+      ours.insert(tri);
+    }
+    EXPECT_EQ(ours, theirs) << "case " << c;
     Volume<float> cube(glm::ivec3(2));
     for (int k = 0; k < 8; ++k) {
       const auto p = mc::corners()[size_t(k)];
       cube(p.x, p.y, p.z) = cubes[size_t(c)][size_t(k)];
     }
     const PolyMesh m = marching_cubes(cube, {.iso = 0.5f});
-    // The same polygons in every case (same ambiguity resolution). Quads and larger polygons may take other
-    // diagonals than VTK's hand-made table, so areas agree only where every polygon is a triangle.
     EXPECT_EQ(m.face_count(), tris) << "case " << c;
-    if (c == 1 || c == 254) {
-      EXPECT_NEAR(surface_area(m), area, 1e-6 * area) << "case " << c;
-    }
+    EXPECT_NEAR(surface_area(m), area, 1e-6 * std::max(area, 1.0)) << "case " << c;
   }
 }
 
@@ -275,9 +285,8 @@ TEST(MarchingCubesReference, ClassicMatchesVtkAndSkimageLorensen) {
   if (reference_results().empty()) GTEST_SKIP() << "VTK / scikit-image are not available";
   for (const auto& f : reference_fields()) {
     const PolyMesh m = marching_cubes(f.volume, {.iso = f.iso, .normals = false});
-    // Same table, so the same triangle count everywhere. The area agrees to 1e-4 on smooth fields; on the rough
-    // noise field the choice of quad diagonals (which differs from VTK's hand-made table) shows at about 0.6%.
-    const double tolerance = std::string(f.name) == "noise" ? 1e-2 : 1e-4;
+    // The same triangles in every case, so the same count and the same area (up to float rounding) on every field.
+    const double tolerance = 1e-4;
     for (const char* method : {"vtk", "lorensen"}) {
       const auto [tris, area] = reference_results().at(std::string(f.name) + " " + method);
       EXPECT_EQ(double(m.face_count()), tris) << f.name << " vs " << method;

@@ -6,7 +6,8 @@
   mc_reference.py fields LIST                     LIST: lines "NAME RAW NX NY NZ ISO"; prints "NAME METHOD tris=N area=A"
                                                   for vtk, lorensen and lewiner (one interpreter start for all)
   mc_reference.py cases RAW                       256 cubes of 8 float32 corner values (Bourke order), iso 0.5;
-                                                  prints "tris area" per case from vtkMarchingCubes
+                                                  prints "tris area e0 e1 e2 ..." per case from vtkMarchingCubes: the
+                                                  triangles as the cube edges (Bourke numbering) their corners lie on
 Exits 77 when the needed package cannot be imported.
 """
 import sys
@@ -22,7 +23,21 @@ def area_of(points, tris):
     return float(0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum())
 
 
-def vtk_surface(field, iso, flying_edges):
+CORNERS = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
+EDGES = [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+
+
+def edge_of(point):
+    """The unit-cube edge a point lies on: the one whose two coordinates that stay fixed match the point's."""
+    for e, (a, b) in enumerate(EDGES):
+        pa, pb = np.array(CORNERS[a]), np.array(CORNERS[b])
+        fixed = pa == pb
+        if np.all(np.abs(point[fixed] - pa[fixed]) < 1e-6):
+            return e
+    raise ValueError(f"point {point} is on no cube edge")
+
+
+def vtk_surface(field, iso, flying_edges, with_mesh=False):
     try:
         import vtk
         from vtk.util import numpy_support
@@ -44,6 +59,8 @@ def vtk_surface(field, iso, flying_edges):
     out = mc.GetOutput()
     points = numpy_support.vtk_to_numpy(out.GetPoints().GetData()).astype(np.float64) if out.GetNumberOfPoints() else np.zeros((0, 3))
     polys = numpy_support.vtk_to_numpy(out.GetPolys().GetData()).reshape(-1, 4)[:, 1:] if out.GetNumberOfCells() else np.zeros((0, 3), int)
+    if with_mesh:
+        return points, polys
     return len(polys), area_of(points, polys), seconds
 
 
@@ -65,13 +82,13 @@ def main():
         except ImportError:
             sys.exit(77)
         cubes = np.fromfile(sys.argv[2], dtype="<f4").reshape(256, 8)
-        corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1)]
         for values in cubes:
             field = np.zeros((2, 2, 2), dtype=np.float32)
-            for (x, y, z), value in zip(corners, values):
+            for (x, y, z), value in zip(CORNERS, values):
                 field[z, y, x] = value
-            tris, area, _ = vtk_surface(field, 0.5, False)
-            print(tris, repr(area))
+            points, polys = vtk_surface(field, 0.5, False, with_mesh=True)
+            edges = [edge_of(points[i]) for tri in polys for i in tri]
+            print(len(polys), repr(area_of(points, polys)), *edges)
         return
     if sys.argv[1] == "fields":
         for line in open(sys.argv[2]):

@@ -9,9 +9,11 @@
 // The tables are not typed in: they are generated from the cube's geometry. For each case the iso-surface crosses
 // the cube faces in segments (one per face with two crossing edges; two on an ambiguous face, whose pairing is the
 // face rule); the segments chain into closed polygons, oriented so that triangles face the outside (value < iso),
-// and each polygon is fanned from its lowest-numbered edge.
+// and each polygon is fanned from its lowest-numbered edge, except that the classic table splits polygons along the
+// diagonals that Lorensen & Cline's hand-made table chose (written out in mc_table.cpp; see docs/volume.md).
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "tessera/math/types.hpp"
@@ -42,10 +44,13 @@ int ambiguous_faces(int cube_case);
 /// Triangulates a case. Bit f of `join` says that on ambiguous face f the inside corners are joined (the segments cut
 /// off the outside corners); otherwise they are separated. `split_shared_faces` puts a center vertex in polygons that
 /// hold both segments of one face, so that no diagonal can be shared with the neighbouring cell (keeps the mesh
-/// manifold). Source: the construction above; cases 0-255 (throws InvalidInput outside).
-CaseTriangles triangulate_case(int cube_case, int join, bool split_shared_faces);
+/// manifold). Other polygons are split along those of `diagonals` (pairs of edges) that join two of their vertices
+/// and fanned from their lowest edge otherwise. Source: the construction above; cases 0-255 (throws InvalidInput outside).
+CaseTriangles triangulate_case(int cube_case, int join, bool split_shared_faces,
+                               std::span<const std::array<int, 2>> diagonals = {});
 
-/// The classic 256-case table: every ambiguous face separates its inside corners (as the classic table does).
+/// The classic 256-case table: every ambiguous face separates its inside corners, and polygons are split along the
+/// classic table's diagonals, so each case gives the same triangles as Lorensen & Cline's table (vtkMarchingCubes).
 const std::array<CaseTriangles, 256>& classic_table();
 
 /// Case indices of the 15 base configurations of Lorensen and Cline (Figure 3 of the paper), in their order.
