@@ -1,0 +1,390 @@
+// The 3D pipeline against Mesa's llvmpipe (OSMesa, fixed-function OpenGL 1.x) in the same run, on the same thread
+// counts (LP_NUM_THREADS = Tessera's threads):
+//   immediate  1M lit Gouraud triangles of ~16 px at 1280x720 (17 full-screen layers of a wavy grid, back to front)
+//              through glBegin/glEnd and through the gt immediate-mode layer; triangles/s
+//   batched    the same mesh through vertex arrays (glDrawElements) and through the batched draw; triangles/s
+//   fill       z-tested flat fill at 1920x1080, 32 full-screen layers back to front (every fragment passes and
+//              writes); pixels/s, and as a share of the machine's memory bandwidth (12 bytes per pixel: depth read,
+//              depth write, color write)
+//   bandwidth  a STREAM-like copy and triad over 128 MiB arrays with oneTBB on all cores
+// Each measurement is the best frame of a few (a frame = clear + draw + glFinish / return). llvmpipe reads
+// LP_NUM_THREADS once per process, so every llvmpipe measurement runs in a child process (this program re-executed
+// with --llvmpipe-child=CASE,THREADS). The Tessera benchmarks carry the ratios as counters (x_llvmpipe = Tessera's
+// rate / llvmpipe's), and a table at the end repeats them with the load average.
+//
+//   cmake -S . -B build/bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
+//   ninja -C build/bench bench_raster3d && build/bench/bench/bench_raster3d --benchmark_repetitions=3
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "osmesa_renderer.hpp"
+#include "tessera/core/parallel.hpp"
+#include "tessera/math/transform.hpp"
+#include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/gt.hpp"
+
+namespace {
+
+using namespace tessera;
+using reference::GlState;
+using reference::GlSubmit;
+
+// ---------------------------------------------------------------------------------------------------------------
+// Workloads, built identically in the parent and in the llvmpipe children.
+
+enum class Case { Immediate, Batched, Fill };
+const char* case_name(Case c) { return c == Case::Immediate ? "immediate" : c == Case::Batched ? "batched" : "fill"; }
+
+constexpr int kTriWidth = 1280, kTriHeight = 720;
+constexpr int kFillWidth = 1920, kFillHeight = 1080, kFillLayers = 32;
+constexpr int kFrames = 3;  // best of
+
+// The camera of the triangle workloads: 60 degrees vertical field of view, looking down -z.
+constexpr double kFovy = 60.0;
+Mat4 tri_projection() { return perspective(radians(kFovy), double(kTriWidth) / kTriHeight, 1.0, 20.0); }
+
+// 17 layers of a 226 x 130 grid (2 triangles per cell: 998,920 triangles), each layer filling the view at its depth
+// (so every triangle covers 1280/226 x 720/130 / 2 = 15.7 pixels) with a gentle wave in z for varied normals. Layers
+// go back to front: every fragment passes the depth test, the heaviest and steadiest load.
+TriMesh layered_grid() {
+  constexpr int kLayers = 17, kNx = 226, kNy = 130;
+  const double tan_half = std::tan(radians(kFovy) / 2), aspect = double(kTriWidth) / kTriHeight;
+  TriMesh mesh;
+  mesh.positions.reserve(size_t(kLayers) * (kNx + 1) * (kNy + 1));
+  mesh.normals.reserve(mesh.positions.capacity());
+  mesh.indices.reserve(size_t(kLayers) * kNx * kNy * 6);
+  for (int layer = 0; layer < kLayers; ++layer) {
+    const double depth = 12.0 - 0.5 * layer;  // 12 (far) .. 4 (near)
+    const double half_h = depth * tan_half * 0.999, half_w = half_h * aspect;
+    const double amplitude = 0.02 * depth, phase = 0.7 * layer;
+    const auto base = uint32_t(mesh.positions.size());
+    for (int j = 0; j <= kNy; ++j)
+      for (int i = 0; i <= kNx; ++i) {
+        const double u = double(i) / kNx, v = double(j) / kNy;
+        const double a = 6 * kPi * u + phase, b = 4 * kPi * v;
+        const double x = (2 * u - 1) * half_w, y = (2 * v - 1) * half_h;
+        const double z = -depth + amplitude * std::sin(a) * std::cos(b);
+        // Normal of z = f(x, y): (-df/dx, -df/dy, 1), normalized.
+        const double dfdx = amplitude * std::cos(a) * std::cos(b) * 6 * kPi / (2 * half_w);
+        const double dfdy = -amplitude * std::sin(a) * std::sin(b) * 4 * kPi / (2 * half_h);
+        mesh.positions.emplace_back(x, y, z);
+        mesh.normals.push_back(glm::normalize(Vec3(-dfdx, -dfdy, 1)));
+      }
+    for (int j = 0; j < kNy; ++j)
+      for (int i = 0; i < kNx; ++i) {
+        const uint32_t v00 = base + uint32_t(j * (kNx + 1) + i), v10 = v00 + 1, v01 = v00 + kNx + 1, v11 = v01 + 1;
+        mesh.indices.insert(mesh.indices.end(), {v00, v10, v11, v00, v11, v01});
+      }
+  }
+  return mesh;
+}
+
+// 32 full-screen quads at window depths from 0.97 down to 0.03 (back to front), identity matrices.
+TriMesh fill_layers() {
+  TriMesh mesh;
+  for (int layer = 0; layer < kFillLayers; ++layer) {
+    const double z_ndc = 2 * (0.97 - 0.94 * layer / (kFillLayers - 1)) - 1;
+    const auto base = uint32_t(mesh.positions.size());
+    mesh.positions.insert(mesh.positions.end(), {{-1, -1, z_ndc}, {1, -1, z_ndc}, {1, 1, z_ndc}, {-1, 1, z_ndc}});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  return mesh;
+}
+
+// The fixed-function state of the triangle workloads: a white directional light from the upper right, a bluish
+// plastic (diffuse + white highlight, shininess 32), smooth shading.
+GlState tri_gl_state() {
+  GlState s;
+  s.projection = Mat4f(tri_projection());
+  s.modelview = Mat4f(1.0f);
+  s.lighting = true;
+  s.light.position = Vec4f(glm::normalize(Vec3f(0.4f, 0.6f, 1.0f)), 0.0f);
+  s.material.diffuse = {0.3f, 0.5f, 0.9f, 1};
+  s.material.ambient = {0.3f, 0.5f, 0.9f, 1};
+  s.material.specular = {0.6f, 0.6f, 0.6f, 1};
+  s.material.shininess = 32;
+  s.background = {0.1f, 0.1f, 0.1f};
+  return s;
+}
+
+GlState fill_gl_state() {
+  GlState s;
+  s.smooth = false;
+  s.color = {0.8f, 0.4f, 0.2f};
+  return s;
+}
+
+struct Workload {
+  int width, height;
+  TriMesh mesh;
+  double pixels_per_frame;  // fill: layers x width x height; triangles: 0
+};
+
+const Workload& workload(Case c) {
+  static std::map<Case, std::unique_ptr<Workload>> cache;
+  auto& w = cache[c];
+  if (!w) {
+    if (c == Case::Fill)
+      w = std::make_unique<Workload>(
+          Workload{kFillWidth, kFillHeight, fill_layers(), double(kFillLayers) * kFillWidth * kFillHeight});
+    else
+      w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, layered_grid(), 0});
+  }
+  return *w;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double load_average() {
+  double one = 0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &one) != 1) one = 0;
+    std::fclose(f);
+  }
+  return one;
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// llvmpipe: one child process per (case, threads).
+
+// The child: renders kFrames frames of the case and prints the best frame time.
+int llvmpipe_child(Case c, int threads) {
+  const Workload& w = workload(c);
+  const reference::GlMesh mesh(w.mesh);
+  reference::OsmesaContext context(w.width, w.height, threads);
+  const GlState state = c == Case::Fill ? fill_gl_state() : tri_gl_state();
+  const GlSubmit submit = c == Case::Immediate ? GlSubmit::Immediate : GlSubmit::VertexArrays;
+  double best = 1e30;
+  for (int frame = 0; frame < kFrames + 1; ++frame) {  // frame 0 warms up (shader compilation, allocations)
+    const auto t0 = std::chrono::steady_clock::now();
+    context.begin(state);
+    context.draw(mesh, submit);
+    context.finish();
+    if (frame > 0) best = std::min(best, seconds_since(t0));
+  }
+  std::printf("llvmpipe seconds=%.9g lp_num_threads=%d\n", best, reference::OsmesaContext::rasterizer_threads());
+  return 0;
+}
+
+std::string g_self;  // this program's path, for the children
+
+// Runs a child and returns its best frame time, or an error message.
+bool run_llvmpipe(Case c, int threads, double& seconds, std::string& error) {
+  const std::string command = fmt::format("'{}' --llvmpipe-child={},{} 2>&1", g_self, case_name(c), threads);
+  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
+  if (!pipe) {
+    error = "popen failed";
+    return false;
+  }
+  std::string output;
+  char buffer[4096];
+  while (size_t got = std::fread(buffer, 1, sizeof buffer, pipe.get())) output.append(buffer, got);
+  const int status = pclose(pipe.release());
+  const size_t at = output.find("llvmpipe seconds=");
+  if (status != 0 || at == std::string::npos) {
+    error = fmt::format("llvmpipe child failed (status {}): {}", status, output.substr(0, 300));
+    return false;
+  }
+  seconds = std::strtod(output.c_str() + at + std::strlen("llvmpipe seconds="), nullptr);
+  return true;
+}
+
+// Results for the ratios and the final table, keyed "case/threads".
+struct Rates {
+  double llvmpipe = 0, tessera = 0;  // triangles/s or pixels/s (best of the repetitions)
+};
+std::map<std::string, Rates> g_rates;
+double g_bandwidth = 0;  // bytes/s, all cores
+
+std::string key(Case c, int threads) { return fmt::format("{}/{}", case_name(c), threads); }
+
+double rate_of(Case c, double seconds) {
+  const Workload& w = workload(c);
+  return (c == Case::Fill ? w.pixels_per_frame : double(w.mesh.triangle_count())) / seconds;
+}
+
+void set_rate_counters(benchmark::State& state, Case c, double rate) {
+  state.counters[c == Case::Fill ? "pixels_per_s" : "tris_per_s"] = rate;
+  if (c == Case::Fill && g_bandwidth > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth;
+}
+
+void BM_Llvmpipe(benchmark::State& state, Case c, int threads) {
+  double seconds = 0;
+  std::string error;
+  for (auto _ : state) {
+    if (!run_llvmpipe(c, threads, seconds, error)) {
+      static std::string message;  // SkipWithError keeps the pointer
+      message = error;
+      state.SkipWithError(message.c_str());
+      return;
+    }
+    state.SetIterationTime(seconds);
+  }
+  const double rate = rate_of(c, seconds);
+  set_rate_counters(state, c, rate);
+  Rates& r = g_rates[key(c, threads)];
+  r.llvmpipe = std::max(r.llvmpipe, rate);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Memory bandwidth: STREAM's copy (16 bytes per element) and triad (24 bytes), best of 5, all cores.
+
+void BM_Bandwidth(benchmark::State& state, bool triad) {
+  constexpr int64_t kN = int64_t(1) << 24;  // 128 MiB per array, far beyond the caches
+  constexpr int64_t kGrain = int64_t(1) << 16;
+  std::unique_ptr<double[]> a(new double[kN]), b(new double[kN]), c(new double[kN]);
+  parallel_for(0, kN, kGrain, [&](int64_t i0, int64_t i1) {  // first touch by the threads that will use the pages
+    for (int64_t i = i0; i < i1; ++i) a[i] = 1.0, b[i] = 2.0, c[i] = 0.0;
+  });
+  const double bytes = double(kN) * (triad ? 24 : 16);
+  double best = 1e30;
+  for (auto _ : state) {
+    for (int rep = 0; rep < 5; ++rep) {
+      const auto t0 = std::chrono::steady_clock::now();
+      if (triad)
+        parallel_for(0, kN, kGrain, [&](int64_t i0, int64_t i1) {
+          for (int64_t i = i0; i < i1; ++i) a[i] = b[i] + 3.0 * c[i];
+        });
+      else
+        parallel_for(0, kN, kGrain, [&](int64_t i0, int64_t i1) {
+          for (int64_t i = i0; i < i1; ++i) c[i] = a[i];
+        });
+      best = std::min(best, seconds_since(t0));
+    }
+    state.SetIterationTime(best);
+  }
+  benchmark::DoNotOptimize(a[kN / 2] + c[kN / 3]);
+  state.counters["bytes_per_s"] = bytes / best;
+  g_bandwidth = std::max(g_bandwidth, bytes / best);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Tessera: the same state through the Context (the light placed in eye space, as the GL state does).
+
+void set_tessera_state(raster3d::Context& ctx, Case c) {
+  const GlState gl = c == Case::Fill ? fill_gl_state() : tri_gl_state();
+  ctx.matrix_mode(raster3d::MatrixMode::projection);
+  ctx.load_matrix(Mat4(gl.projection));
+  ctx.matrix_mode(raster3d::MatrixMode::model_view);
+  ctx.load_identity();
+  if (gl.lighting) {
+    ctx.light(0, raster3d::Light{gl.light.position, Vec3f(gl.light.ambient), Vec3f(gl.light.diffuse),
+                                 Vec3f(gl.light.specular)});
+    ctx.material(raster3d::Material{Vec3f(gl.material.ambient), Vec3f(gl.material.diffuse),
+                                    Vec3f(gl.material.specular), Vec3f(gl.material.emission), gl.material.shininess});
+    ctx.shading(raster3d::ShadingModel::gouraud);
+  } else {
+    ctx.shading(raster3d::ShadingModel::unlit);
+    ctx.color(gl.color);
+  }
+  ctx.load_matrix(Mat4(gl.modelview));
+}
+
+// The immediate-mode frame through the notes' gt layer: one gtNormal + gtVertex per triangle corner.
+void draw_immediate(const raster3d::VertexArrays& arrays) {
+  gt::gtBeginShape(gt::GT_TRIANGLES);
+  for (const uint32_t i : arrays.indices) {
+    const Vec3f& n = arrays.normals[i];
+    const Vec3f& p = arrays.positions[i];
+    gt::gtNormal(n.x, n.y, n.z);
+    gt::gtVertex(p.x, p.y, p.z);
+  }
+  gt::gtEndShape();
+}
+
+void BM_Tessera(benchmark::State& state, Case c, int threads) {
+  const Workload& w = workload(c);
+  const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(w.mesh);
+  raster3d::Context ctx(w.width, w.height);
+  set_tessera_state(ctx, c);
+  gt::gtMakeCurrent(&ctx);
+  const ThreadLimit limit(threads);
+  const Vec3f background = c == Case::Fill ? fill_gl_state().background : tri_gl_state().background;
+  const auto frame = [&] {
+    ctx.clear(background);
+    if (c == Case::Immediate)
+      draw_immediate(arrays);
+    else
+      ctx.draw(arrays);
+    benchmark::DoNotOptimize(ctx.framebuffer().color().pixels().data());  // framebuffer() draws what is pending
+  };
+  frame();  // warm-up: the binning memory is allocated once
+  double best = 1e30;
+  for (auto _ : state) {
+    for (int i = 0; i < kFrames; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      frame();
+      best = std::min(best, seconds_since(t0));
+    }
+    state.SetIterationTime(best);
+  }
+  gt::gtMakeCurrent(nullptr);
+  const double rate = rate_of(c, best);
+  set_rate_counters(state, c, rate);
+  Rates& r = g_rates[key(c, threads)];
+  r.tessera = std::max(r.tessera, rate);
+  if (r.llvmpipe > 0) state.counters["x_llvmpipe"] = rate / r.llvmpipe;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::strncmp(argv[i], "--llvmpipe-child=", 17) == 0) {
+      const std::string spec = argv[i] + 17;
+      const size_t comma = spec.find(',');
+      const std::string name = spec.substr(0, comma);
+      const Case c = name == "immediate" ? Case::Immediate : name == "batched" ? Case::Batched : Case::Fill;
+      return llvmpipe_child(c, std::atoi(spec.c_str() + comma + 1));
+    }
+  char self[4096];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  g_self = n > 0 ? std::string(self, size_t(n)) : std::string(argv[0]);
+
+  for (const bool triad : {false, true})
+    benchmark::RegisterBenchmark(triad ? "bandwidth/triad" : "bandwidth/copy", BM_Bandwidth, triad)
+        ->UseManualTime()
+        ->Iterations(1)
+        ->Unit(benchmark::kMillisecond);
+  for (Case c : {Case::Immediate, Case::Batched, Case::Fill})
+    for (int threads : {1, 2})
+      for (const bool peer : {true, false})  // the peer first, so that the Tessera run can report the ratio
+        benchmark::RegisterBenchmark(
+            fmt::format("{}/{}/threads:{}", case_name(c), peer ? "llvmpipe" : "tessera", threads).c_str(),
+            peer ? BM_Llvmpipe : BM_Tessera, c, threads)
+            ->UseManualTime()
+            ->Iterations(1)
+            ->Unit(benchmark::kMillisecond);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  const double load_before = load_average();
+  benchmark::RunSpecifiedBenchmarks();
+  std::printf("\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s)\n",
+              load_before, load_average(), g_bandwidth / 1e9);
+  std::printf("%-16s %14s %14s %8s %10s\n", "case/threads", "llvmpipe", "tessera", "ratio", "bw_share");
+  for (const auto& [name, r] : g_rates) {
+    const bool fill = name.rfind("fill", 0) == 0;
+    std::printf("%-16s %14.4g %14.4g %8.2f %10s\n", name.c_str(), r.llvmpipe, r.tessera,
+                r.llvmpipe > 0 ? r.tessera / r.llvmpipe : 0.0,
+                fill && g_bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / g_bandwidth).c_str() : "");
+  }
+  benchmark::Shutdown();
+  return 0;
+}
