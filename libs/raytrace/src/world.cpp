@@ -1,0 +1,168 @@
+// The world: shapes and meshes under a top-level BVH, with motion by transforming rays.
+#include "tessera/raytrace/world.hpp"
+
+#include "tessera/accel/bvh.hpp"
+#include "tessera/accel/mesh_accel.hpp"
+#include "tessera/core/error.hpp"
+#include "tessera/math/transform.hpp"
+
+namespace tessera {
+
+struct World::MeshData {
+  TriMesh mesh;  // world-space copy, for normals and uvs
+  MeshAccel accel;
+};
+
+World::World() = default;
+World::~World() = default;
+World::World(World&&) noexcept = default;
+World& World::operator=(World&&) noexcept = default;
+
+namespace {
+
+/// M(t) M0^-1: where the object's time-0 placement goes at time t (see Motion).
+Mat4f motion_delta(const Motion& m, const Mat4f& start, const Mat4f& start_inverse, float t) {
+  Mat4f placed = start;
+  if (m.has_end) placed = (1.0f - t) * start + t * Mat4f(m.end_transform);
+  Mat4f delta = placed * start_inverse;
+  delta[3] += Vec4f(t * m.velocity, 0.0f);
+  return delta;
+}
+
+}  // namespace
+
+int World::add_shape(const Shape& shape, const Mat4& to_world, int material, const Motion& motion) {
+  Object o{Instance(shape, to_world), material, motion};
+  o.start = Mat4f(to_world);
+  o.start_inverse = glm::inverse(o.start);
+  o.is_plane = std::holds_alternative<Plane>(shape);
+  objects_.push_back(std::move(o));
+  return size() - 1;
+}
+
+int World::add_mesh(const TriMesh& mesh, const Mat4& to_world, int material, const Motion& motion) {
+  if (mesh.triangle_count() == 0) throw InvalidInput("a mesh object has no triangles");
+  if (std::abs(glm::determinant(to_world)) < 1e-300) throw InvalidInput("a mesh object's transform is singular");
+  auto data = std::make_shared<MeshData>();
+  data->mesh = mesh;
+  for (auto& p : data->mesh.positions) p = transform_point(to_world, p);
+  const Mat3 nm = glm::transpose(glm::inverse(Mat3(to_world)));
+  for (auto& n : data->mesh.normals) n = glm::normalize(nm * n);
+  data->accel = MeshAccel(data->mesh);
+  Object o{std::shared_ptr<const MeshData>(std::move(data)), material, motion};
+  o.start = Mat4f(to_world);
+  o.start_inverse = glm::inverse(o.start);
+  objects_.push_back(std::move(o));
+  return size() - 1;
+}
+
+void World::set_casts_shadows(int index, bool casts) { objects_.at(size_t(index)).casts_shadows = casts; }
+
+AABB World::object_bounds(const Object& o) const {
+  const AABB box = std::holds_alternative<Instance>(o.geometry)
+                       ? std::get<Instance>(o.geometry).bounds()
+                       : std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.bvh().bounds();
+  if (!o.motion.moving()) return box;
+  // Points move affinely in t under the interpolated placement, so the boxes at t = 0 and t = 1 bound the sweep.
+  AABB swept = box;
+  const Mat4f end = motion_delta(o.motion, o.start, o.start_inverse, 1.0f);
+  for (int c = 0; c < 8; ++c) {
+    const Vec3f p((c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 4) ? box.hi.z : box.lo.z);
+    swept.expand(Vec3f(end * Vec4f(p, 1.0f)));
+  }
+  return swept;
+}
+
+void World::build() {
+  std::vector<AABB> boxes;
+  bvh_objects_.clear();
+  planes_.clear();
+  for (int i = 0; i < size(); ++i) {
+    if (objects_[size_t(i)].is_plane) {
+      planes_.push_back(i);
+    } else {
+      bvh_objects_.push_back(i);
+      boxes.push_back(object_bounds(objects_[size_t(i)]));
+    }
+  }
+  BvhSettings settings;
+  settings.max_leaf_size = 2;
+  bvh_ = std::make_unique<Bvh>(boxes, settings);
+}
+
+AABB World::bounds() const { return bvh_ ? bvh_->bounds() : AABB{}; }
+
+bool World::intersect_object(const Object& o, Ray& ray, Hit& hit) const {
+  Ray r = ray;
+  Mat4f delta(1.0f);
+  const bool moving = o.motion.moving();
+  if (moving) {  // carry the ray into the object's time-0 placement (direction unnormalized, so t is unchanged)
+    delta = motion_delta(o.motion, o.start, o.start_inverse, ray.time);
+    const Mat4f inv = glm::inverse(delta);
+    r.origin = Vec3f(inv * Vec4f(ray.origin, 1.0f));
+    r.dir = Vec3f(inv * Vec4f(ray.dir, 0.0f));
+  }
+  bool found;
+  if (const auto* inst = std::get_if<Instance>(&o.geometry)) {
+    found = inst->intersect(r, hit);
+  } else {
+    found = std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.intersect(r, hit);
+  }
+  if (!found) return false;
+  if (moving) {
+    hit.point = ray.at(hit.t);
+    hit.normal = glm::normalize(glm::transpose(glm::inverse(Mat3f(delta))) * hit.normal);
+  }
+  ray.tmax = hit.t;
+  return true;
+}
+
+void World::finish_hit(const Object& o, SurfaceHit& h) const {
+  h.shading_normal = h.hit.normal;
+  h.uv = h.hit.uv;
+  if (const auto* mesh = std::get_if<std::shared_ptr<const MeshData>>(&o.geometry)) {
+    const TriMesh& m = (*mesh)->mesh;
+    const uint32_t* idx = &m.indices[size_t(h.hit.prim) * 3];
+    const float b1 = h.hit.uv.x, b2 = h.hit.uv.y, b0 = 1.0f - b1 - b2;
+    // A mesh that changes placement over the shutter keeps its geometric normal (its vertex normals are time-0's).
+    if (!o.motion.has_end) h.shading_normal = shading_normal(m, h.hit);
+    h.uv = m.uvs.empty() ? Vec2f(b1, b2)
+                         : b0 * Vec2f(m.uvs[idx[0]]) + b1 * Vec2f(m.uvs[idx[1]]) + b2 * Vec2f(m.uvs[idx[2]]);
+  }
+}
+
+bool World::intersect(Ray& ray, SurfaceHit& out) const {
+  TESSERA_CHECK(bvh_ != nullptr);
+  Hit hit;
+  int object = -1;
+  for (int i : planes_)
+    if (intersect_object(objects_[size_t(i)], ray, hit)) object = i;
+  bvh_->intersect(ray, [&](int prim, Ray& r) {
+    const int i = bvh_objects_[size_t(prim)];
+    if (!intersect_object(objects_[size_t(i)], r, hit)) return false;
+    object = i;
+    return true;
+  });
+  if (object < 0) return false;
+  out.hit = hit;
+  out.object = object;
+  finish_hit(objects_[size_t(object)], out);
+  return true;
+}
+
+bool World::occluded(const Ray& ray) const {
+  TESSERA_CHECK(bvh_ != nullptr);
+  Hit hit;
+  for (int i : planes_) {
+    Ray r = ray;
+    if (objects_[size_t(i)].casts_shadows && intersect_object(objects_[size_t(i)], r, hit)) return true;
+  }
+  return bvh_->occluded(ray, [&](int prim, Ray& r) {
+    const Object& o = objects_[size_t(bvh_objects_[size_t(prim)])];
+    if (!o.casts_shadows) return false;
+    Ray copy = r;
+    return intersect_object(o, copy, hit);
+  });
+}
+
+}  // namespace tessera
