@@ -35,8 +35,8 @@ class MeshAccel {
   std::vector<PackedTriangle> tris_;
 };
 
-/// The smooth (interpolated, normalized) vertex normal at a mesh hit (hit.prim, hit.uv as MeshAccel fills them), or
-/// hit.normal when the mesh has no vertex normals. Flipped to the side of the geometric normal.
+/// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel
+/// fills them) and normalized, or hit.normal when the mesh has no per-vertex normals.
 Vec3f shading_normal(const TriMesh& mesh, const Hit& hit);
 
 }  // namespace tessera

@@ -1,0 +1,402 @@
+// BVH construction: binned SAH top-down (Wald 2007, "On fast construction of SAH-based bounding volume hierarchies")
+// and the notes' bottom-up build by locally-ordered agglomerative clustering (Meister and Bittner 2017, PLOC).
+#include "tessera/accel/bvh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_sort.h>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera {
+
+namespace {
+
+/// A primitive during the build: its box, twice its centroid (lo + hi, enough for binning) and its index.
+struct PrimRef {
+  AABB box;
+  Vec3f centroid2;
+  int index;
+};
+
+/// Box and centroid bounds of a range of references.
+struct RangeBounds {
+  AABB box, centroids;
+  void add(const PrimRef& r) {
+    box.expand(r.box);
+    centroids.expand(r.centroid2);
+  }
+  void add(const RangeBounds& o) {
+    box.expand(o.box);
+    centroids.expand(o.centroids);
+  }
+};
+
+constexpr int kParallelPrims = 4096;     // ranges above this build their two halves as parallel tasks
+constexpr int kParallelBinning = 65536;  // ranges above this bin in parallel
+constexpr int kMaxBins = 64;
+constexpr int kMaxLeafCount = 65535;     // BvhNode::count is 16 bits
+constexpr int kMedianLevel = 36;        // below this level splits are object medians (depth <= 36 + log2 n)
+
+/// Min/max and integer sums are exact in any order, so the parallel reductions below give the same tree for any
+/// thread count.
+RangeBounds range_bounds(const PrimRef* refs, int n) {
+  auto body = [refs](const tbb::blocked_range<int>& r, RangeBounds acc) {
+    for (int i = r.begin(); i < r.end(); ++i) acc.add(refs[i]);
+    return acc;
+  };
+  if (n < kParallelBinning) return body(tbb::blocked_range<int>(0, n), RangeBounds{});
+  return tbb::parallel_reduce(tbb::blocked_range<int>(0, n, 8192), RangeBounds{}, body,
+                              [](RangeBounds a, const RangeBounds& b) {
+                                a.add(b);
+                                return a;
+                              });
+}
+
+/// Per-axis SAH bins.
+struct Bins {
+  AABB box[3][kMaxBins];
+  int count[3][kMaxBins] = {};
+  void add(const Bins& o, int bins) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < bins; ++b) {
+        box[a][b].expand(o.box[a][b]);
+        count[a][b] += o.count[a][b];
+      }
+  }
+};
+
+/// A split: axis, first bin of the right side (-1: none, the centroids coincide), SAH cost and the binning scale.
+struct Split {
+  int axis = 0, bin = -1;
+  float cost = std::numeric_limits<float>::infinity();
+  float scale = 0;
+};
+
+class SahBuilder {
+ public:
+  SahBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
+
+  /// Builds the subtree of refs[begin, end) into out (depth-first, its root first); returns its depth.
+  int build(int begin, int end, std::vector<BvhNode>& out, int level = 0) const {
+    const int n = end - begin;
+    const RangeBounds rb = range_bounds(refs_.data() + begin, n);
+    const int self = int(out.size());
+    out.push_back(BvhNode{rb.box, begin, uint16_t(0), uint16_t(0)});
+    const Split split = n > 1 ? find_split(begin, n, rb) : Split{};
+    const bool fits = n <= s_.max_leaf_size;
+    if (n == 1 || (fits && s_.intersection_cost * float(n) <= split.cost)) {
+      out[self].count = uint16_t(n);
+      return 1;
+    }
+    int mid;
+    int axis = split.axis;
+    if (level >= kMedianLevel) {  // guards the depth bound on adversarial inputs: object median on the longest axis
+      axis = rb.centroids.longest_axis();
+      mid = begin + n / 2;
+      std::nth_element(refs_.data() + begin, refs_.data() + mid, refs_.data() + end,
+                       [axis](const PrimRef& a, const PrimRef& b) {
+                         return a.centroid2[axis] < b.centroid2[axis] ||
+                                (a.centroid2[axis] == b.centroid2[axis] && a.index < b.index);
+                       });
+    } else if (split.bin >= 0) {
+      const float lo = rb.centroids.lo[axis];
+      PrimRef* p = std::partition(refs_.data() + begin, refs_.data() + end, [&](const PrimRef& r) {
+        return bin_of(r.centroid2[axis], lo, split.scale) < split.bin;
+      });
+      mid = int(p - refs_.data());
+    } else {  // every centroid coincides and the range is too large for a leaf: halve it
+      axis = rb.box.longest_axis();
+      mid = begin + n / 2;
+    }
+    out[self].axis = uint16_t(axis);
+    int depth_left = 0, depth_right = 0;
+    if (n > kParallelPrims) {
+      std::vector<BvhNode> right;
+      tbb::parallel_invoke([&] { depth_left = build(begin, mid, out, level + 1); },
+                         [&] { depth_right = build(mid, end, right, level + 1); });
+      const int offset = int(out.size());
+      for (BvhNode& node : right)
+        if (node.count == 0) node.first += offset;
+      out[self].first = offset;
+      out.insert(out.end(), right.begin(), right.end());
+    } else {
+      depth_left = build(begin, mid, out, level + 1);
+      out[self].first = int(out.size());
+      depth_right = build(mid, end, out, level + 1);
+    }
+    return 1 + std::max(depth_left, depth_right);
+  }
+
+ private:
+  static int bin_of(float c, float lo, float scale) { return int((c - lo) * scale); }
+
+  /// The least-cost split among the bin boundaries of the three axes.
+  Split find_split(int begin, int n, const RangeBounds& rb) const {
+    const int nb = s_.bins;
+    const Vec3f clo = rb.centroids.lo, cext = rb.centroids.extent();
+    Vec3f scale;  // slightly below bins / extent, so the largest centroid falls in the last bin
+    for (int a = 0; a < 3; ++a) scale[a] = cext[a] > 0 ? float(nb) * (1.0f - 1e-5f) / cext[a] : 0.0f;
+    const PrimRef* refs = refs_.data() + begin;
+    auto bin_range = [&](const tbb::blocked_range<int>& r, Bins acc) {
+      for (int i = r.begin(); i < r.end(); ++i)
+        for (int a = 0; a < 3; ++a) {
+          const int b = std::min(nb - 1, bin_of(refs[i].centroid2[a], clo[a], scale[a]));
+          acc.box[a][b].expand(refs[i].box);
+          ++acc.count[a][b];
+        }
+      return acc;
+    };
+    const Bins bins = n < kParallelBinning ? bin_range(tbb::blocked_range<int>(0, n), Bins{})
+                                           : tbb::parallel_reduce(tbb::blocked_range<int>(0, n, 8192), Bins{},
+                                                                  bin_range, [nb](Bins a, const Bins& b) {
+                                                                    a.add(b, nb);
+                                                                    return a;
+                                                                  });
+    const float inv_area = 1.0f / rb.box.area();
+    Split best;
+    for (int a = 0; a < 3; ++a) {
+      if (!(cext[a] > 0)) continue;
+      // Sweep from the right for the areas and counts of the right sides, then from the left.
+      float right_area[kMaxBins];
+      int right_count[kMaxBins];
+      AABB acc;
+      int cnt = 0;
+      for (int b = nb - 1; b > 0; --b) {
+        acc.expand(bins.box[a][b]);
+        cnt += bins.count[a][b];
+        right_area[b] = acc.area();
+        right_count[b] = cnt;
+      }
+      acc = AABB{};
+      cnt = 0;
+      for (int b = 1; b < nb; ++b) {
+        acc.expand(bins.box[a][b - 1]);
+        cnt += bins.count[a][b - 1];
+        if (cnt == 0 || right_count[b] == 0) continue;
+        // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
+        const float cost = s_.traversal_cost + s_.intersection_cost * inv_area *
+                                                   (acc.area() * float(cnt) + right_area[b] * float(right_count[b]));
+        if (cost < best.cost) best = Split{a, b, cost, scale[a]};
+      }
+    }
+    return best;
+  }
+
+  const BvhSettings& s_;
+  std::vector<PrimRef>& refs_;
+};
+
+/// Spreads the low 10 bits of v to every third bit (for 30-bit Morton codes).
+uint32_t spread_bits(uint32_t v) {
+  v = (v | (v << 16)) & 0x030000FF;
+  v = (v | (v << 8)) & 0x0300F00F;
+  v = (v | (v << 4)) & 0x030C30C3;
+  v = (v | (v << 2)) & 0x09249249;
+  return v;
+}
+
+/// The notes' bottom-up build ("pair the 2 nearest objects, then the boxes containing smaller boxes"), made
+/// O(n log n)-ish by PLOC: clusters kept in Morton order, each looks for its nearest cluster (the one whose union box
+/// has the least area) within `kRadius` places on either side, and mutual nearest pairs merge, until one is left.
+class BottomUpBuilder {
+ public:
+  BottomUpBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
+
+  /// Returns the depth; fills nodes (depth-first) and reorders refs_ into leaf order.
+  int build(std::vector<BvhNode>& nodes) {
+    const int n = int(refs_.size());
+    sort_by_morton();
+    tree_.reserve(2 * size_t(n));
+    for (int i = 0; i < n; ++i) tree_.push_back(TreeNode{refs_[i].box, -1, -1, i, 1, 0});
+    std::vector<int> clusters(static_cast<size_t>(n)), nearest(static_cast<size_t>(n)), next;
+    std::iota(clusters.begin(), clusters.end(), 0);
+    while (clusters.size() > 1) {
+      const int m = int(clusters.size());
+      tbb::parallel_for(tbb::blocked_range<int>(0, m, 1024), [&](const tbb::blocked_range<int>& r) {
+        for (int i = r.begin(); i < r.end(); ++i) nearest[size_t(i)] = nearest_in_window(clusters, i);
+      });
+      next.clear();
+      for (int i = 0; i < m; ++i) {
+        const int j = nearest[size_t(i)];
+        if (nearest[size_t(j)] == i) {
+          if (i < j) next.push_back(merge(clusters[size_t(i)], clusters[size_t(j)]));
+        } else {
+          next.push_back(clusters[size_t(i)]);
+        }
+      }
+      clusters.swap(next);
+    }
+    // Collapse small subtrees into leaves where the SAH says a leaf is cheaper, then flatten depth-first.
+    sah_collapse(clusters[0]);
+    std::vector<PrimRef> ordered;
+    ordered.reserve(size_t(n));
+    const int depth = flatten(clusters[0], nodes, ordered);
+    refs_.swap(ordered);
+    return depth;
+  }
+
+ private:
+  struct TreeNode {
+    AABB box;
+    int left, right;  ///< children (-1 for a primitive)
+    int prim;         ///< index into refs_ (leaves)
+    int count;        ///< primitives below
+    float cost;       ///< SAH cost of the subtree (area-weighted, unnormalized)
+  };
+  static constexpr int kRadius = 8;
+
+  void sort_by_morton() {
+    AABB cb;
+    for (const PrimRef& r : refs_) cb.expand(r.centroid2);
+    const Vec3f ext = cb.extent();
+    std::vector<std::pair<uint32_t, int>> keys(refs_.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, refs_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) {
+        uint32_t code = 0;
+        for (int a = 0; a < 3; ++a) {
+          const float u = ext[a] > 0 ? (refs_[i].centroid2[a] - cb.lo[a]) / ext[a] : 0.0f;
+          code |= spread_bits(uint32_t(std::clamp(u * 1024.0f, 0.0f, 1023.0f))) << (2 - a);
+        }
+        keys[i] = {code, int(i)};
+      }
+    });
+    tbb::parallel_sort(keys.begin(), keys.end());  // pairs are distinct, so the order is unique
+    std::vector<PrimRef> sorted(refs_.size());
+    for (size_t i = 0; i < keys.size(); ++i) sorted[i] = refs_[size_t(keys[i].second)];
+    refs_.swap(sorted);
+  }
+
+  int nearest_in_window(const std::vector<int>& clusters, int i) const {
+    const int m = int(clusters.size());
+    const AABB& bi = tree_[size_t(clusters[size_t(i)])].box;
+    float best = std::numeric_limits<float>::infinity();
+    int best_j = i == 0 ? 1 : i - 1;
+    for (int j = std::max(0, i - kRadius); j <= std::min(m - 1, i + kRadius); ++j) {
+      if (j == i) continue;
+      AABB u = bi;
+      u.expand(tree_[size_t(clusters[size_t(j)])].box);
+      const float d = u.area();
+      if (d < best) {  // ties keep the smaller j, so mutual pairs are well defined
+        best = d;
+        best_j = j;
+      }
+    }
+    return best_j;
+  }
+
+  int merge(int a, int b) {
+    TreeNode node{tree_[size_t(a)].box, a, b, -1, tree_[size_t(a)].count + tree_[size_t(b)].count, 0};
+    node.box.expand(tree_[size_t(b)].box);
+    tree_.push_back(node);
+    return int(tree_.size()) - 1;
+  }
+
+  /// Fills cost bottom-up and turns subtrees into leaves (left = -2 marks a collapsed subtree) where cheaper.
+  float sah_collapse(int id) {
+    TreeNode& t = tree_[size_t(id)];
+    if (t.left < 0) return t.cost = s_.intersection_cost * t.box.area();
+    const float children = sah_collapse(t.left) + sah_collapse(tree_[size_t(id)].right);
+    TreeNode& u = tree_[size_t(id)];
+    const float area = u.box.area();
+    const float as_leaf = s_.intersection_cost * float(u.count) * area;
+    u.cost = s_.traversal_cost * area + children;
+    if (u.count <= s_.max_leaf_size && as_leaf <= u.cost) {
+      u.cost = as_leaf;
+      u.prim = -2;  // collapsed
+    }
+    return u.cost;
+  }
+
+  void gather(int id, std::vector<PrimRef>& ordered) const {
+    const TreeNode& t = tree_[size_t(id)];
+    if (t.left < 0) {
+      ordered.push_back(refs_[size_t(t.prim)]);
+      return;
+    }
+    gather(t.left, ordered);
+    gather(t.right, ordered);
+  }
+
+  int flatten(int id, std::vector<BvhNode>& nodes, std::vector<PrimRef>& ordered) const {
+    const TreeNode& t = tree_[size_t(id)];
+    const int self = int(nodes.size());
+    nodes.push_back(BvhNode{t.box, int(ordered.size()), 0, 0});
+    if (t.left < 0 || t.prim == -2) {
+      gather(id, ordered);
+      nodes[size_t(self)].count = uint16_t(t.count);
+      return 1;
+    }
+    // Order the children along the axis that separates their centers most (for near-child-first traversal).
+    int first = t.left, second = t.right;
+    const Vec3f d = tree_[size_t(second)].box.center() - tree_[size_t(first)].box.center();
+    const Vec3f ad = glm::abs(d);
+    const int axis = ad.x >= ad.y && ad.x >= ad.z ? 0 : (ad.y >= ad.z ? 1 : 2);
+    if (d[axis] < 0) std::swap(first, second);
+    nodes[size_t(self)].axis = uint16_t(axis);
+    const int dl = flatten(first, nodes, ordered);
+    nodes[size_t(self)].first = int(nodes.size());
+    const int dr = flatten(second, nodes, ordered);
+    return 1 + std::max(dl, dr);
+  }
+
+  const BvhSettings& s_;
+  std::vector<PrimRef>& refs_;
+  std::vector<TreeNode> tree_;
+};
+
+}  // namespace
+
+Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : settings_(settings) {
+  if (!(settings.max_leaf_size >= 1 && settings.max_leaf_size <= kMaxLeafCount))
+    throw InvalidInput("BvhSettings: max_leaf_size must be in [1, 65535], got " +
+                       std::to_string(settings.max_leaf_size));
+  if (!(settings.bins >= 2 && settings.bins <= kMaxBins))
+    throw InvalidInput("BvhSettings: bins must be in [2, 64], got " + std::to_string(settings.bins));
+  if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
+    throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
+  std::vector<PrimRef> refs;
+  refs.reserve(prim_bounds.size());
+  for (size_t i = 0; i < prim_bounds.size(); ++i) {
+    const AABB& b = prim_bounds[i];
+    if (b.empty()) continue;  // never hit
+    if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) || !std::isfinite(b.hi.x) ||
+        !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z))
+      throw InvalidInput("Bvh: primitive " + std::to_string(i) + " has a non-finite box (planes cannot go in a BVH)");
+    refs.push_back(PrimRef{b, b.lo + b.hi, int(i)});
+  }
+  if (refs.empty()) return;
+  if (settings.build == BvhSettings::Build::bottom_up) {
+    depth_ = BottomUpBuilder(settings_, refs).build(nodes_);
+    if (depth_ > kMaxDepth) {  // a degenerate input can chain clusters: fall back to the top-down build
+      nodes_.clear();
+      for (PrimRef& r : refs) r.centroid2 = r.box.lo + r.box.hi;
+    }
+  }
+  if (nodes_.empty()) {
+    nodes_.reserve(2 * refs.size() / size_t(std::max(1, settings.max_leaf_size / 2)) + 1);
+    depth_ = SahBuilder(settings_, refs).build(0, int(refs.size()), nodes_);
+  }
+  TESSERA_CHECK_LE(depth_, kMaxDepth);
+  prim_indices_.resize(refs.size());
+  for (size_t i = 0; i < refs.size(); ++i) prim_indices_[i] = refs[i].index;
+}
+
+float Bvh::sah_cost() const {
+  if (nodes_.empty()) return 0;
+  const float inv_root = 1.0f / nodes_[0].box.area();
+  double cost = 0;
+  for (const BvhNode& n : nodes_)
+    cost += double(n.box.area() * inv_root) *
+            (n.count > 0 ? settings_.intersection_cost * float(n.count) : settings_.traversal_cost);
+  return float(cost);
+}
+
+}  // namespace tessera
