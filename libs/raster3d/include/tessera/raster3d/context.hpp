@@ -1,0 +1,168 @@
+#pragma once
+// raster3d::Context: the state of an OpenGL 1.x-like pipeline, owned by one object (two contexts never interfere):
+// projection and model-view matrix stacks, current color/normal/texcoord, lights, material, depth/cull/shading
+// state, the hidden-surface method, and the Framebuffer. Immediate mode (begin/vertex/end) buffers vertices into a
+// batch that is drawn through the same path as draw(mesh) when the state changes or the frame is read.
+//
+// The gt layer (gt.hpp) is a thin set of the notes' functions over the current Context.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "tessera/math/matrix_stack.hpp"
+#include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/raster3d/framebuffer.hpp"
+#include "tessera/raster3d/lighting.hpp"
+#include "tessera/raster3d/pipeline.hpp"
+
+namespace tessera::raster3d {
+
+/// OpenGL's primitive kinds for begin(). Triangles made from strips, fans, quads and polygons keep OpenGL's provoking
+/// vertex (the last of each triangle, the last of each quad, the first of a polygon).
+enum class Primitive { points, lines, line_strip, line_loop, triangles, triangle_strip, triangle_fan, quads, polygon };
+
+/// Which matrix stack the matrix calls change (glMatrixMode).
+enum class MatrixMode { projection, model_view };
+
+/// How hidden surfaces are removed: the z-buffer, or the painter's algorithm (each draw's triangles sorted by
+/// average depth and drawn far to near; a batch of immediate-mode shapes is one draw).
+enum class HiddenSurface { zbuffer, painter };
+
+/// Float copies of a mesh's arrays, ready for the pipeline (build once, draw many times).
+struct VertexArrays {
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;  ///< per vertex, or empty (the current normal)
+  std::vector<Vec3f> colors;   ///< per vertex, or empty (the current color)
+  std::vector<Vec2f> uvs;      ///< per vertex, or empty
+  std::vector<uint32_t> indices;  ///< 3 per triangle
+
+  /// The arrays of `mesh` in float. Throws InvalidInput when an attribute array's size differs from the positions'.
+  static VertexArrays from_mesh(const TriMesh& mesh);
+  /// The attribute pointers the shaders read.
+  VertexAttributes attributes() const;
+};
+
+/// An OpenGL 1.x-style rendering context with its own framebuffer.
+class Context {
+ public:
+  /// A context drawing into a width x height framebuffer (cleared black, depth 1), identity matrices, GL defaults:
+  /// depth test on with `less`, no culling, Gouraud shading with lighting off (unlit), GL_LIGHT0 on.
+  Context(int width, int height);
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  /// Resizes (a new cleared framebuffer) and resets all state to the defaults.
+  void initialize(int width, int height);
+
+  /// The framebuffer, after drawing everything pending (flush()).
+  Framebuffer& framebuffer();
+  /// Draws the pending immediate-mode batch (glFlush); every state change calls it first.
+  void flush();
+  /// flush(), then presents the back buffer (Framebuffer::swap).
+  void swap_buffers();
+  /// Clears the color buffer to `color` and the depth buffer to 1.0.
+  void clear(const Vec3f& color);
+
+  // ---- Matrices (CTM = CTM * T: the call written last acts first) ----
+  /// Selects the stack the matrix calls below change.
+  void matrix_mode(MatrixMode mode);
+  void push_matrix();
+  /// Throws InvalidInput on underflow.
+  void pop_matrix();
+  void load_identity();
+  void load_matrix(const Mat4& m);
+  void mult_matrix(const Mat4& m);
+  void translate(double x, double y, double z);
+  void scale(double x, double y, double z);
+  /// Rotations in radians, counterclockwise looking down the axis toward the origin.
+  void rotate_x(double angle);
+  void rotate_y(double angle);
+  void rotate_z(double angle);
+  void rotate(double angle, const Vec3& axis);
+  /// Multiplies the model-view matrix by the view matrix look_at(eye, center, up) (the notes' camera()).
+  void look_at(const Vec3& eye, const Vec3& center, const Vec3& up);
+  /// Replaces the projection matrix with ortho(l, r, b, t, n, f).
+  void ortho(double l, double r, double b, double t, double n, double f);
+  /// Replaces the projection matrix with perspective(fovy, aspect, n, f); aspect <= 0 uses the viewport's.
+  void perspective(double fovy, double n, double f, double aspect = 0);
+  const Mat4& projection() const { return projection_.top(); }
+  const Mat4& model_view() const { return model_view_.top(); }
+
+  // ---- Current attributes ----
+  void color(const Vec3f& c) { current_color_ = c; }
+  void normal(const Vec3f& n) { current_normal_ = n; }
+  void texcoord(const Vec2f& uv) { current_uv_ = uv; }
+
+  // ---- State ----
+  /// glViewport, in window coordinates (origin bottom-left); a zero size is the whole framebuffer.
+  void viewport(int x, int y, int width, int height);
+  void depth_test(bool on);
+  void depth_func(DepthFunc func);
+  void depth_write(bool on);
+  void cull(CullMode mode);
+  void shading(ShadingModel model);
+  ShadingModel shading() const { return shading_; }
+  void hidden_surface(HiddenSurface method);
+  void material(const Material& m);
+  void specular_model(SpecularModel model);
+  void light_model_ambient(const Vec3f& ambient);
+  void color_material(bool on);
+  /// Sets light i (0..7); its position is transformed by the current model-view matrix, as glLight. Throws
+  /// InvalidInput for i outside [0, kMaxLights).
+  void light(int i, const Light& light);
+  /// Turns light i on or off (GL_LIGHTi). Light 0 is on by default.
+  void enable_light(int i, bool on);
+
+  // ---- Immediate mode ----
+  /// glBegin. Throws InvalidInput when a primitive is already open.
+  void begin(Primitive kind);
+  /// glVertex: a vertex with the current normal, color and texcoord. Throws InvalidInput outside begin/end.
+  void vertex(double x, double y, double z);
+  /// glEnd: assembles the primitive (an incomplete last triangle/line is dropped). Throws InvalidInput without begin.
+  void end();
+
+  // ---- Batched ----
+  /// Draws the mesh's triangles with the current matrices, material, lights and state (normals/colors absent in the
+  /// mesh are the current ones).
+  void draw(const TriMesh& mesh);
+  /// The same from float arrays prepared once.
+  void draw(const VertexArrays& arrays);
+  /// Draws the edges of the mesh's triangles as lines (each shared edge once).
+  void draw_wireframe(const TriMesh& mesh);
+
+  /// Totals since the last initialize().
+  const DrawStats& stats() const { return stats_; }
+
+ private:
+  void draw_triangle_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
+                            std::span<const uint32_t> indices);
+  void draw_line_arrays(const VertexAttributes& attributes, uint32_t vertex_count, std::span<const uint32_t> indices);
+  void draw_point_arrays(const VertexAttributes& attributes, uint32_t vertex_count, std::span<const uint32_t> indices);
+  FixedFunctionUniforms uniforms() const;
+  RasterState raster_state() const;
+  MatrixStack3& current_stack();
+  void assemble_shape();
+
+  Framebuffer framebuffer_;
+  MatrixStack3 projection_, model_view_;
+  MatrixMode matrix_mode_ = MatrixMode::model_view;
+  Vec3f current_color_{1, 1, 1}, current_normal_{0, 0, 1};
+  Vec2f current_uv_{0, 0};
+  RasterState state_;
+  ShadingModel shading_ = ShadingModel::unlit;
+  HiddenSurface hidden_surface_ = HiddenSurface::zbuffer;
+  Lighting lighting_;
+  std::array<Light, kMaxLights> lights_{};
+  std::array<bool, kMaxLights> light_on_{};
+  DrawStats stats_;
+
+  // Immediate mode: the open shape's vertices, and the batch of assembled primitives waiting to be drawn.
+  bool in_shape_ = false;
+  Primitive shape_kind_ = Primitive::triangles;
+  uint32_t shape_first_ = 0;  // first vertex of the open shape in batch_
+  VertexArrays batch_;
+  std::vector<uint32_t> batch_lines_, batch_points_;
+};
+
+}  // namespace tessera::raster3d

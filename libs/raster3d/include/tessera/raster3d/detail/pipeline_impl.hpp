@@ -1,0 +1,388 @@
+#pragma once
+// The pipeline's implementation: the template parts (vertex stage, per-tile span loops) live here so the shaders
+// inline; clipping, triangle setup and binning do not depend on the shaders and live in src/pipeline.cpp.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <span>
+#include <vector>
+
+#include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
+#include "tessera/raster3d/framebuffer.hpp"
+#include "tessera/raster3d/shaders.hpp"
+
+namespace tessera::raster3d::detail {
+
+inline constexpr int kTileSize = 64;          // pixels per side of a binning tile
+inline constexpr int kMaxVaryings = 32;       // floats of varyings a shader may pass
+inline constexpr int kChunkTriangles = 4096;  // input triangles set up and binned by one task
+inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (bounds memory)
+
+/// An edge function in 1/256-pixel fixed point: at the center of GL pixel (i, j) it is
+/// E = 256 (a i + b j) + c, with the tie rule folded into c (a center on an exclusive edge gives -1). The pixel is
+/// inside the edge when E >= 0.
+struct Edge {
+  int64_t c;
+  int32_t a, b;
+};
+
+/// A triangle after clipping, viewport, snapping and setup: what the tiles rasterize.
+struct TriangleRecord {
+  Edge edges[3];
+  int32_t x0, y0, x1, y1;  // covered GL pixels lie in [x0, x1) x [y0, y1) (scissored)
+  double z0, zx, zy;       // window z at GL pixel center (px, py): z0 + zx px + zy py
+  float rx, ry;            // the varying planes' origin (window position of the first vertex)
+  uint32_t varyings;       // offset in the chunk's varyings: flat, N floats; else the planes c[N+1], cx[N+1], cy[N+1]
+                           // of 1/w and of each varying / w, so that value(px, py) = c + cx (px - rx) + cy (py - ry)
+};
+
+/// The triangles one setup task produced, and their per-tile lists (record indices in submission order).
+struct SetupChunk {
+  std::vector<TriangleRecord> records;
+  std::vector<float> varyings;
+  std::vector<std::vector<uint32_t>> bins;
+  uint64_t rasterized = 0;
+};
+
+/// Memory reused from draw to draw, owned by the Framebuffer.
+struct RasterScratch {
+  std::vector<float> vertices;     // vertex stage output: per vertex, clip position (4 floats) then the varyings
+  std::vector<uint32_t> order;     // painter's algorithm: the sorted triangle indices
+  std::vector<SetupChunk> chunks;  // kPassChunks of them
+};
+
+/// What setup needs to know about a draw.
+struct SetupParams {
+  const float* vertices;  // vertex stage output
+  int varying_count;      // N
+  bool flat, painter;
+  int cull;              // 0 none, 1 back, 2 front
+  int fb_width, fb_height;
+  int vx, vy, vw, vh;    // the viewport
+  int tiles_x, tiles_y;
+};
+
+/// Clips, culls, snaps and sets up `triangle_count` triangles of `indices` starting at triangle `first`, into
+/// scratch.chunks (one chunk per kChunkTriangles, in parallel), binning each record to the tiles it touches.
+void setup_pass(RasterScratch& scratch, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+                size_t triangle_count);
+
+/// The triangle indices reordered far to near by the window depth of each triangle's centroid (stable), into
+/// scratch.order.
+std::span<const uint32_t> painter_order(RasterScratch& scratch, const float* vertices, int stride,
+                                        std::span<const uint32_t> indices);
+
+/// Clips the segment a-b (clip position then `varying_count` floats each) to the clip volume. Returns false when
+/// nothing is left; otherwise a and b are replaced by the clipped end points.
+bool clip_segment(float* a, float* b, int varying_count);
+
+/// Throws InvalidInput unless indices.size() is a multiple of `arity` and every index is < vertex_count.
+void check_indices(std::span<const uint32_t> indices, uint32_t vertex_count, int arity, const char* what);
+
+/// The setup parameters of a draw.
+SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const float* vertices, int varying_count);
+
+/// A vertex after perspective divide and viewport: window x, y (GL, y up), z in [0, 1], and 1/w.
+struct WindowVertex {
+  float x, y, z, inv_w;
+};
+/// The perspective divide and viewport transform of a clip-space position (float32, as OpenGL).
+WindowVertex to_window(const SetupParams& params, const float* clip);
+
+/// The scissor rectangle in GL window pixels: viewport intersected with the framebuffer.
+struct Scissor {
+  int x0, y0, x1, y1;
+};
+Scissor scissor(const SetupParams& params);
+
+/// Runs the vertex shader on vertices [0, count) in parallel into scratch.vertices.
+template <class VS>
+const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& vs) {
+  using V = VaryingsOf<VS>;
+  constexpr int n = varying_count<V>;
+  static_assert(n <= kMaxVaryings, "too many varyings");
+  constexpr int stride = 4 + n;
+  scratch.vertices.resize(size_t(count) * stride);
+  float* out = scratch.vertices.data();
+  parallel_for(0, count, 1024, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      const auto v = vs(uint32_t(i));
+      float* d = out + i * stride;
+      const Vec4f p = v.position;
+      d[0] = p.x, d[1] = p.y, d[2] = p.z, d[3] = p.w;
+      if constexpr (n > 0) std::memcpy(d + 4, &v.varyings, sizeof(float) * n);
+    }
+  });
+  return out;
+}
+
+/// Whether a fragment of depth d passes against the stored depth s.
+template <DepthFunc F>
+inline bool depth_passes(uint32_t d, uint32_t s) {
+  if constexpr (F == DepthFunc::never) return false;
+  else if constexpr (F == DepthFunc::less) return d < s;
+  else if constexpr (F == DepthFunc::equal) return d == s;
+  else if constexpr (F == DepthFunc::lequal) return d <= s;
+  else if constexpr (F == DepthFunc::greater) return d > s;
+  else if constexpr (F == DepthFunc::notequal) return d != s;
+  else if constexpr (F == DepthFunc::gequal) return d >= s;
+  else return true;
+}
+
+/// Calls fn(std::integral_constant<DepthFunc, F>) for the runtime value f.
+template <class Fn>
+void dispatch_depth_func(DepthFunc f, Fn&& fn) {
+  switch (f) {
+    case DepthFunc::never: return fn(std::integral_constant<DepthFunc, DepthFunc::never>());
+    case DepthFunc::less: return fn(std::integral_constant<DepthFunc, DepthFunc::less>());
+    case DepthFunc::equal: return fn(std::integral_constant<DepthFunc, DepthFunc::equal>());
+    case DepthFunc::lequal: return fn(std::integral_constant<DepthFunc, DepthFunc::lequal>());
+    case DepthFunc::greater: return fn(std::integral_constant<DepthFunc, DepthFunc::greater>());
+    case DepthFunc::notequal: return fn(std::integral_constant<DepthFunc, DepthFunc::notequal>());
+    case DepthFunc::gequal: return fn(std::integral_constant<DepthFunc, DepthFunc::gequal>());
+    case DepthFunc::always: return fn(std::integral_constant<DepthFunc, DepthFunc::always>());
+  }
+}
+
+/// The covered pixels [lo, hi) of GL row j inside the record's three edges and [lo, hi).
+inline void edge_span(const TriangleRecord& r, int j, int& lo, int& hi) {
+  for (const Edge& e : r.edges) {
+    const int64_t e0 = int64_t(e.b) * 256 * j + e.c;  // E at i = 0
+    const int64_t step = int64_t(e.a) * 256;
+    // Doubles hold these integers exactly (|E| < 2^53) and the quotient's floor is exact: a non-integer quotient is
+    // at least 1/|step| away from an integer, far more than the division's rounding error.
+    if (step > 0) {
+      lo = std::max(lo, int(-std::floor(double(e0) / double(step))));  // i >= ceil(-e0 / step)
+    } else if (step < 0) {
+      hi = std::min(hi, int(std::floor(double(e0) / double(-step))) + 1);  // i <= floor(e0 / -step)
+    } else if (e0 < 0) {
+      hi = lo;
+      return;
+    }
+  }
+}
+
+/// Rasterizes the records binned to `tile` of every chunk, in submission order.
+template <int N, class V, class FS, DepthFunc F>
+void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
+  RasterScratch& scratch = fb.scratch();
+  const int height = fb.height();
+  const int tx = tile % params.tiles_x, ty = tile / params.tiles_x;
+  const Scissor sc = scissor(params);
+  const int tile_x0 = std::max(sc.x0, tx * kTileSize), tile_x1 = std::min(sc.x1, tx * kTileSize + kTileSize);
+  const int tile_y0 = std::max(sc.y0, ty * kTileSize), tile_y1 = std::min(sc.y1, ty * kTileSize + kTileSize);
+  auto& color = fb.color();
+  auto& depth = fb.depth();
+  const bool write_depth = depth_write;
+  for (const SetupChunk& chunk : scratch.chunks) {
+    for (uint32_t index : chunk.bins[tile]) {
+      const TriangleRecord& r = chunk.records[index];
+      const float* data = chunk.varyings.data() + r.varyings;
+      const int x0 = std::max(tile_x0, r.x0), x1 = std::min(tile_x1, r.x1);
+      const int y0 = std::max(tile_y0, r.y0), y1 = std::min(tile_y1, r.y1);
+      if (x0 >= x1 || y0 >= y1) continue;
+      if (params.flat || N == 0) {
+        // Constant varyings: the fragment shader's answer is the same at every pixel.
+        V v{};
+        if constexpr (N > 0) std::memcpy(&v, data, sizeof(float) * N);
+        Vec3f c;
+        if (!fs(v, c)) continue;
+        const glm::u8vec4 c8 = to_color8(c);
+        for (int j = y0; j < y1; ++j) {
+          int lo = x0, hi = x1;
+          edge_span(r, j, lo, hi);
+          if (lo >= hi) continue;
+          uint32_t* drow = depth.row(height - 1 - j);
+          glm::u8vec4* crow = color.row(height - 1 - j);
+          const double zrow = r.z0 + r.zy * (j + 0.5);
+          for (int i = lo; i < hi; ++i) {
+            const uint32_t d = depth_to_unorm24(zrow + r.zx * (i + 0.5));
+            const bool pass = depth_passes<F>(d, drow[i]);
+            if (write_depth) drow[i] = pass ? d : drow[i];
+            crow[i] = pass ? c8 : crow[i];
+          }
+        }
+        continue;
+      }
+      const float* pc = data;
+      const float* px = data + (N + 1);
+      const float* py = data + 2 * (N + 1);
+      for (int j = y0; j < y1; ++j) {
+        int lo = x0, hi = x1;
+        edge_span(r, j, lo, hi);
+        if (lo >= hi) continue;
+        uint32_t* drow = depth.row(height - 1 - j);
+        glm::u8vec4* crow = color.row(height - 1 - j);
+        const double zrow = r.z0 + r.zy * (j + 0.5);
+        const float dy = float(j) + 0.5f - r.ry;
+        std::array<float, N + 1> row;
+        for (int k = 0; k <= N; ++k) row[k] = pc[k] + py[k] * dy;
+        for (int i = lo; i < hi; ++i) {
+          const uint32_t d = depth_to_unorm24(zrow + r.zx * (i + 0.5));
+          if (!depth_passes<F>(d, drow[i])) continue;
+          const float dx = float(i) + 0.5f - r.rx;
+          const float w = 1.0f / (row[0] + px[0] * dx);
+          std::array<float, N> values;
+          for (int k = 0; k < N; ++k) values[k] = (row[k + 1] + px[k + 1] * dx) * w;
+          V v;
+          std::memcpy(&v, values.data(), sizeof(float) * N);
+          Vec3f c;
+          if (!fs(v, c)) continue;
+          crow[i] = to_color8(c);
+          if (write_depth) drow[i] = d;
+        }
+      }
+    }
+  }
+}
+
+/// Depth-tests, shades and writes one fragment at GL pixel (i, j) (inside the scissor) with depth d and varyings.
+template <int N, class V, class FS, DepthFunc F>
+void shade_fragment(Framebuffer& fb, int i, int j, uint32_t d, const float* values, bool depth_write, const FS& fs) {
+  const int row = fb.height() - 1 - j;
+  uint32_t& stored = fb.depth()(i, row);
+  if (!depth_passes<F>(d, stored)) return;
+  V v{};
+  if constexpr (N > 0) std::memcpy(&v, values, sizeof(float) * N);
+  Vec3f c;
+  if (!fs(v, c)) return;
+  fb.color()(i, row) = to_color8(c);
+  if (depth_write) stored = d;
+}
+
+/// The state shared by the line and point drawers: depth function and write after the painter/depth-test switches.
+struct FragmentState {
+  DepthFunc func;
+  bool depth_write;
+};
+FragmentState fragment_state(const RasterState& state);
+
+/// Rasterizes the clipped segment a-b (clip position then N varyings each): one fragment per column (x-major) or
+/// row (y-major) whose center lies in [start, end); depth linear in window space, varyings perspective-correct.
+template <int N, class V, class FS, DepthFunc F>
+void raster_segment(Framebuffer& fb, const SetupParams& params, bool depth_write, const float* a, const float* b,
+                    const float* flat_values, const FS& fs) {
+  const WindowVertex wa = to_window(params, a), wb = to_window(params, b);
+  const Scissor sc = scissor(params);
+  const float dx = wb.x - wa.x, dy = wb.y - wa.y;
+  if (dx == 0 && dy == 0) return;
+  const bool x_major = std::abs(dx) >= std::abs(dy);
+  const float start = x_major ? wa.x : wa.y, delta = x_major ? dx : dy;
+  // Centers c = k + 0.5 with start <= c < end (or end < c <= start going backward).
+  const int k0 = delta > 0 ? int(std::ceil(start - 0.5f)) : int(std::floor(start + delta - 0.5f)) + 1;
+  const int k1 = delta > 0 ? int(std::ceil(start + delta - 0.5f)) : int(std::floor(start - 0.5f)) + 1;
+  std::array<float, N + 1> values{};
+  for (int k = k0; k < k1; ++k) {
+    const float t = (float(k) + 0.5f - start) / delta;
+    const int i = x_major ? k : int(std::floor(wa.x + t * dx));
+    const int j = x_major ? int(std::floor(wa.y + t * dy)) : k;
+    if (i < sc.x0 || i >= sc.x1 || j < sc.y0 || j >= sc.y1) continue;
+    const uint32_t d = depth_to_unorm24(double(wa.z) + double(t) * double(wb.z - wa.z));
+    const float* in = flat_values;
+    if (!flat_values) {
+      const float inv_w = wa.inv_w + t * (wb.inv_w - wa.inv_w);
+      for (int q = 0; q < N; ++q)
+        values[q] = (a[4 + q] * wa.inv_w + t * (b[4 + q] * wb.inv_w - a[4 + q] * wa.inv_w)) / inv_w;
+      in = values.data();
+    }
+    shade_fragment<N, V, FS, F>(fb, i, j, d, in, depth_write, fs);
+  }
+}
+
+}  // namespace tessera::raster3d::detail
+
+namespace tessera::raster3d {
+
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_lines(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                     std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
+  using V = VaryingsOf<VS>;
+  constexpr int n = varying_count<V>;
+  constexpr int stride = 4 + n;
+  detail::check_indices(indices, vertex_count, 2, "line");
+  DrawStats stats;
+  stats.primitives = indices.size() / 2;
+  if (indices.empty()) return stats;
+  detail::RasterScratch& scratch = framebuffer.scratch();
+  const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
+  const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
+  const detail::FragmentState fragment = detail::fragment_state(state);
+  detail::dispatch_depth_func(fragment.func, [&](auto f) {
+    for (size_t l = 0; l < indices.size(); l += 2) {
+      std::array<float, stride> a, b, provoking;
+      std::memcpy(a.data(), vertices + size_t(indices[l]) * stride, sizeof a);
+      std::memcpy(b.data(), vertices + size_t(indices[l + 1]) * stride, sizeof b);
+      provoking = b;
+      if (!detail::clip_segment(a.data(), b.data(), n)) continue;
+      ++stats.rasterized;
+      detail::raster_segment<n, V, FS, decltype(f)::value>(framebuffer, params, fragment.depth_write, a.data(),
+                                                          b.data(), state.flat ? provoking.data() + 4 : nullptr, fs);
+    }
+  });
+  return stats;
+}
+
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                      std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
+  using V = VaryingsOf<VS>;
+  constexpr int n = varying_count<V>;
+  constexpr int stride = 4 + n;
+  detail::check_indices(indices, vertex_count, 1, "point");
+  DrawStats stats;
+  stats.primitives = indices.size();
+  if (indices.empty()) return stats;
+  detail::RasterScratch& scratch = framebuffer.scratch();
+  const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
+  const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
+  const detail::Scissor sc = detail::scissor(params);
+  const detail::FragmentState fragment = detail::fragment_state(state);
+  detail::dispatch_depth_func(fragment.func, [&](auto f) {
+    for (uint32_t index : indices) {
+      const float* v = vertices + size_t(index) * stride;
+      const float w = v[3];
+      if (!(std::abs(v[0]) <= w && std::abs(v[1]) <= w && std::abs(v[2]) <= w)) continue;
+      const detail::WindowVertex wv = detail::to_window(params, v);
+      const int i = int(std::floor(wv.x)), j = int(std::floor(wv.y));
+      if (i < sc.x0 || i >= sc.x1 || j < sc.y0 || j >= sc.y1) continue;
+      ++stats.rasterized;
+      detail::shade_fragment<n, V, FS, decltype(f)::value>(framebuffer, i, j, depth_to_unorm24(wv.z), v + 4,
+                                                          fragment.depth_write, fs);
+    }
+  });
+  return stats;
+}
+
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                         std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
+  using V = VaryingsOf<VS>;
+  constexpr int n = varying_count<V>;
+  detail::check_indices(indices, vertex_count, 3, "triangle");
+  DrawStats stats;
+  stats.primitives = indices.size() / 3;
+  if (indices.empty()) return stats;
+  detail::RasterScratch& scratch = framebuffer.scratch();
+  const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
+  const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
+  if (state.painter) indices = detail::painter_order(scratch, vertices, 4 + n, indices);
+  const detail::FragmentState fragment = detail::fragment_state(state);
+  const size_t triangles = indices.size() / 3;
+  const size_t per_pass = size_t(detail::kChunkTriangles) * detail::kPassChunks;
+  const int tiles = params.tiles_x * params.tiles_y;
+  for (size_t first = 0; first < triangles; first += per_pass) {
+    detail::setup_pass(scratch, params, indices, first, std::min(per_pass, triangles - first));
+    for (const auto& chunk : scratch.chunks) stats.rasterized += chunk.rasterized;
+    detail::dispatch_depth_func(fragment.func, [&](auto f) {
+      parallel_for(0, tiles, 1, [&](int64_t begin, int64_t end) {
+        for (int64_t t = begin; t < end; ++t)
+          detail::raster_tile<n, V, FS, decltype(f)::value>(framebuffer, params, fragment.depth_write, int(t), fs);
+      });
+    });
+  }
+  return stats;
+}
+
+}  // namespace tessera::raster3d

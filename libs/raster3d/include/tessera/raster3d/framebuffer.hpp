@@ -1,0 +1,83 @@
+#pragma once
+// Framebuffer: the color and depth buffers the 3D pipeline draws into, double buffered (the notes' "Memory 1 used for
+// display, Memory 2 for creating the next image").
+//
+// Color is 8-bit RGBA, as an OpenGL RGBA8 framebuffer: a fragment's color is clamped to [0, 1] and rounded to
+// nearest when written, so results compare with Mesa pixel for pixel. Depth is a 24-bit unsigned normalized integer
+// per pixel (0 = near plane, 2^24 - 1 = far plane), gl-raster-conventions.md item 7. Both images keep row 0 at the
+// top (DESIGN.md section 3); the pipeline maps OpenGL's window row j (y up) to image row height - 1 - j.
+#include <cstdint>
+#include <memory>
+
+#include "tessera/image/image.hpp"
+#include "tessera/math/types.hpp"
+
+namespace tessera::raster3d {
+
+/// The largest 24-bit depth value: the cleared depth, 1.0 in window z.
+inline constexpr uint32_t kDepthMax = (1u << 24) - 1;
+
+/// Window z in [0, 1] to the stored 24-bit value, round(z (2^24 - 1)) with z clamped to [0, 1].
+inline uint32_t depth_to_unorm24(double z) {
+  z = z < 0 ? 0 : (z > 1 ? 1 : z);
+  return uint32_t(z * double(kDepthMax) + 0.5);
+}
+
+/// A linear float color in [0, 1] to 8-bit RGBA (clamped, rounded to nearest, alpha 255).
+inline glm::u8vec4 to_color8(const Vec3f& c) {
+  const auto q = [](float v) { return uint8_t(v <= 0 ? 0.f : v >= 1 ? 255.f : v * 255.f + 0.5f); };
+  return {q(c.x), q(c.y), q(c.z), 255};
+}
+
+namespace detail {
+struct RasterScratch;  // binning memory reused from draw to draw (pipeline.cpp)
+}  // namespace detail
+
+/// Color + depth buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
+class Framebuffer {
+ public:
+  /// A width x height framebuffer, color black, depth cleared to the far plane. Throws InvalidInput for sizes < 1.
+  Framebuffer(int width, int height);
+  ~Framebuffer();
+  Framebuffer(Framebuffer&&) noexcept;
+  Framebuffer& operator=(Framebuffer&&) noexcept;
+
+  int width() const { return color_.width(); }
+  int height() const { return color_.height(); }
+
+  /// The back color buffer (what drawing writes).
+  ImageRGBA8& color() { return color_; }
+  const ImageRGBA8& color() const { return color_; }
+  /// The depth buffer: 24-bit unorm values in uint32, row 0 at the top.
+  Image<uint32_t>& depth() { return depth_; }
+  const Image<uint32_t>& depth() const { return depth_; }
+  /// The front color buffer: what the last swap() presented.
+  const ImageRGBA8& front() const { return front_; }
+
+  /// Clears the back color buffer to `color` (glClearColor + glClear(GL_COLOR_BUFFER_BIT)).
+  void clear_color(const Vec3f& color);
+  /// Clears the depth buffer to window z `depth` (default the far plane, 1.0).
+  void clear_depth(double depth = 1.0);
+  /// Clears both buffers.
+  void clear(const Vec3f& color, double depth = 1.0) {
+    clear_color(color);
+    clear_depth(depth);
+  }
+  /// Exchanges back and front color buffers (double buffering); the new back buffer keeps the old front's pixels.
+  void swap();
+
+  /// The back color buffer as linear float RGB (for image files and comparisons).
+  ImageRGB color_rgb() const;
+  /// The depth buffer as window z in [0, 1] (value / (2^24 - 1)), for --depth-out PFM files.
+  DepthImage depth_image() const;
+
+  /// Internal: the pipeline's reusable binning memory.
+  detail::RasterScratch& scratch() { return *scratch_; }
+
+ private:
+  ImageRGBA8 color_, front_;
+  Image<uint32_t> depth_;
+  std::unique_ptr<detail::RasterScratch> scratch_;
+};
+
+}  // namespace tessera::raster3d

@@ -1,0 +1,131 @@
+#pragma once
+// Surface shading (the notes, "Surface Shading" and "Shiny Surfaces"): materials, lights, the shading equation, and
+// the fixed-function pipeline's lighting written as a built-in shader pair.
+//
+// The equation is OpenGL 1.x's (gl-raster-conventions.md item 8), which contains the notes' combined equation
+// C = C_r (C_a + C_L max(0, N.L)) + C_L C_H (H.N)^P as the case ambient = diffuse = C_r, specular = C_H:
+//   c = emission + ambient_m * model_ambient
+//       + sum over lights of [ ambient_m * ambient_l + max(N.L, 0) diffuse_m * diffuse_l
+//                              + [N.L > 0] spec^shininess specular_m * specular_l ]
+// with spec = max(H.N, 0) (Blinn, OpenGL's) or max(E.R, 0) (Phong, R = 2N(N.L) - L), E = (0, 0, 1) without a local
+// viewer (as OpenGL's default), clamped to [0, 1]. All vectors are in eye space.
+#include <array>
+#include <cstdint>
+
+#include "tessera/math/types.hpp"
+#include "tessera/raster3d/shaders.hpp"
+
+namespace tessera::raster3d {
+
+/// Where the shading equation is evaluated (the notes: per polygon, per vertex, per pixel).
+enum class ShadingModel {
+  unlit,    ///< no lighting: the vertex colors, interpolated
+  flat,     ///< per polygon: the lit color of the triangle's last vertex (OpenGL's provoking vertex)
+  gouraud,  ///< per vertex, colors interpolated
+  phong,    ///< per pixel: normals interpolated, the equation evaluated at every pixel
+};
+
+/// The specular term: Phong (E.R)^P or Blinn (H.N)^P (OpenGL's).
+enum class SpecularModel { phong, blinn };
+
+/// Surface reflectances (glMaterial). The defaults are OpenGL's.
+struct Material {
+  Vec3f ambient{0.2f, 0.2f, 0.2f};
+  Vec3f diffuse{0.8f, 0.8f, 0.8f};
+  Vec3f specular{0, 0, 0};  ///< the notes' highlight color C_H
+  Vec3f emission{0, 0, 0};
+  float shininess = 0;  ///< the specular exponent P
+
+  /// The notes' plastic: C_r = color (ambient and diffuse), white highlights (C_H = (1, 1, 1) * specular).
+  static Material plastic(const Vec3f& color, float shininess, float specular = 1.0f);
+  /// The notes' metal: the highlight takes the surface color (C_H = C_r).
+  static Material metal(const Vec3f& color, float shininess);
+};
+
+/// A light (glLight): `position` is in eye space; w = 0 makes it directional (xyz points toward the light), w = 1 a
+/// point light at xyz. No attenuation or spot cone (OpenGL's defaults). The defaults are OpenGL's GL_LIGHT0.
+struct Light {
+  Vec4f position{0, 0, 1, 0};
+  Vec3f ambient{0, 0, 0};
+  Vec3f diffuse{1, 1, 1};
+  Vec3f specular{1, 1, 1};
+};
+
+/// The most lights a Lighting holds (OpenGL's minimum GL_MAX_LIGHTS).
+inline constexpr int kMaxLights = 8;
+
+/// Everything the shading equation reads besides the surface point.
+struct Lighting {
+  Material material;
+  std::array<Light, kMaxLights> lights{};
+  int light_count = 1;                         ///< lights[0, light_count) are on
+  Vec3f model_ambient{0.2f, 0.2f, 0.2f};       ///< GL_LIGHT_MODEL_AMBIENT
+  SpecularModel specular_model = SpecularModel::blinn;
+  bool local_viewer = false;  ///< E = normalize(-p) instead of (0, 0, 1) (GL_LIGHT_MODEL_LOCAL_VIEWER)
+  bool color_material = false;  ///< the vertex color replaces ambient and diffuse (GL_COLOR_MATERIAL)
+};
+
+/// The shading equation above at eye-space point p with unit normal n; `color` is the vertex color used when
+/// lighting.color_material is set. Returns the color clamped to [0, 1].
+Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color);
+
+// ---- The fixed-function pipeline as a shader pair ------------------------------------------------------------------
+
+/// Uniforms of the fixed-function shaders: the matrices (float32, as OpenGL), lighting, and the constant attributes.
+struct FixedFunctionUniforms {
+  Mat4f model_view_projection{1.0f};  ///< P * MV, one float32 matrix for positions
+  Mat4f model_view{1.0f};
+  Mat3f normal_matrix{1.0f};           ///< inverse transpose of MV's upper 3x3
+  Lighting lighting;
+  bool lit = false;                    ///< lighting on (flat, gouraud, phong) or off (unlit)
+  Vec3f color{1, 1, 1};                ///< the current color (for vertices without one)
+  Vec3f normal{0, 0, 1};               ///< the current normal (for vertices without one)
+};
+
+/// Unlit, flat and Gouraud: each vertex's color is computed (lit in eye space, or its color) and interpolated.
+struct FixedFunctionVertexShader {
+  VertexAttributes attributes;
+  const FixedFunctionUniforms* uniforms = nullptr;
+
+  VertexOut<ColorVaryings> operator()(uint32_t i) const {
+    const FixedFunctionUniforms& u = *uniforms;
+    const Vec4f object(attributes.positions[i], 1.0f);
+    const Vec3f color = attributes.colors ? attributes.colors[i] : u.color;
+    if (!u.lit) return {u.model_view_projection * object, {color}};
+    const Vec3f n = glm::normalize(u.normal_matrix * (attributes.normals ? attributes.normals[i] : u.normal));
+    return {u.model_view_projection * object, {shade(u.lighting, n, Vec3f(u.model_view * object), color)}};
+  }
+};
+
+/// Phong interpolation's varyings: eye-space normal and position, and the vertex color.
+struct PhongVaryings {
+  Vec3f normal;
+  Vec3f position;
+  Vec3f color;
+};
+
+/// Phong interpolation (per pixel), vertex part: passes eye-space normal, position and color.
+struct PhongVertexShader {
+  VertexAttributes attributes;
+  const FixedFunctionUniforms* uniforms = nullptr;
+
+  VertexOut<PhongVaryings> operator()(uint32_t i) const {
+    const FixedFunctionUniforms& u = *uniforms;
+    const Vec4f object(attributes.positions[i], 1.0f);
+    return {u.model_view_projection * object,
+            {u.normal_matrix * (attributes.normals ? attributes.normals[i] : u.normal), Vec3f(u.model_view * object),
+             attributes.colors ? attributes.colors[i] : u.color}};
+  }
+};
+
+/// Phong interpolation, fragment part: renormalizes the interpolated normal and evaluates the equation per pixel.
+struct PhongFragmentShader {
+  const FixedFunctionUniforms* uniforms = nullptr;
+
+  bool operator()(const PhongVaryings& in, Vec3f& color) const {
+    color = shade(uniforms->lighting, glm::normalize(in.normal), in.position, in.color);
+    return true;
+  }
+};
+
+}  // namespace tessera::raster3d

@@ -1,0 +1,73 @@
+#pragma once
+// The 3D pipeline as free function templates over a vertex shader and a fragment shader (shaders.hpp):
+// vertex stage -> primitive assembly -> clipping in homogeneous clip space (all six planes, Sutherland-Hodgman) ->
+// perspective divide -> viewport -> 1/256-pixel snapping -> integer edge functions with the tie rule -> depth test ->
+// fragment shader -> 8-bit color write. The rules are gl-raster-conventions.md's (Mesa's), so the output compares with
+// OpenGL pixel for pixel.
+//
+// Triangles are binned to 64 x 64 screen tiles and the tiles rasterized in parallel (oneTBB), each in submission order,
+// so the output is identical for any thread count. The shaders are called from several threads at once: they must be
+// callable concurrently through a const reference (uniforms are read-only members).
+#include <cstdint>
+#include <span>
+
+#include "tessera/raster3d/framebuffer.hpp"
+#include "tessera/raster3d/shaders.hpp"
+
+namespace tessera::raster3d {
+
+/// The depth comparison (glDepthFunc): a fragment passes when `fragment OP stored` holds.
+enum class DepthFunc { never, less, equal, lequal, greater, notequal, gequal, always };
+
+/// Which faces are discarded before rasterization (glCullFace); the front face is counterclockwise on screen.
+enum class CullMode { none, back, front };
+
+/// The viewport (glViewport) in OpenGL window coordinates: origin at the bottom-left pixel, y up.
+/// A zero width or height means the whole framebuffer.
+struct Viewport {
+  int x = 0, y = 0, width = 0, height = 0;
+};
+
+/// Per-draw fixed state of the rasterizer.
+struct RasterState {
+  Viewport viewport;
+  bool depth_test = true;               ///< compare with the depth buffer (GL_DEPTH_TEST)
+  DepthFunc depth_func = DepthFunc::less;
+  bool depth_write = true;              ///< store the depth of passing fragments (glDepthMask)
+  CullMode cull = CullMode::none;
+  bool flat = false;                    ///< varyings are the last vertex's, not interpolated (GL_FLAT)
+  bool painter = false;                 ///< the painter's algorithm: sort by average depth, draw far to near, no
+                                        ///< depth test or write (the notes' alternative to the z-buffer)
+};
+
+/// What a draw did, for statistics.
+struct DrawStats {
+  uint64_t primitives = 0;   ///< triangles (lines, points) submitted
+  uint64_t rasterized = 0;   ///< after culling and clipping (a clipped triangle can become several)
+};
+
+/// Draws the triangles `indices` (3 per triangle, counterclockwise = front) of vertices [0, vertex_count), each
+/// vertex shaded once by `vs`, each covered pixel center by `fs` (after the depth test). The last vertex of each
+/// triangle is the provoking vertex for state.flat. Throws InvalidInput when indices.size() is not a multiple of 3 or
+/// an index is >= vertex_count.
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                         std::span<const uint32_t> indices, const VS& vs, const FS& fs);
+
+/// Draws the line segments `indices` (2 per line, 1 pixel wide; OpenGL's diamond-exit rule, approximately: x-major
+/// lines cover one pixel per column whose center lies in [start, end), y-major lines one per row). Clipped against
+/// all six planes; the depth is interpolated linearly in window space, varyings perspective-correctly; flat takes
+/// the second vertex. Lines are drawn in order on the calling thread.
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_lines(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                     std::span<const uint32_t> indices, const VS& vs, const FS& fs);
+
+/// Draws each index as a 1-pixel point: the pixel containing its window position (points outside the clip volume
+/// are dropped).
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                      std::span<const uint32_t> indices, const VS& vs, const FS& fs);
+
+}  // namespace tessera::raster3d
+
+#include "tessera/raster3d/detail/pipeline_impl.hpp"

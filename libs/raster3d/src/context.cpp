@@ -1,0 +1,366 @@
+#include "tessera/raster3d/context.hpp"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+
+#include "tessera/math/transform.hpp"
+
+namespace tessera::raster3d {
+namespace {
+
+// Immediate-mode batches are drawn once they hold this many vertices (or on any state change).
+constexpr size_t kBatchVertices = size_t(1) << 16;
+
+template <class T>
+std::vector<T> to_float_array(const auto& values, size_t expected, const char* what) {
+  if (!values.empty() && values.size() != expected)
+    throw InvalidInput(fmt::format("mesh has {} {} for {} positions", values.size(), what, expected));
+  return std::vector<T>(values.begin(), values.end());
+}
+
+enum class PrimitiveClass { triangles, lines, points };
+
+PrimitiveClass primitive_class(Primitive kind) {
+  switch (kind) {
+    case Primitive::points: return PrimitiveClass::points;
+    case Primitive::lines:
+    case Primitive::line_strip:
+    case Primitive::line_loop: return PrimitiveClass::lines;
+    default: return PrimitiveClass::triangles;
+  }
+}
+
+}  // namespace
+
+VertexArrays VertexArrays::from_mesh(const TriMesh& mesh) {
+  VertexArrays a;
+  const size_t n = mesh.positions.size();
+  a.positions.assign(mesh.positions.begin(), mesh.positions.end());
+  a.normals = to_float_array<Vec3f>(mesh.normals, n, "normals");
+  a.colors = to_float_array<Vec3f>(mesh.colors, n, "colors");
+  a.uvs = to_float_array<Vec2f>(mesh.uvs, n, "uvs");
+  a.indices = mesh.indices;
+  return a;
+}
+
+VertexAttributes VertexArrays::attributes() const {
+  return {positions.data(), normals.empty() ? nullptr : normals.data(), colors.empty() ? nullptr : colors.data(),
+          uvs.empty() ? nullptr : uvs.data()};
+}
+
+Context::Context(int width, int height) : framebuffer_(width, height) { initialize(width, height); }
+
+void Context::initialize(int width, int height) {
+  framebuffer_ = Framebuffer(width, height);
+  projection_ = MatrixStack3();
+  model_view_ = MatrixStack3();
+  matrix_mode_ = MatrixMode::model_view;
+  current_color_ = Vec3f(1, 1, 1);
+  current_normal_ = Vec3f(0, 0, 1);
+  current_uv_ = Vec2f(0, 0);
+  state_ = RasterState();
+  shading_ = ShadingModel::unlit;
+  hidden_surface_ = HiddenSurface::zbuffer;
+  lighting_ = Lighting();
+  // OpenGL's defaults: GL_LIGHT0 is white, the other lights are black; all point down -z from the viewer.
+  lights_.fill(Light{{0, 0, 1, 0}, Vec3f(0), Vec3f(0), Vec3f(0)});
+  lights_[0] = Light();
+  light_on_.fill(false);
+  light_on_[0] = true;
+  stats_ = DrawStats();
+  in_shape_ = false;
+  batch_ = VertexArrays();
+  batch_lines_.clear();
+  batch_points_.clear();
+}
+
+Framebuffer& Context::framebuffer() {
+  flush();
+  return framebuffer_;
+}
+
+void Context::flush() {
+  if (in_shape_) throw InvalidInput("flush between begin and end (missing end)");
+  if (batch_.positions.empty()) return;
+  const VertexAttributes attributes = batch_.attributes();
+  const auto count = uint32_t(batch_.positions.size());
+  draw_triangle_arrays(attributes, count, batch_.indices);
+  draw_line_arrays(attributes, count, batch_lines_);
+  draw_point_arrays(attributes, count, batch_points_);
+  batch_.positions.clear();
+  batch_.normals.clear();
+  batch_.colors.clear();
+  batch_.uvs.clear();
+  batch_.indices.clear();
+  batch_lines_.clear();
+  batch_points_.clear();
+}
+
+void Context::swap_buffers() {
+  flush();
+  framebuffer_.swap();
+}
+
+void Context::clear(const Vec3f& color) {
+  flush();
+  framebuffer_.clear(color);
+}
+
+// ---- Matrices ----
+
+MatrixStack3& Context::current_stack() {
+  flush();  // the pending batch was specified under the old matrices
+  return matrix_mode_ == MatrixMode::projection ? projection_ : model_view_;
+}
+
+void Context::matrix_mode(MatrixMode mode) { matrix_mode_ = mode; }
+void Context::push_matrix() { current_stack().push(); }
+void Context::pop_matrix() { current_stack().pop(); }
+void Context::load_identity() { current_stack().load_identity(); }
+void Context::load_matrix(const Mat4& m) { current_stack().load(m); }
+void Context::mult_matrix(const Mat4& m) { current_stack().multiply(m); }
+void Context::translate(double x, double y, double z) { mult_matrix(tessera::translate(x, y, z)); }
+void Context::scale(double x, double y, double z) { mult_matrix(tessera::scale(x, y, z)); }
+void Context::rotate_x(double angle) { mult_matrix(tessera::rotate_x(angle)); }
+void Context::rotate_y(double angle) { mult_matrix(tessera::rotate_y(angle)); }
+void Context::rotate_z(double angle) { mult_matrix(tessera::rotate_z(angle)); }
+void Context::rotate(double angle, const Vec3& axis) { mult_matrix(tessera::rotate(angle, axis)); }
+
+void Context::look_at(const Vec3& eye, const Vec3& center, const Vec3& up) {
+  flush();
+  model_view_.multiply(tessera::look_at(eye, center, up));
+}
+
+void Context::ortho(double l, double r, double b, double t, double n, double f) {
+  flush();
+  projection_.load(tessera::ortho(l, r, b, t, n, f));
+}
+
+void Context::perspective(double fovy, double n, double f, double aspect) {
+  flush();
+  if (aspect <= 0) {
+    const bool whole = state_.viewport.width <= 0 || state_.viewport.height <= 0;
+    aspect = whole ? double(framebuffer_.width()) / framebuffer_.height()
+                   : double(state_.viewport.width) / state_.viewport.height;
+  }
+  projection_.load(tessera::perspective(fovy, aspect, n, f));
+}
+
+// ---- State ----
+
+void Context::viewport(int x, int y, int width, int height) {
+  flush();
+  state_.viewport = {x, y, width, height};
+}
+void Context::depth_test(bool on) {
+  flush();
+  state_.depth_test = on;
+}
+void Context::depth_func(DepthFunc func) {
+  flush();
+  state_.depth_func = func;
+}
+void Context::depth_write(bool on) {
+  flush();
+  state_.depth_write = on;
+}
+void Context::cull(CullMode mode) {
+  flush();
+  state_.cull = mode;
+}
+void Context::shading(ShadingModel model) {
+  flush();
+  shading_ = model;
+}
+void Context::hidden_surface(HiddenSurface method) {
+  flush();
+  hidden_surface_ = method;
+}
+void Context::material(const Material& m) {
+  flush();
+  lighting_.material = m;
+}
+void Context::specular_model(SpecularModel model) {
+  flush();
+  lighting_.specular_model = model;
+}
+void Context::light_model_ambient(const Vec3f& ambient) {
+  flush();
+  lighting_.model_ambient = ambient;
+}
+void Context::color_material(bool on) {
+  flush();
+  lighting_.color_material = on;
+}
+
+static void check_light_index(int i) {
+  if (i < 0 || i >= kMaxLights) throw InvalidInput(fmt::format("light {} is outside [0, {})", i, kMaxLights));
+}
+
+void Context::light(int i, const Light& light) {
+  check_light_index(i);
+  flush();
+  Light eye = light;
+  eye.position = Vec4f(model_view() * Vec4(light.position));  // glLight stores the position in eye space
+  lights_[size_t(i)] = eye;
+}
+
+void Context::enable_light(int i, bool on) {
+  check_light_index(i);
+  flush();
+  light_on_[size_t(i)] = on;
+}
+
+// ---- Immediate mode ----
+
+void Context::begin(Primitive kind) {
+  if (in_shape_) throw InvalidInput("begin while a primitive is open (missing end)");
+  // Keep submission order: a batch holds one class of primitives.
+  const bool pending_other = (!batch_.indices.empty() && primitive_class(kind) != PrimitiveClass::triangles) ||
+                             (!batch_lines_.empty() && primitive_class(kind) != PrimitiveClass::lines) ||
+                             (!batch_points_.empty() && primitive_class(kind) != PrimitiveClass::points);
+  if (pending_other || batch_.positions.size() >= kBatchVertices) flush();
+  in_shape_ = true;
+  shape_kind_ = kind;
+  shape_first_ = uint32_t(batch_.positions.size());
+}
+
+void Context::vertex(double x, double y, double z) {
+  if (!in_shape_) throw InvalidInput("vertex outside begin/end");
+  batch_.positions.emplace_back(x, y, z);
+  batch_.normals.push_back(current_normal_);
+  batch_.colors.push_back(current_color_);
+  batch_.uvs.push_back(current_uv_);
+}
+
+void Context::end() {
+  if (!in_shape_) throw InvalidInput("end without begin");
+  in_shape_ = false;
+  assemble_shape();
+}
+
+void Context::assemble_shape() {
+  const uint32_t f = shape_first_;
+  const uint32_t n = uint32_t(batch_.positions.size()) - f;
+  auto& tris = batch_.indices;
+  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { tris.insert(tris.end(), {f + a, f + b, f + c}); };
+  auto line = [&](uint32_t a, uint32_t b) { batch_lines_.insert(batch_lines_.end(), {f + a, f + b}); };
+  switch (shape_kind_) {
+    case Primitive::points:
+      for (uint32_t i = 0; i < n; ++i) batch_points_.push_back(f + i);
+      break;
+    case Primitive::lines:
+      for (uint32_t i = 0; i + 1 < n; i += 2) line(i, i + 1);
+      break;
+    case Primitive::line_strip:
+    case Primitive::line_loop:
+      for (uint32_t i = 0; i + 1 < n; ++i) line(i, i + 1);
+      if (shape_kind_ == Primitive::line_loop && n > 2) line(n - 1, 0);
+      break;
+    case Primitive::triangles:
+      for (uint32_t i = 0; i + 2 < n; i += 3) tri(i, i + 1, i + 2);
+      break;
+    case Primitive::triangle_strip:  // every triangle keeps the strip's winding; the provoking vertex is i + 2
+      for (uint32_t i = 0; i + 2 < n; ++i) (i % 2 == 0) ? tri(i, i + 1, i + 2) : tri(i + 1, i, i + 2);
+      break;
+    case Primitive::triangle_fan:
+      for (uint32_t i = 1; i + 1 < n; ++i) tri(0, i, i + 1);
+      break;
+    case Primitive::quads:  // split as Mesa: (0, 1, 3), (1, 2, 3), the provoking fourth vertex last in both
+      for (uint32_t i = 0; i + 3 < n; i += 4) {
+        tri(i, i + 1, i + 3);
+        tri(i + 1, i + 2, i + 3);
+      }
+      break;
+    case Primitive::polygon:  // a fan whose provoking vertex is the first (OpenGL's rule for polygons)
+      for (uint32_t i = 1; i + 1 < n; ++i) tri(i, i + 1, 0);
+      break;
+  }
+}
+
+// ---- Batched ----
+
+void Context::draw(const TriMesh& mesh) { draw(VertexArrays::from_mesh(mesh)); }
+
+void Context::draw(const VertexArrays& arrays) {
+  flush();
+  draw_triangle_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), arrays.indices);
+}
+
+void Context::draw_wireframe(const TriMesh& mesh) {
+  flush();
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  edges.reserve(mesh.indices.size());
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = mesh.indices[t + size_t(k)], b = mesh.indices[t + size_t(k + 1) % 3];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<uint32_t> lines;
+  lines.reserve(2 * edges.size());
+  for (const auto& [a, b] : edges) lines.insert(lines.end(), {a, b});
+  const VertexArrays arrays = VertexArrays::from_mesh(mesh);
+  draw_line_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), lines);
+}
+
+FixedFunctionUniforms Context::uniforms() const {
+  FixedFunctionUniforms u;
+  u.model_view_projection = Mat4f(projection() * model_view());
+  u.model_view = Mat4f(model_view());
+  u.normal_matrix = Mat3f(normal_matrix(model_view()));
+  u.lighting = lighting_;
+  u.lighting.light_count = 0;
+  for (int i = 0; i < kMaxLights; ++i)
+    if (light_on_[size_t(i)]) u.lighting.lights[size_t(u.lighting.light_count++)] = lights_[size_t(i)];
+  u.lit = shading_ != ShadingModel::unlit;
+  u.color = current_color_;
+  u.normal = current_normal_;
+  return u;
+}
+
+RasterState Context::raster_state() const {
+  RasterState s = state_;
+  s.flat = shading_ == ShadingModel::flat;
+  s.painter = hidden_surface_ == HiddenSurface::painter;
+  return s;
+}
+
+static void add_stats(DrawStats& total, const DrawStats& d) {
+  total.primitives += d.primitives;
+  total.rasterized += d.rasterized;
+}
+
+void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
+                                   std::span<const uint32_t> indices) {
+  if (indices.empty()) return;
+  const FixedFunctionUniforms u = uniforms();
+  const RasterState s = raster_state();
+  if (shading_ == ShadingModel::phong) {
+    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices, PhongVertexShader{attributes, &u},
+                                     PhongFragmentShader{&u}));
+  } else {
+    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices,
+                                     FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+  }
+}
+
+void Context::draw_line_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
+                               std::span<const uint32_t> indices) {
+  if (indices.empty()) return;
+  const FixedFunctionUniforms u = uniforms();
+  add_stats(stats_, draw_lines(framebuffer_, raster_state(), vertex_count, indices,
+                               FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+}
+
+void Context::draw_point_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
+                                std::span<const uint32_t> indices) {
+  if (indices.empty()) return;
+  const FixedFunctionUniforms u = uniforms();
+  add_stats(stats_, draw_points(framebuffer_, raster_state(), vertex_count, indices,
+                                FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+}
+
+}  // namespace tessera::raster3d

@@ -1,0 +1,285 @@
+// Clipping, triangle setup and binning: the parts of the pipeline that do not depend on the shaders.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "tessera/raster3d/pipeline.hpp"
+
+namespace tessera::raster3d::detail {
+namespace {
+
+constexpr int kMaxStride = 4 + kMaxVaryings;
+constexpr int kMaxClipVertices = 3 + 6;  // each of the six planes adds at most one vertex to a convex polygon
+
+// Signed distance of a clip-space point to plane p of the clip volume -w <= x, y, z <= w (inside when >= 0).
+inline float plane_distance(const float* v, int p) {
+  const float c = v[p >> 1];
+  return (p & 1) ? v[3] - c : v[3] + c;
+}
+
+inline unsigned outcode(const float* v) {
+  unsigned code = 0;
+  for (int p = 0; p < 6; ++p)
+    if (plane_distance(v, p) < 0) code |= 1u << p;
+  return code;
+}
+
+// r = in + t (out - in) with t where the segment crosses the plane; always computed from the inside end, so two
+// triangles sharing a clipped edge get bit-identical new vertices.
+inline void intersect(const float* in, const float* out, float d_in, float d_out, int stride, float* r) {
+  const float t = d_in / (d_in - d_out);
+  for (int k = 0; k < stride; ++k) r[k] = in[k] + t * (out[k] - in[k]);
+}
+
+// Sutherland-Hodgman against the planes in `planes` (bit mask): clips the polygon in a (count vertices), using b as
+// the second buffer. Returns the vertex count of the result, which ends in a.
+int clip_polygon(float (*a)[kMaxStride], float (*b)[kMaxStride], int count, int stride, unsigned planes) {
+  for (int p = 0; p < 6 && count >= 3; ++p) {
+    if (!(planes & (1u << p))) continue;
+    int n = 0;
+    for (int i = 0; i < count; ++i) {
+      const float* cur = a[i];
+      const float* next = a[(i + 1) % count];
+      const float dc = plane_distance(cur, p), dn = plane_distance(next, p);
+      if (dc >= 0) std::copy(cur, cur + stride, b[n++]);
+      if ((dc >= 0) != (dn >= 0)) {
+        if (dc >= 0) intersect(cur, next, dc, dn, stride, b[n++]);
+        else intersect(next, cur, dn, dc, stride, b[n++]);
+      }
+    }
+    for (int i = 0; i < n; ++i) std::copy(b[i], b[i] + stride, a[i]);
+    count = n;
+  }
+  return count;
+}
+
+inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) / 256)); }
+
+// A plane f(px, py) = f0 + fx (px - x0) + fy (py - y0) through three window points; false when they are collinear.
+struct PlaneSetup {
+  double x0, y0, d1x, d1y, d2x, d2y, det;
+  bool valid() const { return det != 0 && std::isfinite(det); }
+  void solve(double f0, double f1, double f2, double& fx, double& fy) const {
+    fx = ((f1 - f0) * d2y - (f2 - f0) * d1y) / det;
+    fy = ((f2 - f0) * d1x - (f1 - f0) * d2x) / det;
+  }
+};
+
+PlaneSetup plane_setup(double x0, double y0, double x1, double y1, double x2, double y2) {
+  PlaneSetup s{x0, y0, x1 - x0, y1 - y0, x2 - x0, y2 - y0, 0};
+  s.det = s.d1x * s.d2y - s.d2x * s.d1y;
+  return s;
+}
+
+// Sets up one (clipped) triangle and bins it.
+void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0, const float* v1, const float* v2,
+                   const float* flat_values, SetupChunk& chunk) {
+  const float* v[3] = {v0, v1, v2};
+  WindowVertex w[3];
+  int32_t X[3], Y[3];
+  for (int k = 0; k < 3; ++k) {
+    if (!(v[k][3] > 0)) return;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
+    w[k] = to_window(params, v[k]);
+    X[k] = int32_t(std::lrint(w[k].x * 256.0f));  // snap to 1/256 pixel
+    Y[k] = int32_t(std::lrint(w[k].y * 256.0f));
+  }
+  const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
+  if (area == 0) return;
+  if ((params.cull == 1 && area < 0) || (params.cull == 2 && area > 0)) return;
+  // Counterclockwise in GL window coordinates, so the interior is on the left of every edge.
+  const int order[3] = {0, area > 0 ? 1 : 2, area > 0 ? 2 : 1};
+  TriangleRecord r;
+  for (int k = 0; k < 3; ++k) {
+    const int p = order[k], q = order[(k + 1) % 3];
+    Edge& e = r.edges[k];
+    e.a = Y[p] - Y[q];  // dE/dx
+    e.b = X[q] - X[p];  // dE/dy
+    // Tie rule (gl-raster-conventions.md item 6): an edge owns the centers on it when the interior lies on its +x
+    // side, or above it for a horizontal edge.
+    const bool inclusive = e.a > 0 || (e.a == 0 && e.b > 0);
+    e.c = int64_t(e.a) * (128 - X[p]) + int64_t(e.b) * (128 - Y[p]) - (inclusive ? 0 : 1);
+  }
+  const int32_t xmin = std::min({X[0], X[1], X[2]}), xmax = std::max({X[0], X[1], X[2]});
+  const int32_t ymin = std::min({Y[0], Y[1], Y[2]}), ymax = std::max({Y[0], Y[1], Y[2]});
+  // Pixels whose centers 256 i + 128 lie in [min, max].
+  r.x0 = std::max(sc.x0, floor_div256(xmin - 128 + 255));
+  r.x1 = std::min(sc.x1, floor_div256(xmax - 128) + 1);
+  r.y0 = std::max(sc.y0, floor_div256(ymin - 128 + 255));
+  r.y1 = std::min(sc.y1, floor_div256(ymax - 128) + 1);
+  if (r.x0 >= r.x1 || r.y0 >= r.y1) return;
+
+  // Attribute planes from the unsnapped float window positions (as llvmpipe); the snapped ones when those are
+  // collinear in floating point.
+  PlaneSetup ps = plane_setup(w[0].x, w[0].y, w[1].x, w[1].y, w[2].x, w[2].y);
+  if (!ps.valid())
+    ps = plane_setup(X[0] / 256.0, Y[0] / 256.0, X[1] / 256.0, Y[1] / 256.0, X[2] / 256.0, Y[2] / 256.0);
+  double zx, zy;
+  ps.solve(w[0].z, w[1].z, w[2].z, zx, zy);
+  r.zx = zx;
+  r.zy = zy;
+  r.z0 = w[0].z - zx * ps.x0 - zy * ps.y0;
+  r.rx = float(ps.x0);
+  r.ry = float(ps.y0);
+  const int n = params.varying_count;
+  r.varyings = uint32_t(chunk.varyings.size());
+  if (params.flat) {
+    chunk.varyings.insert(chunk.varyings.end(), flat_values, flat_values + n);
+  } else if (n > 0) {
+    chunk.varyings.resize(chunk.varyings.size() + 3 * size_t(n + 1));
+    float* c = chunk.varyings.data() + r.varyings;
+    float* cx = c + (n + 1);
+    float* cy = c + 2 * (n + 1);
+    for (int k = 0; k <= n; ++k) {
+      double f[3];
+      for (int i = 0; i < 3; ++i) f[i] = k == 0 ? double(w[i].inv_w) : double(v[i][3 + k]) * double(w[i].inv_w);
+      double fx, fy;
+      ps.solve(f[0], f[1], f[2], fx, fy);
+      c[k] = float(f[0]);
+      cx[k] = float(fx);
+      cy[k] = float(fy);
+    }
+  }
+  const uint32_t index = uint32_t(chunk.records.size());
+  chunk.records.push_back(r);
+  ++chunk.rasterized;
+  for (int ty = r.y0 / kTileSize; ty <= (r.y1 - 1) / kTileSize; ++ty)
+    for (int tx = r.x0 / kTileSize; tx <= (r.x1 - 1) / kTileSize; ++tx)
+      chunk.bins[size_t(ty) * params.tiles_x + tx].push_back(index);
+}
+
+void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
+                 SetupChunk& chunk) {
+  const int n = params.varying_count;
+  const int stride = 4 + n;
+  const Scissor sc = scissor(params);
+  float a[kMaxClipVertices][kMaxStride], b[kMaxClipVertices][kMaxStride];
+  float flat[kMaxVaryings];
+  for (size_t t = first; t < first + count; ++t) {
+    const float* v[3];
+    for (int k = 0; k < 3; ++k) v[k] = params.vertices + size_t(indices[3 * t + k]) * stride;
+    const unsigned c0 = outcode(v[0]), c1 = outcode(v[1]), c2 = outcode(v[2]);
+    if (c0 & c1 & c2) continue;  // entirely outside one plane
+    const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
+    if (!(c0 | c1 | c2)) {
+      emit_triangle(params, sc, v[0], v[1], v[2], provoking, chunk);
+      continue;
+    }
+    std::copy(provoking, provoking + n, flat);
+    for (int k = 0; k < 3; ++k) std::copy(v[k], v[k] + stride, a[k]);
+    const int m = clip_polygon(a, b, 3, stride, c0 | c1 | c2);
+    for (int k = 1; k + 1 < m; ++k) emit_triangle(params, sc, a[0], a[k], a[k + 1], flat, chunk);
+  }
+}
+
+}  // namespace
+
+WindowVertex to_window(const SetupParams& params, const float* clip) {
+  const float inv_w = 1.0f / clip[3];
+  const float half_w = float(params.vw) * 0.5f, half_h = float(params.vh) * 0.5f;
+  return {clip[0] * inv_w * half_w + (float(params.vx) + half_w), clip[1] * inv_w * half_h + (float(params.vy) + half_h),
+          clip[2] * inv_w * 0.5f + 0.5f, inv_w};
+}
+
+Scissor scissor(const SetupParams& params) {
+  return {std::max(0, params.vx), std::max(0, params.vy), std::min(params.fb_width, params.vx + params.vw),
+          std::min(params.fb_height, params.vy + params.vh)};
+}
+
+SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const float* vertices, int varying_count) {
+  SetupParams p;
+  p.vertices = vertices;
+  p.varying_count = varying_count;
+  p.flat = state.flat;
+  p.painter = state.painter;
+  p.cull = state.cull == CullMode::back ? 1 : state.cull == CullMode::front ? 2 : 0;
+  p.fb_width = fb.width();
+  p.fb_height = fb.height();
+  const bool whole = state.viewport.width <= 0 || state.viewport.height <= 0;
+  p.vx = whole ? 0 : state.viewport.x;
+  p.vy = whole ? 0 : state.viewport.y;
+  p.vw = whole ? fb.width() : state.viewport.width;
+  p.vh = whole ? fb.height() : state.viewport.height;
+  p.tiles_x = (fb.width() + kTileSize - 1) / kTileSize;
+  p.tiles_y = (fb.height() + kTileSize - 1) / kTileSize;
+  return p;
+}
+
+FragmentState fragment_state(const RasterState& state) {
+  const bool depth_on = state.depth_test && !state.painter;
+  return {depth_on ? state.depth_func : DepthFunc::always, depth_on && state.depth_write};
+}
+
+void setup_pass(RasterScratch& scratch, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+                size_t triangle_count) {
+  const size_t tiles = size_t(params.tiles_x) * params.tiles_y;
+  scratch.chunks.resize(kPassChunks);
+  for (SetupChunk& chunk : scratch.chunks) {
+    chunk.records.clear();
+    chunk.varyings.clear();
+    chunk.rasterized = 0;
+    chunk.bins.resize(tiles);
+    for (auto& bin : chunk.bins) bin.clear();
+  }
+  const int64_t chunks = int64_t((triangle_count + kChunkTriangles - 1) / kChunkTriangles);
+  parallel_for(0, chunks, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t c = begin; c < end; ++c) {
+      const size_t start = first + size_t(c) * kChunkTriangles;
+      const size_t count = std::min<size_t>(kChunkTriangles, first + triangle_count - start);
+      setup_chunk(params, indices, start, count, scratch.chunks[size_t(c)]);
+    }
+  });
+}
+
+std::span<const uint32_t> painter_order(RasterScratch& scratch, const float* vertices, int stride,
+                                        std::span<const uint32_t> indices) {
+  const size_t triangles = indices.size() / 3;
+  std::vector<std::pair<float, uint32_t>> keys(triangles);
+  for (size_t t = 0; t < triangles; ++t) {
+    float z = 0, w = 0;
+    for (int k = 0; k < 3; ++k) {
+      const float* v = vertices + size_t(indices[3 * t + k]) * stride;
+      z += v[2];
+      w += v[3];
+    }
+    // The normalized depth of the centroid; a centroid behind the eye sorts first (it is mostly clipped away).
+    keys[t] = {w > 0 ? z / w : std::numeric_limits<float>::infinity(), uint32_t(t)};
+  }
+  std::stable_sort(keys.begin(), keys.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  scratch.order.resize(indices.size());
+  for (size_t t = 0; t < triangles; ++t)
+    for (int k = 0; k < 3; ++k) scratch.order[3 * t + k] = indices[3 * size_t(keys[t].second) + k];
+  return scratch.order;
+}
+
+bool clip_segment(float* a, float* b, int varying_count) {
+  float t0 = 0, t1 = 1;
+  for (int p = 0; p < 6; ++p) {
+    const float da = plane_distance(a, p), db = plane_distance(b, p);
+    if (da < 0 && db < 0) return false;
+    if (da < 0) t0 = std::max(t0, da / (da - db));
+    if (db < 0) t1 = std::min(t1, da / (da - db));
+  }
+  if (t0 > t1) return false;
+  const int stride = 4 + varying_count;
+  float na[kMaxStride], nb[kMaxStride];
+  for (int k = 0; k < stride; ++k) {
+    na[k] = a[k] + t0 * (b[k] - a[k]);
+    nb[k] = a[k] + t1 * (b[k] - a[k]);
+  }
+  if (t0 > 0) std::copy(na, na + stride, a);
+  if (t1 < 1) std::copy(nb, nb + stride, b);
+  return true;
+}
+
+void check_indices(std::span<const uint32_t> indices, uint32_t vertex_count, int arity, const char* what) {
+  if (indices.size() % size_t(arity) != 0)
+    throw InvalidInput(fmt::format("{} indices: {} is not a multiple of {}", what, indices.size(), arity));
+  const auto bad = std::find_if(indices.begin(), indices.end(), [&](uint32_t i) { return i >= vertex_count; });
+  if (bad != indices.end())
+    throw InvalidInput(fmt::format("{} index {} at position {} is out of range (vertex count {})", what, *bad,
+                                   bad - indices.begin(), vertex_count));
+}
+
+}  // namespace tessera::raster3d::detail

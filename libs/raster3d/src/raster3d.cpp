@@ -1,1 +1,0 @@
-// Placeholder until the raster3d module lands.
