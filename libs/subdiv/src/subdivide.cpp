@@ -17,6 +17,14 @@ namespace {
 constexpr int64_t kGrain = 2048;
 constexpr int kMaxLevels = 12;
 
+/// Resizes an empty output array to n value-initialized elements, its memory advised to use huge pages first.
+template <class T>
+void resize_fresh(std::vector<T>& v, size_t n) {
+  v.reserve(n);
+  detail::advise_huge_pages(v.data(), n * sizeof(T));
+  v.resize(n);
+}
+
 // One level of one scheme. Child vertices: vertex points [0, V), face points [V, V + F) for quad splits, then edge
 // points, one per parent edge. Rules supplies the weights; everything topological happens here.
 template <class Rules>
@@ -57,8 +65,9 @@ class LevelRefiner {
   void child_faces(PolyMesh& child) const {
     const size_t faces = quads_ ? t_.corner_count() : 4 * t_.face_count();
     const uint32_t size = quads_ ? 4 : 3;
-    child.face_offsets.resize(faces + 1);
-    child.face_vertices.resize(size * faces);
+    child.face_offsets.clear();
+    resize_fresh(child.face_offsets, faces + 1);
+    resize_fresh(child.face_vertices, size * faces);
     parallel_for(0, int64_t(faces + 1), 16 * kGrain, [&](int64_t b, int64_t e) {
       for (int64_t i = b; i < e; ++i) child.face_offsets[i] = uint32_t(size * i);
     });
@@ -222,14 +231,14 @@ PolyMesh refine_with(const TopologyTables& topology, const detail::LevelSharpnes
                      const PolyMesh& mesh, const SubdivisionOptions& options, bool quads) {
   const LevelRefiner<Rules> refiner(topology, sharpness, rules, options.crease_method, quads);
   PolyMesh child;
-  child.positions.resize(refiner.child_vertex_count());
+  resize_fresh(child.positions, refiner.child_vertex_count());
   refiner.template refine<Vec3>(mesh.positions, child.positions);
   if (!mesh.uvs.empty()) {
-    child.uvs.resize(refiner.child_vertex_count());
+    resize_fresh(child.uvs, refiner.child_vertex_count());
     refiner.template refine<Vec2>(mesh.uvs, child.uvs);
   }
   if (!mesh.colors.empty()) {
-    child.colors.resize(refiner.child_vertex_count());
+    resize_fresh(child.colors, refiner.child_vertex_count());
     refiner.template refine<Vec3>(mesh.colors, child.colors);
   }
   refiner.child_faces(child);

@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <atomic>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 
@@ -21,6 +25,15 @@ void atomic_min(std::atomic<uint64_t>& slot, uint64_t value) {
 constexpr uint64_t kNoError = ~uint64_t(0);
 
 }  // namespace
+
+void detail::advise_huge_pages([[maybe_unused]] void* p, [[maybe_unused]] size_t bytes) {
+#if defined(MADV_HUGEPAGE)
+  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
+  const uintptr_t first = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
+  const uintptr_t last = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
+}
 
 TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
                                size_t vertex_count)
