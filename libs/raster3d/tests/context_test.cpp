@@ -1,0 +1,247 @@
+// The Context and the gt layer: matrix stacks, immediate mode vs batched drawing, primitive assembly, shading
+// models, double buffering, independence of contexts.
+#include <gtest/gtest.h>
+
+#include "tessera/math/transform.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/gt.hpp"
+
+namespace tessera::raster3d {
+namespace {
+
+bool same_pixels(const Framebuffer& a, const Framebuffer& b) {
+  return std::equal(a.color().pixels().begin(), a.color().pixels().end(), b.color().pixels().begin()) &&
+         std::equal(a.depth().pixels().begin(), a.depth().pixels().end(), b.depth().pixels().begin());
+}
+
+void expect_near_matrix(const Mat4& a, const Mat4& b) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], 1e-12) << c << "," << r;
+}
+
+TEST(Context, MatrixStackFollowsMathTransforms) {
+  Context ctx(16, 16);
+  ctx.translate(1, 2, 3);
+  ctx.push_matrix();
+  ctx.rotate_y(0.3);
+  ctx.scale(2, 3, 4);
+  ctx.rotate(0.7, Vec3(1, 1, 0));
+  expect_near_matrix(ctx.model_view(), translate(1, 2, 3) * rotate_y(0.3) * scale(2, 3, 4) * rotate(0.7, {1, 1, 0}));
+  ctx.pop_matrix();
+  expect_near_matrix(ctx.model_view(), translate(1, 2, 3));
+  EXPECT_THROW(ctx.pop_matrix(), InvalidInput);
+  ctx.look_at({0, 0, 5}, {0, 0, 0}, {0, 1, 0});
+  expect_near_matrix(ctx.model_view(), translate(1, 2, 3) * look_at({0, 0, 5}, {0, 0, 0}, {0, 1, 0}));
+  ctx.perspective(1.0, 0.5, 50);
+  expect_near_matrix(ctx.projection(), perspective(1.0, 1.0, 0.5, 50));
+  ctx.matrix_mode(MatrixMode::projection);
+  ctx.load_identity();
+  expect_near_matrix(ctx.projection(), Mat4(1.0));
+}
+
+// A lit sphere, drawn by `draw` after the shared camera and lighting setup.
+template <class Draw>
+Framebuffer render_sphere(ShadingModel shading, Draw&& draw) {
+  Context ctx(96, 80);
+  ctx.perspective(radians(40), 1, 20);
+  ctx.look_at({0.5, 1, 4}, {0, 0, 0}, {0, 1, 0});
+  ctx.shading(shading);
+  ctx.material(Material::plastic({0.8f, 0.3f, 0.2f}, 30));
+  ctx.light(0, Light{{1, 2, 3, 0}});
+  ctx.cull(CullMode::back);
+  draw(ctx);
+  return std::move(ctx.framebuffer());
+}
+
+TEST(Context, ImmediateModeEqualsTheBatchedPath) {
+  const TriMesh mesh = to_tri_mesh(make_uv_sphere(24, 12));
+  for (ShadingModel shading : {ShadingModel::unlit, ShadingModel::flat, ShadingModel::gouraud, ShadingModel::phong}) {
+    const Framebuffer batched = render_sphere(shading, [&](Context& ctx) { ctx.draw(mesh); });
+    const Framebuffer immediate = render_sphere(shading, [&](Context& ctx) {
+      gt::gtMakeCurrent(&ctx);
+      gt::gtBeginShape(gt::GT_TRIANGLES);
+      for (uint32_t i : mesh.indices) {
+        const Vec3 n = mesh.normals[i], p = mesh.positions[i];
+        gt::gtNormal(n.x, n.y, n.z);
+        gt::gtVertex(p.x, p.y, p.z);
+      }
+      gt::gtEndShape();
+      gt::gtMakeCurrent(nullptr);
+    });
+    EXPECT_TRUE(same_pixels(batched, immediate)) << int(shading);
+    int lit = 0;
+    for (auto c : batched.color().pixels()) lit += c.x > 0;
+    EXPECT_GT(lit, 1000);
+  }
+}
+
+TEST(Context, UniformNormalGivesTheShadingEquationEverywhere) {
+  // A screen-filling quad with one normal: Gouraud and Phong both give shade(n) at every pixel.
+  for (ShadingModel shading : {ShadingModel::gouraud, ShadingModel::phong}) {
+    Context ctx(32, 32);
+    ctx.ortho(-1, 1, -1, 1, -1, 1);
+    ctx.shading(shading);
+    const Material m = Material::plastic({0.3f, 0.5f, 0.7f}, 5);
+    ctx.material(m);
+    ctx.light(0, Light{{0, 1, 2, 0}});
+    ctx.normal(glm::normalize(Vec3f(0.2f, 0.1f, 1)));
+    ctx.begin(Primitive::quads);
+    for (auto [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) ctx.vertex(x, y, 0);
+    ctx.end();
+    Lighting lighting;
+    lighting.material = m;
+    lighting.lights[0].position = Vec4f(0, 1, 2, 0);
+    const glm::u8vec4 expected = to_color8(shade(lighting, glm::normalize(Vec3f(0.2f, 0.1f, 1)), {0, 0, 0}, {1, 1, 1}));
+    for (auto c : ctx.framebuffer().color().pixels()) ASSERT_EQ(c, expected) << int(shading);
+  }
+}
+
+TEST(Context, PrimitiveAssemblyCoversLikeExplicitTriangles) {
+  // A strip, a fan, quads and a polygon over the same region as triangles: identical coverage.
+  const std::vector<Vec3> ring = {{-0.9, -0.8, 0}, {0.7, -0.9, 0}, {0.9, 0.6, 0}, {-0.2, 0.95, 0}, {-0.95, 0.3, 0}};
+  auto render = [&](auto&& submit) {
+    Context ctx(40, 40);
+    ctx.ortho(-1, 1, -1, 1, -1, 1);
+    submit(ctx);
+    Framebuffer fb = std::move(ctx.framebuffer());
+    std::vector<int> cov;
+    for (auto c : fb.color().pixels()) cov.push_back(c.x > 0);
+    return cov;
+  };
+  const auto triangles = render([&](Context& c) {
+    c.begin(Primitive::triangles);
+    for (int i = 1; i + 1 < 5; ++i)
+      for (int k : {0, i, i + 1}) c.vertex(ring[k].x, ring[k].y, 0);
+    c.end();
+  });
+  const auto fan = render([&](Context& c) {
+    c.begin(Primitive::triangle_fan);
+    for (const Vec3& p : ring) c.vertex(p.x, p.y, 0);
+    c.end();
+  });
+  const auto polygon = render([&](Context& c) {
+    c.begin(Primitive::polygon);
+    for (const Vec3& p : ring) c.vertex(p.x, p.y, 0);
+    c.end();
+  });
+  const auto strip = render([&](Context& c) {  // 0 1 4 2 3 as a strip makes triangles 014, 142, 423
+    c.begin(Primitive::triangle_strip);
+    for (int k : {0, 1, 4, 2, 3}) c.vertex(ring[k].x, ring[k].y, 0);
+    c.end();
+  });
+  EXPECT_EQ(fan, triangles);
+  EXPECT_EQ(polygon, triangles);
+  EXPECT_EQ(strip, triangles);
+  int n = 0;
+  for (int v : triangles) n += v;
+  EXPECT_GT(n, 600);
+}
+
+TEST(Context, FlatShadingUsesTheProvokingVertex) {
+  Context ctx(16, 16);
+  ctx.ortho(-1, 1, -1, 1, -1, 1);
+  ctx.shading(ShadingModel::flat);
+  ctx.color_material(true);
+  ctx.light_model_ambient(Vec3f(1));  // lit color = vertex color * (1 + N.L): clamp to the vertex color's 1s
+  ctx.begin(Primitive::triangles);
+  ctx.color({1, 0, 0});
+  ctx.vertex(-1, -1, 0);
+  ctx.color({0, 1, 0});
+  ctx.vertex(1, -1, 0);
+  ctx.color({0, 0, 1});
+  ctx.vertex(-1, 1, 0);
+  ctx.end();
+  EXPECT_EQ(ctx.framebuffer().color()(1, 14), glm::u8vec4(0, 0, 255, 255));
+  EXPECT_EQ(ctx.framebuffer().color()(10, 14), glm::u8vec4(0, 0, 255, 255));
+}
+
+TEST(Context, TwoContextsDoNotInterfere) {
+  const TriMesh mesh = to_tri_mesh(make_torus(1, 0.4, 24, 12));
+  auto setup = [](Context& c, double angle, Vec3f color) {
+    c.perspective(radians(45), 0.5, 20);
+    c.look_at({0, 2, 4}, {0, 0, 0}, {0, 1, 0});
+    c.rotate_y(angle);
+    c.color(color);
+    c.shading(ShadingModel::gouraud);
+  };
+  Context a(64, 64), b(64, 64), a_alone(64, 64);
+  setup(a, 0.3, {1, 0, 0});
+  setup(b, 1.2, {0, 1, 0});
+  b.light(0, Light{{0, 1, 0, 0}});
+  b.begin(Primitive::triangles);
+  a.begin(Primitive::triangles);  // both open at once
+  for (uint32_t i : mesh.indices) {
+    a.normal(Vec3f(mesh.normals[i]));
+    a.vertex(mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z);
+    b.vertex(mesh.positions[i].x, -mesh.positions[i].y, mesh.positions[i].z);
+  }
+  a.end();
+  b.end();
+  setup(a_alone, 0.3, {1, 0, 0});
+  a_alone.begin(Primitive::triangles);
+  for (uint32_t i : mesh.indices) {
+    a_alone.normal(Vec3f(mesh.normals[i]));
+    a_alone.vertex(mesh.positions[i].x, mesh.positions[i].y, mesh.positions[i].z);
+  }
+  a_alone.end();
+  EXPECT_TRUE(same_pixels(a.framebuffer(), a_alone.framebuffer()));
+  EXPECT_FALSE(same_pixels(a.framebuffer(), b.framebuffer()));
+}
+
+TEST(Context, DoubleBufferingPresentsOnSwap) {
+  Context ctx(8, 8);
+  ctx.clear({0, 0, 1});
+  EXPECT_EQ(ctx.framebuffer().front()(0, 0), glm::u8vec4(0, 0, 0, 255));
+  ctx.swap_buffers();
+  EXPECT_EQ(ctx.framebuffer().front()(0, 0), glm::u8vec4(0, 0, 255, 255));
+  EXPECT_EQ(ctx.framebuffer().color()(0, 0), glm::u8vec4(0, 0, 0, 255));
+}
+
+TEST(Context, PainterModeDrawsFarToNear) {
+  // Two overlapping quads submitted near first: the z-buffer and the painter agree, no depth test keeps the last.
+  auto render = [](HiddenSurface method, bool depth) {
+    Context ctx(16, 16);
+    ctx.ortho(-1, 1, -1, 1, -1, 1);
+    ctx.hidden_surface(method);
+    ctx.depth_test(depth);
+    ctx.begin(Primitive::quads);
+    ctx.color({1, 0, 0});
+    for (auto [x, y] : {std::pair{-1.0, -1.0}, {0.5, -1.0}, {0.5, 0.5}, {-1.0, 0.5}}) ctx.vertex(x, y, 0.5);  // near
+    ctx.color({0, 1, 0});
+    for (auto [x, y] : {std::pair{-0.5, -0.5}, {1.0, -0.5}, {1.0, 1.0}, {-0.5, 1.0}}) ctx.vertex(x, y, -0.5);  // far
+    ctx.end();
+    return ctx.framebuffer().color()(8, 8);
+  };
+  EXPECT_EQ(render(HiddenSurface::zbuffer, true), glm::u8vec4(255, 0, 0, 255));
+  EXPECT_EQ(render(HiddenSurface::painter, true), glm::u8vec4(255, 0, 0, 255));
+  EXPECT_EQ(render(HiddenSurface::zbuffer, false), glm::u8vec4(0, 255, 0, 255));
+}
+
+TEST(Context, GtLayerMisuseThrows) {
+  gt::gtMakeCurrent(nullptr);
+  EXPECT_THROW(gt::gtVertex(0, 0, 0), InvalidInput);
+  Context ctx(8, 8);
+  gt::gtMakeCurrent(&ctx);
+  EXPECT_THROW(gt::gtVertex(0, 0, 0), InvalidInput);  // outside a shape
+  EXPECT_THROW(gt::gtEndShape(), InvalidInput);
+  gt::gtBeginShape(gt::GT_LINES);
+  EXPECT_THROW(gt::gtBeginShape(gt::GT_LINES), InvalidInput);
+  EXPECT_THROW(gt::gtTranslate(1, 0, 0), InvalidInput);  // matrices are fixed inside a shape, as OpenGL
+  gt::gtEndShape();
+  EXPECT_THROW(ctx.light(8, Light{}), InvalidInput);
+  gt::gtRotate(0.5, 0, 0, 2);
+  expect_near_matrix(ctx.model_view(), rotate_z(0.5));
+  gt::gtMakeCurrent(nullptr);
+}
+
+TEST(Context, MeshWithMismatchedAttributesThrows) {
+  TriMesh mesh = to_tri_mesh(make_tetrahedron());
+  mesh.colors.assign(2, Vec3(1));
+  Context ctx(8, 8);
+  EXPECT_THROW(ctx.draw(mesh), InvalidInput);
+}
+
+}  // namespace
+}  // namespace tessera::raster3d
