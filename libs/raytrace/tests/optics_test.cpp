@@ -38,7 +38,7 @@ TEST(Optics, TotalInternalReflectionAtTheCriticalAngle) {
   const float eta = ior::kGlass / 1.0f;
   const auto below = refract_dir(incoming(tc - 1e-3), {0, 1, 0}, eta);
   ASSERT_TRUE(below.has_value());
-  EXPECT_GT(std::abs(below->x), 0.999f);  // nearly grazing just below the critical angle
+  EXPECT_NEAR(below->x, 1.5 * std::sin(tc - 1e-3), 2e-6);  // sin t2 = 1.5 sin t1: nearly grazing
   EXPECT_FALSE(refract_dir(incoming(tc + 1e-4), {0, 1, 0}, eta).has_value());
   EXPECT_FALSE(refract_dir(incoming(radians(60)), {0, 1, 0}, eta).has_value());
   EXPECT_FALSE(refract_dir(incoming(radians(89)), {0, 1, 0}, ior::kDiamond).has_value());

@@ -1,0 +1,76 @@
+#pragma once
+// A renderer-neutral scene: image settings, camera, ambient light, lights, named materials and objects (shapes or
+// triangle meshes under transforms, optionally moving), read from the JSON format of docs/scene-format.md. The
+// built-in scenes (scenes/*.json in the source tree) are embedded in the library.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tessera/accel/shapes.hpp"
+#include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/raytrace/light.hpp"
+#include "tessera/raytrace/material.hpp"
+#include "tessera/raytrace/world.hpp"
+
+namespace tessera {
+
+/// The picture to make.
+struct SceneImage {
+  int width = 640, height = 480;
+  int samples = 1;              ///< samples per pixel
+  int max_depth = 5;            ///< recursion depth (1 = eye rays only)
+  Vec3f background{0.0f};       ///< color of rays that leave the scene
+};
+
+/// A pinhole or thin-lens camera.
+struct SceneCamera {
+  Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
+  double fovy = 45;             ///< vertical field of view in degrees
+  double aperture = 0;          ///< lens radius; 0 = pinhole
+  double focal_distance = 0;    ///< distance to the plane in focus; 0 = |center - eye|
+};
+
+/// One object: a shape or a mesh, its material's name, its placement and motion.
+struct SceneObject {
+  std::optional<Shape> shape;               ///< set for shapes
+  std::shared_ptr<const TriMesh> mesh;      ///< set for meshes (loaded or generated at load time)
+  std::string material;
+  Mat4 transform{1.0};                      ///< object to world
+  Motion motion;                            ///< velocity and/or the end transform
+  bool casts_shadows = true;
+};
+
+/// A whole scene.
+struct Scene {
+  std::string name;                         ///< file name or built-in name (for messages)
+  SceneImage image;
+  SceneCamera camera;
+  Vec3f ambient{0.1f};
+  std::vector<Light> lights;
+  std::map<std::string, Material> materials;
+  std::vector<SceneObject> objects;
+};
+
+/// Parses scene JSON. `name` prefixes error messages; mesh and texture paths are relative to `base_dir`. Throws
+/// InvalidInput "name: objects[3].radius: expected a positive number" (the JSON path of the bad value), or
+/// "name: byte N: ..." for malformed JSON; IoError for a mesh or texture file that cannot be read.
+Scene parse_scene(std::string_view json, const std::string& name, const std::filesystem::path& base_dir);
+
+/// Reads a scene file (paths inside are relative to its folder). Throws as parse_scene, IoError when unreadable.
+Scene load_scene(const std::filesystem::path& path);
+
+/// The names of the built-in scenes, sorted ("cornell", "mesh", "motion-blur", "whitted", ...).
+std::vector<std::string> builtin_scene_names();
+/// The JSON text of a built-in scene. Throws InvalidInput listing the names for an unknown one.
+std::string_view builtin_scene_text(const std::string& name);
+/// A built-in scene, parsed.
+Scene builtin_scene(const std::string& name);
+
+/// A built-in scene when `name_or_path` names one and no such file exists, else the file.
+Scene load_scene_or_builtin(const std::string& name_or_path);
+
+}  // namespace tessera

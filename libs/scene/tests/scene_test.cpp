@@ -1,0 +1,130 @@
+// The scene loader: every built-in scene loads and renders; transforms compose as the notes' calls; meshes load
+// relative to the scene file; bad documents fail with the JSON path and what was expected.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "tessera/core/error.hpp"
+#include "tessera/math/transform.hpp"
+#include "tessera/scene/scene.hpp"
+#include "tessera/scene/trace.hpp"
+
+namespace tessera {
+namespace {
+
+TEST(Scene, EveryBuiltinLoadsAndRenders) {
+  const auto names = builtin_scene_names();
+  for (const char* required : {"whitted", "cornell", "motion-blur", "mesh"})
+    EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
+  for (const auto& name : names) {
+    const Scene scene = builtin_scene(name);
+    EXPECT_FALSE(scene.objects.empty()) << name;
+    EXPECT_FALSE(scene.lights.empty()) << name;
+    const RayScene rs = to_ray_scene(scene);
+    RenderSettings s = render_settings(scene);
+    s.width = 40;
+    s.height = 30;
+    s.samples = 1;
+    s.progress = false;
+    const ImageRGB img = render(rs, s);
+    // Something other than the background is in view.
+    int different = 0;
+    for (const Vec3f& p : img.pixels()) different += glm::length(p - scene.image.background) > 0.05f ? 1 : 0;
+    EXPECT_GT(different, 40 * 30 / 4) << name;
+  }
+}
+
+TEST(Scene, WhittedHasAMirrorAndAGlassSphereOverACheckerboard) {
+  const Scene s = builtin_scene("whitted");
+  int spheres = 0;
+  for (const auto& o : s.objects) spheres += o.shape && std::holds_alternative<Sphere>(*o.shape) ? 1 : 0;
+  EXPECT_EQ(spheres, 2);
+  EXPECT_GT(s.materials.at("mirror").reflection.x, 0.5f);
+  EXPECT_EQ(s.materials.at("glass").ior, ior::kGlass);
+  EXPECT_GT(s.materials.at("checkerboard").checker, 0.0f);
+}
+
+std::string with_objects(const std::string& objects, const std::string& extra = "") {
+  return R"({"materials": {"m": {"diffuse": 0.5}}, )" + extra + R"("objects": )" + objects + "}";
+}
+
+/// The message of the InvalidInput that parsing `json` throws.
+std::string error_of(const std::string& json) {
+  try {
+    parse_scene(json, "test.json", ".");
+  } catch (const InvalidInput& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Scene, ErrorsNameTheJsonPath) {
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"},
+                                      {"type": "sphere", "radius": -1, "material": "m"}])")),
+            "test.json: objects[1].radius: expected a positive number");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "nope"}])")),
+            "test.json: objects[0].material: no material named 'nope'");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "radius": 1, "colour": 1, "material": "m"}])")),
+            "test.json: objects[0].colour: unknown key for a sphere");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "torus", "material": "m"}])")).substr(0, 32),
+            "test.json: objects[0].type: expe");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m", "transform": [{"shear": 1}]}])")),
+            "test.json: objects[0].transform[0]: expected translate, rotate, scale or matrix");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "box", "min": [0, 0, 0], "max": [1, 0, 1], "material": "m"}])")),
+            "test.json: objects[0]: expected min < max in every coordinate");
+  EXPECT_EQ(error_of(with_objects("[]")), "test.json: objects: expected at least 1 elements");
+  EXPECT_EQ(error_of(R"({"materials": {}})"), "test.json: objects: missing");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])", R"("image": {"size": [0, 10]}, )")),
+            "test.json: image.size[0]: expected an integer in [1, 65536]");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])",
+                                  R"("lights": [{"type": "point", "position": [0, 1]}], )")),
+            "test.json: lights[0].position: expected an array of 3 numbers");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])",
+                                  R"("camera": {"eye": [0, 0, 0], "center": [0, 0, 0]}, )")),
+            "test.json: camera: eye and center coincide");
+  EXPECT_EQ(error_of(R"({"materials": {"m": {"ior": "honey"}}, "objects": []})"),
+            "test.json: materials.m.ior: expected a number or one of air, water, glass, ice, diamond, vacuum");
+  const std::string syntax = error_of("{\"objects\": [1, 2,]}");
+  EXPECT_EQ(syntax.rfind("test.json: byte offset 19: ", 0), 0u) << syntax;
+}
+
+TEST(Scene, TransformListComposesLikeTheNotesCalls) {
+  // M = translate * scale: the scale (written last) acts first, so (1, 0, 0) goes to (2, 0, 0) then (3, 0, 0).
+  const Scene s = parse_scene(with_objects(R"([{"type": "sphere", "material": "m",
+      "transform": [{"translate": [1, 0, 0]}, {"scale": 2}, {"rotate": {"angle": 90, "axis": [0, 0, 1]}}],
+      "velocity": [0, 1, 0]}])"), "t", ".");
+  const Vec3 p = transform_point(s.objects[0].transform, {0, 1, 0});  // rotate (0,1,0) -> (-1,0,0), scale, translate
+  EXPECT_NEAR(p.x, -1.0, 1e-12);
+  EXPECT_NEAR(p.y, 0.0, 1e-12);
+  EXPECT_EQ(s.objects[0].motion.velocity, Vec3f(0, 1, 0));
+  const Scene m = parse_scene(with_objects(R"([{"type": "sphere", "material": "m",
+      "transform": [{"matrix": [1, 0, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]}]}])"), "t", ".");
+  EXPECT_EQ(transform_point(m.objects[0].transform, {0, 0, 0}), Vec3(5, 6, 7));  // rows as written
+}
+
+TEST(Scene, MeshFilesAreRelativeToTheSceneFile) {
+  const auto dir = std::filesystem::temp_directory_path() / "tessera_scene_test";
+  std::filesystem::create_directories(dir / "meshes");
+  std::ofstream(dir / "meshes" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  std::ofstream(dir / "scene.json") << with_objects(R"([{"type": "mesh", "file": "meshes/tri.obj", "material": "m"}])");
+  const Scene s = load_scene(dir / "scene.json");
+  ASSERT_TRUE(s.objects[0].mesh);
+  EXPECT_EQ(s.objects[0].mesh->triangle_count(), 1u);
+  std::ofstream(dir / "bad.json") << with_objects(R"([{"type": "mesh", "file": "meshes/none.obj", "material": "m"}])");
+  EXPECT_THROW(load_scene(dir / "bad.json"), IoError);
+  EXPECT_THROW(load_scene(dir / "missing.json"), IoError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, UnknownBuiltinListsTheNames) {
+  try {
+    load_scene_or_builtin("no-such-scene");
+    FAIL();
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("whitted"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace tessera
