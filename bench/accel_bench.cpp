@@ -1,0 +1,255 @@
+// Ray casting of triangle meshes: Tessera's MeshAccel (binned-SAH BVH) against Embree 3's rtcIntersect1 on the same
+// mesh and rays in the same run. Incoherent rays (origins uniform in the mesh box scaled 1.1x, directions uniform on
+// the sphere) and coherent primary rays (1024 x 1024 eye rays), on 1 thread, 2 threads and all threads; BVH build in
+// Mprims/s against Embree's default (medium-quality) build. A table at the end gives the ratios Tessera / Embree and
+// Tessera's 2-thread scaling.
+//
+//   cmake -S . -B build/h-accel -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
+//   ninja -C build/h-accel bench_accel && build/h-accel/bench/bench_accel
+//
+// Meshes: the Stanford bunny (69K triangles, when TESSERA_SHARED_DATA has it) and a tessellated torus of 1.08M
+// triangles.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+
+#include "tessera/accel/mesh_accel.hpp"
+#include "tessera/accel/ray_workloads.hpp"
+#include "tessera/core/parallel.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/mesh_io.hpp"
+#include "tessera/mesh/primitives.hpp"
+
+namespace {
+
+using namespace tessera;
+
+constexpr size_t kRandomRays = 1 << 20;
+constexpr int kImage = 1024;
+
+struct Workload {
+  std::string name;
+  TriMesh mesh;
+  std::vector<float> vertices;  // float copy for Embree
+  std::vector<Ray> random, primary;
+  std::unique_ptr<MeshAccel> accel;
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+};
+
+std::map<std::string, std::unique_ptr<Workload>> g_workloads;
+std::map<std::string, double> g_results;  // "mesh/what/who/threads" -> rate
+
+RTCScene embree_scene(RTCDevice device, const Workload& w) {
+  RTCScene scene = rtcNewScene(device);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, w.vertices.data(), 0,
+                             3 * sizeof(float), w.mesh.positions.size());
+  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, w.mesh.indices.data(), 0,
+                             3 * sizeof(uint32_t), w.mesh.triangle_count());
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+Workload& workload(const std::string& name) {
+  auto& slot = g_workloads[name];
+  if (slot) return *slot;
+  slot = std::make_unique<Workload>();
+  Workload& w = *slot;
+  w.name = name;
+  if (name == "bunny") {
+    w.mesh = to_tri_mesh(read_mesh(std::filesystem::path(TESSERA_SHARED_DATA) / "meshes/bunny/bun_zipper.ply"));
+  } else {
+    w.mesh = to_tri_mesh(make_torus(1.0, 0.4, 1200, 450));
+  }
+  AABB box;
+  for (const Vec3& p : w.mesh.positions) {
+    box.expand(Vec3f(p));
+    w.vertices.insert(w.vertices.end(), {float(p.x), float(p.y), float(p.z)});
+  }
+  w.random = incoherent_rays(box, kRandomRays, 7);
+  Camera cam;
+  cam.center = Vec3(box.center());
+  cam.eye = cam.center + 1.2 * double(glm::length(box.extent())) * glm::normalize(Vec3(0.3, 0.4, 1));
+  w.primary = primary_rays(cam, kImage, kImage);
+  w.accel = std::make_unique<MeshAccel>(w.mesh);
+  w.device = rtcNewDevice(nullptr);
+  w.scene = embree_scene(w.device, w);
+  return w;
+}
+
+bool have_mesh(const std::string& name) {
+  return name != "bunny" ||
+         std::filesystem::exists(std::filesystem::path(TESSERA_SHARED_DATA) / "meshes/bunny/bun_zipper.ply");
+}
+
+std::string key(const std::string& mesh, const char* what, const char* who, int threads) {
+  return mesh + "/" + what + "/" + who + "/" + std::to_string(threads);
+}
+
+/// Casts every ray in parallel chunks; returns the number of hits (kept so nothing is optimized away).
+template <class Cast>
+long cast_all(const std::vector<Ray>& rays, Cast&& cast) {
+  std::atomic<long> hits{0};
+  parallel_for(0, int64_t(rays.size()), 1024, [&](int64_t begin, int64_t end) {
+    long local = 0;
+    for (int64_t i = begin; i < end; ++i) local += cast(rays[size_t(i)]);
+    hits += local;
+  });
+  return hits;
+}
+
+bool cast_tessera(const MeshAccel& accel, const Ray& r) {
+  Ray ray = r;
+  Hit hit;
+  return accel.intersect(ray, hit);
+}
+
+bool cast_embree(RTCScene scene, const Ray& r) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = r.origin.x;
+  rh.ray.org_y = r.origin.y;
+  rh.ray.org_z = r.origin.z;
+  rh.ray.dir_x = r.dir.x;
+  rh.ray.dir_y = r.dir.y;
+  rh.ray.dir_z = r.dir.z;
+  rh.ray.tnear = r.tmin;
+  rh.ray.tfar = r.tmax;
+  rh.ray.time = 0;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &context, &rh);
+  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+/// Rays per second of one configuration: range(0) 0 = incoherent, 1 = primary; range(1) 0 = Tessera, 1 = Embree;
+/// range(2) threads (0 = all). The best rate over the iterations goes to the summary.
+void BM_Rays(benchmark::State& state, const std::string& mesh) {
+  if (!have_mesh(mesh)) {
+    state.SkipWithError("mesh not available (TESSERA_SHARED_DATA)");
+    return;
+  }
+  Workload& w = workload(mesh);
+  const bool primary = state.range(0) == 1, embree = state.range(1) == 1;
+  const int threads = int(state.range(2));
+  const ThreadLimit limit(threads);
+  const std::vector<Ray>& rays = primary ? w.primary : w.random;
+  long hits = 0;
+  double best = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    hits = embree ? cast_all(rays, [&](const Ray& r) { return cast_embree(w.scene, r); })
+                  : cast_all(rays, [&](const Ray& r) { return cast_tessera(*w.accel, r); });
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    best = std::max(best, double(rays.size()) / s);
+    benchmark::DoNotOptimize(hits);
+  }
+  state.counters["rays_per_s"] =
+      benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["hit_fraction"] = double(hits) / double(rays.size());
+  g_results[key(mesh, primary ? "primary" : "random", embree ? "embree" : "tessera", threads)] = best;
+}
+
+/// BVH build in Mprims/s: range(0) 0 = Tessera, 1 = Embree; range(1) threads (0 = all).
+void BM_Build(benchmark::State& state, const std::string& mesh) {
+  if (!have_mesh(mesh)) {
+    state.SkipWithError("mesh not available (TESSERA_SHARED_DATA)");
+    return;
+  }
+  Workload& w = workload(mesh);
+  const bool embree = state.range(0) == 1;
+  const int threads = int(state.range(1));
+  const ThreadLimit limit(threads);
+  // Embree's own thread pool is sized at device creation; its TBB tasking also honours the ThreadLimit.
+  RTCDevice device = embree ? rtcNewDevice(("threads=" + std::to_string(threads)).c_str()) : nullptr;
+  double best = 0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    if (embree) {
+      RTCScene scene = embree_scene(device, w);
+      benchmark::DoNotOptimize(scene);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      best = std::max(best, double(w.mesh.triangle_count()) / s);
+      rtcReleaseScene(scene);
+    } else {
+      const MeshAccel accel(w.mesh);
+      benchmark::DoNotOptimize(accel.bvh().nodes().data());
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      best = std::max(best, double(w.mesh.triangle_count()) / s);
+    }
+  }
+  if (device) rtcReleaseDevice(device);
+  state.counters["Mprims_per_s"] = best * 1e-6;
+  g_results[key(mesh, "build", embree ? "embree" : "tessera", threads)] = best;
+}
+
+void register_all() {
+  for (const std::string mesh : {"bunny", "torus1M"}) {
+    auto* rays = benchmark::RegisterBenchmark(("rays/" + mesh).c_str(), BM_Rays, mesh);
+    rays->ArgNames({"primary", "embree", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
+    for (int primary : {0, 1})
+      for (int threads : {1, 2, 0})
+        for (int embree : {0, 1}) rays->Args({primary, embree, threads});
+    auto* build = benchmark::RegisterBenchmark(("build/" + mesh).c_str(), BM_Build, mesh);
+    build->ArgNames({"embree", "threads"})->UseRealTime()->Unit(benchmark::kMillisecond);
+    for (int threads : {1, 0})
+      for (int embree : {0, 1}) build->Args({embree, threads});
+  }
+}
+
+double load_average() {
+  double one = 0;
+  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%lf", &one) != 1) one = 0;
+    std::fclose(f);
+  }
+  return one;
+}
+
+void print_summary() {
+  std::printf("\n%-8s %-8s %-8s %14s %14s %8s %10s\n", "mesh", "what", "threads", "tessera/s", "embree/s", "ratio",
+              "2T-scaling");
+  for (const std::string mesh : {"bunny", "torus1M"})
+    for (const char* what : {"random", "primary", "build"})
+      for (int threads : {1, 2, 0}) {
+        const auto t = g_results.find(key(mesh, what, "tessera", threads));
+        const auto e = g_results.find(key(mesh, what, "embree", threads));
+        if (t == g_results.end() || e == g_results.end()) continue;
+        const auto one = g_results.find(key(mesh, what, "tessera", 1));
+        const double scaling = threads == 2 && one != g_results.end() ? t->second / one->second : 0;
+        std::printf("%-8s %-8s %-8s %14.4g %14.4g %8.3f %10s\n", mesh.c_str(), what,
+                    threads == 0 ? "all" : std::to_string(threads).c_str(), t->second, e->second,
+                    t->second / e->second, scaling > 0 ? std::to_string(scaling).substr(0, 5).c_str() : "");
+      }
+  std::printf("(rates: rays/s, or primitives/s for build; %d hardware threads; load average %.2f)\n",
+              tessera::thread_count(), load_average());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  print_summary();
+  return 0;
+}
