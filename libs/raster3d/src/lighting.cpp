@@ -32,13 +32,15 @@ Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3
     const float n_dot_l = glm::dot(n, l);
     if (n_dot_l <= 0) continue;
     c += n_dot_l * diffuse_m * light.diffuse;
+    const Vec3f specular = m.specular * light.specular;
+    if (specular == Vec3f(0)) continue;  // adds exactly 0: skip the power
     float spec;
     if (lighting.specular_model == SpecularModel::blinn) {
       spec = std::max(glm::dot(n, glm::normalize(l + eye)), 0.0f);  // (H.N)
     } else {
       spec = std::max(glm::dot(eye, 2.0f * n_dot_l * n - l), 0.0f);  // (E.R), R = 2N(N.L) - L
     }
-    c += std::pow(spec, m.shininess) * m.specular * light.specular;
+    c += std::pow(spec, m.shininess) * specular;
   }
   return glm::clamp(c, 0.0f, 1.0f);
 }

@@ -124,9 +124,13 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   r.ry = float(ps.y0);
   const int n = params.varying_count;
   r.varyings = uint32_t(chunk.varyings.size());
-  if (params.flat) {
-    chunk.varyings.insert(chunk.varyings.end(), flat_values, flat_values + n);
-  } else if (n > 0) {
+  // Equal varyings at the three vertices interpolate to themselves: no planes needed (uniformly colored meshes).
+  r.constant = params.flat || n == 0 ||
+               (std::equal(v0 + 4, v0 + 4 + n, v1 + 4) && std::equal(v0 + 4, v0 + 4 + n, v2 + 4));
+  if (r.constant) {
+    const float* values = params.flat ? flat_values : v0 + 4;
+    chunk.varyings.insert(chunk.varyings.end(), values, values + n);
+  } else {
     chunk.varyings.resize(chunk.varyings.size() + 3 * size_t(n + 1));
     float* c = chunk.varyings.data() + r.varyings;
     float* cx = c + (n + 1);

@@ -17,8 +17,8 @@ namespace tessera::raster3d::detail {
 
 inline constexpr int kTileSize = 64;          // pixels per side of a binning tile
 inline constexpr int kMaxVaryings = 32;       // floats of varyings a shader may pass
-inline constexpr int kChunkTriangles = 4096;  // input triangles set up and binned by one task
-inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (bounds memory)
+inline constexpr int kChunkTriangles = 1024;  // input triangles set up and binned by one task
+inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (a pass stays in cache)
 
 /// An edge function in 1/256-pixel fixed point: at the center of GL pixel (i, j) it is
 /// E = 256 (a i + b j) + c, with the tie rule folded into c (a center on an exclusive edge gives -1). The pixel is
@@ -34,8 +34,9 @@ struct TriangleRecord {
   int32_t x0, y0, x1, y1;  // covered GL pixels lie in [x0, x1) x [y0, y1) (scissored)
   double z0, zx, zy;       // window z at GL pixel center (px, py): z0 + zx px + zy py
   float rx, ry;            // the varying planes' origin (window position of the first vertex)
-  uint32_t varyings;       // offset in the chunk's varyings: flat, N floats; else the planes c[N+1], cx[N+1], cy[N+1]
-                           // of 1/w and of each varying / w, so that value(px, py) = c + cx (px - rx) + cy (py - ry)
+  uint32_t varyings;       // offset in the chunk's varyings: constant, N floats; else the planes c[N+1], cx[N+1],
+                           // cy[N+1] of 1/w and of each varying / w: value(px, py) = c + cx (px - rx) + cy (py - ry)
+  bool constant;           // flat shading, or the three vertices' varyings are equal: no interpolation
 };
 
 /// The triangles one setup task produced, and their per-tile lists (record indices in submission order).
@@ -118,6 +119,14 @@ const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& 
   return out;
 }
 
+/// A 32-bit word that may alias the 8-bit RGBA pixels (one store per pixel in the constant-color loop).
+using AliasedU32 = uint32_t __attribute__((may_alias));
+
+/// depth_to_unorm24 for z that the clip volume already bounds to [0, 1] up to rounding (clamped branch-free).
+inline uint32_t depth_unorm24_unclamped(double z) {
+  return uint32_t(int32_t(std::min(std::max(z, 0.0), 1.0) * double(kDepthMax) + 0.5));
+}
+
 /// Whether a fragment of depth d passes against the stored depth s.
 template <DepthFunc F>
 inline bool depth_passes(uint32_t d, uint32_t s) {
@@ -148,6 +157,20 @@ void dispatch_depth_func(DepthFunc f, Fn&& fn) {
 
 /// The covered pixels [lo, hi) of GL row j inside the record's three edges and [lo, hi).
 inline void edge_span(const TriangleRecord& r, int j, int& lo, int& hi) {
+  if (hi - lo <= 8) {
+    // Narrow rows (small triangles): test the few centers directly; the covered run is contiguous (convexity).
+    int64_t e0[3], step[3];
+    for (int k = 0; k < 3; ++k) {
+      e0[k] = int64_t(r.edges[k].b) * 256 * j + r.edges[k].c;
+      step[k] = int64_t(r.edges[k].a) * 256;
+    }
+    const auto inside = [&](int i) {
+      return (e0[0] + step[0] * i) >= 0 && (e0[1] + step[1] * i) >= 0 && (e0[2] + step[2] * i) >= 0;
+    };
+    while (lo < hi && !inside(lo)) ++lo;
+    while (hi > lo && !inside(hi - 1)) --hi;
+    return;
+  }
   for (const Edge& e : r.edges) {
     const int64_t e0 = int64_t(e.b) * 256 * j + e.c;  // E at i = 0
     const int64_t step = int64_t(e.a) * 256;
@@ -177,31 +200,35 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
   auto& depth = fb.depth();
   const bool write_depth = depth_write;
   for (const SetupChunk& chunk : scratch.chunks) {
-    for (uint32_t index : chunk.bins[tile]) {
-      const TriangleRecord& r = chunk.records[index];
+    const std::vector<uint32_t>& bin = chunk.bins[tile];
+    for (size_t b = 0; b < bin.size(); ++b) {
+      if (b + 4 < bin.size()) __builtin_prefetch(&chunk.records[bin[b + 4]]);
+      const TriangleRecord& r = chunk.records[bin[b]];
       const float* data = chunk.varyings.data() + r.varyings;
       const int x0 = std::max(tile_x0, r.x0), x1 = std::min(tile_x1, r.x1);
       const int y0 = std::max(tile_y0, r.y0), y1 = std::min(tile_y1, r.y1);
       if (x0 >= x1 || y0 >= y1) continue;
-      if (params.flat || N == 0) {
+      if (r.constant || N == 0) {
         // Constant varyings: the fragment shader's answer is the same at every pixel.
         V v{};
         if constexpr (N > 0) std::memcpy(&v, data, sizeof(float) * N);
         Vec3f c;
         if (!fs(v, c)) continue;
         const glm::u8vec4 c8 = to_color8(c);
+        uint32_t c32;
+        std::memcpy(&c32, &c8, sizeof c32);
         for (int j = y0; j < y1; ++j) {
           int lo = x0, hi = x1;
           edge_span(r, j, lo, hi);
           if (lo >= hi) continue;
           uint32_t* drow = depth.row(height - 1 - j);
-          glm::u8vec4* crow = color.row(height - 1 - j);
-          const double zrow = r.z0 + r.zy * (j + 0.5);
-          for (int i = lo; i < hi; ++i) {
-            const uint32_t d = depth_to_unorm24(zrow + r.zx * (i + 0.5));
+          AliasedU32* crow = reinterpret_cast<AliasedU32*>(color.row(height - 1 - j));
+          const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
+          for (int i = lo; i < hi; ++i) {  // branch-free so that it vectorizes
+            const uint32_t d = depth_unorm24_unclamped(zrow + r.zx * i);
             const bool pass = depth_passes<F>(d, drow[i]);
             if (write_depth) drow[i] = pass ? d : drow[i];
-            crow[i] = pass ? c8 : crow[i];
+            crow[i] = pass ? c32 : crow[i];
           }
         }
         continue;
@@ -215,23 +242,30 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         if (lo >= hi) continue;
         uint32_t* drow = depth.row(height - 1 - j);
         glm::u8vec4* crow = color.row(height - 1 - j);
-        const double zrow = r.z0 + r.zy * (j + 0.5);
+        const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
+        // Depth test of the whole span first (vectorizes), then the fragment shader where it passed.
+        uint32_t d[kTileSize];
+        bool pass[kTileSize];
+        const int n = hi - lo;
+        for (int k = 0; k < n; ++k) {
+          d[k] = depth_unorm24_unclamped(zrow + r.zx * (lo + k));
+          pass[k] = depth_passes<F>(d[k], drow[lo + k]);
+        }
         const float dy = float(j) + 0.5f - r.ry;
-        std::array<float, N + 1> row;
-        for (int k = 0; k <= N; ++k) row[k] = pc[k] + py[k] * dy;
-        for (int i = lo; i < hi; ++i) {
-          const uint32_t d = depth_to_unorm24(zrow + r.zx * (i + 0.5));
-          if (!depth_passes<F>(d, drow[i])) continue;
-          const float dx = float(i) + 0.5f - r.rx;
-          const float w = 1.0f / (row[0] + px[0] * dx);
+        const float dx0 = float(lo) + 0.5f - r.rx;
+        std::array<float, N + 1> value;
+        for (int k = 0; k <= N; ++k) value[k] = pc[k] + py[k] * dy + px[k] * dx0;
+        for (int k = 0; k < n; ++k, [&] { for (int q = 0; q <= N; ++q) value[q] += px[q]; }()) {
+          if (!pass[k]) continue;
+          const float w = 1.0f / value[0];
           std::array<float, N> values;
-          for (int k = 0; k < N; ++k) values[k] = (row[k + 1] + px[k + 1] * dx) * w;
+          for (int q = 0; q < N; ++q) values[q] = value[q + 1] * w;
           V v;
           std::memcpy(&v, values.data(), sizeof(float) * N);
           Vec3f c;
           if (!fs(v, c)) continue;
-          crow[i] = to_color8(c);
-          if (write_depth) drow[i] = d;
+          crow[lo + k] = to_color8(c);
+          if (write_depth) drow[lo + k] = d[k];
         }
       }
     }
