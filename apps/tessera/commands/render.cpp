@@ -1,8 +1,85 @@
-// tessera render: placeholder until its module lands.
+// tessera render SCENE.json|BUILTIN -o IMG: render a scene file (or a built-in scene by name) with the ray tracer.
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <memory>
+#include <set>
+
+#include <fmt/format.h>
+
 #include "command.hpp"
+#include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
+#include "tessera/image/image_io.hpp"
+#include "tessera/scene/trace.hpp"
 
 namespace tessera::cli {
+namespace {
 
-void setup_render(CLI::App&, CommonOptions&) {}
+struct RenderArgs {
+  std::string scene, output, size, backend = "raytrace";
+  int spp = 0, depth = 0;
+  uint64_t seed = 0;
+};
+
+std::string builtin_list() {
+  std::string list;
+  for (const auto& name : builtin_scene_names()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
+void run_render(const RenderArgs& a, const CommonOptions& common) {
+  if (a.backend != "raytrace")
+    throw InvalidInput(fmt::format("--backend {}: only the raytrace backend renders scenes so far", a.backend));
+  // Every option and the output format are checked before the scene is built or anything is written.
+  Size2 size{0, 0};
+  if (!a.size.empty()) size = parse_size(a.size, "--size");
+  if (a.spp < 0) throw InvalidInput("--spp: expected a positive number of samples");
+  if (a.depth < 0) throw InvalidInput("--depth: expected a positive recursion depth");
+  const std::string ext = std::filesystem::path(a.output).extension().string();
+  static const std::set<std::string> kFormats = {".png", ".ppm", ".pfm", ".hdr", ".jpg", ".jpeg", ".bmp", ".tga"};
+  std::string lower(ext.size(), ' ');
+  std::transform(ext.begin(), ext.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (!kFormats.count(lower))
+    throw InvalidInput(fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
+  const Scene scene = load_scene_or_builtin(a.scene);
+  RenderSettings settings = render_settings(scene);
+  if (size.width > 0) settings.width = size.width, settings.height = size.height;
+  if (a.spp > 0) settings.samples = a.spp;
+  if (a.depth > 0) settings.max_depth = a.depth;
+  settings.seed = a.seed;
+  settings.progress = !common.quiet;
+  const ThreadLimit limit(common.threads);
+  const RayScene rs = to_ray_scene(scene);
+  RenderStats stats;
+  const ImageRGB image = render(rs, settings, &stats);
+  write_image(a.output, image);
+  if (common.stats)
+    print_stats({{"width", stat_value(settings.width)},
+                 {"height", stat_value(settings.height)},
+                 {"samples", stat_value(settings.samples)},
+                 {"objects", stat_value(double(scene.objects.size()))},
+                 {"lights", stat_value(double(scene.lights.size()))},
+                 {"eye_rays", stat_value(double(stats.eye_rays))},
+                 {"rays", stat_value(double(stats.rays))},
+                 {"seconds", stat_value(stats.seconds)},
+                 {"rays_per_s", stat_value(double(stats.rays) / std::max(stats.seconds, 1e-9))}});
+}
+
+}  // namespace
+
+void setup_render(CLI::App& cmd, CommonOptions& common) {
+  auto a = std::make_shared<RenderArgs>();
+  cmd.add_option("scene", a->scene, "Scene file (.json, docs/scene-format.md) or a built-in scene: " + builtin_list())
+      ->required();
+  cmd.add_option("-o,--output", a->output, "Output image (.png, .hdr, .pfm, .ppm, .jpg)")->required();
+  cmd.add_option("--spp", a->spp, "Samples per pixel (default: the scene's)");
+  cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)");
+  cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
+  cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
+  cmd.add_option("--backend", a->backend, "Renderer: raytrace (raster is not wired yet)")
+      ->check(CLI::IsMember({"raytrace", "raster"}));
+  cmd.callback([a, &common] { run_render(*a, common); });
+}
 
 }  // namespace tessera::cli

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# tessera render: built-in scenes and a scene file, image formats, --stats keys, identical output for any thread count,
+# clean failures (exit codes, messages with the JSON path, no partial output).
+set -euo pipefail
+tessera="$1"
+scratch="$2"
+rm -rf "$scratch" && mkdir -p "$scratch"
+cd "$scratch"
+
+"$tessera" render whitted -o w.png --size 64x48 --spp 1 --quiet && test -s w.png
+"$tessera" render cornell -o c.hdr --size 32x32 --spp 2 --stats > stats.txt
+for key in width height samples objects lights eye_rays rays seconds rays_per_s; do
+  grep -q "^$key=" stats.txt || { echo "missing $key"; cat stats.txt; exit 1; }
+done
+grep -q '^eye_rays=2048$' stats.txt
+test -s c.hdr
+
+# A scene file with a mesh beside it (paths are relative to the scene file).
+mkdir -p sub/meshes
+printf 'v -1 0 -1\nv 1 0 -1\nv 0 1.5 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 3 1 4\n' > sub/meshes/tet.obj
+cat > sub/scene.json <<'JSON'
+{"image": {"size": [40, 30], "samples": 2},
+ "camera": {"eye": [0, 1, 5], "center": [0, 0.5, 0]},
+ "lights": [{"type": "point", "position": [2, 5, 5]}],
+ "materials": {"m": {"diffuse": [0.8, 0.3, 0.2]}},
+ "objects": [{"type": "mesh", "file": "meshes/tet.obj", "material": "m"},
+             {"type": "plane", "material": "m"}]}
+JSON
+"$tessera" render sub/scene.json -o s.pfm --quiet && test -s s.pfm
+
+# Identical pictures for any thread count (per-pixel seeded sampling).
+"$tessera" render motion-blur -o t1.ppm --size 48x32 --spp 4 --threads 1 --quiet
+"$tessera" render motion-blur -o t2.ppm --size 48x32 --spp 4 --threads 2 --quiet
+cmp t1.ppm t2.ppm
+
+expect_error() {
+  local code="$1" pattern="$2" out="$3"
+  shift 3
+  set +e
+  "$tessera" "$@" 2> err.txt
+  local rc=$?
+  set -e
+  [ "$rc" -eq "$code" ] || { echo "expected exit $code, got $rc for: $*"; cat err.txt; exit 1; }
+  grep -q -- "$pattern" err.txt || { echo "message lacks '$pattern':"; cat err.txt; exit 1; }
+  [ ! -e "$out" ] || { echo "$out was written"; exit 1; }
+}
+printf '{"materials": {"m": {}}, "objects": [{"type": "sphere", "radius": -2, "material": "m"}]}' > bad.json
+expect_error 1 "objects\[0\].radius: expected a positive number" bad1.png render bad.json -o bad1.png
+printf '{"objects": [' > broken.json
+expect_error 1 "broken.json: byte offset" bad2.png render broken.json -o bad2.png
+expect_error 1 "built-in scene" bad3.png render no-such-scene -o bad3.png
+expect_error 1 "expected an image file" bad4.xyz render whitted -o bad4.xyz --size 8x8
+expect_error 1 "size" bad5.png render whitted -o bad5.png --size 0x8
+expect_error 2 "backend" bad6.png render whitted -o bad6.png --backend vulkan
+expect_error 2 "required" bad7.png render -o bad7.png
+echo "render CLI ok"
