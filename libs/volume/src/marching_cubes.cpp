@@ -1,7 +1,13 @@
 #include "tessera/volume/marching_cubes.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <memory>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/volume/mc_table.hpp"
@@ -51,94 +57,155 @@ const std::vector<FlatCase>& topological_cases() {
   return table;
 }
 
-constexpr uint32_t kCenterFlag = 0x80000000u;
+/// Bit masks of the cases' ambiguous faces (the topological mode reads corner values only where one is set).
+const std::array<uint8_t, 256>& ambiguous_table() {
+  static const std::array<uint8_t, 256> table = [] {
+    std::array<uint8_t, 256> t{};
+    for (int c = 0; c < 256; ++c) t[size_t(c)] = uint8_t(mc::ambiguous_faces(c));
+    return t;
+  }();
+  return table;
+}
 
+/// Resizes an empty output array to n value-initialized elements, its fresh memory first advised to use transparent
+/// huge pages (Linux madvise, on the 2 MiB pages inside the block) and touched in parallel (one byte per 4 KiB page of
+/// the raw storage). An iso-surface is hundreds of megabytes of fresh memory; with 4 KiB pages faulted one by one in
+/// resize()'s serial value-initialization the page faults cost more than the extraction (measured: 4-5x the time).
+template <class T>
+void resize_fresh(std::vector<T>& v, size_t n) {
+  v.clear();
+  v.reserve(n);
+  auto* bytes = reinterpret_cast<unsigned char*>(v.data());
+  const size_t size = n * sizeof(T);
+#if defined(MADV_HUGEPAGE)
+  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
+  const uintptr_t first = (reinterpret_cast<uintptr_t>(bytes) + kHuge - 1) & ~(kHuge - 1);
+  const uintptr_t last = (reinterpret_cast<uintptr_t>(bytes) + size) & ~(kHuge - 1);
+  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+#endif
+  constexpr int64_t kPage = 4096;
+  parallel_for(0, (int64_t(size) + kPage - 1) / kPage, 64, [&](int64_t b, int64_t e) {
+    for (int64_t page = b; page < e; ++page) bytes[page * kPage] = 0;
+  });
+  v.resize(n);
+}
+
+using Word = uint64_t;
+
+/// Bit x of a row of inside flags (x may be one past the row's last word: it reads 0).
+inline int bit(const Word* row, int x) { return int((row[x >> 6] >> (x & 63)) & 1u); }
+
+// The extraction runs in two passes over slabs of z layers, as Flying Edges does: the first counts each slab's cut
+// edges (its vertices), triangles and center vertices; prefix sums place every slab's output; the second writes
+// vertices and triangles straight into the final arrays. Both passes walk packed inside-flags (one bit per voxel,
+// 64 voxels a word), so that cut edges are XORs and popcounts, and runs of 64 cells that are all inside or all
+// outside are skipped a word at a time.
 class Extractor {
  public:
   Extractor(const Volume<float>& v, const MarchingCubesOptions& o)
-      : v_(v), o_(o), d_(v.dims()), data_(v.voxels().data()), plane_(size_t(d_.x) * size_t(d_.y)) {}
+      : v_(v), o_(o), d_(v.dims()), data_(v.voxels().data()), plane_(size_t(d_.x) * size_t(d_.y)),
+        words_(size_t(d_.x + 63) / 64) {}
 
   PolyMesh run() {
     PolyMesh mesh;
     if (d_.x < 2 || d_.y < 2 || d_.z < 2) return mesh;
+    // The valid bits of a row's last word for cells and x-edges (x < nx - 1).
+    edge_tail_ = (Word(1) << (d_.x - 1 - 64 * int(words_ - 1))) - 1;
     const int layers = d_.z - 1, per = std::max(1, o_.slab_layers);
     const int slabs = (layers + per - 1) / per;
     slab_first_.resize(size_t(slabs) + 1);
     for (int s = 0; s <= slabs; ++s) slab_first_[size_t(s)] = std::min(s * per, layers);
-    // Pass 1: vertices per slab (the cut edges it owns), then their global numbering.
-    std::vector<uint64_t> base(size_t(slabs) + 1, 0);
+    slabs_ = slabs;
+
+    // Pass 1: counts per slab, then every slab's first vertex, triangle and center vertex.
+    std::vector<Counts> first(size_t(slabs) + 1);
     parallel_for(0, slabs, 1, [&](int64_t b, int64_t e) {
-      for (int64_t s = b; s < e; ++s) base[size_t(s) + 1] = count_slab(int(s), slabs);
+      for (int64_t s = b; s < e; ++s) first[size_t(s) + 1] = process_slab<false>(int(s));
     });
-    for (int s = 0; s < slabs; ++s) base[size_t(s) + 1] += base[size_t(s)];
-    if (base.back() >= kCenterFlag) throw InvalidInput("marching cubes: the mesh would exceed 2^31 vertices");
-    base_ = base;
-    mesh.positions.resize(size_t(base.back()));
-    if (o_.normals) mesh.normals.resize(size_t(base.back()));
+    for (int s = 0; s < slabs; ++s) {
+      first[size_t(s) + 1].vertices += first[size_t(s)].vertices;
+      first[size_t(s) + 1].triangles += first[size_t(s)].triangles;
+      first[size_t(s) + 1].centers += first[size_t(s)].centers;
+    }
+    const Counts total = first.back();
+    if (total.vertices + total.centers >= uint64_t(UINT32_MAX) || 3 * total.triangles >= uint64_t(UINT32_MAX))
+      throw InvalidInput("marching cubes: the mesh would exceed 2^32 vertices or triangle corners");
+    first_ = first;
+    const size_t vertices = size_t(total.vertices + total.centers);
+    resize_fresh(mesh.positions, vertices);
+    if (o_.normals) resize_fresh(mesh.normals, vertices);
+    resize_fresh(mesh.face_vertices, 3 * size_t(total.triangles));
+    resize_fresh(mesh.face_offsets, size_t(total.triangles) + 1);
     positions_ = mesh.positions.data();
     normals_ = o_.normals ? mesh.normals.data() : nullptr;
-    // Pass 2: vertices and triangles per slab.
-    std::vector<std::vector<uint32_t>> triangles{size_t(slabs)};
-    std::vector<std::vector<std::pair<Vec3, Vec3>>> centers{size_t(slabs)};
+    triangles_ = mesh.face_vertices.data();
+
+    // Pass 2: vertices and triangles, each slab into its own ranges.
     parallel_for(0, slabs, 1, [&](int64_t b, int64_t e) {
-      for (int64_t s = b; s < e; ++s) extract_slab(int(s), slabs, triangles[size_t(s)], centers[size_t(s)]);
+      for (int64_t s = b; s < e; ++s) process_slab<true>(int(s));
     });
-    // Concatenate in slab order; center vertices follow the edge vertices.
-    size_t total = 0;
-    for (const auto& t : triangles) total += t.size();
-    mesh.face_vertices.reserve(total);
-    uint32_t center_base = uint32_t(base.back());
-    for (int s = 0; s < slabs; ++s) {
-      for (uint32_t id : triangles[size_t(s)])
-        mesh.face_vertices.push_back(id & kCenterFlag ? center_base + (id & ~kCenterFlag) : id);
-      for (const auto& [p, n] : centers[size_t(s)]) {
-        mesh.positions.push_back(p);
-        if (o_.normals) mesh.normals.push_back(n);
-      }
-      center_base += uint32_t(centers[size_t(s)].size());
-      std::vector<uint32_t>().swap(triangles[size_t(s)]);
-    }
-    mesh.face_offsets.resize(mesh.face_vertices.size() / 3 + 1);
-    for (size_t f = 0; f < mesh.face_offsets.size(); ++f) mesh.face_offsets[f] = uint32_t(3 * f);
+    uint32_t* offsets = mesh.face_offsets.data();
+    parallel_for(0, int64_t(total.triangles) + 1, 1 << 16, [&](int64_t b, int64_t e) {
+      for (int64_t f = b; f < e; ++f) offsets[f] = uint32_t(3 * f);
+    });
     return mesh;
   }
 
  private:
-  size_t at(int x, int y, int z) const { return size_t(x) + size_t(d_.x) * size_t(y) + plane_ * size_t(z); }
-  bool in(size_t i) const { return data_[i] >= o_.iso; }
-  bool owns_top(int s, int slabs) const { return s == slabs - 1; }
+  struct Counts {
+    uint64_t vertices = 0, triangles = 0, centers = 0;
+  };
 
-  /// Cut x- and y-edges of plane z, in the numbering order (row by row, x-edge before y-edge).
-  template <class F>
-  void scan_plane(int z, F&& visit) const {
+  size_t at(int x, int y, int z) const { return size_t(x) + size_t(d_.x) * size_t(y) + plane_ * size_t(z); }
+
+  /// Packs plane z's inside flags (value >= iso) into rows of words; bits past the row's end are 0.
+  void classify(int z, Word* bits) const {
+    const float iso = o_.iso;
     for (int y = 0; y < d_.y; ++y) {
-      const size_t row = at(0, y, z);
-      for (int x = 0; x < d_.x; ++x) {
-        const bool a = in(row + size_t(x));
-        if (x + 1 < d_.x && a != in(row + size_t(x) + 1)) visit(x, y, 0);
-        if (y + 1 < d_.y && a != in(row + size_t(x) + size_t(d_.x))) visit(x, y, 1);
+      const float* row = data_ + at(0, y, z);
+      Word* out = bits + size_t(y) * words_;
+      for (size_t w = 0; w < words_; ++w) {
+        const int x0 = int(64 * w), n = std::min(64, d_.x - x0);
+        Word word = 0;
+        for (int i = 0; i < n; ++i) word |= Word(row[x0 + i] >= iso) << i;
+        out[w] = word;
       }
     }
   }
 
+  /// Word w of the cut x-edges of a row (x < nx - 1).
+  Word x_cuts(const Word* row, size_t w) const {
+    const Word next = w + 1 < words_ ? row[w + 1] : 0;
+    const Word cuts = row[w] ^ ((row[w] >> 1) | (next << 63));
+    return w + 1 < words_ ? cuts : cuts & edge_tail_;
+  }
+
+  /// Visits the cut x- and y-edges of a plane in the numbering order (row by row, x-edge before y-edge).
   template <class F>
-  void scan_z_edges(int z, F&& visit) const {
+  void scan_plane(const Word* bits, F&& visit) const {
     for (int y = 0; y < d_.y; ++y) {
-      const size_t row = at(0, y, z);
-      for (int x = 0; x < d_.x; ++x)
-        if (in(row + size_t(x)) != in(row + size_t(x) + plane_)) visit(x, y, 2);
+      const Word* row = bits + size_t(y) * words_;
+      const Word* up = y + 1 < d_.y ? row + words_ : nullptr;
+      for (size_t w = 0; w < words_; ++w) {
+        const Word xs = x_cuts(row, w), ys = up ? row[w] ^ up[w] : 0;
+        for (Word any = xs | ys; any; any &= any - 1) {
+          const int i = std::countr_zero(any), x = int(64 * w) + i;
+          if ((xs >> i) & 1) visit(x, y, 0);
+          if ((ys >> i) & 1) visit(x, y, 1);
+        }
+      }
     }
   }
 
-  uint64_t count_slab(int s, int slabs) const {
+  uint64_t count_plane(const Word* bits) const {
     uint64_t n = 0;
-    const auto count = [&](int, int, int) { ++n; };
-    const int z0 = slab_first_[size_t(s)], z1 = slab_first_[size_t(s) + 1];
-    for (int z = z0; z < z1; ++z) {
-      scan_plane(z, count);
-      scan_z_edges(z, count);
+    for (int y = 0; y < d_.y; ++y) {
+      const Word* row = bits + size_t(y) * words_;
+      for (size_t w = 0; w < words_; ++w) {
+        n += uint64_t(std::popcount(x_cuts(row, w)));
+        if (y + 1 < d_.y) n += uint64_t(std::popcount(row[w] ^ row[w + words_]));
+      }
     }
-    if (owns_top(s, slabs)) scan_plane(z1, count);
     return n;
   }
 
@@ -166,9 +233,9 @@ class Extractor {
     if (normals_) normals_[id] = n;
   }
 
-  /// Numbers the cut edges of plane z into ids (x-edge at 2i, y-edge at 2i+1), writing their vertices when `write`.
-  void number_plane(int z, std::vector<uint32_t>& ids, uint32_t& next, bool write) const {
-    scan_plane(z, [&](int x, int y, int axis) {
+  /// Numbers the cut edges of a plane into ids (x-edge at 2i, y-edge at 2i+1), writing their vertices when `write`.
+  void number_plane(const Word* bits, int z, uint32_t* ids, uint32_t& next, bool write) const {
+    scan_plane(bits, [&](int x, int y, int axis) {
       ids[2 * (size_t(y) * size_t(d_.x) + size_t(x)) + size_t(axis)] = next;
       if (write) emit(next, x, y, z, axis);
       ++next;
@@ -177,7 +244,7 @@ class Extractor {
 
   int decide_faces(int cube_case, const std::array<float, 8>& value) const {
     int join = 0;
-    const int amb = mc::ambiguous_faces(cube_case);
+    const int amb = ambiguous_table()[size_t(cube_case)];
     for (int f = 0; f < 6; ++f) {
       if (!((amb >> f) & 1)) continue;
       const auto& q = mc::faces()[size_t(f)];
@@ -189,61 +256,121 @@ class Extractor {
     return join;
   }
 
-  void extract_slab(int s, int slabs, std::vector<uint32_t>& tris, std::vector<std::pair<Vec3, Vec3>>& centers) const {
+  /// The case table entry of cell (x, y, z) with corner case `cube_case`.
+  const FlatCase& cell_case(int x, int y, int z, int cube_case) const {
+    if (!o_.topological) return classic_cases()[size_t(cube_case)];
+    int join = 0;
+    if (ambiguous_table()[size_t(cube_case)] != 0) {
+      const float* r0 = data_ + at(x, y, z);
+      const float* r1 = r0 + d_.x;
+      const float* r2 = r0 + plane_;
+      const float* r3 = r2 + d_.x;
+      join = decide_faces(cube_case, {r0[0], r0[1], r1[1], r1[0], r2[0], r2[1], r3[1], r3[0]});
+    }
+    return topological_cases()[size_t(cube_case * 64 + join)];
+  }
+
+  /// One slab: counts its output (kWrite false) or writes it at the places pass 1 gave it (kWrite true). A slab owns
+  /// the x/y edges of its planes but the last (which the next slab owns, except for the top slab) and the z edges and
+  /// cells of its layers. A slab numbers its bottom plane first, so the slab below can compute the ids of the shared
+  /// plane itself.
+  template <bool kWrite>
+  Counts process_slab(int s) const {
     const int z0 = slab_first_[size_t(s)], z1 = slab_first_[size_t(s) + 1];
-    const size_t nx = size_t(d_.x);
-    std::vector<uint32_t> lo(2 * plane_), hi(2 * plane_), zid(plane_);
-    uint32_t next = uint32_t(base_[size_t(s)]);
-    number_plane(z0, lo, next, true);
-    const auto& classic = classic_cases();
-    const auto& topo = topological_cases();
+    const bool top = s == slabs_ - 1;
+    const size_t nx = size_t(d_.x), plane_words = size_t(d_.y) * words_;
+    std::vector<Word> lo(plane_words + 1), hi(plane_words + 1);  // one spare word: bit() may read past a row
+    std::unique_ptr<uint32_t[]> lo_id, hi_id, zid;
+    Counts counts;
+    uint32_t next = 0, center = 0;
+    uint32_t* tris = nullptr;
+    if constexpr (kWrite) {
+      lo_id.reset(new uint32_t[2 * plane_]);
+      hi_id.reset(new uint32_t[2 * plane_]);
+      zid.reset(new uint32_t[plane_]);
+      next = uint32_t(first_[size_t(s)].vertices);
+      center = uint32_t(first_.back().vertices + first_[size_t(s)].centers);
+      tris = triangles_ + 3 * first_[size_t(s)].triangles;
+    }
+    classify(z0, lo.data());
+    if constexpr (kWrite) number_plane(lo.data(), z0, lo_id.get(), next, true);
+    else counts.vertices += count_plane(lo.data());
     std::array<uint32_t, 12 + mc::kMaxCenters> id{};
-    std::array<float, 8> value{};
     for (int z = z0; z < z1; ++z) {
-      scan_z_edges(z, [&](int x, int y, int axis) {
-        zid[size_t(y) * nx + size_t(x)] = next;
-        emit(next++, x, y, z, axis);
-      });
-      if (z + 1 < z1 || owns_top(s, slabs)) {
-        number_plane(z + 1, hi, next, true);
-      } else {
-        uint32_t neighbour = uint32_t(base_[size_t(s) + 1]);  // the next slab numbers its bottom plane first
-        number_plane(z + 1, hi, neighbour, false);
+      classify(z + 1, hi.data());
+      for (int y = 0; y < d_.y; ++y) {
+        const Word* a = lo.data() + size_t(y) * words_;
+        const Word* c = hi.data() + size_t(y) * words_;
+        for (size_t w = 0; w < words_; ++w) {
+          const Word cuts = a[w] ^ c[w];
+          if constexpr (kWrite) {
+            for (Word m = cuts; m; m &= m - 1) {
+              const int x = int(64 * w) + std::countr_zero(m);
+              zid[size_t(y) * nx + size_t(x)] = next;
+              emit(next++, x, y, z, 2);
+            }
+          } else {
+            counts.vertices += uint64_t(std::popcount(cuts));
+          }
+        }
+      }
+      if (z + 1 < z1 || top) {
+        if constexpr (kWrite) number_plane(hi.data(), z + 1, hi_id.get(), next, true);
+        else counts.vertices += count_plane(hi.data());
+      } else if constexpr (kWrite) {
+        uint32_t neighbour = uint32_t(first_[size_t(s) + 1].vertices);  // the next slab numbers this plane first
+        number_plane(hi.data(), z + 1, hi_id.get(), neighbour, false);
       }
       for (int y = 0; y + 1 < d_.y; ++y) {
-        const float* r0 = data_ + at(0, y, z);
-        const float* r1 = r0 + nx;
-        const float* r2 = r0 + plane_;
-        const float* r3 = r2 + nx;
-        for (int x = 0; x + 1 < d_.x; ++x) {
-          value = {r0[x], r0[x + 1], r1[x + 1], r1[x], r2[x], r2[x + 1], r3[x + 1], r3[x]};
-          int cube_case = 0;
-          for (int c = 0; c < 8; ++c) cube_case |= int(value[size_t(c)] >= o_.iso) << c;
-          if (cube_case == 0 || cube_case == 255) continue;
-          const FlatCase& fc =
-              o_.topological ? topo[size_t(cube_case * 64 + decide_faces(cube_case, value))] : classic[size_t(cube_case)];
-          const size_t i = size_t(y) * nx + size_t(x);
-          id[0] = lo[2 * i];
-          id[1] = lo[2 * (i + 1) + 1];
-          id[2] = lo[2 * (i + nx)];
-          id[3] = lo[2 * i + 1];
-          id[4] = hi[2 * i];
-          id[5] = hi[2 * (i + 1) + 1];
-          id[6] = hi[2 * (i + nx)];
-          id[7] = hi[2 * i + 1];
-          id[8] = zid[i];
-          id[9] = zid[i + 1];
-          id[10] = zid[i + nx + 1];
-          id[11] = zid[i + nx];
-          for (size_t k = 0; k < fc.centers; ++k) {
-            id[size_t(mc::kCenter) + k] = kCenterFlag | uint32_t(centers.size());
-            centers.push_back(center_vertex(x, y, z, fc.center_edges[k]));
+        const Word* a = lo.data() + size_t(y) * words_;
+        const Word* b = a + words_;
+        const Word* c = hi.data() + size_t(y) * words_;
+        const Word* d = c + words_;
+        for (size_t w = 0; w < words_; ++w) {
+          // A cell is active unless its 8 corners agree: fold the four rows, then pair bit x with bit x + 1.
+          const Word any = a[w] | b[w] | c[w] | d[w], all = a[w] & b[w] & c[w] & d[w];
+          const Word any_next = w + 1 < words_ ? a[w + 1] | b[w + 1] | c[w + 1] | d[w + 1] : 0;
+          const Word all_next = w + 1 < words_ ? a[w + 1] & b[w + 1] & c[w + 1] & d[w + 1] : 0;
+          Word active = (any | (any >> 1) | (any_next << 63)) & ~(all & ((all >> 1) | (all_next << 63)));
+          if (w + 1 == words_) active &= edge_tail_;
+          for (; active; active &= active - 1) {
+            const int x = int(64 * w) + std::countr_zero(active);
+            const int cube_case = bit(a, x) | bit(a, x + 1) << 1 | bit(b, x + 1) << 2 | bit(b, x) << 3 |
+                                  bit(c, x) << 4 | bit(c, x + 1) << 5 | bit(d, x + 1) << 6 | bit(d, x) << 7;
+            const FlatCase& fc = cell_case(x, y, z, cube_case);
+            if constexpr (!kWrite) {
+              counts.triangles += fc.count;
+              counts.centers += fc.centers;
+            } else {
+              const size_t i = size_t(y) * nx + size_t(x);
+              id[0] = lo_id[2 * i];
+              id[1] = lo_id[2 * (i + 1) + 1];
+              id[2] = lo_id[2 * (i + nx)];
+              id[3] = lo_id[2 * i + 1];
+              id[4] = hi_id[2 * i];
+              id[5] = hi_id[2 * (i + 1) + 1];
+              id[6] = hi_id[2 * (i + nx)];
+              id[7] = hi_id[2 * i + 1];
+              id[8] = zid[i];
+              id[9] = zid[i + 1];
+              id[10] = zid[i + nx + 1];
+              id[11] = zid[i + nx];
+              for (size_t k = 0; k < fc.centers; ++k) {
+                id[size_t(mc::kCenter) + k] = center;
+                const auto [p, n] = center_vertex(x, y, z, fc.center_edges[k]);
+                positions_[center] = p;
+                if (normals_) normals_[center] = n;
+                ++center;
+              }
+              for (int t = 0; t < 3 * fc.count; ++t) *tris++ = id[fc.edges[size_t(t)]];
+            }
           }
-          for (int t = 0; t < 3 * fc.count; ++t) tris.push_back(id[fc.edges[size_t(t)]]);
         }
       }
       std::swap(lo, hi);
+      std::swap(lo_id, hi_id);
     }
+    return counts;
   }
 
   /// The centroid of the vertices on `edge_mask`'s edges of cell (x, y, z), with their averaged normal.
@@ -270,10 +397,14 @@ class Extractor {
   glm::ivec3 d_;
   const float* data_;
   size_t plane_;
+  size_t words_;
+  Word edge_tail_ = 0;
+  int slabs_ = 0;
   std::vector<int> slab_first_;
-  std::vector<uint64_t> base_;
+  std::vector<Counts> first_;
   Vec3* positions_ = nullptr;
   Vec3* normals_ = nullptr;
+  uint32_t* triangles_ = nullptr;
 };
 
 }  // namespace
