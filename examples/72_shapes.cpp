@@ -9,7 +9,7 @@ TESSERA_EXAMPLE(ex72_shapes, "72_shapes", "Every ray-traced shape") {
   RenderSettings s = render_settings(scene);
   s.progress = false;
   gallery.add("72_shapes.png", render(to_ray_scene(scene), s),
-              "Left to right: a cone tipped toward the viewer to show its base cap, a capped cylinder, a rotated box, "
+              "Left to right: the notes' cone standing on its apex with its base cap on top, a capped cylinder, a rotated box, "
               "an ellipsoid, a non-convex polygon (winding-number test), a tilted disk, a sphere; a triangle lies on "
               "the floor.");
 }

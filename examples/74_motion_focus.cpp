@@ -20,7 +20,7 @@ TESSERA_EXAMPLE(ex74_motion_focus, "74_motion_focus", "Motion blur and depth of 
                 std::string(name) == "motion-blur"
                     ? "Left: one instant. Right: rays spread over the shutter interval; the red sphere moves right, "
                       "the blue one up, the box turns 30 degrees."
-                    : "Left: a pinhole camera. Right: a thin lens of radius 0.22 focused at 8.2 units, on the middle "
+                    : "Left: a pinhole camera. Right: a thin lens of radius 0.22 focused at 7.6 units, on the third "
                       "(green) sphere; nearer and farther spheres blur.");
   }
 }
