@@ -79,11 +79,16 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   const float* v[3] = {v0, v1, v2};
   WindowVertex w[3];
   int32_t X[3], Y[3];
+  // Window y is snapped as Gallium computes it for a window-system framebuffer, whose rows run top to bottom:
+  // yd = scale -h/2, translate H - (y + h/2); mirroring the snapped integer gives the GL y-up coordinate exactly.
+  const float half_h = float(params.vh) * 0.5f;
+  const float translate_yd = float(params.fb_height) - (float(params.vy) + half_h);
   for (int k = 0; k < 3; ++k) {
     if (!(v[k][3] > 0)) return;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
     w[k] = to_window(params, v[k]);
+    const float yd = v[k][1] * w[k].inv_w * -half_h + translate_yd;
     X[k] = int32_t(std::lrint(w[k].x * 256.0f));  // snap to 1/256 pixel
-    Y[k] = int32_t(std::lrint(w[k].y * 256.0f));
+    Y[k] = params.fb_height * 256 - int32_t(std::lrint(yd * 256.0f));
   }
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
