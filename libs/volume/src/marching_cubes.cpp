@@ -8,6 +8,9 @@
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/volume/mc_table.hpp"
@@ -167,7 +170,14 @@ class Extractor {
       for (size_t w = 0; w < words_; ++w) {
         const int x0 = int(64 * w), n = std::min(64, d_.x - x0);
         Word word = 0;
-        for (int i = 0; i < n; ++i) word |= Word(row[x0 + i] >= iso) << i;
+        int i = 0;
+#if defined(__SSE2__)
+        // Four compares a step (an ordered compare: NaN is outside, as with >=).
+        const __m128 threshold = _mm_set1_ps(iso);
+        for (; i + 4 <= n; i += 4)
+          word |= Word(unsigned(_mm_movemask_ps(_mm_cmpge_ps(_mm_loadu_ps(row + x0 + i), threshold)))) << i;
+#endif
+        for (; i < n; ++i) word |= Word(row[x0 + i] >= iso) << i;
         out[w] = word;
       }
     }
