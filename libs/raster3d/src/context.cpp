@@ -9,8 +9,9 @@
 namespace tessera::raster3d {
 namespace {
 
-// Immediate-mode batches are drawn once they hold this many vertices (or on any state change).
-constexpr size_t kBatchVertices = size_t(1) << 16;
+// Immediate-mode batches are drawn once they hold this many vertices (or on any state change): one setup pass of
+// independent triangles, small enough to stay in cache.
+constexpr size_t kBatchVertices = 3 * size_t(detail::kChunkTriangles) * detail::kPassChunks;
 
 template <class T>
 std::vector<T> to_float_array(const auto& values, size_t expected, const char* what) {
@@ -81,7 +82,11 @@ Framebuffer& Context::framebuffer() {
 }
 
 void Context::flush() {
-  if (in_shape_) throw InvalidInput("flush between begin and end (missing end)");
+  if (in_shape_) throw InvalidInput("state change or flush between begin and end (missing end)");
+  draw_batch();
+}
+
+void Context::draw_batch() {
   if (batch_.positions.empty()) return;
   const VertexAttributes attributes = batch_.attributes();
   const auto count = uint32_t(batch_.positions.size());
@@ -226,8 +231,26 @@ void Context::begin(Primitive kind) {
   shape_first_ = uint32_t(batch_.positions.size());
 }
 
+// Vertices per primitive of the kinds whose long shapes can be cut between primitives, else 0.
+static uint32_t independent_primitive_size(Primitive kind) {
+  switch (kind) {
+    case Primitive::points: return 1;
+    case Primitive::lines: return 2;
+    case Primitive::triangles: return 3;
+    case Primitive::quads: return 4;
+    default: return 0;
+  }
+}
+
 void Context::vertex(double x, double y, double z) {
   if (!in_shape_) throw InvalidInput("vertex outside begin/end");
+  const uint32_t cut = independent_primitive_size(shape_kind_);
+  if (cut && batch_.positions.size() >= kBatchVertices && (batch_.positions.size() - shape_first_) % cut == 0) {
+    // A long shape of independent primitives: draw what is complete, so the batch stays cache-sized.
+    assemble_shape();
+    draw_batch();
+    shape_first_ = 0;
+  }
   batch_.positions.emplace_back(x, y, z);
   batch_.normals.push_back(current_normal_);
   batch_.colors.push_back(current_color_);

@@ -143,6 +143,7 @@ class Context {
   RasterState raster_state() const;
   MatrixStack3& current_stack();
   void assemble_shape();
+  void draw_batch();
 
   Framebuffer framebuffer_;
   MatrixStack3 projection_, model_view_;

@@ -199,6 +199,16 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
   auto& color = fb.color();
   auto& depth = fb.depth();
   const bool write_depth = depth_write;
+  // Small triangles land anywhere in the tile: fetch the tile's depth and color rows at once rather than miss on
+  // each of them.
+  bool any = false;
+  for (const SetupChunk& chunk : scratch.chunks) any = any || !chunk.bins[tile].empty();
+  if (!any) return;
+  for (int j = tile_y0; j < tile_y1; ++j)
+    for (int i = tile_x0; i < tile_x1; i += 16) {
+      __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
+      __builtin_prefetch(color.row(height - 1 - j) + i, 1);
+    }
   for (const SetupChunk& chunk : scratch.chunks) {
     const std::vector<uint32_t>& bin = chunk.bins[tile];
     for (size_t b = 0; b < bin.size(); ++b) {
