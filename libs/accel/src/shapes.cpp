@@ -190,12 +190,20 @@ bool point_in_polygon(std::span<const Vec2f> poly, Vec2f p, PointInPolygon test)
       // The notes' test: p is inside a convex polygon when it lies on the inner side of every edge line. A non-convex
       // polygon is covered by the fan of triangles (v0, vi, vi+1) with parity (Haines 1994), which for a convex
       // polygon is exactly the notes' test.
+      // The side of the line a-b is computed from the lexicographically smaller endpoint, so the two triangles that
+      // share a diagonal get bit-identical opposite answers; a point exactly on a line is treated as if moved by an
+      // infinitesimal (epsilon, epsilon^2) (simulation of simplicity). A point then lies in exactly one of the two.
+      auto side = [&p](Vec2f a, Vec2f b) {
+        const bool swapped = b.x < a.x || (b.x == a.x && b.y < a.y);
+        if (swapped) std::swap(a, b);
+        const Vec2f d = b - a;
+        const float e = cross2(d, p - a);
+        return swapped != (e != 0 ? e > 0 : (d.y != 0 ? d.y < 0 : d.x > 0));
+      };
       bool inside = false;
       for (size_t i = 1; i + 1 < n; ++i) {
-        const float e0 = cross2(poly[i] - poly[0], p - poly[0]);
-        const float e1 = cross2(poly[i + 1] - poly[i], p - poly[i]);
-        const float e2 = cross2(poly[0] - poly[i + 1], p - poly[i + 1]);
-        if ((e0 > 0 && e1 > 0 && e2 > 0) || (e0 < 0 && e1 < 0 && e2 < 0)) inside = !inside;
+        const bool s0 = side(poly[0], poly[i]), s1 = side(poly[i], poly[i + 1]), s2 = side(poly[i + 1], poly[0]);
+        if (s0 == s1 && s1 == s2) inside = !inside;
       }
       return inside;
     }

@@ -306,8 +306,11 @@ TEST(Shapes, PointInPolygonHandCases) {
   // An L shape (concave): the notch is outside, both arms inside.
   const std::vector<Vec2f> l = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
   for (PointInPolygon test : {PointInPolygon::crossing, PointInPolygon::winding, PointInPolygon::half_plane}) {
-    // (Points off the fan diagonals from (0, 0), where the half-plane test's triangles meet.)
     EXPECT_TRUE(point_in_polygon(l, {0.2f, 0.7f}, test)) << int(test);
+    // Points exactly on the diagonals (0, 0)-(1, 1) and (0, 0)-(1, 2) shared by two of the half-plane test's fan
+    // triangles: inside exactly once.
+    EXPECT_TRUE(point_in_polygon(l, {0.5f, 0.5f}, test)) << int(test);
+    EXPECT_TRUE(point_in_polygon(l, {0.5f, 1.0f}, test)) << int(test);
     EXPECT_TRUE(point_in_polygon(l, {1.5f, 0.4f}, test)) << int(test);
     EXPECT_TRUE(point_in_polygon(l, {0.4f, 1.5f}, test)) << int(test);
     EXPECT_FALSE(point_in_polygon(l, {1.5f, 1.5f}, test)) << int(test);
@@ -316,6 +319,14 @@ TEST(Shapes, PointInPolygonHandCases) {
     // by the half-open rule.
     EXPECT_TRUE(point_in_polygon(l, {0.25f, 1.0f}, test)) << int(test);
   }
+  // A pixel grid over a square whose fan diagonal (-1, -1)-(1, 1) passes through pixel centers: all agree.
+  const std::vector<Vec2f> square = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const Vec2f p((float(x) + 0.5f) / 32 - 1, (float(y) + 0.5f) / 32 - 1);
+      ASSERT_TRUE(point_in_polygon(square, p, PointInPolygon::half_plane)) << x << "," << y;
+      ASSERT_TRUE(point_in_polygon(square, p, PointInPolygon::crossing)) << x << "," << y;
+    }
   // A pentagram drawn as a self-intersecting star: the center has winding number 2 (inside by the nonzero rule) but
   // crosses an even number of edges (outside by even-odd): where the rules differ.
   std::vector<Vec2f> star;

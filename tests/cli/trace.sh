@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# tessera trace and tessera bench raycast: images, the bench output and --stats keys, the --hits-out format checked
+# against the analytic sphere the mesh approximates, and clean failures.
+set -euo pipefail
+tessera="$1"
+scratch="$2"
+rm -rf "$scratch" && mkdir -p "$scratch"
+cd "$scratch"
+
+# A unit sphere as a subdivided octahedron (8 * 4^5 triangles, vertices on the sphere): the flat facets stray from
+# the sphere by under 1e-3.
+/usr/bin/python3 - <<'EOF'
+import math
+verts = [(1,0,0),(-1,0,0),(0,1,0),(0,-1,0),(0,0,1),(0,0,-1)]
+faces = [(0,2,4),(2,1,4),(1,3,4),(3,0,4),(2,0,5),(1,2,5),(3,1,5),(0,3,5)]
+for _ in range(5):
+    cache, out = {}, []
+    def mid(a, b):
+        key = (min(a, b), max(a, b))
+        if key not in cache:
+            p = [(verts[a][k] + verts[b][k]) / 2 for k in range(3)]
+            n = math.sqrt(sum(c * c for c in p))
+            verts.append(tuple(c / n for c in p))
+            cache[key] = len(verts) - 1
+        return cache[key]
+    for a, b, c in faces:
+        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+        out += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+    faces = out
+with open("sphere.obj", "w") as f:
+    for v in verts: f.write("v %.9f %.9f %.9f\n" % v)
+    for a, b, c in faces: f.write("f %d %d %d\n" % (a + 1, b + 1, c + 1))
+open("empty.obj", "w").write("v 0 0 0\n")
+EOF
+
+cam=(--eye 0,0,5 --center 0,0,0 --fovy 30 --size 64x48)
+
+# trace: every shading, deterministic for any thread count.
+"$tessera" trace sphere.obj -o t1.png "${cam[@]}" --threads 1
+"$tessera" trace sphere.obj -o t2.png "${cam[@]}" --threads 2
+cmp t1.png t2.png
+"$tessera" trace sphere.obj -o n.ppm --shade normal "${cam[@]}" && test -s n.ppm
+"$tessera" trace sphere.obj -o c.png --shade cost "${cam[@]}" --stats > trace_stats.txt
+for key in triangles pixels seconds; do grep -q "^$key=" trace_stats.txt || { echo "trace: missing $key"; exit 1; }; done
+grep -q '^triangles=8192$' trace_stats.txt
+
+# bench raycast: the one-line summary, the --stats keys, and the hits file.
+"$tessera" bench raycast sphere.obj "${cam[@]}" --random-rays 20000 > bench.txt
+grep -Eq '^build_s=[0-9.e+-]+ primary_rays_per_s=[0-9.e+-]+ random_rays_per_s=[0-9.e+-]+$' bench.txt \
+  || { echo "bad bench line:"; cat bench.txt; exit 1; }
+"$tessera" bench raycast sphere.obj "${cam[@]}" --random-rays 1000 --stats --hits-out hits.txt > stats.txt
+for key in build_s primary_rays_per_s random_rays_per_s triangles bvh_nodes bvh_depth primary_hit_fraction \
+           random_hit_fraction threads; do
+  grep -Eq "^$key=[0-9.e+-]+$" stats.txt || { echo "bench: missing $key"; cat stats.txt; exit 1; }
+done
+
+# The hits file: one line per primary ray, row-major from the top row, checked against the analytic unit sphere
+# (the notes' eye rays: u = (2(i + 1/2)/W - 1) aspect, v = 1 - 2(j + 1/2)/H, direction -d w + u u + v v).
+/usr/bin/python3 - <<'EOF'
+import math
+W, H = 64, 48
+d = 1 / math.tan(math.radians(30) / 2)
+lines = open("hits.txt").read().split("\n")
+assert lines[-1] == "", "no final newline"
+lines = lines[:-1]
+assert len(lines) == W * H, len(lines)
+hits = 0
+for k, line in enumerate(lines):
+    idx, t, prim = line.split()
+    assert int(idx) == k, line
+    j, i = divmod(k, W)
+    u = (2 * (i + 0.5) / W - 1) * W / H
+    v = 1 - 2 * (j + 0.5) / H
+    n = math.sqrt(u * u + v * v + d * d)
+    dz = -d / n
+    # |(0, 0, 5) + t dir|^2 = 1: t^2 + 2 b t + 24 = 0 with b = 5 dz.
+    b = 5 * dz
+    disc = b * b - 24
+    if prim == "-1":
+        assert t == "-1", line
+        # A miss only where the sphere is missed or grazed (the mesh lies just inside the sphere).
+        assert disc < 0.05, line
+        continue
+    hits += 1
+    assert 0 <= int(prim) < 8192, line
+    assert disc >= 0, "a hit where the sphere is missed: " + line
+    t_sphere = -b - math.sqrt(disc)
+    # The facets sag under 1e-3 below the sphere; near the silhouette t is more sensitive.
+    assert abs(float(t) - t_sphere) < 2e-3 / max(math.sqrt(disc) / 2.5, 0.05), (line, t_sphere)
+assert hits > W * H / 10, hits
+EOF
+
+# Errors: exit 1 (2 for usage), a clear message, no output file.
+expect_error() {
+  local code="$1" pattern="$2" out="$3"
+  shift 3
+  set +e
+  "$tessera" "$@" 2> err.txt > /dev/null
+  local rc=$?
+  set -e
+  [ "$rc" -eq "$code" ] || { echo "expected exit $code, got $rc for: $*"; cat err.txt; exit 1; }
+  grep -qi -- "$pattern" err.txt || { echo "message lacks '$pattern':"; cat err.txt; exit 1; }
+  [ ! -e "$out" ] || { echo "$out was written"; exit 1; }
+}
+expect_error 1 "missing.obj" bad.png trace missing.obj -o bad.png
+expect_error 1 "no faces" bad.png trace empty.obj -o bad.png
+expect_error 1 "size" bad.png trace sphere.obj -o bad.png --size 0x10
+expect_error 2 "shade" bad.png trace sphere.obj -o bad.png --shade glow
+expect_error 1 "random-rays" bad_hits.txt bench raycast sphere.obj --random-rays -5 --hits-out bad_hits.txt
+expect_error 1 "no faces" bad_hits.txt bench raycast empty.obj --hits-out bad_hits.txt
+expect_error 2 "subcommand is required" none bench
+echo "trace CLI ok"
