@@ -1,8 +1,8 @@
 #include "tessera/raster3d/context.hpp"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "tessera/math/transform.hpp"
 
@@ -24,11 +24,14 @@ enum class PrimitiveClass { triangles, lines, points };
 
 PrimitiveClass primitive_class(Primitive kind) {
   switch (kind) {
-    case Primitive::points: return PrimitiveClass::points;
+    case Primitive::points:
+      return PrimitiveClass::points;
     case Primitive::lines:
     case Primitive::line_strip:
-    case Primitive::line_loop: return PrimitiveClass::lines;
-    default: return PrimitiveClass::triangles;
+    case Primitive::line_loop:
+      return PrimitiveClass::lines;
+    default:
+      return PrimitiveClass::triangles;
   }
 }
 
@@ -234,11 +237,16 @@ void Context::begin(Primitive kind) {
 // Vertices per primitive of the kinds whose long shapes can be cut between primitives, else 0.
 static uint32_t independent_primitive_size(Primitive kind) {
   switch (kind) {
-    case Primitive::points: return 1;
-    case Primitive::lines: return 2;
-    case Primitive::triangles: return 3;
-    case Primitive::quads: return 4;
-    default: return 0;
+    case Primitive::points:
+      return 1;
+    case Primitive::lines:
+      return 2;
+    case Primitive::triangles:
+      return 3;
+    case Primitive::quads:
+      return 4;
+    default:
+      return 0;
   }
 }
 
@@ -365,8 +373,8 @@ void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t 
     add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices, PhongVertexShader{attributes, &u},
                                      PhongFragmentShader{&u}));
   } else {
-    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices,
-                                     FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices, FixedFunctionVertexShader{attributes, &u},
+                                     ColorFragmentShader{}));
   }
 }
 

@@ -1,11 +1,11 @@
 // Clipping, triangle setup and binning: the parts of the pipeline that do not depend on the shaders.
-#include <algorithm>
-#include <cmath>
-#include <limits>
+#include "tessera/raster3d/pipeline.hpp"
 
 #include <fmt/format.h>
 
-#include "tessera/raster3d/pipeline.hpp"
+#include <algorithm>
+#include <cmath>
+#include <limits>
 
 namespace tessera::raster3d::detail {
 namespace {
@@ -45,8 +45,10 @@ int clip_polygon(float (*a)[kMaxStride], float (*b)[kMaxStride], int count, int 
       const float dc = plane_distance(cur, p), dn = plane_distance(next, p);
       if (dc >= 0) std::copy(cur, cur + stride, b[n++]);
       if ((dc >= 0) != (dn >= 0)) {
-        if (dc >= 0) intersect(cur, next, dc, dn, stride, b[n++]);
-        else intersect(next, cur, dn, dc, stride, b[n++]);
+        if (dc >= 0)
+          intersect(cur, next, dc, dn, stride, b[n++]);
+        else
+          intersect(next, cur, dn, dc, stride, b[n++]);
       }
     }
     for (int i = 0; i < n; ++i) std::copy(b[i], b[i] + stride, a[i]);
@@ -118,8 +120,7 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   // Attribute planes from the unsnapped float window positions (as llvmpipe); the snapped ones when those are
   // collinear in floating point.
   PlaneSetup ps = plane_setup(w[0].x, w[0].y, w[1].x, w[1].y, w[2].x, w[2].y);
-  if (!ps.valid())
-    ps = plane_setup(X[0] / 256.0, Y[0] / 256.0, X[1] / 256.0, Y[1] / 256.0, X[2] / 256.0, Y[2] / 256.0);
+  if (!ps.valid()) ps = plane_setup(X[0] / 256.0, Y[0] / 256.0, X[1] / 256.0, Y[1] / 256.0, X[2] / 256.0, Y[2] / 256.0);
   double zx, zy;
   ps.solve(w[0].z, w[1].z, w[2].z, zx, zy);
   r.zx = zx;
@@ -130,8 +131,8 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   const int n = params.varying_count;
   r.varyings = uint32_t(chunk.varyings.size());
   // Equal varyings at the three vertices interpolate to themselves: no planes needed (uniformly colored meshes).
-  r.constant = params.flat || n == 0 ||
-               (std::equal(v0 + 4, v0 + 4 + n, v1 + 4) && std::equal(v0 + 4, v0 + 4 + n, v2 + 4));
+  r.constant =
+      params.flat || n == 0 || (std::equal(v0 + 4, v0 + 4 + n, v1 + 4) && std::equal(v0 + 4, v0 + 4 + n, v2 + 4));
   if (r.constant) {
     const float* values = params.flat ? flat_values : v0 + 4;
     chunk.varyings.insert(chunk.varyings.end(), values, values + n);
@@ -169,7 +170,7 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
     const float* v[3];
     for (int k = 0; k < 3; ++k) v[k] = params.vertices + size_t(indices[3 * t + k]) * stride;
     const unsigned c0 = outcode(v[0]), c1 = outcode(v[1]), c2 = outcode(v[2]);
-    if (c0 & c1 & c2) continue;  // entirely outside one plane
+    if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
     if (!(c0 | c1 | c2)) {
       emit_triangle(params, sc, v[0], v[1], v[2], provoking, chunk);
@@ -187,8 +188,8 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
 WindowVertex to_window(const SetupParams& params, const float* clip) {
   const float inv_w = 1.0f / clip[3];
   const float half_w = float(params.vw) * 0.5f, half_h = float(params.vh) * 0.5f;
-  return {clip[0] * inv_w * half_w + (float(params.vx) + half_w), clip[1] * inv_w * half_h + (float(params.vy) + half_h),
-          clip[2] * inv_w * 0.5f + 0.5f, inv_w};
+  return {clip[0] * inv_w * half_w + (float(params.vx) + half_w),
+          clip[1] * inv_w * half_h + (float(params.vy) + half_h), clip[2] * inv_w * 0.5f + 0.5f, inv_w};
 }
 
 Scissor scissor(const SetupParams& params) {

@@ -1,11 +1,12 @@
 // The Context and the gt layer: matrix stacks, immediate mode vs batched drawing, primitive assembly, shading
 // models, double buffering, independence of contexts.
+#include "tessera/raster3d/context.hpp"
+
 #include <gtest/gtest.h>
 
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
-#include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/gt.hpp"
 
 namespace tessera::raster3d {

@@ -1,9 +1,9 @@
 // The shading equation against values worked by hand from the notes' and OpenGL's formulas.
+#include "tessera/raster3d/lighting.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "tessera/raster3d/lighting.hpp"
 
 namespace tessera::raster3d {
 namespace {
@@ -12,8 +12,8 @@ void expect_color(const Vec3f& got, const Vec3f& expected, float tolerance = 1e-
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], tolerance) << "channel " << k;
 }
 
-const Vec3f kUp(0, 0, 1);          // a normal facing the viewer
-const Vec3f kPoint(0, 0, -3);      // some eye-space point
+const Vec3f kUp(0, 0, 1);      // a normal facing the viewer
+const Vec3f kPoint(0, 0, -3);  // some eye-space point
 const Vec3f kWhite(1, 1, 1);
 
 TEST(Lighting, OpenGlDefaults) {

@@ -35,10 +35,10 @@ TEST(Raster, TieRuleOwnsLeftAndBottomEdges) {
   // A square whose edges run exactly through pixel centers, split along either diagonal (which also runs through
   // centers): GL owns the left (interior on +x) and bottom (interior above) edges, so pixels 1..3 in x and y.
   for (int diagonal = 0; diagonal < 2; ++diagonal) {
-    std::vector<WindowVertexIn> v = {{{1.5f, 1.5f, 0.5f}}, {{4.5f, 1.5f, 0.5f}}, {{4.5f, 4.5f, 0.5f}},
-                                     {{1.5f, 4.5f, 0.5f}}};
-    const std::vector<uint32_t> idx = diagonal ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3}
-                                               : std::vector<uint32_t>{0, 1, 3, 1, 2, 3};
+    std::vector<WindowVertexIn> v = {
+        {{1.5f, 1.5f, 0.5f}}, {{4.5f, 1.5f, 0.5f}}, {{4.5f, 4.5f, 0.5f}}, {{1.5f, 4.5f, 0.5f}}};
+    const std::vector<uint32_t> idx =
+        diagonal ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 1, 3, 1, 2, 3};
     const auto counts = coverage_counts(8, v, idx);
     for (int j = 0; j < 8; ++j)
       for (int i = 0; i < 8; ++i) {
@@ -101,13 +101,15 @@ TEST(Raster, RandomTrianglesTilingASquareCoverEachPixelOnce) {
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
-      if ((i + j) % 2) idx.insert(idx.end(), {a, b, d, a, d, c});
-      else idx.insert(idx.end(), {a, b, c, b, d, c});
+      if ((i + j) % 2)
+        idx.insert(idx.end(), {a, b, d, a, d, c});
+      else
+        idx.insert(idx.end(), {a, b, c, b, d, c});
     }
   const auto counts = coverage_counts(size, v, idx);
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
-      const int j = size - 1 - y;  // GL row
+      const int j = size - 1 - y;                                           // GL row
       const int expected = (x >= 4 && x < 60 && j >= 4 && j < 60) ? 1 : 0;  // centers in [4, 60): left/bottom in
       EXPECT_EQ(counts[size_t(y) * size + x], expected) << "pixel " << x << "," << y;
     }
@@ -138,12 +140,12 @@ TEST(Raster, DepthFollowsTheWindowPlane) {
 TEST(Raster, ZBufferKeepsTheNearerSurfaceAndLessRejectsEqual) {
   Framebuffer fb(16, 16);
   const std::vector<WindowVertexIn> v = {
-      {{0, 0, 0.6f}, {1, 0, 0}}, {{16, 0, 0.6f}, {1, 0, 0}}, {{0, 16, 0.6f}, {1, 0, 0}},  // red, far
-      {{0, 0, 0.3f}, {0, 1, 0}}, {{16, 0, 0.3f}, {0, 1, 0}}, {{0, 16, 0.3f}, {0, 1, 0}},  // green, near
+      {{0, 0, 0.6f}, {1, 0, 0}}, {{16, 0, 0.6f}, {1, 0, 0}}, {{0, 16, 0.6f}, {1, 0, 0}},   // red, far
+      {{0, 0, 0.3f}, {0, 1, 0}}, {{16, 0, 0.3f}, {0, 1, 0}}, {{0, 16, 0.3f}, {0, 1, 0}},   // green, near
       {{0, 0, 0.3f}, {0, 0, 1}}, {{16, 0, 0.3f}, {0, 0, 1}}, {{0, 16, 0.3f}, {0, 0, 1}}};  // blue, equal depth
   RasterState state;
-  draw_triangles(fb, state, 9, std::vector<uint32_t>{3, 4, 5, 0, 1, 2, 6, 7, 8},
-                 testing::WindowShader{&v, 16, 16}, ColorFragmentShader{});
+  draw_triangles(fb, state, 9, std::vector<uint32_t>{3, 4, 5, 0, 1, 2, 6, 7, 8}, testing::WindowShader{&v, 16, 16},
+                 ColorFragmentShader{});
   EXPECT_EQ(fb.color()(2, 13), glm::u8vec4(0, 255, 0, 255));
   EXPECT_EQ(fb.depth()(2, 13), depth_to_unorm24(0.3));
   EXPECT_EQ(fb.depth()(15, 0), kDepthMax);  // uncovered: cleared depth
@@ -197,8 +199,8 @@ TEST(Raster, NearPlaneClippingMatchesRayCasting) {
     for (int i = 0; i < size; ++i) {
       glm::dvec3 b;
       double z;
-      const bool hit = ray_hit(tri, projection, size, i, j, b, z) && b.x >= 0 && b.y >= 0 && b.z >= 0 &&
-                       -z >= near && -z <= far;
+      const bool hit =
+          ray_hit(tri, projection, size, i, j, b, z) && b.x >= 0 && b.y >= 0 && b.z >= 0 && -z >= near && -z <= far;
       // Skip centers within a hair of an edge, where the fixed-point snapping legitimately decides.
       const double margin = std::min({b.x, b.y, b.z});
       if (std::abs(margin) < 1e-3) continue;
@@ -309,9 +311,9 @@ TEST(Raster, SameImageForOneAndAllThreads) {
 TEST(Raster, PainterMatchesZBufferWithoutOverlapCycles) {
   // Three layers at different depths, submitted near first: the painter sorts them, the z-buffer tests them.
   const std::vector<WindowVertexIn> v = {
-      {{4, 4, 0.2f}, {1, 0, 0}},  {{40, 8, 0.2f}, {1, 0, 0}},  {{10, 40, 0.2f}, {1, 0, 0}},
-      {{0, 0, 0.5f}, {0, 1, 0}},  {{48, 0, 0.5f}, {0, 1, 0}},  {{0, 48, 0.5f}, {0, 1, 0}},
-      {{8, 2, 0.8f}, {0, 0, 1}},  {{48, 30, 0.8f}, {0, 0, 1}}, {{20, 48, 0.8f}, {0, 0, 1}}};
+      {{4, 4, 0.2f}, {1, 0, 0}}, {{40, 8, 0.2f}, {1, 0, 0}},  {{10, 40, 0.2f}, {1, 0, 0}},
+      {{0, 0, 0.5f}, {0, 1, 0}}, {{48, 0, 0.5f}, {0, 1, 0}},  {{0, 48, 0.5f}, {0, 1, 0}},
+      {{8, 2, 0.8f}, {0, 0, 1}}, {{48, 30, 0.8f}, {0, 0, 1}}, {{20, 48, 0.8f}, {0, 0, 1}}};
   const std::vector<uint32_t> idx = {0, 1, 2, 3, 4, 5, 6, 7, 8};
   Framebuffer z(48, 48), p(48, 48);
   RasterState zs, ps;
@@ -331,7 +333,8 @@ TEST(Raster, PainterFailsOnCyclicOverlap) {
   for (int k = 0; k < 3; ++k) {
     const double a = 2 * kPi * k / 3;
     const glm::dvec2 c(48, 48), dir(std::cos(a), std::sin(a)), perp(-dir.y, dir.x);
-    const glm::dvec2 p0 = c - 40.0 * dir + 10.0 * perp, p1 = c + 40.0 * dir + 10.0 * perp, p2 = c - 40.0 * dir - 6.0 * perp;
+    const glm::dvec2 p0 = c - 40.0 * dir + 10.0 * perp, p1 = c + 40.0 * dir + 10.0 * perp,
+                     p2 = c - 40.0 * dir - 6.0 * perp;
     // Depth rises along the strip: near at its start, far at its end.
     v.push_back({{float(p0.x), float(p0.y), 0.2f}, colors[k]});
     v.push_back({{float(p1.x), float(p1.y), 0.8f}, colors[k]});
@@ -395,8 +398,7 @@ TEST(Raster, BadIndicesThrow) {
   const std::vector<WindowVertexIn> v = {{{0, 0, 0.5f}}, {{8, 0, 0.5f}}, {{0, 8, 0.5f}}};
   RasterState state;
   const testing::WindowShader shader{&v, 8, 8};
-  EXPECT_THROW(draw_triangles(fb, state, 3, std::vector<uint32_t>{0, 1}, shader, ColorFragmentShader{}),
-               InvalidInput);
+  EXPECT_THROW(draw_triangles(fb, state, 3, std::vector<uint32_t>{0, 1}, shader, ColorFragmentShader{}), InvalidInput);
   EXPECT_THROW(draw_triangles(fb, state, 3, std::vector<uint32_t>{0, 1, 3}, shader, ColorFragmentShader{}),
                InvalidInput);
 }

@@ -49,7 +49,7 @@ TEST(Shaders, TwistRotatesByDistanceFromTheCenter) {
   EXPECT_NEAR(p.x, 0.5f * std::cos(1.0f), 1e-6f);
   EXPECT_NEAR(p.y, 0.5f * std::sin(1.0f), 1e-6f);
   EXPECT_EQ(vs(1).position, Vec4f(0, 0, 0, 1));  // the center stays
-  const Vec4f q = vs(2).position;                 // distance 0.5 again: same angle, z and w kept
+  const Vec4f q = vs(2).position;                // distance 0.5 again: same angle, z and w kept
   EXPECT_NEAR(q.x, std::cos(1.0f) * 0.3f - std::sin(1.0f) * 0.4f, 1e-6f);
   EXPECT_NEAR(q.y, std::sin(1.0f) * 0.3f + std::cos(1.0f) * 0.4f, 1e-6f);
   EXPECT_EQ(q.z, 0.2f);

@@ -20,8 +20,7 @@ struct WindowShader {
 
   VertexOut<ColorVaryings> operator()(uint32_t i) const {
     const WindowVertexIn& v = (*vertices)[i];
-    return {Vec4f(2 * v.window.x / width - 1, 2 * v.window.y / height - 1, 2 * v.window.z - 1, 1.0f) * w,
-            {v.color}};
+    return {Vec4f(2 * v.window.x / width - 1, 2 * v.window.y / height - 1, 2 * v.window.z - 1, 1.0f) * w, {v.color}};
   }
 };
 

@@ -32,9 +32,9 @@ enum class HiddenSurface { zbuffer, painter };
 /// Float copies of a mesh's arrays, ready for the pipeline (build once, draw many times).
 struct VertexArrays {
   std::vector<Vec3f> positions;
-  std::vector<Vec3f> normals;  ///< per vertex, or empty (the current normal)
-  std::vector<Vec3f> colors;   ///< per vertex, or empty (the current color)
-  std::vector<Vec2f> uvs;      ///< per vertex, or empty
+  std::vector<Vec3f> normals;     ///< per vertex, or empty (the current normal)
+  std::vector<Vec3f> colors;      ///< per vertex, or empty (the current color)
+  std::vector<Vec2f> uvs;         ///< per vertex, or empty
   std::vector<uint32_t> indices;  ///< 3 per triangle
 
   /// The arrays of `mesh` in float. Throws InvalidInput when an attribute array's size differs from the positions'.

@@ -58,10 +58,10 @@ inline constexpr int kMaxLights = 8;
 struct Lighting {
   Material material;
   std::array<Light, kMaxLights> lights{};
-  int light_count = 1;                         ///< lights[0, light_count) are on
-  Vec3f model_ambient{0.2f, 0.2f, 0.2f};       ///< GL_LIGHT_MODEL_AMBIENT
+  int light_count = 1;                    ///< lights[0, light_count) are on
+  Vec3f model_ambient{0.2f, 0.2f, 0.2f};  ///< GL_LIGHT_MODEL_AMBIENT
   SpecularModel specular_model = SpecularModel::blinn;
-  bool local_viewer = false;  ///< E = normalize(-p) instead of (0, 0, 1) (GL_LIGHT_MODEL_LOCAL_VIEWER)
+  bool local_viewer = false;    ///< E = normalize(-p) instead of (0, 0, 1) (GL_LIGHT_MODEL_LOCAL_VIEWER)
   bool color_material = false;  ///< the vertex color replaces ambient and diffuse (GL_COLOR_MATERIAL)
 };
 
@@ -75,11 +75,11 @@ Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3
 struct FixedFunctionUniforms {
   Mat4f model_view_projection{1.0f};  ///< P * MV, one float32 matrix for positions
   Mat4f model_view{1.0f};
-  Mat3f normal_matrix{1.0f};           ///< inverse transpose of MV's upper 3x3
+  Mat3f normal_matrix{1.0f};  ///< inverse transpose of MV's upper 3x3
   Lighting lighting;
-  bool lit = false;                    ///< lighting on (flat, gouraud, phong) or off (unlit)
-  Vec3f color{1, 1, 1};                ///< the current color (for vertices without one)
-  Vec3f normal{0, 0, 1};               ///< the current normal (for vertices without one)
+  bool lit = false;       ///< lighting on (flat, gouraud, phong) or off (unlit)
+  Vec3f color{1, 1, 1};   ///< the current color (for vertices without one)
+  Vec3f normal{0, 0, 1};  ///< the current normal (for vertices without one)
 };
 
 /// Unlit, flat and Gouraud: each vertex's color is computed (lit in eye space, or its color) and interpolated.
@@ -90,9 +90,9 @@ struct FixedFunctionVertexShader {
   VertexOut<ColorVaryings> operator()(uint32_t i) const {
     const FixedFunctionUniforms& u = *uniforms;
     const Vec4f object(attributes.positions[i], 1.0f);
-    const Vec3f color = attributes.colors ? attributes.colors[i] : u.color;
+    const Vec3f color = attributes.color_or(i, u.color);
     if (!u.lit) return {u.model_view_projection * object, {color}};
-    const Vec3f n = glm::normalize(u.normal_matrix * (attributes.normals ? attributes.normals[i] : u.normal));
+    const Vec3f n = glm::normalize(u.normal_matrix * attributes.normal_or(i, u.normal));
     return {u.model_view_projection * object, {shade(u.lighting, n, Vec3f(u.model_view * object), color)}};
   }
 };
@@ -113,8 +113,8 @@ struct PhongVertexShader {
     const FixedFunctionUniforms& u = *uniforms;
     const Vec4f object(attributes.positions[i], 1.0f);
     return {u.model_view_projection * object,
-            {u.normal_matrix * (attributes.normals ? attributes.normals[i] : u.normal), Vec3f(u.model_view * object),
-             attributes.colors ? attributes.colors[i] : u.color}};
+            {u.normal_matrix * attributes.normal_or(i, u.normal), Vec3f(u.model_view * object),
+             attributes.color_or(i, u.color)}};
   }
 };
 

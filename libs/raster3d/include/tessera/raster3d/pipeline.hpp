@@ -31,19 +31,19 @@ struct Viewport {
 /// Per-draw fixed state of the rasterizer.
 struct RasterState {
   Viewport viewport;
-  bool depth_test = true;               ///< compare with the depth buffer (GL_DEPTH_TEST)
+  bool depth_test = true;  ///< compare with the depth buffer (GL_DEPTH_TEST)
   DepthFunc depth_func = DepthFunc::less;
-  bool depth_write = true;              ///< store the depth of passing fragments (glDepthMask)
+  bool depth_write = true;  ///< store the depth of passing fragments (glDepthMask)
   CullMode cull = CullMode::none;
-  bool flat = false;                    ///< varyings are the last vertex's, not interpolated (GL_FLAT)
-  bool painter = false;                 ///< the painter's algorithm: sort by average depth, draw far to near, no
-                                        ///< depth test or write (the notes' alternative to the z-buffer)
+  bool flat = false;     ///< varyings are the last vertex's, not interpolated (GL_FLAT)
+  bool painter = false;  ///< the painter's algorithm: sort by average depth, draw far to near, no
+                         ///< depth test or write (the notes' alternative to the z-buffer)
 };
 
 /// What a draw did, for statistics.
 struct DrawStats {
-  uint64_t primitives = 0;   ///< triangles (lines, points) submitted
-  uint64_t rasterized = 0;   ///< after culling and clipping (a clipped triangle can become several)
+  uint64_t primitives = 0;  ///< triangles (lines, points) submitted
+  uint64_t rasterized = 0;  ///< after culling and clipping (a clipped triangle can become several)
 };
 
 /// Draws the triangles `indices` (3 per triangle, counterclockwise = front) of vertices [0, vertex_count), each

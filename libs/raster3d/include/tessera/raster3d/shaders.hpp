@@ -13,9 +13,8 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
-#include <type_traits>
-
 #include <glm/glm.hpp>
+#include <type_traits>
 
 #include "tessera/math/types.hpp"
 
@@ -34,7 +33,7 @@ struct NoVaryings {};
 /// A valid varyings struct: floats only (checked by size), trivially copyable, standard layout.
 template <class V>
 concept VaryingStruct = std::is_trivially_copyable_v<V> && std::is_standard_layout_v<V> &&
-                        (std::is_empty_v<V> || sizeof(V) % sizeof(float) == 0);
+    (std::is_empty_v<V> || sizeof(V) % sizeof(float) == 0);
 
 /// The number of floats the pipeline interpolates for V.
 template <VaryingStruct V>
@@ -57,7 +56,8 @@ concept FragmentShader = requires(const FS& fs, const V& v, Vec3f& color) {
   { fs(v, color) } -> std::convertible_to<bool>;
 };
 
-// ---- Vertex attribute arrays -----------------------------------------------------------------------------------------
+// ---- Vertex attribute arrays
+// -----------------------------------------------------------------------------------------
 
 /// Float vertex attributes the shaders read by index: positions are required; an empty normals/colors/uvs array
 /// means "use the constant" given to the shader (the context's current normal, color, texcoord).
@@ -66,6 +66,11 @@ struct VertexAttributes {
   const Vec3f* normals = nullptr;  ///< or null
   const Vec3f* colors = nullptr;   ///< or null
   const Vec2f* uvs = nullptr;      ///< or null
+
+  /// Vertex i's normal, or `fallback` without a normals array.
+  Vec3f normal_or(uint32_t i, const Vec3f& fallback) const { return normals ? normals[i] : fallback; }
+  /// Vertex i's color, or `fallback` without a colors array.
+  Vec3f color_or(uint32_t i, const Vec3f& fallback) const { return colors ? colors[i] : fallback; }
 };
 
 // ---- Shipped shaders: the notes' examples --------------------------------------------------------------------------
@@ -92,7 +97,7 @@ struct DiffuseVaryings {
 /// The notes' diffuse vertex program: gl_Position = MVP * gl_Vertex, normal = NormalMatrix * gl_Normal,
 /// vertex_to_light = light position (eye space) - ModelView * gl_Vertex.
 struct DiffuseVertexShader {
-  VertexAttributes attributes;   ///< positions and normals (normals required)
+  VertexAttributes attributes;  ///< positions and normals (normals required)
   Mat4f model_view_projection{1.0f};
   Mat4f model_view{1.0f};
   Mat3f normal_matrix{1.0f};
@@ -132,8 +137,7 @@ struct TwistVertexShader {
     const Vec4f pos = model_view_projection * Vec4f(attributes.positions[i], 1.0f);
     const float angle = twist * glm::length(Vec2f(pos.x - center.x, pos.y - center.y));
     const float c = std::cos(angle), s = std::sin(angle);
-    return {{c * pos.x - s * pos.y, s * pos.x + c * pos.y, pos.z, pos.w},
-            {attributes.colors ? attributes.colors[i] : color}};
+    return {{c * pos.x - s * pos.y, s * pos.x + c * pos.y, pos.z, pos.w}, {attributes.color_or(i, color)}};
   }
 };
 

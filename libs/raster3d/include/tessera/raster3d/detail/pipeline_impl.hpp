@@ -59,9 +59,9 @@ struct SetupParams {
   const float* vertices;  // vertex stage output
   int varying_count;      // N
   bool flat, painter;
-  int cull;              // 0 none, 1 back, 2 front
+  int cull;  // 0 none, 1 back, 2 front
   int fb_width, fb_height;
-  int vx, vy, vw, vh;    // the viewport
+  int vx, vy, vw, vh;  // the viewport
   int tiles_x, tiles_y;
 };
 
@@ -130,28 +130,44 @@ inline uint32_t depth_unorm24_unclamped(double z) {
 /// Whether a fragment of depth d passes against the stored depth s.
 template <DepthFunc F>
 inline bool depth_passes(uint32_t d, uint32_t s) {
-  if constexpr (F == DepthFunc::never) return false;
-  else if constexpr (F == DepthFunc::less) return d < s;
-  else if constexpr (F == DepthFunc::equal) return d == s;
-  else if constexpr (F == DepthFunc::lequal) return d <= s;
-  else if constexpr (F == DepthFunc::greater) return d > s;
-  else if constexpr (F == DepthFunc::notequal) return d != s;
-  else if constexpr (F == DepthFunc::gequal) return d >= s;
-  else return true;
+  if constexpr (F == DepthFunc::never)
+    return false;
+  else if constexpr (F == DepthFunc::less)
+    return d < s;
+  else if constexpr (F == DepthFunc::equal)
+    return d == s;
+  else if constexpr (F == DepthFunc::lequal)
+    return d <= s;
+  else if constexpr (F == DepthFunc::greater)
+    return d > s;
+  else if constexpr (F == DepthFunc::notequal)
+    return d != s;
+  else if constexpr (F == DepthFunc::gequal)
+    return d >= s;
+  else
+    return true;
 }
 
 /// Calls fn(std::integral_constant<DepthFunc, F>) for the runtime value f.
 template <class Fn>
 void dispatch_depth_func(DepthFunc f, Fn&& fn) {
   switch (f) {
-    case DepthFunc::never: return fn(std::integral_constant<DepthFunc, DepthFunc::never>());
-    case DepthFunc::less: return fn(std::integral_constant<DepthFunc, DepthFunc::less>());
-    case DepthFunc::equal: return fn(std::integral_constant<DepthFunc, DepthFunc::equal>());
-    case DepthFunc::lequal: return fn(std::integral_constant<DepthFunc, DepthFunc::lequal>());
-    case DepthFunc::greater: return fn(std::integral_constant<DepthFunc, DepthFunc::greater>());
-    case DepthFunc::notequal: return fn(std::integral_constant<DepthFunc, DepthFunc::notequal>());
-    case DepthFunc::gequal: return fn(std::integral_constant<DepthFunc, DepthFunc::gequal>());
-    case DepthFunc::always: return fn(std::integral_constant<DepthFunc, DepthFunc::always>());
+    case DepthFunc::never:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::never>());
+    case DepthFunc::less:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::less>());
+    case DepthFunc::equal:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::equal>());
+    case DepthFunc::lequal:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::lequal>());
+    case DepthFunc::greater:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::greater>());
+    case DepthFunc::notequal:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::notequal>());
+    case DepthFunc::gequal:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::gequal>());
+    case DepthFunc::always:
+      return fn(std::integral_constant<DepthFunc, DepthFunc::always>());
   }
 }
 
@@ -265,7 +281,9 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         const float dx0 = float(lo) + 0.5f - r.rx;
         std::array<float, N + 1> value;
         for (int k = 0; k <= N; ++k) value[k] = pc[k] + py[k] * dy + px[k] * dx0;
-        for (int k = 0; k < n; ++k, [&] { for (int q = 0; q <= N; ++q) value[q] += px[q]; }()) {
+        for (int k = 0; k < n; ++k, [&] {
+               for (int q = 0; q <= N; ++q) value[q] += px[q];
+             }()) {
           if (!pass[k]) continue;
           const float w = 1.0f / value[0];
           std::array<float, N> values;
@@ -362,7 +380,7 @@ DrawStats draw_lines(Framebuffer& framebuffer, const RasterState& state, uint32_
       if (!detail::clip_segment(a.data(), b.data(), n)) continue;
       ++stats.rasterized;
       detail::raster_segment<n, V, FS, decltype(f)::value>(framebuffer, params, fragment.depth_write, a.data(),
-                                                          b.data(), state.flat ? provoking.data() + 4 : nullptr, fs);
+                                                           b.data(), state.flat ? provoking.data() + 4 : nullptr, fs);
     }
   });
   return stats;
@@ -393,7 +411,7 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
       if (i < sc.x0 || i >= sc.x1 || j < sc.y0 || j >= sc.y1) continue;
       ++stats.rasterized;
       detail::shade_fragment<n, V, FS, decltype(f)::value>(framebuffer, i, j, depth_to_unorm24(wv.z), v + 4,
-                                                          fragment.depth_write, fs);
+                                                           fragment.depth_write, fs);
     }
   });
   return stats;
