@@ -19,19 +19,46 @@ namespace tessera {
 
 namespace {
 
-/// A primitive during the build: its box, twice its centroid (lo + hi, enough for binning) and its index.
-struct PrimRef {
-  AABB box;
-  Vec3f centroid2;
+/// Four floats in one SSE register (GCC/Clang vector extension): the builder's box arithmetic, 3 lanes used.
+typedef float v4f __attribute__((vector_size(16)));
+typedef int v4i __attribute__((vector_size(16)));
+
+inline v4f vmin(v4f a, v4f b) { return a < b ? a : b; }
+inline v4f vmax(v4f a, v4f b) { return a > b ? a : b; }
+inline v4f splat(float x) { return v4f{x, x, x, x}; }
+
+/// A box as two registers (empty: lo = +inf, hi = -inf).
+struct Box4 {
+  v4f lo = splat(std::numeric_limits<float>::infinity()), hi = splat(-std::numeric_limits<float>::infinity());
+  void expand(const Box4& b) {
+    lo = vmin(lo, b.lo);
+    hi = vmax(hi, b.hi);
+  }
+  void expand_point(v4f p) {
+    lo = vmin(lo, p);
+    hi = vmax(hi, p);
+  }
+  float area() const {
+    const v4f e = hi - lo;
+    if (!(e[0] >= 0 && e[1] >= 0 && e[2] >= 0)) return 0;
+    return 2.0f * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+  }
+  AABB aabb() const { return AABB{Vec3f(lo[0], lo[1], lo[2]), Vec3f(hi[0], hi[1], hi[2])}; }
+};
+
+/// A primitive during the build: its box (as registers) and its index.
+struct alignas(32) PrimRef {
+  Box4 box;
   int index;
+  v4f centroid2() const { return box.lo + box.hi; }  // twice the centroid: enough for binning
 };
 
 /// Box and centroid bounds of a range of references.
 struct RangeBounds {
-  AABB box, centroids;
+  Box4 box, centroids;
   void add(const PrimRef& r) {
     box.expand(r.box);
-    centroids.expand(r.centroid2);
+    centroids.expand_point(r.centroid2());
   }
   void add(const RangeBounds& o) {
     box.expand(o.box);
@@ -43,10 +70,9 @@ constexpr int kParallelPrims = 4096;     // ranges above this build their two ha
 constexpr int kParallelBinning = 65536;  // ranges above this bin in parallel
 constexpr int kMaxBins = 64;
 constexpr int kMaxLeafCount = 65535;     // BvhNode::count is 16 bits
-constexpr int kMedianLevel = 36;        // below this level splits are object medians (depth <= 36 + log2 n)
+constexpr int kMedianLevel = 36;         // below this level splits are object medians (depth <= 36 + log2 n)
 
-/// Min/max and integer sums are exact in any order, so the parallel reductions below give the same tree for any
-/// thread count.
+/// Min/max are exact in any order, so the parallel reductions below give the same tree for any thread count.
 RangeBounds range_bounds(const PrimRef* refs, int n) {
   auto body = [refs](const tbb::blocked_range<int>& r, RangeBounds acc) {
     for (int i = r.begin(); i < r.end(); ++i) acc.add(refs[i]);
@@ -60,10 +86,18 @@ RangeBounds range_bounds(const PrimRef* refs, int n) {
                               });
 }
 
-/// Per-axis SAH bins.
+/// Per-axis SAH bins (only the first `bins` of each axis are used and initialized).
 struct Bins {
-  AABB box[3][kMaxBins];
-  int count[3][kMaxBins] = {};
+  Box4 box[3][kMaxBins];
+  int count[3][kMaxBins];
+  explicit Bins(int bins) {
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < bins; ++b) {
+        box[a][b] = Box4{};
+        count[a][b] = 0;
+      }
+  }
+  Bins() = default;  // uninitialized: only for parallel_reduce's identity copies, which are assigned before use
   void add(const Bins& o, int bins) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < bins; ++b) {
@@ -73,23 +107,25 @@ struct Bins {
   }
 };
 
-/// A split: axis, first bin of the right side (-1: none, the centroids coincide), SAH cost and the binning scale.
+/// A split: axis, first bin of the right side (-1: none, the centroids coincide), SAH cost, the binning origin and
+/// scale, and the boxes of the two sides (from the bins).
 struct Split {
   int axis = 0, bin = -1;
   float cost = std::numeric_limits<float>::infinity();
-  float scale = 0;
+  float lo = 0, scale = 0;
+  Box4 left, right;
 };
 
 class SahBuilder {
  public:
   SahBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
 
-  /// Builds the subtree of refs[begin, end) into out (depth-first, its root first); returns its depth.
-  int build(int begin, int end, std::vector<BvhNode>& out, int level = 0) const {
+  /// Builds the subtree of refs[begin, end), whose bounds are rb, into out (depth-first, its root first); returns its
+  /// depth.
+  int build(int begin, int end, const RangeBounds& rb, std::vector<BvhNode>& out, int level = 0) const {
     const int n = end - begin;
-    const RangeBounds rb = range_bounds(refs_.data() + begin, n);
     const int self = int(out.size());
-    out.push_back(BvhNode{rb.box, begin, uint16_t(0), uint16_t(0)});
+    out.push_back(BvhNode{rb.box.aabb(), begin, uint16_t(0), uint16_t(0)});
     const Split split = n > 1 ? find_split(begin, n, rb) : Split{};
     const bool fits = n <= s_.max_leaf_size;
     if (n == 1 || (fits && s_.intersection_cost * float(n) <= split.cost)) {
@@ -98,39 +134,52 @@ class SahBuilder {
     }
     int mid;
     int axis = split.axis;
-    if (level >= kMedianLevel) {  // guards the depth bound on adversarial inputs: object median on the longest axis
-      axis = rb.centroids.longest_axis();
+    RangeBounds left, right;
+    PrimRef* refs = refs_.data();
+    if (level >= kMedianLevel || split.bin < 0) {
+      // The object median on the longest centroid axis: guards the depth bound on adversarial inputs, and halves a
+      // range too large for a leaf whose centroids all coincide.
+      const v4f ce = rb.centroids.hi - rb.centroids.lo;
+      axis = ce[0] >= ce[1] && ce[0] >= ce[2] ? 0 : (ce[1] >= ce[2] ? 1 : 2);
       mid = begin + n / 2;
-      std::nth_element(refs_.data() + begin, refs_.data() + mid, refs_.data() + end,
-                       [axis](const PrimRef& a, const PrimRef& b) {
-                         return a.centroid2[axis] < b.centroid2[axis] ||
-                                (a.centroid2[axis] == b.centroid2[axis] && a.index < b.index);
-                       });
-    } else if (split.bin >= 0) {
-      const float lo = rb.centroids.lo[axis];
-      PrimRef* p = std::partition(refs_.data() + begin, refs_.data() + end, [&](const PrimRef& r) {
-        return bin_of(r.centroid2[axis], lo, split.scale) < split.bin;
+      std::nth_element(refs + begin, refs + mid, refs + end, [axis](const PrimRef& a, const PrimRef& b) {
+        const float ca = a.centroid2()[axis], cb = b.centroid2()[axis];
+        return ca < cb || (ca == cb && a.index < b.index);
       });
-      mid = int(p - refs_.data());
-    } else {  // every centroid coincides and the range is too large for a leaf: halve it
-      axis = rb.box.longest_axis();
-      mid = begin + n / 2;
+      left = range_bounds(refs + begin, mid - begin);
+      right = range_bounds(refs + mid, end - mid);
+    } else {
+      // Partition by bin, accumulating the centroid bounds of both sides on the way (boxes come from the bins).
+      int i = begin, j = end - 1;
+      auto is_left = [&](const PrimRef& r) { return bin_of(r.centroid2()[axis], split.lo, split.scale) < split.bin; };
+      for (;;) {
+        while (i <= j && is_left(refs[i])) left.centroids.expand_point(refs[i++].centroid2());
+        while (i <= j && !is_left(refs[j])) right.centroids.expand_point(refs[j--].centroid2());
+        if (i >= j) break;
+        std::swap(refs[i], refs[j]);
+        left.centroids.expand_point(refs[i++].centroid2());
+        right.centroids.expand_point(refs[j--].centroid2());
+      }
+      mid = i;
+      left.box = split.left;
+      right.box = split.right;
     }
     out[self].axis = uint16_t(axis);
     int depth_left = 0, depth_right = 0;
     if (n > kParallelPrims) {
-      std::vector<BvhNode> right;
-      tbb::parallel_invoke([&] { depth_left = build(begin, mid, out, level + 1); },
-                         [&] { depth_right = build(mid, end, right, level + 1); });
+      std::vector<BvhNode> right_nodes;
+      right_nodes.reserve(size_t(2 * (end - mid) / s_.max_leaf_size + 1));
+      tbb::parallel_invoke([&] { depth_left = build(begin, mid, left, out, level + 1); },
+                           [&] { depth_right = build(mid, end, right, right_nodes, level + 1); });
       const int offset = int(out.size());
-      for (BvhNode& node : right)
+      for (BvhNode& node : right_nodes)
         if (node.count == 0) node.first += offset;
       out[self].first = offset;
-      out.insert(out.end(), right.begin(), right.end());
+      out.insert(out.end(), right_nodes.begin(), right_nodes.end());
     } else {
-      depth_left = build(begin, mid, out, level + 1);
+      depth_left = build(begin, mid, left, out, level + 1);
       out[self].first = int(out.size());
-      depth_right = build(mid, end, out, level + 1);
+      depth_right = build(mid, end, right, out, level + 1);
     }
     return 1 + std::max(depth_left, depth_right);
   }
@@ -140,42 +189,55 @@ class SahBuilder {
 
   /// The least-cost split among the bin boundaries of the three axes.
   Split find_split(int begin, int n, const RangeBounds& rb) const {
-    const int nb = s_.bins;
-    const Vec3f clo = rb.centroids.lo, cext = rb.centroids.extent();
-    Vec3f scale;  // slightly below bins / extent, so the largest centroid falls in the last bin
+    const int nb = std::min(s_.bins, std::max(4, n));  // a handful of primitives needs no more bins than itself
+    const v4f clo = rb.centroids.lo, cext = rb.centroids.hi - rb.centroids.lo;
+    v4f scale;  // slightly below bins / extent, so the largest centroid falls in the last bin
     for (int a = 0; a < 3; ++a) scale[a] = cext[a] > 0 ? float(nb) * (1.0f - 1e-5f) / cext[a] : 0.0f;
+    scale[3] = 0;
     const PrimRef* refs = refs_.data() + begin;
-    auto bin_range = [&](const tbb::blocked_range<int>& r, Bins acc) {
-      for (int i = r.begin(); i < r.end(); ++i)
+    const v4i last{nb - 1, nb - 1, nb - 1, nb - 1}, zero{0, 0, 0, 0};
+    auto bin_into = [&](int first, int last_index, Bins& acc) {
+      for (int i = first; i < last_index; ++i) {
+        const PrimRef& p = refs[i];
+        v4i b = __builtin_convertvector((p.centroid2() - clo) * scale, v4i);
+        b = b < zero ? zero : (b > last ? last : b);
         for (int a = 0; a < 3; ++a) {
-          const int b = std::min(nb - 1, bin_of(refs[i].centroid2[a], clo[a], scale[a]));
-          acc.box[a][b].expand(refs[i].box);
-          ++acc.count[a][b];
+          acc.box[a][b[a]].expand(p.box);
+          ++acc.count[a][b[a]];
         }
-      return acc;
+      }
     };
-    const Bins bins = n < kParallelBinning ? bin_range(tbb::blocked_range<int>(0, n), Bins{})
-                                           : tbb::parallel_reduce(tbb::blocked_range<int>(0, n, 8192), Bins{},
-                                                                  bin_range, [nb](Bins a, const Bins& b) {
-                                                                    a.add(b, nb);
-                                                                    return a;
-                                                                  });
+    Bins bins(nb);
+    if (n < kParallelBinning) {
+      bin_into(0, n, bins);
+    } else {
+      bins = tbb::parallel_reduce(
+          tbb::blocked_range<int>(0, n, 8192), Bins(nb),
+          [&](const tbb::blocked_range<int>& r, Bins acc) {
+            bin_into(r.begin(), r.end(), acc);
+            return acc;
+          },
+          [nb](Bins a, const Bins& b) {
+            a.add(b, nb);
+            return a;
+          });
+    }
     const float inv_area = 1.0f / rb.box.area();
     Split best;
     for (int a = 0; a < 3; ++a) {
       if (!(cext[a] > 0)) continue;
-      // Sweep from the right for the areas and counts of the right sides, then from the left.
-      float right_area[kMaxBins];
+      // Sweep from the right for the boxes and counts of the right sides, then from the left.
+      Box4 right_box[kMaxBins];
       int right_count[kMaxBins];
-      AABB acc;
+      Box4 acc;
       int cnt = 0;
       for (int b = nb - 1; b > 0; --b) {
         acc.expand(bins.box[a][b]);
         cnt += bins.count[a][b];
-        right_area[b] = acc.area();
+        right_box[b] = acc;
         right_count[b] = cnt;
       }
-      acc = AABB{};
+      acc = Box4{};
       cnt = 0;
       for (int b = 1; b < nb; ++b) {
         acc.expand(bins.box[a][b - 1]);
@@ -183,8 +245,8 @@ class SahBuilder {
         if (cnt == 0 || right_count[b] == 0) continue;
         // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
         const float cost = s_.traversal_cost + s_.intersection_cost * inv_area *
-                                                   (acc.area() * float(cnt) + right_area[b] * float(right_count[b]));
-        if (cost < best.cost) best = Split{a, b, cost, scale[a]};
+                                                   (acc.area() * float(cnt) + right_box[b].area() * float(right_count[b]));
+        if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, right_box[b]};
       }
     }
     return best;
@@ -215,7 +277,7 @@ class BottomUpBuilder {
     const int n = int(refs_.size());
     sort_by_morton();
     tree_.reserve(2 * size_t(n));
-    for (int i = 0; i < n; ++i) tree_.push_back(TreeNode{refs_[i].box, -1, -1, i, 1, 0});
+    for (int i = 0; i < n; ++i) tree_.push_back(TreeNode{refs_[size_t(i)].box.aabb(), -1, -1, i, 1, 0});
     std::vector<int> clusters(static_cast<size_t>(n)), nearest(static_cast<size_t>(n)), next;
     std::iota(clusters.begin(), clusters.end(), 0);
     while (clusters.size() > 1) {
@@ -255,14 +317,17 @@ class BottomUpBuilder {
 
   void sort_by_morton() {
     AABB cb;
-    for (const PrimRef& r : refs_) cb.expand(r.centroid2);
+    for (const PrimRef& r : refs_) {
+      const v4f c = r.centroid2();
+      cb.expand(Vec3f(c[0], c[1], c[2]));
+    }
     const Vec3f ext = cb.extent();
     std::vector<std::pair<uint32_t, int>> keys(refs_.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, refs_.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t i = r.begin(); i < r.end(); ++i) {
         uint32_t code = 0;
         for (int a = 0; a < 3; ++a) {
-          const float u = ext[a] > 0 ? (refs_[i].centroid2[a] - cb.lo[a]) / ext[a] : 0.0f;
+          const float u = ext[a] > 0 ? (refs_[i].centroid2()[a] - cb.lo[a]) / ext[a] : 0.0f;
           code |= spread_bits(uint32_t(std::clamp(u * 1024.0f, 0.0f, 1023.0f))) << (2 - a);
         }
         keys[i] = {code, int(i)};
@@ -370,19 +435,18 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
     if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) || !std::isfinite(b.hi.x) ||
         !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z))
       throw InvalidInput("Bvh: primitive " + std::to_string(i) + " has a non-finite box (planes cannot go in a BVH)");
-    refs.push_back(PrimRef{b, b.lo + b.hi, int(i)});
+    refs.push_back(PrimRef{Box4{v4f{b.lo.x, b.lo.y, b.lo.z, 0}, v4f{b.hi.x, b.hi.y, b.hi.z, 0}}, int(i)});
   }
   if (refs.empty()) return;
   if (settings.build == BvhSettings::Build::bottom_up) {
     depth_ = BottomUpBuilder(settings_, refs).build(nodes_);
     if (depth_ > kMaxDepth) {  // a degenerate input can chain clusters: fall back to the top-down build
       nodes_.clear();
-      for (PrimRef& r : refs) r.centroid2 = r.box.lo + r.box.hi;
     }
   }
   if (nodes_.empty()) {
     nodes_.reserve(2 * refs.size() / size_t(std::max(1, settings.max_leaf_size / 2)) + 1);
-    depth_ = SahBuilder(settings_, refs).build(0, int(refs.size()), nodes_);
+    depth_ = SahBuilder(settings_, refs).build(0, int(refs.size()), range_bounds(refs.data(), int(refs.size())), nodes_);
   }
   TESSERA_CHECK_LE(depth_, kMaxDepth);
   prim_indices_.resize(refs.size());
