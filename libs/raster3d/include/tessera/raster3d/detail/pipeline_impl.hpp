@@ -122,9 +122,12 @@ const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& 
 /// A 32-bit word that may alias the 8-bit RGBA pixels (one store per pixel in the constant-color loop).
 using AliasedU32 = uint32_t __attribute__((may_alias));
 
-/// depth_to_unorm24 for z that the clip volume already bounds to [0, 1] up to rounding (clamped branch-free).
-inline uint32_t depth_unorm24_unclamped(double z) {
-  return uint32_t(int32_t(std::min(std::max(z, 0.0), 1.0) * double(kDepthMax) + 0.5));
+/// depth_to_unorm24 for the plane depth at a pixel center inside the triangle (in [0, 1] up to rounding), clamped
+/// in integers so that span loops vectorize.
+inline uint32_t depth24(double z) {
+  const int32_t d = int32_t(z * double(kDepthMax) + 0.5);
+  const int32_t low = d > 0 ? d : 0;
+  return uint32_t(low < int32_t(kDepthMax) ? low : int32_t(kDepthMax));
 }
 
 /// Whether a fragment of depth d passes against the stored depth s.
@@ -146,6 +149,31 @@ inline bool depth_passes(uint32_t d, uint32_t s) {
     return d >= s;
   else
     return true;
+}
+
+/// One constant color over image-row pixels [lo, hi) with depth z(i) = z + zx i: depth test, depth and color
+/// writes, branch-free (the loop vectorizes; restrict lets the compiler keep the rows apart).
+template <DepthFunc F, bool WriteDepth>
+inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi, double z, double zx,
+                      uint32_t c32) {
+  for (int i = lo; i < hi; ++i) {
+    const uint32_t d = depth24(z + zx * i);
+    const uint32_t stored = depth[i];
+    const uint32_t old_color = color[i];
+    const bool pass = depth_passes<F>(d, stored);
+    if constexpr (WriteDepth) depth[i] = pass ? d : stored;
+    color[i] = pass ? c32 : old_color;
+  }
+}
+
+/// The depth test of image-row pixels [lo, hi) (early z): their depths into d[i - lo], the outcome into pass[i - lo].
+template <DepthFunc F>
+inline void test_span(const uint32_t* __restrict depth, int lo, int hi, double z, double zx, uint32_t* __restrict d,
+                      bool* __restrict pass) {
+  for (int i = lo; i < hi; ++i) {
+    d[i - lo] = depth24(z + zx * i);
+    pass[i - lo] = depth_passes<F>(d[i - lo], depth[i]);
+  }
 }
 
 /// Calls fn(std::integral_constant<DepthFunc, F>) for the runtime value f.
@@ -247,15 +275,13 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
           int lo = x0, hi = x1;
           edge_span(r, j, lo, hi);
           if (lo >= hi) continue;
+          const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
           uint32_t* drow = depth.row(height - 1 - j);
           AliasedU32* crow = reinterpret_cast<AliasedU32*>(color.row(height - 1 - j));
-          const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
-          for (int i = lo; i < hi; ++i) {  // branch-free so that it vectorizes
-            const uint32_t d = depth_unorm24_unclamped(zrow + r.zx * i);
-            const bool pass = depth_passes<F>(d, drow[i]);
-            if (write_depth) drow[i] = pass ? d : drow[i];
-            crow[i] = pass ? c32 : crow[i];
-          }
+          if (write_depth)
+            fill_span<F, true>(drow, crow, lo, hi, zrow, r.zx, c32);
+          else
+            fill_span<F, false>(drow, crow, lo, hi, zrow, r.zx, c32);
         }
         continue;
       }
@@ -273,10 +299,7 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         uint32_t d[kTileSize];
         bool pass[kTileSize];
         const int n = hi - lo;
-        for (int k = 0; k < n; ++k) {
-          d[k] = depth_unorm24_unclamped(zrow + r.zx * (lo + k));
-          pass[k] = depth_passes<F>(d[k], drow[lo + k]);
-        }
+        test_span<F>(drow, lo, hi, zrow, r.zx, d, pass);
         const float dy = float(j) + 0.5f - r.ry;
         const float dx0 = float(lo) + 0.5f - r.rx;
         std::array<float, N + 1> value;
