@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# tessera raster: every shading model and option on a hand-written cube and quad; a known pixel color and an analytic
+# depth read back from --depth-out; --stats keys agreeing with the depth file; the same picture for any --threads;
+# clean failures (exit 1 or 2, a message, no output file).
+# $1 = the tessera binary, $2 = a scratch folder.
+set -euo pipefail
+tessera="$1"
+scratch="$2"
+rm -rf "$scratch" && mkdir -p "$scratch"
+cd "$scratch"
+py=/usr/bin/python3
+
+# The cube [-1,1]^3 as 6 quads, counterclockwise seen from outside.
+cat > cube.obj <<'OBJ'
+v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 2 3 7 6
+f 3 4 8 7
+f 4 1 5 8
+OBJ
+# A 2 x 2 square in the plane z = 0, facing +z.
+cat > quad.obj <<'OBJ'
+v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+f 1 2 3 4
+OBJ
+
+# Every shading model, both lights, wireframe, culling; default framing (no camera options).
+for shading in unlit flat gouraud phong; do
+  "$tessera" raster cube.obj -o "cube_$shading.png" --size 64x48 --shading "$shading" --quiet
+  test -s "cube_$shading.png"
+done
+"$tessera" raster cube.obj -o lights_dir.png --size 48x48 --light-dir 1,1,1 --eye 3,2,4 --wireframe --cull back
+"$tessera" raster cube.obj -o lights_pos.png --size 48x48 --light-pos 0,3,3 --background 1,1,1 --color '#3366cc'
+$py -c "
+from PIL import Image
+for name in ['cube_unlit.png', 'cube_phong.png', 'lights_dir.png', 'lights_pos.png']:
+    im = Image.open(name)
+    assert im.size in [(64, 48), (48, 48)], (name, im.size)
+    assert len(set(im.convert('RGB').getdata())) > 1, name + ' is a single color'
+"
+
+# --stats: the keys, 12 triangles for the cube (6 quads), and `pixels` equal to the covered pixels of --depth-out.
+"$tessera" raster cube.obj -o stats.png --size 40x30 --depth-out stats.pfm --repeat 3 --stats > stats.txt
+for key in tris pixels seconds tris_per_s; do grep -q "^$key=" stats.txt || { echo "missing $key"; cat stats.txt; exit 1; }; done
+grep -q '^tris=12$' stats.txt || { echo "expected tris=12"; cat stats.txt; exit 1; }
+[ "$(wc -l < stats.txt)" -eq 4 ] || { echo "expected exactly 4 stats lines"; cat stats.txt; exit 1; }
+$py - "$(sed -n 's/^pixels=//p' stats.txt)" <<'PY'
+import sys, numpy as np
+raw = open('stats.pfm', 'rb').read()
+header = raw.split(b'\n', 3)
+assert header[0] == b'Pf', header[0]
+w, h = map(int, header[1].split())
+assert (w, h) == (40, 30), (w, h)
+assert float(header[2]) < 0, 'expected little-endian PFM'
+depth = np.frombuffer(header[3], dtype='<f4')
+assert depth.size == w * h, depth.size
+covered = int((depth < 1).sum())
+assert covered == int(sys.argv[1]), (covered, sys.argv[1])
+assert 0 < covered < w * h and depth.min() >= 0 and depth.max() == 1
+PY
+
+# A known picture: an unlit red square seen head-on from z = 4 with near 1 and far 7. Its center pixel is exactly
+# the color, a corner the background, and its window depth is 0.875: z_ndc = (f+n)/(f-n) - 2fn/((f-n) d) with
+# d = 4, i.e. 4/3 - 7/12 = 0.75, and z_w = (z_ndc + 1)/2, stored in 24 bits.
+"$tessera" raster quad.obj -o quad.ppm --size 33x33 --eye 0,0,4 --center 0,0,0 --near 1 --far 7 --fovy 60 \
+  --shading unlit --color 1,0,0 --background 0,0,1 --depth-out quad.pfm
+$py - <<'PY'
+import numpy as np
+raw = open('quad.ppm', 'rb').read()
+magic, w, h, maxval, pixels = raw.split(maxsplit=4)
+assert magic == b'P6' and (int(w), int(h), int(maxval)) == (33, 33, 255)
+rgb = np.frombuffer(pixels, dtype=np.uint8).reshape(33, 33, 3)
+assert tuple(rgb[16, 16]) == (255, 0, 0), rgb[16, 16]
+assert tuple(rgb[0, 0]) == (0, 0, 255), rgb[0, 0]
+# The square spans tan(30 deg) * 4 = 2.31 half-heights of view 1: 1/2.31 of the half-size, 7.1 of 16.5 pixels.
+assert (rgb[16, :, 0] == 255).sum() in (14, 15), (rgb[16, :, 0] == 255).sum()
+depth = np.frombuffer(open('quad.pfm', 'rb').read().split(b'\n', 3)[3], dtype='<f4').reshape(33, 33)
+expected = round(0.875 * (2**24 - 1)) / (2**24 - 1)
+assert abs(depth[16, 16] - expected) < 1e-6, depth[16, 16]
+assert depth[0, 0] == 1.0
+PY
+
+# The same picture for any thread count.
+"$tessera" raster cube.obj -o t1.ppm --size 96x64 --shading phong --wireframe --threads 1
+"$tessera" raster cube.obj -o t2.ppm --size 96x64 --shading phong --wireframe --threads 2
+cmp -s t1.ppm t2.ppm || { echo "--threads 1 and 2 differ"; exit 1; }
+
+# Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
+expect_error() {
+  local status="$1" pattern="$2"
+  shift 2
+  set +e
+  "$tessera" raster "$@" 2> err.txt
+  local rc=$?
+  set -e
+  [ "$rc" -eq "$status" ] || { echo "expected exit $status, got $rc for: $*"; cat err.txt; exit 1; }
+  grep -qi -- "$pattern" err.txt || { echo "message lacks '$pattern':"; cat err.txt; exit 1; }
+  for f in bad.png bad.pfm bad.xyz; do [ ! -e "$f" ] || { echo "$f was written for: $*"; exit 1; }; done
+}
+printf 'v 0 0 0\nv 1 0 0\nf 1 2 7\n' > broken.obj
+expect_error 1 "missing.obj" missing.obj -o bad.png
+expect_error 1 "broken.obj" broken.obj -o bad.png
+expect_error 1 "color" cube.obj -o bad.png --color 2,0,0
+expect_error 1 "\.pfm" cube.obj -o bad.png --depth-out bad.png
+expect_error 1 "not both" cube.obj -o bad.png --light-dir 0,0,1 --light-pos 0,0,5
+expect_error 1 "size" cube.obj -o bad.png --size 0x10
+expect_error 1 "near" cube.obj -o bad.png --near 5 --far 2
+expect_error 1 "xyz" cube.obj -o bad.xyz
+expect_error 1 "" cube.obj -o bad.png --depth-out no_such_dir/bad.pfm
+expect_error 2 "shading" cube.obj -o bad.png --shading toon
+expect_error 2 "repeat" cube.obj -o bad.png --repeat 0
+expect_error 2 "cull" cube.obj -o bad.png --cull front
+expect_error 2 "output" cube.obj
+echo "raster CLI ok"
