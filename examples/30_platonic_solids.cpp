@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/mesh/primitives.hpp"
 
 namespace tessera::examples {
@@ -16,10 +16,10 @@ namespace {
 ImageRGB contact_sheet(const std::vector<PolyMesh>& meshes, int columns, int size) {
   const int rows = int((meshes.size() + size_t(columns) - 1) / size_t(columns));
   ImageRGB sheet(columns * size, rows * size, Vec3f(1.0f));
-  PreviewOptions options;
+  MeshViewOptions options;
   options.width = options.height = size;
   for (size_t i = 0; i < meshes.size(); ++i)
-    paste(sheet, render_preview(meshes[i], options), int(i % size_t(columns)) * size, int(i / size_t(columns)) * size);
+    paste(sheet, render_mesh(meshes[i], options), int(i % size_t(columns)) * size, int(i / size_t(columns)) * size);
   return sheet;
 }
 

@@ -4,7 +4,7 @@
 #include <fmt/format.h>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/core/rng.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -18,7 +18,7 @@ TESSERA_EXAMPLE(ex32_smoothing, "32_smoothing", "Laplacian and Taubin smoothing"
   for (Vec3& p : noisy.positions) p *= 1.0 + rng.uniform(-0.04, 0.04);
   const double v0 = signed_volume(noisy);
 
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = 300;
   Camera camera;
   camera.eye = 3.2 * glm::normalize(Vec3(1, 0.8, 1.6));
@@ -36,11 +36,11 @@ TESSERA_EXAMPLE(ex32_smoothing, "32_smoothing", "Laplacian and Taubin smoothing"
     for (int y = 0; y < tile.height(); ++y)
       for (int x = 0; x < tile.width(); ++x) sheet(column * options.width + x, y) = tile(x, y);
   };
-  paste(examples::render_preview(noisy, options), 0);
+  paste(examples::render_mesh(noisy, options), 0);
   for (int i = 0; i < 3; ++i) {
     PolyMesh mesh = noisy;
     smooth(mesh, {methods[i].second, 20});
-    paste(examples::render_preview(mesh, options), i + 1);
+    paste(examples::render_mesh(mesh, options), i + 1);
     caption += fmt::format("{} {} (volume {:+.1f}%)",
                            i == 0   ? ""
                            : i == 2 ? ", and"

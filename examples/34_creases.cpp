@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/subdiv/subdivide.hpp"
 #include "tessera/subdiv/topology.hpp"
@@ -42,12 +42,12 @@ tessera::PolyMesh creased_cube(float s) {
 
 TESSERA_EXAMPLE(ex34_creases, "34_creases", "Sharp and semi-sharp creases and corners (Catmull-Clark, level 3)") {
   using namespace tessera;
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = 320;
   for (float s : {0.0f, 0.5f, 1.0f, 2.0f, 3.0f, 10.0f}) {
     const PolyMesh mesh = catmull_clark_subdivide(creased_cube(s), 3);
     const std::string name = s >= 10.0f ? "inf" : fmt::format("{:g}", s);
-    gallery.add("34_creases_s" + name + ".png", examples::render_preview(mesh, options),
+    gallery.add("34_creases_s" + name + ".png", examples::render_mesh(mesh, options),
                 s >= 10.0f  ? std::string("Infinitely sharp creases and corner: the tagged edges never soften.")
                 : s == 0.0f ? std::string("Sharpness 0: no crease, the smooth Catmull-Clark surface (level 3).")
                             : fmt::format("Crease and corner sharpness {:g}: the sharp rule {:g} time(s), then smooth "

@@ -3,18 +3,18 @@
 #include <string>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/subdiv/subdivide.hpp"
 
 TESSERA_EXAMPLE(ex35_loop, "35_loop", "Loop subdivision of an icosahedron, levels 0-3") {
   using namespace tessera;
   const PolyMesh ico = make_icosahedron();
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = 320;
   for (int level = 0; level <= 3; ++level) {
     const PolyMesh mesh = loop_subdivide(ico, level);
-    gallery.add("35_loop_level" + std::to_string(level) + ".png", examples::render_preview(mesh, options),
+    gallery.add("35_loop_level" + std::to_string(level) + ".png", examples::render_mesh(mesh, options),
                 "Loop, level " + std::to_string(level) + ": " + std::to_string(mesh.face_count()) + " triangles.");
   }
 }

@@ -3,13 +3,13 @@
 #include <string>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/subdiv/subdivide.hpp"
 
 TESSERA_EXAMPLE(ex36_geodesic_spheres, "36_geodesic_spheres", "Geodesic spheres from the octahedron and icosahedron") {
   using namespace tessera;
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = 320;
   const struct {
     const char* name;
@@ -19,7 +19,7 @@ TESSERA_EXAMPLE(ex36_geodesic_spheres, "36_geodesic_spheres", "Geodesic spheres 
     for (int level = 1; level <= 3; ++level) {
       const PolyMesh sphere = geodesic_sphere(base, level);
       gallery.add("36_geodesic_" + std::string(name) + "_level" + std::to_string(level) + ".png",
-                  examples::render_preview(sphere, options),
+                  examples::render_mesh(sphere, options),
                   "Geodesic sphere from the " + std::string(name) + ", level " + std::to_string(level) + ": " +
                       std::to_string(sphere.face_count()) + " triangles.");
     }

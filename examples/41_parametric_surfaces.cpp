@@ -4,14 +4,14 @@
 #include <vector>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/curves/surface.hpp"
 
 namespace tessera::examples {
 namespace {
 
 // The tessellation as quads (its triangles come in pairs a b c, a c d per grid cell), turned from the notes' z-up
-// frame to the preview's y-up one.
+// frame to the renderer's y-up one.
 PolyMesh grid_quads(const TriMesh& tris) {
   PolyMesh quads;
   for (const Vec3& p : tris.positions) quads.positions.emplace_back(p.x, p.z, -p.y);
@@ -34,10 +34,10 @@ TESSERA_EXAMPLE(ex41_parametric_surfaces, "41_parametric_surfaces",
       tessellate(cylinder(1, 2), 24, 6), tessellate(sphere(1), 24, 12)};
   const int size = 300;
   ImageRGB sheet(3 * size, size, Vec3f(1.0f));
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = size;
   for (size_t i = 0; i < surfaces.size(); ++i)
-    examples::paste(sheet, examples::render_preview(examples::grid_quads(surfaces[i]), options), int(i) * size);
+    examples::paste(sheet, examples::render_mesh(examples::grid_quads(surfaces[i]), options), int(i) * size);
   gallery.add("41_parametric_surfaces.png", sheet,
               "Parametric surfaces of the notes on (s, t) grids: a parallelogram (8 x 8), a cylinder with s the "
               "angle and t the height (24 x 6, open, its inside darker), a sphere with s the longitude and t the "

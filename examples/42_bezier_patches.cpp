@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/curves/bezier_patch.hpp"
 #include "tessera/curves/bpt.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -40,7 +40,7 @@ std::vector<BezierPatch> load_patches(bool& teapot) {
   return patches;
 }
 
-// z-up data to the preview's y-up frame.
+// z-up data to the renderer's y-up frame.
 Vec3 y_up(const Vec3& p) { return Vec3(p.x, p.z, -p.y); }
 
 // The uniform tessellation as quads (triangle pairs a b c, a c d per grid cell) with one color per patch.
@@ -89,14 +89,14 @@ TESSERA_EXAMPLE(ex42_bezier_patches, "42_bezier_patches", "Bicubic Bezier patche
   }
 
   const int size = 420;
-  examples::PreviewOptions options;
+  examples::MeshViewOptions options;
   options.width = options.height = size;
   ImageRGB sheet(2 * size, size, Vec3f(1.0f));
   options.face_colors = colors;
-  examples::paste(sheet, examples::render_preview(quads, options), 0);
+  examples::paste(sheet, examples::render_mesh(quads, options), 0);
   options.face_colors.clear();
   options.color = Vec3f(0.9f, 0.8f, 0.6f);
-  examples::paste(sheet, examples::render_preview(net, options), size);
+  examples::paste(sheet, examples::render_mesh(net, options), size);
   gallery.add("42_bezier_patches.png", sheet,
               std::string(teapot ? "The Utah teapot: 32 bicubic patches" : "A dome of 4 bicubic patches") +
                   ", each sampled on a 9 x 9 grid of (u, v) and colored per patch (left), and its control net of 16 "

@@ -5,14 +5,14 @@
 #include <fmt/format.h>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/fractal/draw.hpp"
 #include "tessera/fractal/terrain.hpp"
 #include "tessera/image/image_io.hpp"
 
 namespace {
 
-// Per-face colors for the flat-shaded preview: the mean of the face's vertex colors (colored by height).
+// Per-face colors for the flat-shaded view: the mean of the face's vertex colors (colored by height).
 std::vector<tessera::Vec3f> face_colors(const tessera::PolyMesh& mesh) {
   std::vector<tessera::Vec3f> colors;
   for (size_t f = 0; f < mesh.face_count(); ++f) {
@@ -55,7 +55,7 @@ TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains",
   options.roughness = 0.55;
   options.seed = 3;
   const PolyMesh mountain = triangle_mountain(options);
-  examples::PreviewOptions preview;
+  examples::MeshViewOptions preview;
   preview.width = 800, preview.height = 600;
   preview.wireframe = false;
   preview.background = {0.85f, 0.92f, 1.0f};
@@ -67,7 +67,7 @@ TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains",
   camera.fovy = radians(40);
   camera.aspect = 800.0 / 600.0;
   preview.camera = camera;
-  gallery.add("55_triangle_mountain.png", examples::render_preview(mountain, preview),
+  gallery.add("55_triangle_mountain.png", examples::render_mesh(mountain, preview),
               fmt::format("2D midpoint subdivision of a triangle, depth 6: {} triangles, {} shared vertices, no "
                           "cracks",
                           mountain.face_count(), mountain.vertex_count()));
@@ -85,6 +85,6 @@ TESSERA_EXAMPLE(ex55_fractal_mountains, "55_fractal_mountains",
   camera.center = {0.5, 0.0, 0.5};
   camera.eye = {0.5, 1.0, 1.75};
   preview.camera = camera;
-  gallery.add("55_diamond_square_mesh.png", examples::render_preview(grid, preview),
+  gallery.add("55_diamond_square_mesh.png", examples::render_mesh(grid, preview),
               "The same method on a 65 x 65 grid as a mesh: 8192 triangles");
 }

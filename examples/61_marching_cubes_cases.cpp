@@ -1,7 +1,7 @@
 // The 15 base configurations of marching cubes (Lorensen & Cline), triangulated by Tessera's generated table, each
 // drawn inside its cube's wireframe with the inside corners marked by small cubes.
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/mc_table.hpp"
@@ -34,14 +34,14 @@ TESSERA_EXAMPLE(ex61_marching_cubes_cases, "61_marching_cubes_cases", "The 15 ba
     const PolyMesh marker = make_cube();
     for (int i = 0; i < 8; ++i)
       if ((c >> i) & 1) append(marker, Vec3(mc::corners()[size_t(i)]), 0.06, Vec3f(0.15f, 0.2f, 0.7f));
-    PreviewOptions options;
+    MeshViewOptions options;
     options.width = options.height = tile;
     options.face_colors = colors;
     Camera cam;
     cam.center = {0.5, 0.5, 0.5};
     cam.eye = {2.6, 1.9, 3.2};
     options.camera = cam;
-    const ImageRGB img = render_preview(mesh, options);
+    const ImageRGB img = render_mesh(mesh, options);
     for (int y = 0; y < tile; ++y)
       for (int x = 0; x < tile; ++x) sheet(int(k % 5) * tile + x, int(k / 5) * tile + y) = img(x, y);
   }

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "gallery.hpp"
-#include "preview.hpp"
+#include "mesh_view.hpp"
 #include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/procedural.hpp"
 #include "tessera/volume/volume_io.hpp"
@@ -23,7 +23,7 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
     ct = make_sphere(64, 0.8);
     for (float& v : ct.voxels()) v = v > 0.12f ? 600.0f : v > 0.0f ? 1300.0f : 0.0f;
   }
-  PreviewOptions options;
+  MeshViewOptions options;
   options.wireframe = false;
   options.camera = Camera{};
   const Vec3 lo = ct.origin(), hi = ct.to_world(Vec3(ct.dims() - 1)), mid = 0.5 * (lo + hi);
@@ -37,10 +37,10 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   options.camera->near = 1;
   options.camera->far = 1e4;
   options.color = {0.9f, 0.72f, 0.62f};
-  gallery.add("62_ct_skin.png", render_preview(marching_cubes(ct, {.iso = skin}), options), "CT head, skin iso-surface (marching cubes).");
+  gallery.add("62_ct_skin.png", render_mesh(marching_cubes(ct, {.iso = skin}), options), "CT head, skin iso-surface (marching cubes).");
   options.color = {0.95f, 0.93f, 0.85f};
-  gallery.add("62_ct_bone.png", render_preview(marching_cubes(ct, {.iso = bone}), options), "CT head, bone iso-surface.");
-  PreviewOptions g;
+  gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options), "CT head, bone iso-surface.");
+  MeshViewOptions g;
   g.wireframe = false;
-  gallery.add("62_gyroid.png", render_preview(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");
+  gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");
 }
