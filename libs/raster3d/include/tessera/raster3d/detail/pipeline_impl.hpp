@@ -243,11 +243,16 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
   auto& color = fb.color();
   auto& depth = fb.depth();
   const bool write_depth = depth_write;
-  // Small triangles land anywhere in the tile: fetch the tile's depth and color rows at once rather than miss on
-  // each of them.
-  bool any = false;
-  for (const SetupChunk& chunk : scratch.chunks) any = any || !chunk.bins[tile].empty();
-  if (!any) return;
+  // Small triangles land anywhere in the tile: fetch its depth and color rows at once rather than miss on each.
+  // The same for the tile's first records (each spans two cache lines), scattered over the chunks.
+  size_t records = 0;
+  for (const SetupChunk& chunk : scratch.chunks)
+    for (size_t b = 0; b < chunk.bins[tile].size() && records < 128; ++b, ++records) {
+      const char* record = reinterpret_cast<const char*>(&chunk.records[chunk.bins[tile][b]]);
+      __builtin_prefetch(record);
+      __builtin_prefetch(record + 64);
+    }
+  if (records == 0) return;
   for (int j = tile_y0; j < tile_y1; ++j)
     for (int i = tile_x0; i < tile_x1; i += 16) {
       __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
@@ -256,7 +261,6 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
   for (const SetupChunk& chunk : scratch.chunks) {
     const std::vector<uint32_t>& bin = chunk.bins[tile];
     for (size_t b = 0; b < bin.size(); ++b) {
-      if (b + 4 < bin.size()) __builtin_prefetch(&chunk.records[bin[b + 4]]);
       const TriangleRecord& r = chunk.records[bin[b]];
       const float* data = chunk.varyings.data() + r.varyings;
       const int x0 = std::max(tile_x0, r.x0), x1 = std::min(tile_x1, r.x1);
