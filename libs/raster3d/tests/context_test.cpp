@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+#include <thread>
+
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -189,6 +192,38 @@ TEST(Context, TwoContextsDoNotInterfere) {
   a_alone.end();
   EXPECT_TRUE(same_pixels(a.framebuffer(), a_alone.framebuffer()));
   EXPECT_FALSE(same_pixels(a.framebuffer(), b.framebuffer()));
+}
+
+TEST(Context, ContextsOnTwoThreadsAtOnce) {
+  // Each thread makes its own context current (the current context is per thread) and draws through the gt layer;
+  // the results equal the same drawings made one after the other.
+  const TriMesh mesh = to_tri_mesh(make_uv_sphere(32, 16));
+  auto draw = [&](double angle) {
+    Context ctx(64, 64);
+    gt::gtMakeCurrent(&ctx);
+    gt::gtPerspective(radians(40), 1, 20);
+    gt::gtLookAt(0, 0, 4, 0, 0, 0, 0, 1, 0);
+    gt::gtRotateY(angle);
+    ctx.shading(ShadingModel::phong);
+    ctx.material(Material::metal({0.9f, 0.6f, 0.2f}, 20));
+    for (int k = 0; k < 5; ++k) {
+      gt::gtBeginShape(gt::GT_TRIANGLES);
+      for (uint32_t i : mesh.indices) {
+        gt::gtNormal(mesh.normals[i].x, mesh.normals[i].y, mesh.normals[i].z);
+        gt::gtVertex(mesh.positions[i].x, mesh.positions[i].y + 0.1 * k, mesh.positions[i].z);
+      }
+      gt::gtEndShape();
+    }
+    gt::gtMakeCurrent(nullptr);
+    return std::move(ctx.framebuffer());
+  };
+  const Framebuffer a_alone = draw(0.2), b_alone = draw(1.4);
+  std::optional<Framebuffer> a, b;
+  std::thread ta([&] { a.emplace(draw(0.2)); }), tb([&] { b.emplace(draw(1.4)); });
+  ta.join();
+  tb.join();
+  EXPECT_TRUE(same_pixels(*a, a_alone));
+  EXPECT_TRUE(same_pixels(*b, b_alone));
 }
 
 TEST(Context, DoubleBufferingPresentsOnSwap) {
