@@ -1,6 +1,7 @@
 // The recursive (Whitted) and distribution ray tracer and the tile renderer.
 #include "tessera/raytrace/render.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -124,13 +125,15 @@ class Tracer {
     for (size_t li = 0; li < scene_.lights.size(); ++li) {
       const Light& light = scene_.lights[li];
       const int count = light.is_area() ? std::max(1, light.samples) : 1;
-      // The stratified set of this hit, rotated by the pixel sample's number (Cranley-Patterson) so that the sets
-      // of a pixel's samples interleave.
-      const Vec2f rotation = primary ? primary->light : Vec2f(rng.uniform(), rng.uniform());
-      const uint32_t pattern = hash_u32(li, uint64_t(depth));
+      // An area light's stratified set for this hit, rotated by the pixel sample's number (Cranley-Patterson) so
+      // that the sets of a pixel's samples interleave. Point and directional lights need no numbers.
+      Vec2f rotation(0.0f);
+      if (light.is_area()) rotation = primary ? primary->light : Vec2f(rng.uniform(), rng.uniform());
+      const uint32_t pattern = count > 1 ? hash_u32(li, uint64_t(depth)) : 0;
       Vec3f light_sum(0.0f);
       for (int k = 0; k < count; ++k) {
-        const Vec2f u = glm::fract(stratified_sample(uint32_t(k), uint32_t(count), pattern) + rotation);
+        const Vec2f u =
+            count > 1 ? glm::fract(stratified_sample(uint32_t(k), uint32_t(count), pattern) + rotation) : rotation;
         const LightSample ls = sample_light(light, p, u);
         const float nl = glm::dot(n, ls.dir);
         if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) continue;
@@ -236,6 +239,10 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   if (settings.progress) progress = std::make_unique<Progress>("render", int64_t(tiles_x) * tiles_y);
   std::atomic<uint64_t> total_rays{0};
   const bool distributed_pixel = spp > 1;
+  const bool uses_time = scene.world.has_motion();
+  const bool uses_light = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.is_area(); });
+  const bool uses_gloss =
+      std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glossiness > 0.0f; });
   parallel_tiles(w, h, settings.tile_size, [&](const Tile& tile) {
     uint64_t rays = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
@@ -246,11 +253,15 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
         for (uint32_t dim = 0; dim < kDimensions; ++dim) pattern[dim] = hash_u32(pixel, dim, settings.seed);
         Vec3f sum(0.0f);
         for (uint32_t s = 0; s < spp; ++s) {
-          const Vec2f offset = distributed_pixel ? stratified_sample(s, spp, pattern[kPixel]) : Vec2f(0.5f);
-          const float time = distributed_pixel ? stratified_sample(s, spp, pattern[kTime]).x : 0.5f;
-          const PrimaryNumbers primary{stratified_sample(s, spp, pattern[kLight]),
-                                       stratified_sample(s, spp, pattern[kGloss])};
-          const Ray ray = eye_ray(scene, eye_rays, x, y, offset, stratified_sample(s, spp, pattern[kLens]), time);
+          // Only the dimensions the scene uses are drawn (each is its own pattern, so skipping one changes no other).
+          // With one sample the eye ray goes through the pixel center at mid-shutter.
+          const auto draw = [&](Dimension dim, bool used) {
+            return used ? stratified_sample(s, spp, pattern[dim]) : Vec2f(0.5f);
+          };
+          const Vec2f offset = draw(kPixel, distributed_pixel);
+          const float time = draw(kTime, uses_time && distributed_pixel).x;
+          const PrimaryNumbers primary{draw(kLight, uses_light), draw(kGloss, uses_gloss)};
+          const Ray ray = eye_ray(scene, eye_rays, x, y, offset, draw(kLens, scene.aperture > 0.0f), time);
           sum += tracer.radiance(ray, 1, Vec3f(1.0f), rng, &primary, rays);
         }
         image(x, y) = sum / float(spp);

@@ -1,6 +1,8 @@
 // The world: shapes and meshes under a top-level BVH, with motion by transforming rays.
 #include "tessera/raytrace/world.hpp"
 
+#include <algorithm>
+
 #include "tessera/accel/bvh.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/core/error.hpp"
@@ -32,7 +34,7 @@ Mat4f motion_delta(const Motion& m, const Mat4f& start, const Mat4f& start_inver
 }  // namespace
 
 int World::add_shape(const Shape& shape, const Mat4& to_world, int material, const Motion& motion) {
-  Object o{Instance(shape, to_world), material, motion};
+  Object o{to_world == Mat4(1.0) ? decltype(Object::geometry)(shape) : Instance(shape, to_world), material, motion};
   o.start = Mat4f(to_world);
   o.start_inverse = glm::inverse(o.start);
   o.is_plane = std::holds_alternative<Plane>(shape);
@@ -59,9 +61,10 @@ int World::add_mesh(const TriMesh& mesh, const Mat4& to_world, int material, con
 void World::set_casts_shadows(int index, bool casts) { objects_.at(size_t(index)).casts_shadows = casts; }
 
 AABB World::object_bounds(const Object& o) const {
-  const AABB box = std::holds_alternative<Instance>(o.geometry)
-                       ? std::get<Instance>(o.geometry).bounds()
-                       : std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.bvh().bounds();
+  AABB box;
+  if (const auto* shape = std::get_if<Shape>(&o.geometry)) box = tessera::bounds(*shape);
+  else if (const auto* inst = std::get_if<Instance>(&o.geometry)) box = inst->bounds();
+  else box = std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.bvh().bounds();
   if (!o.motion.moving()) return box;
   // Points move affinely in t under the interpolated placement, so the boxes at t = 0 and t = 1 bound the sweep.
   AABB swept = box;
@@ -90,6 +93,10 @@ void World::build() {
   bvh_ = std::make_unique<Bvh>(boxes, settings);
 }
 
+bool World::has_motion() const {
+  return std::any_of(objects_.begin(), objects_.end(), [](const Object& o) { return o.motion.moving(); });
+}
+
 AABB World::bounds() const { return bvh_ ? bvh_->bounds() : AABB{}; }
 
 bool World::intersect_object(const Object& o, Ray& ray, Hit& hit) const {
@@ -103,7 +110,9 @@ bool World::intersect_object(const Object& o, Ray& ray, Hit& hit) const {
     r.dir = Vec3f(inv * Vec4f(ray.dir, 0.0f));
   }
   bool found;
-  if (const auto* inst = std::get_if<Instance>(&o.geometry)) {
+  if (const auto* shape = std::get_if<Shape>(&o.geometry)) {
+    found = tessera::intersect(*shape, r, hit);
+  } else if (const auto* inst = std::get_if<Instance>(&o.geometry)) {
     found = inst->intersect(r, hit);
   } else {
     found = std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.intersect(r, hit);

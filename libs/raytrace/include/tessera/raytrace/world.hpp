@@ -63,13 +63,16 @@ class World {
   int size() const { return int(objects_.size()); }
   /// The material index of object i.
   int material(int i) const { return objects_[size_t(i)].material; }
+  /// True when some object moves (rays need distinct times).
+  bool has_motion() const;
   /// World bounds of everything but planes, over the whole shutter interval.
   AABB bounds() const;
 
  private:
   struct MeshData;
   struct Object {
-    std::variant<Instance, std::shared_ptr<const MeshData>> geometry;
+    // A shape placed by the identity is tested as is (no ray transform); others go through an Instance.
+    std::variant<Shape, Instance, std::shared_ptr<const MeshData>> geometry;
     int material = 0;
     Motion motion;
     Mat4f start_inverse{1.0f};  // M0^-1, for the motion transform M(t) M0^-1
