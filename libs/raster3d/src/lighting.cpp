@@ -19,6 +19,22 @@ Material Material::metal(const Vec3f& color, float shininess) {
   return m;
 }
 
+namespace {
+
+// x^e for x in [0, 1]: by repeated squaring for the usual integer exponents (a few multiplies instead of powf),
+// std::pow otherwise.
+float specular_power(float x, float e) {
+  if (e >= 0 && e <= 256 && e == std::floor(e)) {
+    float result = 1, base = x;
+    for (auto n = unsigned(e); n; n >>= 1, base *= base)
+      if (n & 1) result *= base;
+    return result;
+  }
+  return std::pow(x, e);
+}
+
+}  // namespace
+
 Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color) {
   const Material& m = lighting.material;
   const Vec3f ambient_m = lighting.color_material ? color : m.ambient;
@@ -40,7 +56,7 @@ Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3
     } else {
       spec = std::max(glm::dot(eye, 2.0f * n_dot_l * n - l), 0.0f);  // (E.R), R = 2N(N.L) - L
     }
-    c += std::pow(spec, m.shininess) * specular;
+    c += specular_power(spec, m.shininess) * specular;
   }
   return glm::clamp(c, 0.0f, 1.0f);
 }

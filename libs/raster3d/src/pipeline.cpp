@@ -57,6 +57,9 @@ int clip_polygon(float (*a)[kMaxStride], float (*b)[kMaxStride], int count, int 
   return count;
 }
 
+// Round to nearest, ties to even (as the FPU's default mode); __builtin_rintf inlines where std::lrint is a call.
+inline int32_t round_to_int(float v) { return int32_t(__builtin_rintf(v)); }
+
 inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) / 256)); }
 
 // A plane f(px, py) = f0 + fx (px - x0) + fy (py - y0) through three window points; false when they are collinear.
@@ -89,8 +92,8 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
     if (!(v[k][3] > 0)) return;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
     w[k] = to_window(params, v[k]);
     const float yd = v[k][1] * w[k].inv_w * -half_h + translate_yd;
-    X[k] = int32_t(std::lrint(w[k].x * 256.0f));  // snap to 1/256 pixel
-    Y[k] = params.fb_height * 256 - int32_t(std::lrint(yd * 256.0f));
+    X[k] = round_to_int(w[k].x * 256.0f);  // snap to 1/256 pixel
+    Y[k] = params.fb_height * 256 - round_to_int(yd * 256.0f);
   }
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
