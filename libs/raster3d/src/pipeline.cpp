@@ -64,17 +64,17 @@ inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) 
 
 // A plane f(px, py) = f0 + fx (px - x0) + fy (py - y0) through three window points; false when they are collinear.
 struct PlaneSetup {
-  double x0, y0, d1x, d1y, d2x, d2y, det;
-  bool valid() const { return det != 0 && std::isfinite(det); }
+  double x0, y0, d1x, d1y, d2x, d2y, inv_det;
+  bool valid() const { return std::isfinite(inv_det); }
   void solve(double f0, double f1, double f2, double& fx, double& fy) const {
-    fx = ((f1 - f0) * d2y - (f2 - f0) * d1y) / det;
-    fy = ((f2 - f0) * d1x - (f1 - f0) * d2x) / det;
+    fx = ((f1 - f0) * d2y - (f2 - f0) * d1y) * inv_det;
+    fy = ((f2 - f0) * d1x - (f1 - f0) * d2x) * inv_det;
   }
 };
 
 PlaneSetup plane_setup(double x0, double y0, double x1, double y1, double x2, double y2) {
   PlaneSetup s{x0, y0, x1 - x0, y1 - y0, x2 - x0, y2 - y0, 0};
-  s.det = s.d1x * s.d2y - s.d2x * s.d1y;
+  s.inv_det = 1.0 / (s.d1x * s.d2y - s.d2x * s.d1y);  // infinite when collinear
   return s;
 }
 
