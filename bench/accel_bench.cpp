@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
+#include "embree_reference.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/accel/ray_workloads.hpp"
 #include "tessera/core/parallel.hpp"
@@ -41,29 +41,13 @@ constexpr int kImage = 1024;
 struct Workload {
   std::string name;
   TriMesh mesh;
-  std::vector<float> vertices;  // float copy for Embree
   std::vector<Ray> random, primary;
   std::unique_ptr<MeshAccel> accel;
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  std::unique_ptr<reference::EmbreeMesh> embree;
 };
 
 std::map<std::string, std::unique_ptr<Workload>> g_workloads;
 std::map<std::string, double> g_results;  // "mesh/what/who/threads" -> rate
-
-RTCScene embree_scene(RTCDevice device, const Workload& w) {
-  RTCScene scene = rtcNewScene(device);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, w.vertices.data(), 0,
-                             3 * sizeof(float), w.mesh.positions.size());
-  rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, w.mesh.indices.data(), 0,
-                             3 * sizeof(uint32_t), w.mesh.triangle_count());
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(scene);
-  return scene;
-}
 
 Workload& workload(const std::string& name) {
   auto& slot = g_workloads[name];
@@ -77,18 +61,14 @@ Workload& workload(const std::string& name) {
     w.mesh = to_tri_mesh(make_torus(1.0, 0.4, 1200, 450));
   }
   AABB box;
-  for (const Vec3& p : w.mesh.positions) {
-    box.expand(Vec3f(p));
-    w.vertices.insert(w.vertices.end(), {float(p.x), float(p.y), float(p.z)});
-  }
+  for (const Vec3& p : w.mesh.positions) box.expand(Vec3f(p));
   w.random = incoherent_rays(box, kRandomRays, 7);
   Camera cam;
   cam.center = Vec3(box.center());
   cam.eye = cam.center + 1.2 * double(glm::length(box.extent())) * glm::normalize(Vec3(0.3, 0.4, 1));
   w.primary = primary_rays(cam, kImage, kImage);
   w.accel = std::make_unique<MeshAccel>(w.mesh);
-  w.device = rtcNewDevice(nullptr);
-  w.scene = embree_scene(w.device, w);
+  w.embree = std::make_unique<reference::EmbreeMesh>(w.mesh);
   return w;
 }
 
@@ -119,25 +99,9 @@ bool cast_tessera(const MeshAccel& accel, const Ray& r) {
   return accel.intersect(ray, hit);
 }
 
-bool cast_embree(RTCScene scene, const Ray& r) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray.org_x = r.origin.x;
-  rh.ray.org_y = r.origin.y;
-  rh.ray.org_z = r.origin.z;
-  rh.ray.dir_x = r.dir.x;
-  rh.ray.dir_y = r.dir.y;
-  rh.ray.dir_z = r.dir.z;
-  rh.ray.tnear = r.tmin;
-  rh.ray.tfar = r.tmax;
-  rh.ray.time = 0;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(scene, &context, &rh);
-  return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+bool cast_embree(const reference::EmbreeMesh& embree, const Ray& r) {
+  float t;
+  return embree.intersect(r, t) >= 0;
 }
 
 /// Rays per second of one configuration: range(0) 0 = incoherent, 1 = primary; range(1) 0 = Tessera, 1 = Embree;
@@ -156,7 +120,7 @@ void BM_Rays(benchmark::State& state, const std::string& mesh) {
   double best = 0;
   for (auto _ : state) {
     const auto start = std::chrono::steady_clock::now();
-    hits = embree ? cast_all(rays, [&](const Ray& r) { return cast_embree(w.scene, r); })
+    hits = embree ? cast_all(rays, [&](const Ray& r) { return cast_embree(*w.embree, r); })
                   : cast_all(rays, [&](const Ray& r) { return cast_tessera(*w.accel, r); });
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     best = std::max(best, double(rays.size()) / s);
@@ -178,17 +142,15 @@ void BM_Build(benchmark::State& state, const std::string& mesh) {
   const bool embree = state.range(0) == 1;
   const int threads = int(state.range(1));
   const ThreadLimit limit(threads);
-  // Embree's own thread pool is sized at device creation; its TBB tasking also honours the ThreadLimit.
-  RTCDevice device = embree ? rtcNewDevice(("threads=" + std::to_string(threads)).c_str()) : nullptr;
   double best = 0;
   for (auto _ : state) {
+    // Both include the float copy of the vertices; Embree's thread pool is sized at device creation (its TBB tasking
+    // also honours the ThreadLimit).
     const auto start = std::chrono::steady_clock::now();
     if (embree) {
-      RTCScene scene = embree_scene(device, w);
-      benchmark::DoNotOptimize(scene);
+      const reference::EmbreeMesh scene(w.mesh, threads);
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       best = std::max(best, double(w.mesh.triangle_count()) / s);
-      rtcReleaseScene(scene);
     } else {
       const MeshAccel accel(w.mesh);
       benchmark::DoNotOptimize(accel.bvh().nodes().data());
@@ -196,7 +158,6 @@ void BM_Build(benchmark::State& state, const std::string& mesh) {
       best = std::max(best, double(w.mesh.triangle_count()) / s);
     }
   }
-  if (device) rtcReleaseDevice(device);
   state.counters["Mprims_per_s"] = best * 1e-6;
   g_results[key(mesh, "build", embree ? "embree" : "tessera", threads)] = best;
 }

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <string>
 
-#include <embree3/rtcore.h>
 #include <gtest/gtest.h>
 
+#include "embree_reference.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/rng.hpp"
 #include "tessera/math/camera.hpp"
@@ -44,61 +44,10 @@ std::vector<Ray> primary_rays(const TriMesh& mesh, int w, int h) {
   return primary_rays(cam, w, h);
 }
 
-/// Embree 3 as the reference: a scene with one triangle geometry, rtcIntersect1 per ray.
-class EmbreeMesh {
- public:
-  explicit EmbreeMesh(const TriMesh& mesh) {
-    device_ = rtcNewDevice(nullptr);
-    scene_ = rtcNewScene(device_);
-    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                          3 * sizeof(float), mesh.positions.size()));
-    for (size_t i = 0; i < mesh.positions.size(); ++i)
-      for (int k = 0; k < 3; ++k) v[3 * i + size_t(k)] = float(mesh.positions[i][k]);
-    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                               3 * sizeof(unsigned), mesh.triangle_count()));
-    std::copy(mesh.indices.begin(), mesh.indices.end(), idx);
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(scene_, geom);
-    rtcReleaseGeometry(geom);
-    rtcCommitScene(scene_);
-  }
-  ~EmbreeMesh() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
-  }
-  EmbreeMesh(const EmbreeMesh&) = delete;
-  EmbreeMesh& operator=(const EmbreeMesh&) = delete;
-
-  /// Nearest hit t and triangle, or prim -1.
-  void intersect(const Ray& ray, float& t, int& prim) const {
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRayHit rh{};
-    rh.ray.org_x = ray.origin.x;
-    rh.ray.org_y = ray.origin.y;
-    rh.ray.org_z = ray.origin.z;
-    rh.ray.dir_x = ray.dir.x;
-    rh.ray.dir_y = ray.dir.y;
-    rh.ray.dir_z = ray.dir.z;
-    rh.ray.tnear = ray.tmin;
-    rh.ray.tfar = ray.tmax;
-    rh.ray.mask = ~0u;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context, &rh);
-    prim = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : int(rh.hit.primID);
-    t = rh.ray.tfar;
-  }
-
- private:
-  RTCDevice device_;
-  RTCScene scene_;
-};
-
 /// Hit/miss agreement and t agreement with Embree, for 200x200 primary rays and 50000 random rays.
 void expect_agrees_with_embree(const TriMesh& mesh, const std::string& name, uint64_t seed) {
   const MeshAccel accel(mesh);
-  const EmbreeMesh embree(mesh);
+  const reference::EmbreeMesh embree(mesh);
   for (const bool primary : {true, false}) {
     const std::vector<Ray> rays = primary ? primary_rays(mesh, 200, 200) : random_rays(mesh, 50000, seed);
     const std::string what = name + (primary ? " primary" : " random");
@@ -108,8 +57,7 @@ void expect_agrees_with_embree(const TriMesh& mesh, const std::string& name, uin
       Hit hit;
       const bool ours = accel.intersect(ray, hit);
       float t;
-      int prim;
-      embree.intersect(r, t, prim);
+      const int prim = embree.intersect(r, t);
       if (ours != (prim >= 0)) {
         ++disagree;
         continue;
