@@ -28,6 +28,10 @@ cat > sub/scene.json <<'JSON'
 JSON
 "$tessera" render sub/scene.json -o s.pfm --quiet && test -s s.pfm
 
+# The rasterizer backend: same scene, local shading.
+"$tessera" render shapes -o r.png --backend raster --size 80x40 --stats > rstats.txt
+grep -q '^seconds=' rstats.txt && test -s r.png
+
 # Identical pictures for any thread count (per-pixel seeded sampling).
 "$tessera" render motion-blur -o t1.ppm --size 48x32 --spp 4 --threads 1 --quiet
 "$tessera" render motion-blur -o t2.ppm --size 48x32 --spp 4 --threads 2 --quiet
@@ -52,5 +56,6 @@ expect_error 1 "built-in scene" bad3.png render no-such-scene -o bad3.png
 expect_error 1 "expected an image file" bad4.xyz render whitted -o bad4.xyz --size 8x8
 expect_error 1 "size" bad5.png render whitted -o bad5.png --size 0x8
 expect_error 2 "backend" bad6.png render whitted -o bad6.png --backend vulkan
+expect_error 1 "positive number" bad8.png render bad.json -o bad8.png --backend raster
 expect_error 2 "required" bad7.png render -o bad7.png
 echo "render CLI ok"

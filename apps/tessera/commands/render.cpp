@@ -1,5 +1,7 @@
-// tessera render SCENE.json|BUILTIN -o IMG: render a scene file (or a built-in scene by name) with the ray tracer.
+// tessera render SCENE.json|BUILTIN -o IMG: render a scene file (or a built-in scene by name) with the ray tracer or
+// the rasterizer.
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <filesystem>
 #include <memory>
@@ -11,6 +13,7 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
+#include "tessera/scene/raster.hpp"
 #include "tessera/scene/trace.hpp"
 
 namespace tessera::cli {
@@ -29,8 +32,6 @@ std::string builtin_list() {
 }
 
 void run_render(const RenderArgs& a, const CommonOptions& common) {
-  if (a.backend != "raytrace")
-    throw InvalidInput(fmt::format("--backend {}: only the raytrace backend renders scenes so far", a.backend));
   // Every option and the output format are checked before the scene is built or anything is written.
   Size2 size{0, 0};
   if (!a.size.empty()) size = parse_size(a.size, "--size");
@@ -50,20 +51,30 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   settings.seed = a.seed;
   settings.progress = !common.quiet;
   const ThreadLimit limit(common.threads);
-  const RayScene rs = to_ray_scene(scene);
-  RenderStats stats;
-  const ImageRGB image = render(rs, settings, &stats);
-  write_image(a.output, image);
-  if (common.stats)
-    print_stats({{"width", stat_value(settings.width)},
-                 {"height", stat_value(settings.height)},
-                 {"samples", stat_value(settings.samples)},
-                 {"objects", stat_value(double(scene.objects.size()))},
-                 {"lights", stat_value(double(scene.lights.size()))},
-                 {"eye_rays", stat_value(double(stats.eye_rays))},
-                 {"rays", stat_value(double(stats.rays))},
-                 {"seconds", stat_value(stats.seconds)},
-                 {"rays_per_s", stat_value(double(stats.rays) / std::max(stats.seconds, 1e-9))}});
+  std::vector<std::pair<std::string, std::string>> figures = {
+      {"width", stat_value(settings.width)},
+      {"height", stat_value(settings.height)},
+      {"objects", stat_value(double(scene.objects.size()))},
+      {"lights", stat_value(double(scene.lights.size()))}};
+  if (a.backend == "raster") {
+    // Local shading only: samples and depth do not apply.
+    const auto start = std::chrono::steady_clock::now();
+    const ImageRGB image = rasterize_scene(scene, settings.width, settings.height);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    write_image(a.output, image);
+    figures.emplace_back("seconds", stat_value(seconds));
+  } else {
+    const RayScene rs = to_ray_scene(scene);
+    RenderStats stats;
+    const ImageRGB image = render(rs, settings, &stats);
+    write_image(a.output, image);
+    figures.insert(figures.end(), {{"samples", stat_value(settings.samples)},
+                                   {"eye_rays", stat_value(double(stats.eye_rays))},
+                                   {"rays", stat_value(double(stats.rays))},
+                                   {"seconds", stat_value(stats.seconds)},
+                                   {"rays_per_s", stat_value(double(stats.rays) / std::max(stats.seconds, 1e-9))}});
+  }
+  if (common.stats) print_stats(figures);
 }
 
 }  // namespace
@@ -77,7 +88,7 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)");
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
-  cmd.add_option("--backend", a->backend, "Renderer: raytrace (raster is not wired yet)")
+  cmd.add_option("--backend", a->backend, "Renderer: raytrace (everything) or raster (z-buffer, local shading only)")
       ->check(CLI::IsMember({"raytrace", "raster"}));
   cmd.callback([a, &common] { run_render(*a, common); });
 }

@@ -7,6 +7,9 @@
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
+#include "tessera/mesh/measure.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/scene/raster.hpp"
 #include "tessera/scene/scene.hpp"
 #include "tessera/scene/trace.hpp"
 
@@ -124,6 +127,47 @@ TEST(Scene, UnknownBuiltinListsTheNames) {
   } catch (const InvalidInput& e) {
     EXPECT_NE(std::string(e.what()).find("whitted"), std::string::npos) << e.what();
   }
+}
+
+TEST(Scene, TessellatedShapesHaveTheirAreas) {
+  // Surface areas of the tessellations approach the analytic ones: sphere 4 pi r^2, box, capped cylinder
+  // 2 pi r h + 2 pi r^2, cone pi r (r + slant), disk pi r^2 (polygons inscribed in circles are a little smaller).
+  const auto area = [](const Shape& s) { return surface_area(to_poly_mesh(tessellate(s, 96))); };
+  EXPECT_NEAR(area(Sphere{{1, 2, 3}, 2}), 4 * kPi * 4, 0.01 * 4 * kPi * 4);
+  EXPECT_NEAR(area(Box{{0, 0, 0}, {1, 2, 3}}), 2 * (2 + 6 + 3), 1e-9);
+  EXPECT_NEAR(area(Cylinder{0.5f, -1, 2, true}), 2 * kPi * 0.5 * 3 + 2 * kPi * 0.25, 0.01 * 10.9);
+  EXPECT_NEAR(area(Cone{{0, 0, 0}, 1, 2, true}), kPi * (1 + std::sqrt(5.0)), 0.01 * 10.2);
+  EXPECT_NEAR(area(Disk{{0, 0, 0}, {0, 0, 1}, 2}), kPi * 4, 0.01 * kPi * 4);
+  EXPECT_NEAR(area(Ellipsoid{{0, 0, 0}, {1, 1, 1}}), 4 * kPi, 0.01 * 4 * kPi);
+  // The cone's apex is where the notes put it, and its base cap at apex + height.
+  const TriMesh cone = tessellate(Cone{{0, 1, 0}, 1, 2, true}, 16);
+  double lo = 1e9, hi = -1e9;
+  for (const auto& p : cone.positions) lo = std::min(lo, p.y), hi = std::max(hi, p.y);
+  EXPECT_NEAR(lo, 1.0, 1e-9);
+  EXPECT_NEAR(hi, 3.0, 1e-9);
+}
+
+TEST(Scene, RasterizerAndRayTracerSeeTheSameSilhouettes) {
+  // Two independent renderers (raster3d's z-buffer of tessellated shapes, the ray tracer's exact intersections) agree
+  // on which pixels show the background in the shapes scene, except along the outlines.
+  Scene scene = builtin_scene("shapes");
+  const int w = 200, h = 90;
+  const ImageRGB raster = rasterize_scene(scene, w, h);
+  RenderSettings s = render_settings(scene);
+  s.width = w;
+  s.height = h;
+  s.samples = 1;
+  s.progress = false;
+  const ImageRGB traced = render(to_ray_scene(scene), s);
+  const auto is_background = [&](const Vec3f& c) { return glm::length(c - scene.image.background) < 0.02f; };
+  int differ = 0, background = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      background += is_background(traced(x, y)) ? 1 : 0;
+      differ += is_background(raster(x, y)) != is_background(traced(x, y)) ? 1 : 0;
+    }
+  EXPECT_GT(background, w * h / 10);  // the sky is in view
+  EXPECT_LT(differ, w * h / 100);
 }
 
 }  // namespace

@@ -1,0 +1,159 @@
+// A scene through the rasterizer: shapes tessellated, materials and lights in OpenGL's terms.
+#include "tessera/scene/raster.hpp"
+
+#include <algorithm>
+
+#include "tessera/core/error.hpp"
+#include "tessera/math/frame.hpp"
+#include "tessera/math/transform.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/raster3d/context.hpp"
+
+namespace tessera {
+namespace {
+
+/// Every triangle with its own three vertices and its face normal (sharp edges on flat-faced shapes).
+TriMesh faceted(const TriMesh& mesh) {
+  TriMesh out;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t* v = &mesh.indices[3 * t];
+    const Vec3 a = mesh.positions[v[0]], b = mesh.positions[v[1]], c = mesh.positions[v[2]];
+    const Vec3 cross = glm::cross(b - a, c - a);
+    const Vec3 n = glm::length(cross) > 0 ? glm::normalize(cross) : Vec3(0, 1, 0);
+    for (int k = 0; k < 3; ++k) {
+      out.indices.push_back(uint32_t(out.positions.size()));
+      out.positions.push_back(mesh.positions[v[k]]);
+      out.normals.push_back(n);
+    }
+  }
+  return out;
+}
+
+/// The mesh with every position mapped by m (normals by its inverse transpose).
+TriMesh transformed(TriMesh mesh, const Mat4& m) {
+  for (auto& p : mesh.positions) p = transform_point(m, p);
+  const Mat3 nm = glm::transpose(glm::inverse(Mat3(m)));
+  for (auto& n : mesh.normals) n = glm::normalize(nm * n);
+  return mesh;
+}
+
+/// A convex fan of `points` (in order) as triangles.
+TriMesh fan(const std::vector<Vec3>& points) {
+  PolyMesh poly;
+  poly.positions = points;
+  std::vector<uint32_t> face(points.size());
+  for (size_t i = 0; i < face.size(); ++i) face[i] = uint32_t(i);
+  poly.add_face(face);
+  return faceted(to_tri_mesh(poly));
+}
+
+/// `n` points on the circle of radius r about c in the plane with unit normal `normal`, counterclockwise about it.
+std::vector<Vec3> circle(const Vec3& c, const Vec3& normal, double r, int n) {
+  const Frame f = Frame::from_normal(Vec3f(normal));
+  std::vector<Vec3> points;
+  for (int i = 0; i < n; ++i) {
+    const double a = 2 * kPi * i / n;
+    points.push_back(c + r * (std::cos(a) * Vec3(f.s) + std::sin(a) * Vec3(f.t)));
+  }
+  return points;
+}
+
+}  // namespace
+
+TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
+  const int stacks = std::max(2, segments / 2);
+  return std::visit(
+      [&](const auto& s) -> TriMesh {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Sphere>) {
+          return transformed(to_tri_mesh(make_uv_sphere(segments, stacks)),
+                             translate(s.center.x, s.center.y, s.center.z) * scale(s.radius, s.radius, s.radius));
+        } else if constexpr (std::is_same_v<T, Ellipsoid>) {
+          return transformed(to_tri_mesh(make_uv_sphere(segments, stacks)),
+                             translate(s.center.x, s.center.y, s.center.z) * scale(s.radii.x, s.radii.y, s.radii.z));
+        } else if constexpr (std::is_same_v<T, Plane>) {
+          auto square = circle(Vec3(s.point), glm::normalize(Vec3(s.normal)), plane_size / std::sqrt(2.0), 4);
+          return fan(square);
+        } else if constexpr (std::is_same_v<T, Triangle>) {
+          return fan({Vec3(s.a), Vec3(s.b), Vec3(s.c)});
+        } else if constexpr (std::is_same_v<T, Polygon>) {
+          PolyMesh poly;  // to_tri_mesh triangulates non-convex polygons too
+          for (const auto& v : s.vertices) poly.positions.push_back(Vec3(v));
+          std::vector<uint32_t> face(poly.positions.size());
+          for (size_t i = 0; i < face.size(); ++i) face[i] = uint32_t(i);
+          poly.add_face(face);
+          return faceted(to_tri_mesh(poly));
+        } else if constexpr (std::is_same_v<T, Box>) {
+          const Vec3 lo(s.lo), hi(s.hi), mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
+          return faceted(transformed(to_tri_mesh(make_box()), translate(mid.x, mid.y, mid.z) * scale(half.x, half.y, half.z)));
+        } else if constexpr (std::is_same_v<T, Cylinder>) {
+          const double mid = 0.5 * (s.y0 + s.y1), half = 0.5 * (s.y1 - s.y0);
+          TriMesh side = to_tri_mesh(make_cylinder(segments, false));
+          side.normals.clear();
+          for (const auto& p : side.positions) side.normals.push_back(glm::normalize(Vec3(p.x, 0, p.z)));
+          TriMesh mesh = transformed(side, translate(0, mid, 0) * scale(s.radius, half, s.radius));
+          if (s.capped)
+            for (double y : {double(s.y0), double(s.y1)}) {
+              const TriMesh cap = fan(circle({0, y, 0}, {0, y == s.y1 ? 1.0 : -1.0, 0}, s.radius, segments));
+              const auto base = uint32_t(mesh.positions.size());
+              mesh.positions.insert(mesh.positions.end(), cap.positions.begin(), cap.positions.end());
+              mesh.normals.insert(mesh.normals.end(), cap.normals.begin(), cap.normals.end());
+              for (uint32_t i : cap.indices) mesh.indices.push_back(base + i);
+            }
+          return mesh;
+        } else if constexpr (std::is_same_v<T, Cone>) {
+          // make_cone: apex at y = 1, base of radius 1 at y = -1; the notes' cone opens upward from its apex.
+          const TriMesh unit = faceted(to_tri_mesh(make_cone(segments, s.capped)));
+          return transformed(unit, translate(s.apex.x, s.apex.y + 0.5 * s.height, s.apex.z) *
+                                       scale(s.radius, -0.5 * s.height, s.radius));
+        } else {  // Disk
+          return fan(circle(Vec3(s.center), glm::normalize(Vec3(s.normal)), s.radius, segments));
+        }
+      },
+      shape);
+}
+
+ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
+  if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
+  raster3d::Context ctx(width, height);
+  ctx.clear(scene.image.background);
+  ctx.shading(raster3d::ShadingModel::phong);
+  ctx.matrix_mode(raster3d::MatrixMode::projection);
+  ctx.perspective(radians(scene.camera.fovy), 0.05, 4000);
+  ctx.matrix_mode(raster3d::MatrixMode::model_view);
+  ctx.load_identity();
+  ctx.look_at(scene.camera.eye, scene.camera.center, scene.camera.up);
+  ctx.light_model_ambient(scene.ambient);
+  const int lights = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
+  for (int i = 0; i < raster3d::kMaxLights; ++i) ctx.enable_light(i, i < lights);
+  for (int i = 0; i < lights; ++i) {
+    const Light& l = scene.lights[size_t(i)];
+    raster3d::Light gl;
+    gl.diffuse = gl.specular = l.color;
+    switch (l.type) {
+      case LightType::directional: gl.position = Vec4f(-glm::normalize(l.direction), 0.0f); break;
+      case LightType::rect: gl.position = Vec4f(l.position + 0.5f * (l.edge_u + l.edge_v), 1.0f); break;
+      default: gl.position = Vec4f(l.position, 1.0f); break;  // point, disk and sphere centers
+    }
+    ctx.light(i, gl);  // transformed by the current model-view (the view), as glLight
+  }
+  for (const SceneObject& o : scene.objects) {
+    const Material& m = scene.materials.at(o.material);
+    raster3d::Material gl;
+    gl.diffuse = m.diffuse;
+    gl.ambient = m.diffuse * m.ambient;
+    gl.specular = m.specular;
+    gl.shininess = m.shininess;
+    gl.emission = m.emission;
+    ctx.material(gl);
+    ctx.specular_model(m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong);
+    ctx.push_matrix();
+    ctx.mult_matrix(o.transform);
+    ctx.draw(o.shape ? tessellate(*o.shape) : *o.mesh);
+    ctx.pop_matrix();
+  }
+  return ctx.framebuffer().color_rgb();
+}
+
+}  // namespace tessera
