@@ -174,6 +174,11 @@ TEST(Grid, FlatSceneAndRayStartingInside) {
   }
   expect_same_hits_as_brute_force(grid, shapes, rays);
   expect_same_hits_as_brute_force(bvh, shapes, rays);
+  // A zero direction inside the grid visits one cell and ends (no endless walk).
+  Ray still{Vec3f(0, 0, 0), Vec3f(0.0f)};
+  TraversalStats stats;
+  grid.intersect(still, [](int, Ray&) { return false; }, &stats);
+  EXPECT_EQ(stats.nodes, 1);
 }
 
 /// Every node's box holds its children's boxes or its primitives' boxes; every primitive is in exactly one leaf;

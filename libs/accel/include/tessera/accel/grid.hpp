@@ -101,7 +101,8 @@ class UniformGrid {
       }
       // The axis whose cell boundary comes first.
       const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
-      if (ray.tmax < next[a]) break;  // the nearest hit (or the ray's end) lies in this cell
+      // Stop when the nearest hit (or the ray's end) lies in this cell, or no boundary is ahead (a zero direction).
+      if (ray.tmax < next[a] || next[a] == std::numeric_limits<float>::infinity()) break;
       cell[a] += step[a];
       if (cell[a] == stop[a]) break;
       next[a] += delta[a];
