@@ -342,10 +342,11 @@ FixedFunctionUniforms Context::uniforms() const {
   u.model_view_projection = Mat4f(projection() * model_view());
   u.model_view = Mat4f(model_view());
   u.normal_matrix = Mat3f(normal_matrix(model_view()));
-  u.lighting = lighting_;
-  u.lighting.light_count = 0;
+  Lighting lighting = lighting_;
+  lighting.light_count = 0;
   for (int i = 0; i < kMaxLights; ++i)
-    if (light_on_[size_t(i)]) u.lighting.lights[size_t(u.lighting.light_count++)] = lights_[size_t(i)];
+    if (light_on_[size_t(i)]) lighting.lights[size_t(lighting.light_count++)] = lights_[size_t(i)];
+  u.lighting = PreparedLighting(lighting);
   u.lit = shading_ != ShadingModel::unlit;
   u.color = current_color_;
   u.normal = current_normal_;

@@ -35,30 +35,54 @@ float specular_power(float x, float e) {
 
 }  // namespace
 
-Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color) {
+PreparedLighting::PreparedLighting(const Lighting& lighting)
+    : emission_(lighting.material.emission),
+      ambient_m_(lighting.material.ambient),
+      ambient_sum_(lighting.model_ambient),
+      shininess_(lighting.material.shininess),
+      color_material_(lighting.color_material),
+      local_viewer_(lighting.local_viewer),
+      blinn_(lighting.specular_model == SpecularModel::blinn) {
   const Material& m = lighting.material;
-  const Vec3f ambient_m = lighting.color_material ? color : m.ambient;
-  const Vec3f diffuse_m = lighting.color_material ? color : m.diffuse;
-  const Vec3f eye = lighting.local_viewer ? glm::normalize(-p) : Vec3f(0, 0, 1);
-  Vec3f c = m.emission + ambient_m * lighting.model_ambient;
   for (int i = 0; i < lighting.light_count; ++i) {
     const Light& light = lighting.lights[size_t(i)];
-    const Vec3f l = glm::normalize(light.position.w == 0 ? Vec3f(light.position) : Vec3f(light.position) - p);
-    c += ambient_m * light.ambient;
+    PreparedLight& p = lights_[size_t(light_count_++)];
+    p.position = light.position;
+    p.directional = light.position.w == 0;
+    p.direction = p.directional ? glm::normalize(Vec3f(light.position)) : Vec3f(0);
+    p.half = glm::normalize(p.direction + Vec3f(0, 0, 1));
+    p.diffuse = color_material_ ? light.diffuse : m.diffuse * light.diffuse;
+    p.specular = m.specular * light.specular;
+    p.has_specular = p.specular != Vec3f(0);  // else the term adds exactly 0: skip the power
+    ambient_sum_ += light.ambient;
+  }
+}
+
+Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color) const {
+  const Vec3f ambient_m = color_material_ ? color : ambient_m_;
+  Vec3f c = emission_ + ambient_m * ambient_sum_;
+  const Vec3f eye = local_viewer_ ? glm::normalize(-p) : Vec3f(0, 0, 1);
+  for (int i = 0; i < light_count_; ++i) {
+    const PreparedLight& light = lights_[size_t(i)];
+    const Vec3f l = light.directional ? light.direction : glm::normalize(Vec3f(light.position) - p);
     const float n_dot_l = glm::dot(n, l);
     if (n_dot_l <= 0) continue;
-    c += n_dot_l * diffuse_m * light.diffuse;
-    const Vec3f specular = m.specular * light.specular;
-    if (specular == Vec3f(0)) continue;  // adds exactly 0: skip the power
+    c += n_dot_l * (color_material_ ? color * light.diffuse : light.diffuse);
+    if (!light.has_specular) continue;
     float spec;
-    if (lighting.specular_model == SpecularModel::blinn) {
-      spec = std::max(glm::dot(n, glm::normalize(l + eye)), 0.0f);  // (H.N)
+    if (blinn_) {
+      const Vec3f h = light.directional && !local_viewer_ ? light.half : glm::normalize(l + eye);
+      spec = std::max(glm::dot(n, h), 0.0f);  // (H.N)
     } else {
       spec = std::max(glm::dot(eye, 2.0f * n_dot_l * n - l), 0.0f);  // (E.R), R = 2N(N.L) - L
     }
-    c += specular_power(spec, m.shininess) * specular;
+    c += specular_power(spec, shininess_) * light.specular;
   }
   return glm::clamp(c, 0.0f, 1.0f);
+}
+
+Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color) {
+  return PreparedLighting(lighting).shade(n, p, color);
 }
 
 }  // namespace tessera::raster3d

@@ -69,6 +69,34 @@ struct Lighting {
 /// lighting.color_material is set. Returns the color clamped to [0, 1].
 Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color);
 
+/// The shading equation with what does not depend on the surface point worked out once (the summed ambient, the
+/// material x light products, each directional light's L and Blinn half vector): what the shaders call per vertex
+/// or per pixel. shade(lighting, ...) is PreparedLighting(lighting).shade(...).
+class PreparedLighting {
+ public:
+  PreparedLighting() : PreparedLighting(Lighting()) {}
+  explicit PreparedLighting(const Lighting& lighting);
+
+  /// The shading equation at eye-space point p with unit normal n (vertex color `color`), clamped to [0, 1].
+  Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color) const;
+
+ private:
+  struct PreparedLight {
+    Vec4f position;
+    Vec3f direction;  // directional lights: normalized L
+    Vec3f half;       // directional lights without a local viewer: normalize(L + (0, 0, 1))
+    Vec3f diffuse;    // diffuse_l (times diffuse_m unless color material)
+    Vec3f specular;   // specular_m * specular_l
+    bool directional;
+    bool has_specular;
+  };
+  std::array<PreparedLight, kMaxLights> lights_{};
+  int light_count_ = 0;
+  Vec3f emission_{0}, ambient_m_{0}, ambient_sum_{0};  // ambient_sum = model ambient + the lights' ambients
+  float shininess_ = 0;
+  bool color_material_ = false, local_viewer_ = false, blinn_ = true;
+};
+
 // ---- The fixed-function pipeline as a shader pair ------------------------------------------------------------------
 
 /// Uniforms of the fixed-function shaders: the matrices (float32, as OpenGL), lighting, and the constant attributes.
@@ -76,7 +104,7 @@ struct FixedFunctionUniforms {
   Mat4f model_view_projection{1.0f};  ///< P * MV, one float32 matrix for positions
   Mat4f model_view{1.0f};
   Mat3f normal_matrix{1.0f};  ///< inverse transpose of MV's upper 3x3
-  Lighting lighting;
+  PreparedLighting lighting;
   bool lit = false;       ///< lighting on (flat, gouraud, phong) or off (unlit)
   Vec3f color{1, 1, 1};   ///< the current color (for vertices without one)
   Vec3f normal{0, 0, 1};  ///< the current normal (for vertices without one)
@@ -93,7 +121,7 @@ struct FixedFunctionVertexShader {
     const Vec3f color = attributes.color_or(i, u.color);
     if (!u.lit) return {u.model_view_projection * object, {color}};
     const Vec3f n = glm::normalize(u.normal_matrix * attributes.normal_or(i, u.normal));
-    return {u.model_view_projection * object, {shade(u.lighting, n, Vec3f(u.model_view * object), color)}};
+    return {u.model_view_projection * object, {u.lighting.shade(n, Vec3f(u.model_view * object), color)}};
   }
 };
 
@@ -123,7 +151,7 @@ struct PhongFragmentShader {
   const FixedFunctionUniforms* uniforms = nullptr;
 
   bool operator()(const PhongVaryings& in, Vec3f& color) const {
-    color = shade(uniforms->lighting, glm::normalize(in.normal), in.position, in.color);
+    color = uniforms->lighting.shade(glm::normalize(in.normal), in.position, in.color);
     return true;
   }
 };
