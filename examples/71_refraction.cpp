@@ -70,9 +70,11 @@ TESSERA_EXAMPLE(ex71_refraction, "71_refraction", "Refraction by Snell's law and
     Material ball;
     ball.diffuse = {0.95f, 0.3f, 0.1f};
     scene.materials = {water, tiles, ball};
-    scene.world.add_shape(Box{{-1000, -6, -1000}, {1000, 0, 1000}}, Mat4(1.0), 0);  // the pool's water; its top is the surface
-    scene.world.add_shape(Plane{{0, -5, 0}, {0, 1, 0}}, Mat4(1.0), 1);       // the pool's floor, inside the water
-    for (int i = 0; i < 3; ++i) scene.world.add_shape(Sphere{{-2.0f + 2.0f * float(i), 2.0f, -4.0f}, 0.7f}, Mat4(1.0), 2);
+    scene.world.add_shape(Box{{-1000, -6, -1000}, {1000, 0, 1000}}, Mat4(1.0),
+                          0);                                           // the pool's water; its top is the surface
+    scene.world.add_shape(Plane{{0, -5, 0}, {0, 1, 0}}, Mat4(1.0), 1);  // the pool's floor, inside the water
+    for (int i = 0; i < 3; ++i)
+      scene.world.add_shape(Sphere{{-2.0f + 2.0f * float(i), 2.0f, -4.0f}, 0.7f}, Mat4(1.0), 2);
     scene.world.build();
     s.width = 480;
     s.height = 360;

@@ -77,7 +77,7 @@ TESSERA_EXAMPLE(ex73_shadows_gloss, "73_shadows_gloss", "Hard and soft shadows, 
   Light area = point;
   area.type = LightType::rect;
   area.position = {-1.5f, 5, -0.5f};  // a 2 x 2 square centered over the point light, shining down
-  area.edge_u = {2, 0, 0};  // edge_u x edge_v = (0, -4, 0): it shines down
+  area.edge_u = {2, 0, 0};            // edge_u x edge_v = (0, -4, 0): it shines down
   area.edge_v = {0, 0, 2};
   area.samples = 4;
   gallery.add("73_hard_soft_shadows.png",

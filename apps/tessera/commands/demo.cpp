@@ -37,8 +37,10 @@ void setup_demo(CLI::App& cmd, CommonOptions& common) {
     const ThreadLimit limit(common.threads);
     const size_t scenes = render_builtin_scenes(*output, common.quiet);
     const size_t n = examples::run_examples(*output) + scenes;
-    if (common.stats) print_stats({{"pictures", stat_value(double(n))}, {"scenes", stat_value(double(scenes))}});
-    else fmt::print("{} pictures ({} built-in scenes) written to {}/ (open {}/index.html)\n", n, scenes, *output, *output);
+    if (common.stats)
+      print_stats({{"pictures", stat_value(double(n))}, {"scenes", stat_value(double(scenes))}});
+    else
+      fmt::print("{} pictures ({} built-in scenes) written to {}/ (open {}/index.html)\n", n, scenes, *output, *output);
   });
 }
 

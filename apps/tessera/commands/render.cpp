@@ -1,13 +1,13 @@
 // tessera render SCENE.json|BUILTIN -o IMG: render a scene file (or a built-in scene by name) with the ray tracer or
 // the rasterizer.
+#include <fmt/format.h>
+
 #include <algorithm>
-#include <chrono>
 #include <cctype>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <set>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
@@ -42,7 +42,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   std::string lower(ext.size(), ' ');
   std::transform(ext.begin(), ext.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (!kFormats.count(lower))
-    throw InvalidInput(fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
+    throw InvalidInput(
+        fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
   const Scene scene = load_scene_or_builtin(a.scene);
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
@@ -51,11 +52,10 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   settings.seed = a.seed;
   settings.progress = !common.quiet;
   const ThreadLimit limit(common.threads);
-  std::vector<std::pair<std::string, std::string>> figures = {
-      {"width", stat_value(settings.width)},
-      {"height", stat_value(settings.height)},
-      {"objects", stat_value(double(scene.objects.size()))},
-      {"lights", stat_value(double(scene.lights.size()))}};
+  std::vector<std::pair<std::string, std::string>> figures = {{"width", stat_value(settings.width)},
+                                                              {"height", stat_value(settings.height)},
+                                                              {"objects", stat_value(double(scene.objects.size()))},
+                                                              {"lights", stat_value(double(scene.lights.size()))}};
   if (a.backend == "raster") {
     // Local shading only: samples and depth do not apply.
     const auto start = std::chrono::steady_clock::now();

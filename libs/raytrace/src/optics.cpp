@@ -1,10 +1,10 @@
 // Reflection, refraction, Fresnel and light sampling.
 #include <cmath>
 
+#include "tessera/math/frame.hpp"
 #include "tessera/raytrace/light.hpp"
 #include "tessera/raytrace/material.hpp"
 #include "tessera/raytrace/sampling.hpp"
-#include "tessera/math/frame.hpp"
 
 namespace tessera {
 
@@ -35,7 +35,7 @@ float schlick_fresnel(float cos_i, float n1, float n2) {
 
 LightSample sample_light(const Light& light, const Vec3f& p, const Vec2f& u) {
   LightSample s;
-  Vec3f q;           // the sampled point on the light
+  Vec3f q;             // the sampled point on the light
   Vec3f facing{0.0f};  // one-sided lights shine along this normal
   switch (light.type) {
     case LightType::directional:
@@ -43,7 +43,9 @@ LightSample sample_light(const Light& light, const Vec3f& p, const Vec2f& u) {
       s.distance = std::numeric_limits<float>::infinity();
       s.color = light.color;
       return s;
-    case LightType::point: q = light.position; break;
+    case LightType::point:
+      q = light.position;
+      break;
     case LightType::rect:
       q = light.position + u.x * light.edge_u + u.y * light.edge_v;
       facing = glm::normalize(glm::cross(light.edge_u, light.edge_v));

@@ -80,7 +80,8 @@ class Tracer {
 
     const Vec3f cr = surface_color(m, h);
     Vec3f c = m.emission + cr * m.ambient * scene_.ambient;
-    if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f)) c += direct_light(m, cr, above, n, ng, e, rng, primary, depth, rays);
+    if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f))
+      c += direct_light(m, cr, above, n, ng, e, rng, primary, depth, rays);
 
     // Split K_trans into reflection and transmission (total internal reflection, optional Fresnel).
     Vec3f k_refl = m.reflection, k_trans = m.transmission;
@@ -101,8 +102,8 @@ class Tracer {
       if (m.glossiness > 0.0f) {
         // The notes' glossy reflection: the mirror direction spread in a Phong lobe (1/n sum K_refl C_Ri over the
         // pixel's samples); a direction below the surface falls back to the mirror direction.
-        const Vec3f g = Frame::from_normal(refl.dir).to_world(
-            sample_phong_lobe(primary ? primary->gloss : Vec2f(rng.uniform(), rng.uniform()), glossy_exponent(m.glossiness)));
+        const Vec3f g = Frame::from_normal(refl.dir).to_world(sample_phong_lobe(
+            primary ? primary->gloss : Vec2f(rng.uniform(), rng.uniform()), glossy_exponent(m.glossiness)));
         if (glm::dot(g, ng) > 0.0f) refl.dir = g;
       }
       c += k_refl * radiance(refl, depth + 1, weight * k_refl, rng, nullptr, rays);
@@ -141,7 +142,7 @@ class Tracer {
         float highlight = 0.0f;
         if (m.specular != Vec3f(0.0f)) {
           const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
-                                                               : glm::dot(n, glm::normalize(ls.dir + e));
+                                                              : glm::dot(n, glm::normalize(ls.dir + e));
           highlight = std::pow(std::max(0.0f, cos_h), m.shininess);
         }
         light_sum += ls.color * (cr * nl + m.specular * highlight);
@@ -162,8 +163,8 @@ void check_settings(const RayScene& scene, const RenderSettings& s) {
   if (s.tile_size <= 0) throw InvalidInput("render: tile size must be positive");
   for (int i = 0; i < scene.world.size(); ++i)
     if (scene.world.material(i) < 0 || size_t(scene.world.material(i)) >= scene.materials.size())
-      throw InvalidInput(fmt::format("render: object {} has material {} of {}", i, scene.world.material(i),
-                                     scene.materials.size()));
+      throw InvalidInput(
+          fmt::format("render: object {} has material {} of {}", i, scene.world.material(i), scene.materials.size()));
 }
 
 }  // namespace
@@ -196,8 +197,8 @@ Ray eye_ray(const RayScene& scene, const EyeRays& rays, int x, int y, const Vec2
   if (scene.aperture > 0.0f) {
     Vec3 u, v, w;
     scene.camera.frame(u, v, w);
-    const float focus = scene.focal_distance > 0.0f ? scene.focal_distance
-                                                    : float(glm::length(scene.camera.center - scene.camera.eye));
+    const float focus =
+        scene.focal_distance > 0.0f ? scene.focal_distance : float(glm::length(scene.camera.center - scene.camera.eye));
     const Vec3f focal_point = ray.origin + (focus / glm::dot(ray.dir, -Vec3f(w))) * ray.dir;
     const Vec2f l = scene.aperture * sample_disk(lens);
     ray.origin += l.x * Vec3f(u) + l.y * Vec3f(v);
@@ -240,9 +241,10 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   std::atomic<uint64_t> total_rays{0};
   const bool distributed_pixel = spp > 1;
   const bool uses_time = scene.world.has_motion();
-  const bool uses_light = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.is_area(); });
-  const bool uses_gloss =
-      std::any_of(scene.materials.begin(), scene.materials.end(), [](const Material& m) { return m.glossiness > 0.0f; });
+  const bool uses_light =
+      std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.is_area(); });
+  const bool uses_gloss = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                      [](const Material& m) { return m.glossiness > 0.0f; });
   parallel_tiles(w, h, settings.tile_size, [&](const Tile& tile) {
     uint64_t rays = 0;
     for (int y = tile.y0; y < tile.y1; ++y)

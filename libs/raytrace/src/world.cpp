@@ -62,9 +62,12 @@ void World::set_casts_shadows(int index, bool casts) { objects_.at(size_t(index)
 
 AABB World::object_bounds(const Object& o) const {
   AABB box;
-  if (const auto* shape = std::get_if<Shape>(&o.geometry)) box = tessera::bounds(*shape);
-  else if (const auto* inst = std::get_if<Instance>(&o.geometry)) box = inst->bounds();
-  else box = std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.bvh().bounds();
+  if (const auto* shape = std::get_if<Shape>(&o.geometry))
+    box = tessera::bounds(*shape);
+  else if (const auto* inst = std::get_if<Instance>(&o.geometry))
+    box = inst->bounds();
+  else
+    box = std::get<std::shared_ptr<const MeshData>>(o.geometry)->accel.bvh().bounds();
   if (!o.motion.moving()) return box;
   // Points move affinely in t under the interpolated placement, so the boxes at t = 0 and t = 1 bound the sweep.
   AABB swept = box;

@@ -1,6 +1,8 @@
 // The renderer against analytic answers: a sphere's image area, a furnace (a uniform white background seen through
 // mirrors, glossy reflectors and glass under motion blur and depth of field), the visible fraction of a disk light
 // behind an edge, motion-blur coverage, the thin lens, and identical images for any thread count.
+#include "tessera/raytrace/render.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/raytrace/render.hpp"
 
 namespace tessera {
 namespace {

@@ -86,7 +86,8 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
           return faceted(to_tri_mesh(poly));
         } else if constexpr (std::is_same_v<T, Box>) {
           const Vec3 lo(s.lo), hi(s.hi), mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-          return faceted(transformed(to_tri_mesh(make_box()), translate(mid.x, mid.y, mid.z) * scale(half.x, half.y, half.z)));
+          return faceted(
+              transformed(to_tri_mesh(make_box()), translate(mid.x, mid.y, mid.z) * scale(half.x, half.y, half.z)));
         } else if constexpr (std::is_same_v<T, Cylinder>) {
           const double mid = 0.5 * (s.y0 + s.y1), half = 0.5 * (s.y1 - s.y0);
           TriMesh side = to_tri_mesh(make_cylinder(segments, false));
@@ -132,9 +133,15 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
     raster3d::Light gl;
     gl.diffuse = gl.specular = l.color;
     switch (l.type) {
-      case LightType::directional: gl.position = Vec4f(-glm::normalize(l.direction), 0.0f); break;
-      case LightType::rect: gl.position = Vec4f(l.position + 0.5f * (l.edge_u + l.edge_v), 1.0f); break;
-      default: gl.position = Vec4f(l.position, 1.0f); break;  // point, disk and sphere centers
+      case LightType::directional:
+        gl.position = Vec4f(-glm::normalize(l.direction), 0.0f);
+        break;
+      case LightType::rect:
+        gl.position = Vec4f(l.position + 0.5f * (l.edge_u + l.edge_v), 1.0f);
+        break;
+      default:
+        gl.position = Vec4f(l.position, 1.0f);
+        break;  // point, disk and sphere centers
     }
     ctx.light(i, gl);  // transformed by the current model-view (the view), as glLight
   }
@@ -147,7 +154,8 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
     gl.shininess = m.shininess;
     gl.emission = m.emission;
     ctx.material(gl);
-    ctx.specular_model(m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong);
+    ctx.specular_model(m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn
+                                                       : raster3d::SpecularModel::phong);
     ctx.push_matrix();
     ctx.mult_matrix(o.transform);
     ctx.draw(o.shape ? tessellate(*o.shape) : *o.mesh);

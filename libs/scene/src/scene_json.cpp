@@ -1,10 +1,9 @@
 // The JSON scene loader (docs/scene-format.md): every value is checked where it is read, and errors name the JSON
 // path of the bad value.
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <nlohmann/json.hpp>
 
 #include "tessera/core/error.hpp"
 #include "tessera/image/image_io.hpp"
@@ -59,7 +58,8 @@ class Node {
     return d;
   }
   double positive() const {
-    if (!v_.is_number() || !(v_.get<double>() > 0) || !std::isfinite(v_.get<double>())) fail("expected a positive number");
+    if (!v_.is_number() || !(v_.get<double>() > 0) || !std::isfinite(v_.get<double>()))
+      fail("expected a positive number");
     return v_.get<double>();
   }
   double non_negative() const {
@@ -221,8 +221,9 @@ Mat4 read_transform(const Node& n) {
   for (size_t i = 0; i < n.size(); ++i) {
     const Node step = n.item(i);
     if (!step.json().is_object() || step.json().size() != 1)
-      step.fail("expected one of {\"translate\": [x,y,z]}, {\"rotate\": {\"angle\": deg, \"axis\": [x,y,z]}}, "
-                "{\"scale\": [x,y,z] or s}, {\"matrix\": [16 numbers, row by row]}");
+      step.fail(
+          "expected one of {\"translate\": [x,y,z]}, {\"rotate\": {\"angle\": deg, \"axis\": [x,y,z]}}, "
+          "{\"scale\": [x,y,z] or s}, {\"matrix\": [16 numbers, row by row]}");
     if (step.has("translate")) {
       const Vec3 t = step["translate"].vec3();
       m = m * translate(t.x, t.y, t.z);
@@ -270,8 +271,9 @@ PolyMesh generated_mesh(const Node& n) {
   if (kind == "octahedron") return make_octahedron();
   if (kind == "dodecahedron") return make_dodecahedron();
   if (kind == "icosahedron") return make_icosahedron();
-  n["primitive"].fail("expected torus, sphere, cube, cylinder, cone, tetrahedron, octahedron, dodecahedron or "
-                      "icosahedron");
+  n["primitive"].fail(
+      "expected torus, sphere, cube, cylinder, cone, tetrahedron, octahedron, dodecahedron or "
+      "icosahedron");
 }
 
 std::shared_ptr<const TriMesh> read_mesh_object(const Node& n, const std::filesystem::path& base_dir) {
@@ -312,10 +314,14 @@ Shape read_shape(const Node& n, const std::string& type) {
     Polygon p{vertices(3)};
     if (n.has("test")) {
       const std::string t = n["test"].string();
-      if (t == "crossing") p.test = PointInPolygon::crossing;
-      else if (t == "winding") p.test = PointInPolygon::winding;
-      else if (t == "half_plane") p.test = PointInPolygon::half_plane;
-      else n["test"].fail("expected crossing, winding or half_plane");
+      if (t == "crossing")
+        p.test = PointInPolygon::crossing;
+      else if (t == "winding")
+        p.test = PointInPolygon::winding;
+      else if (t == "half_plane")
+        p.test = PointInPolygon::half_plane;
+      else
+        n["test"].fail("expected crossing, winding or half_plane");
     }
     return p;
   }
@@ -363,8 +369,10 @@ SceneObject read_object(const Node& n, const Scene& scene, const std::filesystem
     if (!allowed.count(key)) n[key.c_str()].fail("unknown key for a " + type);
 
   SceneObject o;
-  if (type == "mesh") o.mesh = read_mesh_object(n, base_dir);
-  else o.shape = read_shape(n, type);
+  if (type == "mesh")
+    o.mesh = read_mesh_object(n, base_dir);
+  else
+    o.shape = read_shape(n, type);
   o.material = n["material"].string();
   if (!scene.materials.count(o.material)) n["material"].fail("no material named '" + o.material + "'");
   if (n.has("transform")) o.transform = read_transform(n["transform"]);

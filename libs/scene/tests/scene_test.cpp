@@ -1,16 +1,18 @@
 // The scene loader: every built-in scene loads and renders; transforms compose as the notes' calls; meshes load
 // relative to the scene file; bad documents fail with the JSON path and what was expected.
+#include "tessera/scene/scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 
 #include "tessera/core/error.hpp"
+#include "tessera/image/image_io.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/measure.hpp"
 #include "tessera/scene/raster.hpp"
-#include "tessera/scene/scene.hpp"
 #include "tessera/scene/trace.hpp"
 
 namespace tessera {
@@ -96,13 +98,15 @@ TEST(Scene, TransformListComposesLikeTheNotesCalls) {
   // M = translate * scale: the scale (written last) acts first, so (1, 0, 0) goes to (2, 0, 0) then (3, 0, 0).
   const Scene s = parse_scene(with_objects(R"([{"type": "sphere", "material": "m",
       "transform": [{"translate": [1, 0, 0]}, {"scale": 2}, {"rotate": {"angle": 90, "axis": [0, 0, 1]}}],
-      "velocity": [0, 1, 0]}])"), "t", ".");
+      "velocity": [0, 1, 0]}])"),
+                              "t", ".");
   const Vec3 p = transform_point(s.objects[0].transform, {0, 1, 0});  // rotate (0,1,0) -> (-1,0,0), scale, translate
   EXPECT_NEAR(p.x, -1.0, 1e-12);
   EXPECT_NEAR(p.y, 0.0, 1e-12);
   EXPECT_EQ(s.objects[0].motion.velocity, Vec3f(0, 1, 0));
   const Scene m = parse_scene(with_objects(R"([{"type": "sphere", "material": "m",
-      "transform": [{"matrix": [1, 0, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]}]}])"), "t", ".");
+      "transform": [{"matrix": [1, 0, 0, 5,  0, 1, 0, 6,  0, 0, 1, 7,  0, 0, 0, 1]}]}])"),
+                              "t", ".");
   EXPECT_EQ(transform_point(m.objects[0].transform, {0, 0, 0}), Vec3(5, 6, 7));  // rows as written
 }
 
@@ -117,6 +121,28 @@ TEST(Scene, MeshFilesAreRelativeToTheSceneFile) {
   std::ofstream(dir / "bad.json") << with_objects(R"([{"type": "mesh", "file": "meshes/none.obj", "material": "m"}])");
   EXPECT_THROW(load_scene(dir / "bad.json"), IoError);
   EXPECT_THROW(load_scene(dir / "missing.json"), IoError);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Scene, TextureMultipliesTheSurfaceColor) {
+  // A one-color red texture on a white floor seen from above: the floor shows C_r * texture = red only.
+  const auto dir = std::filesystem::temp_directory_path() / "tessera_scene_texture";
+  std::filesystem::create_directories(dir);
+  write_image(dir / "red.png", ImageRGB(2, 2, Vec3f(1, 0, 0)));
+  std::ofstream(dir / "scene.json") << R"({"image": {"size": [8, 8]}, "ambient": 1,
+      "camera": {"eye": [0, 5, 0], "center": [0, 0, 0], "up": [0, 0, -1]},
+      "materials": {"m": {"diffuse": 0.5, "texture": "red.png"}},
+      "objects": [{"type": "plane", "material": "m"}]})";
+  const Scene scene = load_scene(dir / "scene.json");
+  RenderSettings s = render_settings(scene);
+  s.progress = false;
+  const ImageRGB img = render(to_ray_scene(scene), s);
+  EXPECT_NEAR(img(4, 4).x, 0.5f, 1e-5);
+  EXPECT_EQ(img(4, 4).y, 0.0f);
+  EXPECT_EQ(img(4, 4).z, 0.0f);
+  std::ofstream(dir / "bad.json")
+      << R"({"materials": {"m": {"texture": "none.png"}}, "objects": [{"type": "plane", "material": "m"}]})";
+  EXPECT_THROW(load_scene(dir / "bad.json"), IoError);
   std::filesystem::remove_all(dir);
 }
 

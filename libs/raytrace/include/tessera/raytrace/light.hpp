@@ -11,14 +11,14 @@ enum class LightType { point, directional, rect, disk, sphere };
 /// A light source of color C_L. Area lights are one-sided (rect and disk shine along their normal).
 struct Light {
   LightType type = LightType::point;
-  Vec3f color{1.0f};               ///< C_L
-  Vec3f position{0.0f};            ///< point: the position; rect: a corner; disk and sphere: the center
-  Vec3f direction{0, -1, 0};       ///< directional: the direction the light travels; disk: the normal it shines along
-  Vec3f edge_u{1, 0, 0};           ///< rect: the two edges from the corner; it shines along edge_u x edge_v
+  Vec3f color{1.0f};          ///< C_L
+  Vec3f position{0.0f};       ///< point: the position; rect: a corner; disk and sphere: the center
+  Vec3f direction{0, -1, 0};  ///< directional: the direction the light travels; disk: the normal it shines along
+  Vec3f edge_u{1, 0, 0};      ///< rect: the two edges from the corner; it shines along edge_u x edge_v
   Vec3f edge_v{0, 0, 1};
-  float radius = 0.5f;             ///< disk and sphere
-  int samples = 1;                 ///< shadow rays per shading point (area lights), stratified
-  bool visible = true;             ///< area lights: seen by eye and reflected rays as a surface of color `color`
+  float radius = 0.5f;  ///< disk and sphere
+  int samples = 1;      ///< shadow rays per shading point (area lights), stratified
+  bool visible = true;  ///< area lights: seen by eye and reflected rays as a surface of color `color`
 
   /// True for rect, disk and sphere.
   bool is_area() const { return type == LightType::rect || type == LightType::disk || type == LightType::sphere; }

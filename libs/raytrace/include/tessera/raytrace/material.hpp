@@ -29,10 +29,10 @@ enum class SpecularModel {
 
 /// A surface: the notes' coefficients as RGB colors. Defaults give a matte white surface.
 struct Material {
-  Vec3f diffuse{0.8f};        ///< the surface color C_r: C = C_r (ambient C_a + sum of C_L (N . L)) + ...
-  Vec3f ambient{1.0f};        ///< weight of the scene's ambient light C_a (the notes' "indirect illumination cheat")
-  Vec3f specular{0.0f};       ///< the highlight color, multiplies C_L (E . R)^P or (N . H)^P
-  float shininess = 32.0f;    ///< the specular exponent P
+  Vec3f diffuse{0.8f};      ///< the surface color C_r: C = C_r (ambient C_a + sum of C_L (N . L)) + ...
+  Vec3f ambient{1.0f};      ///< weight of the scene's ambient light C_a (the notes' "indirect illumination cheat")
+  Vec3f specular{0.0f};     ///< the highlight color, multiplies C_L (E . R)^P or (N . H)^P
+  float shininess = 32.0f;  ///< the specular exponent P
   SpecularModel model = SpecularModel::phong;
   Vec3f reflection{0.0f};     ///< K_refl: weight of the mirror-reflected ray
   Vec3f transmission{0.0f};   ///< K_trans: weight of the refracted ray

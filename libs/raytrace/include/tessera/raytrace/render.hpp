@@ -3,7 +3,8 @@
 // (antialiasing, soft shadows, glossy reflection, motion blur, depth of field), driven over image tiles in parallel.
 //
 // The color of a ray hitting a surface is the notes' sum
-//   C = emission + ambient_light * ambient + sum over lights of C_L (diffuse (N . L) + specular highlight) visible(P, L)
+//   C = emission + ambient_light * ambient + sum over lights of C_L (diffuse (N . L) + specular highlight) visible(P,
+//   L)
 //       + K_refl C_reflected + K_trans C_transmitted,
 // where an area light's term is the average over its shadow rays. Recursion stops at max_depth and when the product
 // of the weights along the path falls below min_contribution (both of the notes' rules).
@@ -23,11 +24,11 @@ struct RayScene {
   World world;
   std::vector<Material> materials;
   std::vector<Light> lights;
-  Camera camera;               ///< camera.aspect is replaced by the image's width / height
-  float aperture = 0.0f;       ///< thin-lens radius (world units); 0 = pinhole
-  float focal_distance = 0.0f; ///< distance to the plane in focus; 0 = |center - eye|
-  Vec3f ambient{0.1f};         ///< the ambient light C_a
-  Vec3f background{0.0f};      ///< color of rays that leave the scene
+  Camera camera;                ///< camera.aspect is replaced by the image's width / height
+  float aperture = 0.0f;        ///< thin-lens radius (world units); 0 = pinhole
+  float focal_distance = 0.0f;  ///< distance to the plane in focus; 0 = |center - eye|
+  Vec3f ambient{0.1f};          ///< the ambient light C_a
+  Vec3f background{0.0f};       ///< color of rays that leave the scene
 };
 
 /// How to render.
@@ -43,9 +44,9 @@ struct RenderSettings {
 
 /// What a render did.
 struct RenderStats {
-  uint64_t eye_rays = 0;     ///< primary rays
-  uint64_t rays = 0;         ///< all rays: eye, reflected, refracted and shadow rays
-  double seconds = 0;        ///< wall time of the render
+  uint64_t eye_rays = 0;  ///< primary rays
+  uint64_t rays = 0;      ///< all rays: eye, reflected, refracted and shadow rays
+  double seconds = 0;     ///< wall time of the render
 };
 
 /// Adds the surface of every visible area light to the world (a rectangle, disk or sphere that emits the light's color

@@ -21,32 +21,32 @@ namespace tessera {
 /// The picture to make.
 struct SceneImage {
   int width = 640, height = 480;
-  int samples = 1;              ///< samples per pixel
-  int max_depth = 5;            ///< recursion depth (1 = eye rays only)
-  Vec3f background{0.0f};       ///< color of rays that leave the scene
+  int samples = 1;         ///< samples per pixel
+  int max_depth = 5;       ///< recursion depth (1 = eye rays only)
+  Vec3f background{0.0f};  ///< color of rays that leave the scene
 };
 
 /// A pinhole or thin-lens camera.
 struct SceneCamera {
   Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
-  double fovy = 45;             ///< vertical field of view in degrees
-  double aperture = 0;          ///< lens radius; 0 = pinhole
-  double focal_distance = 0;    ///< distance to the plane in focus; 0 = |center - eye|
+  double fovy = 45;           ///< vertical field of view in degrees
+  double aperture = 0;        ///< lens radius; 0 = pinhole
+  double focal_distance = 0;  ///< distance to the plane in focus; 0 = |center - eye|
 };
 
 /// One object: a shape or a mesh, its material's name, its placement and motion.
 struct SceneObject {
-  std::optional<Shape> shape;               ///< set for shapes
-  std::shared_ptr<const TriMesh> mesh;      ///< set for meshes (loaded or generated at load time)
+  std::optional<Shape> shape;           ///< set for shapes
+  std::shared_ptr<const TriMesh> mesh;  ///< set for meshes (loaded or generated at load time)
   std::string material;
-  Mat4 transform{1.0};                      ///< object to world
-  Motion motion;                            ///< velocity and/or the end transform
+  Mat4 transform{1.0};  ///< object to world
+  Motion motion;        ///< velocity and/or the end transform
   bool casts_shadows = true;
 };
 
 /// A whole scene.
 struct Scene {
-  std::string name;                         ///< file name or built-in name (for messages)
+  std::string name;  ///< file name or built-in name (for messages)
   SceneImage image;
   SceneCamera camera;
   Vec3f ambient{0.1f};
