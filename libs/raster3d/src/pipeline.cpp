@@ -19,6 +19,10 @@ inline float plane_distance(const float* v, int p) {
   return (p & 1) ? v[3] - c : v[3] + c;
 }
 
+inline bool finite_position(const float* v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
+}
+
 inline unsigned outcode(const float* v) {
   unsigned code = 0;
   for (int p = 0; p < 6; ++p)
@@ -172,6 +176,7 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
   for (size_t t = first; t < first + count; ++t) {
     const float* v[3];
     for (int k = 0; k < 3; ++k) v[k] = params.vertices + size_t(indices[3 * t + k]) * stride;
+    if (!finite_position(v[0]) || !finite_position(v[1]) || !finite_position(v[2])) continue;  // NaN or inf
     const unsigned c0 = outcode(v[0]), c1 = outcode(v[1]), c2 = outcode(v[2]);
     if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
@@ -267,6 +272,7 @@ std::span<const uint32_t> painter_order(RasterScratch& scratch, const float* ver
 }
 
 bool clip_segment(float* a, float* b, int varying_count) {
+  if (!finite_position(a) || !finite_position(b)) return false;
   float t0 = 0, t1 = 1;
   for (int p = 0; p < 6; ++p) {
     const float da = plane_distance(a, p), db = plane_distance(b, p);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
@@ -391,6 +392,22 @@ TEST(Raster, PointsCoverTheirPixel) {
   int count = 0;
   for (int p : covered(fb)) count += p;
   EXPECT_EQ(count, 1);
+}
+
+TEST(Raster, NonFiniteVerticesAreDropped) {
+  // A NaN or infinite coordinate (from a bad mesh or a degenerate matrix) drops the primitive; the others draw.
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const std::vector<WindowVertexIn> v = {{{1, 1, 0.5f}},   {{7, 1, 0.5f}},   {{1, 7, 0.5f}},
+                                         {{nan, 1, 0.5f}}, {{inf, 2, 0.5f}}, {{3, -inf, 0.5f}}};
+  Framebuffer fb(8, 8);
+  RasterState state;
+  const testing::WindowShader shader{&v, 8, 8};
+  draw_triangles(fb, state, 6, std::vector<uint32_t>{3, 4, 5, 0, 1, 2, 0, 3, 1}, shader, ColorFragmentShader{});
+  draw_lines(fb, state, 6, std::vector<uint32_t>{3, 4, 0, 5}, shader, ColorFragmentShader{});
+  draw_points(fb, state, 6, std::vector<uint32_t>{3, 4, 5}, shader, ColorFragmentShader{});
+  int count = 0;
+  for (int p : covered(fb)) count += p;
+  EXPECT_EQ(count, 15);  // the finite triangle: centers (i + 0.5, j + 0.5) with i, j >= 1 and i + j <= 6
 }
 
 TEST(Raster, BadIndicesThrow) {

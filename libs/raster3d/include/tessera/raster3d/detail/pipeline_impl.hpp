@@ -432,7 +432,7 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
     for (uint32_t index : indices) {
       const float* v = vertices + size_t(index) * stride;
       const float w = v[3];
-      if (!(std::abs(v[0]) <= w && std::abs(v[1]) <= w && std::abs(v[2]) <= w)) continue;
+      if (!(std::isfinite(w) && std::abs(v[0]) <= w && std::abs(v[1]) <= w && std::abs(v[2]) <= w)) continue;
       const detail::WindowVertex wv = detail::to_window(params, v);
       const int i = int(std::floor(wv.x)), j = int(std::floor(wv.y));
       if (i < sc.x0 || i >= sc.x1 || j < sc.y0 || j >= sc.y1) continue;
