@@ -300,6 +300,10 @@ Shape read_shape(const Node& n, const std::string& type) {
     vs.expect_array(min_count);
     std::vector<Vec3f> out;
     for (size_t i = 0; i < vs.size(); ++i) out.push_back(vec3f(vs.item(i)));
+    // Newell's normal is twice the signed area vector: zero for collinear or coincident vertices.
+    Vec3 area(0.0);
+    for (size_t i = 0; i < out.size(); ++i) area += glm::cross(Vec3(out[i]), Vec3(out[(i + 1) % out.size()]));
+    if (glm::length(area) < 1e-12) vs.fail("the vertices enclose no area");
     return out;
   };
   const auto capped = [&] { return n.has("capped") ? n["capped"].boolean() : true; };

@@ -78,6 +78,9 @@ TEST(Scene, ErrorsNameTheJsonPath) {
             "test.json: objects[0].transform[0]: expected translate, rotate, scale or matrix");
   EXPECT_EQ(error_of(with_objects(R"([{"type": "box", "min": [0, 0, 0], "max": [1, 0, 1], "material": "m"}])")),
             "test.json: objects[0]: expected min < max in every coordinate");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "polygon", "vertices": [[0, 0, 0], [1, 0, 0], [2, 0, 0]],
+                                      "material": "m"}])")),
+            "test.json: objects[0].vertices: the vertices enclose no area");
   EXPECT_EQ(error_of(with_objects("[]")), "test.json: objects: expected at least 1 elements");
   EXPECT_EQ(error_of(R"({"materials": {}})"), "test.json: objects: missing");
   EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])", R"("image": {"size": [0, 10]}, )")),
