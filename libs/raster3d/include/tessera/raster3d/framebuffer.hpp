@@ -6,7 +6,6 @@
 // nearest when written, so results compare with Mesa pixel for pixel. Depth is a 24-bit unsigned normalized integer
 // per pixel (0 = near plane, 2^24 - 1 = far plane), gl-raster-conventions.md item 7. Both images keep row 0 at the
 // top (DESIGN.md section 3); the pipeline maps OpenGL's window row j (y up) to image row height - 1 - j.
-#include <algorithm>
 #include <cstdint>
 #include <memory>
 
@@ -24,9 +23,13 @@ inline uint32_t depth_to_unorm24(double z) {
   return uint32_t(z * double(kDepthMax) + 0.5);
 }
 
-/// A linear float color in [0, 1] to 8-bit RGBA (clamped, rounded to nearest, alpha 255).
+/// A linear float color in [0, 1] to 8-bit RGBA (clamped, NaN to 0, rounded to nearest, alpha 255).
 inline glm::u8vec4 to_color8(const Vec3f& c) {
-  const auto q = [](float v) { return uint8_t(std::min(std::max(v, 0.0f), 1.0f) * 255.0f + 0.5f); };
+  const auto q = [](float v) {
+    v = v > 0.0f ? v : 0.0f;  // NaN -> 0
+    v = v < 1.0f ? v : 1.0f;
+    return uint8_t(v * 255.0f + 0.5f);
+  };
   return {q(c.x), q(c.y), q(c.z), 255};
 }
 
