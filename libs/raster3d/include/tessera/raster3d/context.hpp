@@ -67,12 +67,15 @@ class Context {
   // ---- Matrices (CTM = CTM * T: the call written last acts first) ----
   /// Selects the stack the matrix calls below change.
   void matrix_mode(MatrixMode mode);
+  /// Duplicates the top of the current stack (glPushMatrix).
   void push_matrix();
-  /// Throws InvalidInput on underflow.
+  /// Discards the top of the current stack (glPopMatrix). Throws InvalidInput on underflow.
   void pop_matrix();
+  /// Replaces the current matrix with the identity, with m, or with current * m.
   void load_identity();
   void load_matrix(const Mat4& m);
   void mult_matrix(const Mat4& m);
+  /// current = current * translate(x, y, z) (math/transform.hpp), and likewise for scale and the rotations.
   void translate(double x, double y, double z);
   void scale(double x, double y, double z);
   /// Rotations in radians, counterclockwise looking down the axis toward the origin.
@@ -86,10 +89,11 @@ class Context {
   void ortho(double l, double r, double b, double t, double n, double f);
   /// Replaces the projection matrix with perspective(fovy, aspect, n, f); aspect <= 0 uses the viewport's.
   void perspective(double fovy, double n, double f, double aspect = 0);
+  /// The top of the projection and model-view stacks.
   const Mat4& projection() const { return projection_.top(); }
   const Mat4& model_view() const { return model_view_.top(); }
 
-  // ---- Current attributes ----
+  // ---- Current attributes (glColor, glNormal, glTexCoord): given to the vertices that follow ----
   void color(const Vec3f& c) { current_color_ = c; }
   void normal(const Vec3f& n) { current_normal_ = n; }
   void texcoord(const Vec2f& uv) { current_uv_ = uv; }
@@ -97,13 +101,17 @@ class Context {
   // ---- State ----
   /// glViewport, in window coordinates (origin bottom-left); a zero size is the whole framebuffer.
   void viewport(int x, int y, int width, int height);
+  /// GL_DEPTH_TEST, glDepthFunc, glDepthMask, glCullFace (RasterState).
   void depth_test(bool on);
   void depth_func(DepthFunc func);
   void depth_write(bool on);
   void cull(CullMode mode);
+  /// Where lighting is evaluated (unlit = lighting off); flat also selects OpenGL's flat shade model.
   void shading(ShadingModel model);
   ShadingModel shading() const { return shading_; }
+  /// The z-buffer or the painter's algorithm.
   void hidden_surface(HiddenSurface method);
+  /// glMaterial (front and back), the specular term, GL_LIGHT_MODEL_AMBIENT, GL_COLOR_MATERIAL.
   void material(const Material& m);
   void specular_model(SpecularModel model);
   void light_model_ambient(const Vec3f& ambient);

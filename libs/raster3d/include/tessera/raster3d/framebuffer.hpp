@@ -46,6 +46,7 @@ class Framebuffer {
   Framebuffer(Framebuffer&&) noexcept;
   Framebuffer& operator=(Framebuffer&&) noexcept;
 
+  /// Size in pixels.
   int width() const { return color_.width(); }
   int height() const { return color_.height(); }
 
