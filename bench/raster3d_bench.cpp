@@ -7,7 +7,8 @@
 //              writes); pixels/s, and as a share of the machine's memory bandwidth (12 bytes per pixel: depth read,
 //              depth write, color write)
 //   bandwidth  a STREAM-like copy and triad over 128 MiB arrays with oneTBB on all cores
-// Each measurement is the best frame of a few (a frame = clear + draw + glFinish / return). llvmpipe reads
+// Each measurement is the best frame of a few (a frame = clear + draw + glFinish / return), in wall time and in
+// CPU time of all the process's threads (the steadier figure on a loaded machine). llvmpipe reads
 // LP_NUM_THREADS once per process, so every llvmpipe measurement runs in a child process (this program re-executed
 // with --llvmpipe-child=CASE,THREADS). The Tessera benchmarks carry the ratios as counters (x_llvmpipe = Tessera's
 // rate / llvmpipe's), and a table at the end repeats them with the load average.
@@ -15,6 +16,7 @@
 //   cmake -S . -B build/bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
 //   ninja -C build/bench bench_raster3d && build/bench/bench/bench_raster3d --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -152,6 +154,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+// Wall and CPU seconds of one frame (CPU: every thread of the process, so llvmpipe's rasterizer threads and TBB's
+// workers count; on a loaded machine the CPU time is the steadier measure of the work done).
+struct Timing {
+  double wall = 1e30, cpu = 1e30;
+  void keep_best(const Timing& t) {
+    wall = std::min(wall, t.wall);
+    cpu = std::min(cpu, t.cpu);
+  }
+};
+
+class Stopwatch {
+ public:
+  Timing elapsed() const { return {seconds_since(wall0_), process_cpu_seconds() - cpu0_}; }
+
+ private:
+  std::chrono::steady_clock::time_point wall0_ = std::chrono::steady_clock::now();
+  double cpu0_ = process_cpu_seconds();
+};
+
 double load_average() {
   double one = 0;
   if (FILE* f = std::fopen("/proc/loadavg", "r")) {
@@ -171,22 +198,23 @@ int llvmpipe_child(Case c, int threads) {
   reference::OsmesaContext context(w.width, w.height, threads);
   const GlState state = c == Case::Fill ? fill_gl_state() : tri_gl_state();
   const GlSubmit submit = c == Case::Immediate ? GlSubmit::Immediate : GlSubmit::VertexArrays;
-  double best = 1e30;
+  Timing best;
   for (int frame = 0; frame < kFrames + 1; ++frame) {  // frame 0 warms up (shader compilation, allocations)
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch watch;
     context.begin(state);
     context.draw(mesh, submit);
     context.finish();
-    if (frame > 0) best = std::min(best, seconds_since(t0));
+    if (frame > 0) best.keep_best(watch.elapsed());
   }
-  std::printf("llvmpipe seconds=%.9g lp_num_threads=%d\n", best, reference::OsmesaContext::rasterizer_threads());
+  std::printf("llvmpipe seconds=%.9g cpu_seconds=%.9g lp_num_threads=%d\n", best.wall, best.cpu,
+              reference::OsmesaContext::rasterizer_threads());
   return 0;
 }
 
 std::string g_self;  // this program's path, for the children
 
-// Runs a child and returns its best frame time, or an error message.
-bool run_llvmpipe(Case c, int threads, double& seconds, std::string& error) {
+// Runs a child and returns its best frame times, or an error message.
+bool run_llvmpipe(Case c, int threads, Timing& timing, std::string& error) {
   const std::string command = fmt::format("'{}' --llvmpipe-child={},{} 2>&1", g_self, case_name(c), threads);
   std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
   if (!pipe) {
@@ -202,13 +230,16 @@ bool run_llvmpipe(Case c, int threads, double& seconds, std::string& error) {
     error = fmt::format("llvmpipe child failed (status {}): {}", status, output.substr(0, 300));
     return false;
   }
-  seconds = std::strtod(output.c_str() + at + std::strlen("llvmpipe seconds="), nullptr);
+  timing.wall = std::strtod(output.c_str() + at + std::strlen("llvmpipe seconds="), nullptr);
+  const size_t cpu_at = output.find("cpu_seconds=", at);
+  timing.cpu = cpu_at == std::string::npos ? 0 : std::strtod(output.c_str() + cpu_at + std::strlen("cpu_seconds="), nullptr);
   return true;
 }
 
 // Results for the ratios and the final table, keyed "case/threads".
 struct Rates {
-  double llvmpipe = 0, tessera = 0;  // triangles/s or pixels/s (best of the repetitions)
+  double llvmpipe = 0, tessera = 0;          // triangles/s or pixels/s of wall time (best of the repetitions)
+  double llvmpipe_cpu = 0, tessera_cpu = 0;  // the same per CPU second
 };
 std::map<std::string, Rates> g_rates;
 double g_bandwidth = 0;  // bytes/s, all cores
@@ -226,21 +257,23 @@ void set_rate_counters(benchmark::State& state, Case c, double rate) {
 }
 
 void BM_Llvmpipe(benchmark::State& state, Case c, int threads) {
-  double seconds = 0;
+  Timing timing;
   std::string error;
   for (auto _ : state) {
-    if (!run_llvmpipe(c, threads, seconds, error)) {
+    if (!run_llvmpipe(c, threads, timing, error)) {
       static std::string message;  // SkipWithError keeps the pointer
       message = error;
       state.SkipWithError(message.c_str());
       return;
     }
-    state.SetIterationTime(seconds);
+    state.SetIterationTime(timing.wall);
   }
-  const double rate = rate_of(c, seconds);
+  const double rate = rate_of(c, timing.wall);
   set_rate_counters(state, c, rate);
+  state.counters["cpu_ms"] = 1e3 * timing.cpu;
   Rates& r = g_rates[key(c, threads)];
   r.llvmpipe = std::max(r.llvmpipe, rate);
+  r.llvmpipe_cpu = std::max(r.llvmpipe_cpu, rate_of(c, timing.cpu));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -326,21 +359,24 @@ void BM_Tessera(benchmark::State& state, Case c, int threads) {
     benchmark::DoNotOptimize(ctx.framebuffer().color().pixels().data());  // framebuffer() draws what is pending
   };
   frame();  // warm-up: the binning memory is allocated once
-  double best = 1e30;
+  Timing best;
   for (auto _ : state) {
     for (int i = 0; i < kFrames; ++i) {
-      const auto t0 = std::chrono::steady_clock::now();
+      const Stopwatch watch;
       frame();
-      best = std::min(best, seconds_since(t0));
+      best.keep_best(watch.elapsed());
     }
-    state.SetIterationTime(best);
+    state.SetIterationTime(best.wall);
   }
   gt::gtMakeCurrent(nullptr);
-  const double rate = rate_of(c, best);
+  const double rate = rate_of(c, best.wall);
   set_rate_counters(state, c, rate);
+  state.counters["cpu_ms"] = 1e3 * best.cpu;
   Rates& r = g_rates[key(c, threads)];
   r.tessera = std::max(r.tessera, rate);
+  r.tessera_cpu = std::max(r.tessera_cpu, rate_of(c, best.cpu));
   if (r.llvmpipe > 0) state.counters["x_llvmpipe"] = rate / r.llvmpipe;
+  if (r.llvmpipe_cpu > 0) state.counters["x_llvmpipe_cpu"] = r.tessera_cpu / r.llvmpipe_cpu;
 }
 
 }  // namespace
@@ -378,11 +414,13 @@ int main(int argc, char** argv) {
   benchmark::RunSpecifiedBenchmarks();
   std::printf("\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s)\n",
               load_before, load_average(), g_bandwidth / 1e9);
-  std::printf("%-16s %14s %14s %8s %10s\n", "case/threads", "llvmpipe", "tessera", "ratio", "bw_share");
+  std::printf("%-14s %12s %12s %7s %14s %14s %7s %9s\n", "case/threads", "llvmpipe/s", "tessera/s", "ratio",
+              "llvmpipe/cpu-s", "tessera/cpu-s", "ratio", "bw_share");
   for (const auto& [name, r] : g_rates) {
     const bool fill = name.rfind("fill", 0) == 0;
-    std::printf("%-16s %14.4g %14.4g %8.2f %10s\n", name.c_str(), r.llvmpipe, r.tessera,
-                r.llvmpipe > 0 ? r.tessera / r.llvmpipe : 0.0,
+    std::printf("%-14s %12.4g %12.4g %7.2f %14.4g %14.4g %7.2f %9s\n", name.c_str(), r.llvmpipe, r.tessera,
+                r.llvmpipe > 0 ? r.tessera / r.llvmpipe : 0.0, r.llvmpipe_cpu, r.tessera_cpu,
+                r.llvmpipe_cpu > 0 ? r.tessera_cpu / r.llvmpipe_cpu : 0.0,
                 fill && g_bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / g_bandwidth).c_str() : "");
   }
   benchmark::Shutdown();
