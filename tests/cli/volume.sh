@@ -31,6 +31,8 @@ test -s gyroid.obj
 "$tessera" volume render cube.raw "${raw[@]}" --mip -o mip.png --size 32x32 && test -s mip.png
 printf '0,0,0,0,0\n1,1,1,1,0.5\n' > tf.csv
 "$tessera" volume render sphere:16 --tf tf.csv --eye 0,0,4 -o tf.png --size 24x24 && test -s tf.png
+# The shared camera options: a view from +x with another up vector and field of view.
+"$tessera" volume render torus:16 --eye 5,0,0 --up 0,0,1 --fovy 40 -o side.png --size 32x24 && test -s side.png
 
 # Errors: exit 1, a clear message, no output file.
 expect_error() {
@@ -48,4 +50,6 @@ expect_error "too short" bad.obj volume isosurface short.raw "${raw[@]}" --iso 1
 expect_error "dims" bad2.obj volume isosurface cube.raw --dims 4,0,4 --iso 1 -o bad2.obj
 expect_error "needs --dims" bad3.obj volume isosurface cube.raw --iso 1 -o bad3.obj
 expect_error "outside" bad.png volume slice sphere:8 --slice 9 -o bad.png
+expect_error "fovy" bad2.png volume render sphere:8 --fovy 180 -o bad2.png
+expect_error "near < far" bad3.png volume render sphere:8 --near 5 --far 2 -o bad3.png
 echo "volume CLI ok"

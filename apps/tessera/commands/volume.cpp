@@ -167,19 +167,16 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand("render", "Direct volume rendering (ray casting) or maximum-intensity projection");
   auto in = std::make_shared<VolumeInput>();
   struct Args {
-    std::string output, eye, center, up, size = "256x256", tf, preset;
-    double fovy = 30;
+    std::string output, tf, preset;
+    CameraOptions camera;
     bool mip = false;
     float step = 0;
   };
   auto a = std::make_shared<Args>();
   in->add(*cmd);
   cmd->add_option("-o,--output", a->output, "Output image")->required();
-  cmd->add_option("--eye", a->eye, "Camera position x,y,z (default: in front of the volume)");
-  cmd->add_option("--center", a->center, "Point looked at (default: the volume's center)");
-  cmd->add_option("--up", a->up, "Up vector (default 0,1,0)");
-  cmd->add_option("--fovy", a->fovy, "Vertical field of view, degrees");
-  cmd->add_option("--size", a->size, "Image size WxH");
+  a->camera.fovy = 30;  // a volume's box fills a narrower view better
+  a->camera.add(*cmd, "256x256");
   cmd->add_option("--tf", a->tf, "Transfer function file (.json or .csv)");
   cmd->add_option("--preset", a->preset, "Transfer-function preset: ct-bone|ct-skin|mri");
   cmd->add_flag("--mip", a->mip, "Maximum-intensity projection");
@@ -189,23 +186,14 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     const ThreadLimit limit(common.threads);
     const Volume<float> v = to_float(in->read());
     VolumeRenderOptions o;
-    const auto size = parse_size(a->size, "--size");
+    const auto size = a->camera.image_size();
     o.width = size.width;
     o.height = size.height;
     o.step = a->step;
     o.mip = a->mip;
+    // Framed as every 3D command frames its scene: the volume's bounding sphere fills the view from the +z side.
     const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1));
-    const Vec3 mid = 0.5 * (lo + hi);
-    const double radius = 0.5 * glm::length(hi - lo);
-    const auto vec = [](const std::string& text, const char* what, const Vec3& fallback) {
-      if (text.empty()) return fallback;
-      const auto d = parse_doubles(text, 3, what);
-      return Vec3(d[0], d[1], d[2]);
-    };
-    o.camera.center = vec(a->center, "--center", mid);
-    o.camera.eye = vec(a->eye, "--eye", mid + Vec3(0, 0, 2.5 * radius / std::tan(radians(a->fovy) / 2) / 2.0));
-    o.camera.up = vec(a->up, "--up", Vec3(0, 1, 0));
-    o.camera.fovy = radians(a->fovy);
+    o.camera = a->camera.camera(0.5 * (lo + hi), 0.5 * glm::length(hi - lo));
     if (!a->tf.empty()) {
       o.transfer = TransferFunction::load(a->tf);
     } else if (!a->preset.empty()) {
