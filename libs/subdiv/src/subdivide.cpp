@@ -7,6 +7,7 @@
 
 #include "sharpness.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/subdiv/topology.hpp"
@@ -16,21 +17,6 @@ namespace {
 
 constexpr int64_t kGrain = 2048;
 constexpr int kMaxLevels = 12;
-
-/// Resizes an empty output array to n value-initialized elements. Its fresh memory is advised to use huge pages and
-/// first touched in parallel (one byte per 4 KiB page of the raw storage), so that the kernel's page zeroing is spread
-/// over the threads instead of happening inside resize()'s serial value-initialization.
-template <class T>
-void resize_fresh(std::vector<T>& v, size_t n) {
-  v.reserve(n);
-  auto* bytes = reinterpret_cast<unsigned char*>(v.data());
-  detail::advise_huge_pages(bytes, n * sizeof(T));
-  constexpr int64_t kPage = 4096;
-  parallel_for(0, (int64_t(n * sizeof(T)) + kPage - 1) / kPage, 64, [&](int64_t b, int64_t e) {
-    for (int64_t page = b; page < e; ++page) bytes[page * kPage] = 0;
-  });
-  v.resize(n);
-}
 
 // One level of one scheme. Child vertices: vertex points [0, V), face points [V, V + F) for quad splits, then edge
 // points, one per parent edge. Rules supplies the weights; everything topological happens here.

@@ -3,10 +3,6 @@
 #include <algorithm>
 #include <atomic>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
-
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 
@@ -25,15 +21,6 @@ void atomic_min(std::atomic<uint64_t>& slot, uint64_t value) {
 constexpr uint64_t kNoError = ~uint64_t(0);
 
 }  // namespace
-
-void detail::advise_huge_pages([[maybe_unused]] void* p, [[maybe_unused]] size_t bytes) {
-#if defined(MADV_HUGEPAGE)
-  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
-  const uintptr_t first = (reinterpret_cast<uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-  const uintptr_t last = (reinterpret_cast<uintptr_t>(p) + bytes) & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-}
 
 TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
                                size_t vertex_count)
@@ -81,9 +68,9 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
       std::atomic_ref<uint32_t>(vertex_offsets_[face_vertices_[k] + 1]).fetch_add(1, std::memory_order_relaxed);
   });
   for (size_t v = 0; v < vertex_count; ++v) vertex_offsets_[v + 1] += vertex_offsets_[v];
-  detail::RawVector<uint32_t> by_vertex(face_vertices_.size());
+  RawVector<uint32_t> by_vertex(face_vertices_.size());
   {
-    detail::RawVector<uint32_t> fill(vertex_offsets_.begin(), vertex_offsets_.end() - 1);
+    RawVector<uint32_t> fill(vertex_offsets_.begin(), vertex_offsets_.end() - 1);
     parallel_for(0, corners, 4 * kGrain, [&](int64_t b, int64_t e) {
       for (int64_t k = b; k < e; ++k)
         by_vertex[std::atomic_ref<uint32_t>(fill[face_vertices_[k]]).fetch_add(1, std::memory_order_relaxed)] =

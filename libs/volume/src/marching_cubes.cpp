@@ -5,13 +5,11 @@
 #include <memory>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
 
+#include "tessera/core/memory.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/volume/mc_table.hpp"
 
@@ -68,29 +66,6 @@ const std::array<uint8_t, 256>& ambiguous_table() {
     return t;
   }();
   return table;
-}
-
-/// Resizes an empty output array to n value-initialized elements, its fresh memory first advised to use transparent
-/// huge pages (Linux madvise, on the 2 MiB pages inside the block) and touched in parallel (one byte per 4 KiB page of
-/// the raw storage). An iso-surface is hundreds of megabytes of fresh memory; with 4 KiB pages faulted one by one in
-/// resize()'s serial value-initialization the page faults cost more than the extraction (measured: 4-5x the time).
-template <class T>
-void resize_fresh(std::vector<T>& v, size_t n) {
-  v.clear();
-  v.reserve(n);
-  auto* bytes = reinterpret_cast<unsigned char*>(v.data());
-  const size_t size = n * sizeof(T);
-#if defined(MADV_HUGEPAGE)
-  constexpr uintptr_t kHuge = uintptr_t(2) << 20;
-  const uintptr_t first = (reinterpret_cast<uintptr_t>(bytes) + kHuge - 1) & ~(kHuge - 1);
-  const uintptr_t last = (reinterpret_cast<uintptr_t>(bytes) + size) & ~(kHuge - 1);
-  if (last > first) madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
-#endif
-  constexpr int64_t kPage = 4096;
-  parallel_for(0, (int64_t(size) + kPage - 1) / kPage, 64, [&](int64_t b, int64_t e) {
-    for (int64_t page = b; page < e; ++page) bytes[page * kPage] = 0;
-  });
-  v.resize(n);
 }
 
 using Word = uint64_t;

@@ -8,55 +8,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <memory>
-#include <new>
 #include <span>
 #include <utility>
 #include <vector>
 
+#include "tessera/core/memory.hpp"
+
 namespace tessera {
-
-namespace detail {
-/// Asks the kernel to back the 2 MiB pages inside [p, p + bytes) with transparent huge pages, before they are first
-/// touched: a refinement level writes hundreds of megabytes of fresh memory, and with 4 KiB pages the page faults
-/// cost more than the arithmetic. A hint (Linux madvise); does nothing elsewhere or for small blocks.
-void advise_huge_pages(void* p, size_t bytes);
-
-/// An allocator whose resize() leaves new elements uninitialized (for arrays that are written in full afterwards);
-/// large blocks are aligned to 2 MiB and rounded up to whole 2 MiB pages, so that advise_huge_pages() covers them.
-template <class T>
-struct NoInitAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = NoInitAllocator<U>;
-  };
-  NoInitAllocator() = default;
-  template <class U>
-  NoInitAllocator(const NoInitAllocator<U>&) noexcept {}
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-  template <class U>
-  void construct(U* p) noexcept {
-    ::new (static_cast<void*>(p)) U;
-  }
-  static constexpr size_t kHugePage = size_t(2) << 20;
-  T* allocate(size_t n) {
-    if (n * sizeof(T) < 2 * kHugePage) return std::allocator<T>::allocate(n);
-    const size_t bytes = (n * sizeof(T) + kHugePage - 1) & ~(kHugePage - 1);
-    void* p = ::operator new(bytes, std::align_val_t(kHugePage));
-    advise_huge_pages(p, bytes);
-    return static_cast<T*>(p);
-  }
-  void deallocate(T* p, size_t n) noexcept {
-    if (n * sizeof(T) < 2 * kHugePage) return std::allocator<T>::deallocate(p, n);
-    ::operator delete(p, std::align_val_t(kHugePage));
-  }
-};
-template <class T>
-using RawVector = std::vector<T, NoInitAllocator<T>>;
-}  // namespace detail
 
 class TopologyTables {
  public:
@@ -140,11 +98,11 @@ class TopologyTables {
 
   std::span<const uint32_t> face_offsets_, face_vertices_;
   uint32_t uniform_size_ = 0;                   // the size of every face, 0 when sizes differ
-  detail::RawVector<uint32_t> corner_faces_;    // empty when every face has uniform_size_ corners
-  detail::RawVector<uint32_t> corner_edges_, twins_;
-  detail::RawVector<uint32_t> edge_corners_;    // the first corner of every edge
-  detail::RawVector<uint32_t> vertex_offsets_, ring_corners_;
-  detail::RawVector<uint8_t> boundary_vertex_;
+  RawVector<uint32_t> corner_faces_;    // empty when every face has uniform_size_ corners
+  RawVector<uint32_t> corner_edges_, twins_;
+  RawVector<uint32_t> edge_corners_;    // the first corner of every edge
+  RawVector<uint32_t> vertex_offsets_, ring_corners_;
+  RawVector<uint8_t> boundary_vertex_;
   uint32_t max_valence_ = 0;
 };
 
