@@ -358,6 +358,28 @@ TEST(OsmesaCompareImmediate, ImmediateModeMatchesOpenGLImmediateMode) {
   }
 }
 
+// The reference itself: a triangle in the upper half of the view lands in the top rows of the frame (the read-back
+// flips GL's bottom-up rows), at the window depth of its plane; both submission paths draw the same pixels.
+TEST(OsmesaReference, FrameIsTopRowFirstWithTheExpectedDepth) {
+  TriMesh triangle;
+  triangle.positions = {{-0.5, 0.2, 0.5}, {0.5, 0.2, 0.5}, {0.0, 0.9, 0.5}};  // NDC, identity matrices
+  triangle.indices = {0, 1, 2};
+  const GlState state;
+  const GlFrame immediate = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::Immediate);
+  const GlFrame arrays = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::VertexArrays);
+  EXPECT_EQ(immediate.rgb, arrays.rgb);
+  EXPECT_EQ(immediate.depth, arrays.depth);
+  // Column 20 (x_ndc = 0.025) crosses the triangle for window y in [24, 37.3): GL rows 24..36 (centers inside),
+  // image rows 39 - 36 = 3 .. 39 - 24 = 15 from the top. z_ndc = 0.5 is window depth 0.75.
+  for (int y = 0; y < 40; ++y) {
+    const bool covered = immediate.depth_at(20, y) < raster3d::kDepthMax;
+    EXPECT_EQ(covered, y >= 3 && y <= 15) << "row " << y;
+    if (covered) {
+      EXPECT_EQ(immediate.depth_at(20, y), raster3d::depth_to_unorm24(0.75)) << "row " << y;
+    }
+  }
+}
+
 // The comparison does not depend on Tessera's thread count (binning to tiles in parallel is deterministic).
 TEST(OsmesaCompareThreads, OneAndTwoThreadsGiveTheSameFrame) {
   const Scene scene = scene_named("torus_screen_edges");
