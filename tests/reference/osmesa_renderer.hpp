@@ -59,6 +59,7 @@ struct GlMesh {
   std::vector<float> colors;     ///< 3 per vertex, or empty
   std::vector<uint32_t> indices;
 
+  /// The mesh's positions, and its normals and colors when it has them, as float32 arrays.
   explicit GlMesh(const TriMesh& mesh);
   size_t triangle_count() const { return indices.size() / 3; }
 };
