@@ -251,9 +251,18 @@ double rate_of(Case c, double seconds) {
   return (c == Case::Fill ? w.pixels_per_frame : double(w.mesh.triangle_count())) / seconds;
 }
 
-void set_rate_counters(benchmark::State& state, Case c, double rate) {
+// Sets a finished measurement's counters and keeps its best rates (wall and CPU) for the ratios.
+const Rates& record(benchmark::State& state, Case c, int threads, const Timing& timing, bool peer) {
+  const double rate = rate_of(c, timing.wall);
   state.counters[c == Case::Fill ? "pixels_per_s" : "tris_per_s"] = rate;
   if (c == Case::Fill && g_bandwidth > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth;
+  state.counters["cpu_ms"] = 1e3 * timing.cpu;
+  Rates& r = g_rates[key(c, threads)];
+  double& best_wall = peer ? r.llvmpipe : r.tessera;
+  double& best_cpu = peer ? r.llvmpipe_cpu : r.tessera_cpu;
+  best_wall = std::max(best_wall, rate);
+  best_cpu = std::max(best_cpu, rate_of(c, timing.cpu));
+  return r;
 }
 
 void BM_Llvmpipe(benchmark::State& state, Case c, int threads) {
@@ -268,12 +277,7 @@ void BM_Llvmpipe(benchmark::State& state, Case c, int threads) {
     }
     state.SetIterationTime(timing.wall);
   }
-  const double rate = rate_of(c, timing.wall);
-  set_rate_counters(state, c, rate);
-  state.counters["cpu_ms"] = 1e3 * timing.cpu;
-  Rates& r = g_rates[key(c, threads)];
-  r.llvmpipe = std::max(r.llvmpipe, rate);
-  r.llvmpipe_cpu = std::max(r.llvmpipe_cpu, rate_of(c, timing.cpu));
+  record(state, c, threads, timing, true);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -369,13 +373,8 @@ void BM_Tessera(benchmark::State& state, Case c, int threads) {
     state.SetIterationTime(best.wall);
   }
   gt::gtMakeCurrent(nullptr);
-  const double rate = rate_of(c, best.wall);
-  set_rate_counters(state, c, rate);
-  state.counters["cpu_ms"] = 1e3 * best.cpu;
-  Rates& r = g_rates[key(c, threads)];
-  r.tessera = std::max(r.tessera, rate);
-  r.tessera_cpu = std::max(r.tessera_cpu, rate_of(c, best.cpu));
-  if (r.llvmpipe > 0) state.counters["x_llvmpipe"] = rate / r.llvmpipe;
+  const Rates& r = record(state, c, threads, best, false);
+  if (r.llvmpipe > 0) state.counters["x_llvmpipe"] = rate_of(c, best.wall) / r.llvmpipe;
   if (r.llvmpipe_cpu > 0) state.counters["x_llvmpipe_cpu"] = r.tessera_cpu / r.llvmpipe_cpu;
 }
 
