@@ -13,6 +13,7 @@
 #include "tessera/accel/bvh.hpp"
 #include "tessera/accel/grid.hpp"
 #include "tessera/accel/shapes.hpp"
+#include "tessera/color/colormap.hpp"
 #include "tessera/math/camera.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/mesh_io.hpp"
@@ -21,13 +22,6 @@
 namespace {
 
 using namespace tessera;
-
-/// A blue-to-red heat color for x in [0, 1].
-Vec3f heat(float x) {
-  x = std::clamp(x, 0.0f, 1.0f);
-  return {std::clamp(1.5f - std::abs(4 * x - 3), 0.0f, 1.0f), std::clamp(1.5f - std::abs(4 * x - 2), 0.0f, 1.0f),
-          std::clamp(1.5f - std::abs(4 * x - 1), 0.0f, 1.0f)};
-}
 
 /// Nodes or cells visited plus triangles tested for every pixel.
 template <class Accel>
@@ -98,7 +92,7 @@ TESSERA_EXAMPLE(ex76_bvh_grid_cost, "76_bvh_grid_cost", "Traversal cost: BVH ver
   auto to_image = [&](const std::vector<float>& cost) {
     ImageRGB img(w, h);
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) img(x, y) = heat(cost[size_t(y) * size_t(w) + size_t(x)] / scale);
+      for (int x = 0; x < w; ++x) img(x, y) = heat_color(cost[size_t(y) * size_t(w) + size_t(x)] / scale);
     return img;
   };
   auto mean = [](const std::vector<float>& v) {

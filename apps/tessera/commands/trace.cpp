@@ -8,6 +8,7 @@
 
 #include "command.hpp"
 #include "tessera/accel/mesh_accel.hpp"
+#include "tessera/color/colormap.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
@@ -22,13 +23,6 @@ struct TraceArgs {
   std::string mesh, output, shade = "diffuse", color = "0.85,0.8,0.7", background = "0.1,0.1,0.12";
   CameraOptions camera;
 };
-
-/// A blue-to-red heat color for x in [0, 1].
-Vec3f heat(float x) {
-  x = std::clamp(x, 0.0f, 1.0f);
-  return {std::clamp(1.5f - std::abs(4 * x - 3), 0.0f, 1.0f), std::clamp(1.5f - std::abs(4 * x - 2), 0.0f, 1.0f),
-          std::clamp(1.5f - std::abs(4 * x - 1), 0.0f, 1.0f)};
-}
 
 void run_trace(const TraceArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
@@ -70,7 +64,7 @@ void run_trace(const TraceArgs& a, const CommonOptions& common) {
   if (a.shade == "cost") {
     const float most = *std::max_element(cost.pixels().begin(), cost.pixels().end());
     for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) image(x, y) = heat(most > 0 ? cost(x, y) / most : 0.0f);
+      for (int x = 0; x < width; ++x) image(x, y) = heat_color(most > 0 ? cost(x, y) / most : 0.0f);
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   write_image(a.output, image);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "tessera/color/chromaticity.hpp"
+#include "tessera/color/colormap.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/error.hpp"
@@ -322,6 +323,22 @@ TEST(ColorModels, ConvertManyMatchesOneByOne) {
     const auto one = convert(ColorModel::Rgb, ColorModel::Cmyk, std::span(in).subspan(3 * i, 3));
     for (size_t c = 0; c < 4; ++c) EXPECT_EQ(out[4 * i + c], one[c]);
   }
+}
+
+// The heat ramp at its knots, computed by hand from the three tents, and clamping outside [0, 1].
+TEST(ColorMap, HeatRampKnots) {
+  auto expect = [](float x, Vec3f want) {
+    const Vec3f got = heat_color(x);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(got[c], want[c]) << "x=" << x << " channel " << c;
+  };
+  expect(0.0f, {0.0f, 0.0f, 0.5f});
+  expect(0.125f, {0.0f, 0.0f, 1.0f});
+  expect(0.25f, {0.0f, 0.5f, 1.0f});
+  expect(0.5f, {0.5f, 1.0f, 0.5f});
+  expect(0.75f, {1.0f, 0.5f, 0.0f});
+  expect(1.0f, {0.5f, 0.0f, 0.0f});
+  expect(-3.0f, {0.0f, 0.0f, 0.5f});
+  expect(7.0f, {0.5f, 0.0f, 0.0f});
 }
 
 }  // namespace
