@@ -2,16 +2,19 @@
 // and the notes' bottom-up build by locally-ordered agglomerative clustering (Meister and Bittner 2017, PLOC).
 #include "tessera/accel/bvh.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <numeric>
-#include <string>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <numeric>
+#include <string>
 
 #include "tessera/core/error.hpp"
 
@@ -69,8 +72,8 @@ struct RangeBounds {
 constexpr int kParallelPrims = 4096;     // ranges above this build their two halves as parallel tasks
 constexpr int kParallelBinning = 65536;  // ranges above this bin in parallel
 constexpr int kMaxBins = 64;
-constexpr int kMaxLeafCount = 65535;     // BvhNode::count is 16 bits
-constexpr int kMedianLevel = 36;         // below this level splits are object medians (depth <= 36 + log2 n)
+constexpr int kMaxLeafCount = 65535;  // BvhNode::count is 16 bits
+constexpr int kMedianLevel = 36;      // below this level splits are object medians (depth <= 36 + log2 n)
 
 /// Min/max are exact in any order, so the parallel reductions below give the same tree for any thread count.
 RangeBounds range_bounds(const PrimRef* refs, int n) {
@@ -120,17 +123,24 @@ class SahBuilder {
  public:
   SahBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
 
-  /// Builds the subtree of refs[begin, end), whose bounds are rb, into out (depth-first, its root first); returns its
-  /// depth.
-  int build(int begin, int end, const RangeBounds& rb, std::vector<BvhNode>& out, int level = 0) const {
+  /// Builds the subtree of refs[begin, end), whose bounds are rb, into the 2 n - 1 slots from `self` on (enough for
+  /// any binary tree over n primitives), depth-first: its root at self, the left subtree from self + 1, the right one
+  /// right after the left (serial ranges) or from self + 2 n_left (ranges built as parallel tasks, which thus write
+  /// disjoint slots, and no node is ever moved). An interior node's `first` is the slot of its second child;
+  /// compact_nodes() removes the gaps (one per parallel range, unwritten, so its pages are never touched) afterwards.
+  /// Returns the depth and the node count of the subtree.
+  struct Built {
+    int depth, nodes;
+  };
+  Built build(int begin, int end, const RangeBounds& rb, BvhNode* slots, int self, int level = 0) const {
     const int n = end - begin;
-    const int self = int(out.size());
-    out.push_back(BvhNode{rb.box.aabb(), begin, uint16_t(0), uint16_t(0)});
+    new (slots + self) BvhNode{rb.box.aabb(), begin, uint16_t(0), uint16_t(0)};
+    BvhNode& node = slots[self];
     const Split split = n > 1 ? find_split(begin, n, rb) : Split{};
     const bool fits = n <= s_.max_leaf_size;
     if (n == 1 || (fits && s_.intersection_cost * float(n) <= split.cost)) {
-      out[self].count = uint16_t(n);
-      return 1;
+      node.count = uint16_t(n);
+      return {1, 1};
     }
     int mid;
     int axis = split.axis;
@@ -164,24 +174,18 @@ class SahBuilder {
       left.box = split.left;
       right.box = split.right;
     }
-    out[self].axis = uint16_t(axis);
-    int depth_left = 0, depth_right = 0;
+    node.axis = uint16_t(axis);
+    Built l, r;
     if (n > kParallelPrims) {
-      std::vector<BvhNode> right_nodes;
-      right_nodes.reserve(size_t(2 * (end - mid) / s_.max_leaf_size + 1));
-      tbb::parallel_invoke([&] { depth_left = build(begin, mid, left, out, level + 1); },
-                           [&] { depth_right = build(mid, end, right, right_nodes, level + 1); });
-      const int offset = int(out.size());
-      for (BvhNode& node : right_nodes)
-        if (node.count == 0) node.first += offset;
-      out[self].first = offset;
-      out.insert(out.end(), right_nodes.begin(), right_nodes.end());
+      node.first = self + 2 * (mid - begin);
+      tbb::parallel_invoke([&] { l = build(begin, mid, left, slots, self + 1, level + 1); },
+                           [&] { r = build(mid, end, right, slots, node.first, level + 1); });
     } else {
-      depth_left = build(begin, mid, left, out, level + 1);
-      out[self].first = int(out.size());
-      depth_right = build(mid, end, right, out, level + 1);
+      l = build(begin, mid, left, slots, self + 1, level + 1);
+      node.first = self + 1 + l.nodes;
+      r = build(mid, end, right, slots, node.first, level + 1);
     }
-    return 1 + std::max(depth_left, depth_right);
+    return {1 + std::max(l.depth, r.depth), 1 + l.nodes + r.nodes};
   }
 
  private:
@@ -244,8 +248,9 @@ class SahBuilder {
         cnt += bins.count[a][b - 1];
         if (cnt == 0 || right_count[b] == 0) continue;
         // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
-        const float cost = s_.traversal_cost + s_.intersection_cost * inv_area *
-                                                   (acc.area() * float(cnt) + right_box[b].area() * float(right_count[b]));
+        const float cost =
+            s_.traversal_cost +
+            s_.intersection_cost * inv_area * (acc.area() * float(cnt) + right_box[b].area() * float(right_count[b]));
         if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, right_box[b]};
       }
     }
@@ -255,6 +260,17 @@ class SahBuilder {
   const BvhSettings& s_;
   std::vector<PrimRef>& refs_;
 };
+
+/// Copies the tree that SahBuilder::build left in gapped slots from `slot` on into out[next...] (depth-first, gaps
+/// removed, second-child links renumbered); returns the next free index of out.
+int compact_nodes(const BvhNode* slots, int slot, BvhNode* out, int next) {
+  const int self = next;
+  out[self] = slots[slot];
+  if (out[self].count > 0) return next + 1;
+  next = compact_nodes(slots, slot + 1, out, next + 1);
+  out[self].first = next;
+  return compact_nodes(slots, slots[slot].first, out, next);
+}
 
 /// Spreads the low 10 bits of v to every third bit (for 30-bit Morton codes).
 uint32_t spread_bits(uint32_t v) {
@@ -445,8 +461,15 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
     }
   }
   if (nodes_.empty()) {
-    nodes_.reserve(2 * refs.size() / size_t(std::max(1, settings.max_leaf_size / 2)) + 1);
-    depth_ = SahBuilder(settings_, refs).build(0, int(refs.size()), range_bounds(refs.data(), int(refs.size())), nodes_);
+    // Uninitialized slots: only the nodes written are touched (about n / 2 of the 2 n - 1 for leaves of 4).
+    const size_t slot_count = 2 * refs.size() - 1;
+    const std::unique_ptr<std::byte[]> storage(new std::byte[slot_count * sizeof(BvhNode)]);
+    BvhNode* slots = reinterpret_cast<BvhNode*>(storage.get());
+    const auto built =
+        SahBuilder(settings_, refs).build(0, int(refs.size()), range_bounds(refs.data(), int(refs.size())), slots, 0);
+    depth_ = built.depth;
+    nodes_.resize(size_t(built.nodes));
+    compact_nodes(slots, 0, nodes_.data(), 0);
   }
   TESSERA_CHECK_LE(depth_, kMaxDepth);
   prim_indices_.resize(refs.size());

@@ -14,7 +14,7 @@ constexpr float kTwoPi = 6.28318530717958647692f;
 constexpr float kInvPi = 0.31830988618379067154f;
 
 /// Fills the hit for parameter t with an (already unit) normal and uv.
-bool accept(const Ray& ray, float t, const Vec3f& normal, const Vec2f& uv, Hit& hit) {
+inline bool accept(const Ray& ray, float t, const Vec3f& normal, const Vec2f& uv, Hit& hit) {
   hit.t = t;
   hit.point = ray.at(t);
   hit.normal = normal;
@@ -66,6 +66,7 @@ float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
 }
 
 /// A disk-shaped cap of the y axis at height y (radius r, outward normal ny = +1 or -1).
+template <bool Full>
 bool cap_hit(float y, float r, float ny, const Ray& ray, float& t_best, Hit& hit) {
   if (ray.dir.y == 0) return false;
   const float t = (y - ray.origin.y) / ray.dir.y;
@@ -73,6 +74,7 @@ bool cap_hit(float y, float r, float ny, const Ray& ray, float& t_best, Hit& hit
   const Vec3f p = ray.at(t);
   if (p.x * p.x + p.z * p.z > r * r) return false;
   t_best = t;
+  if constexpr (!Full) return true;
   return accept(ray, t, Vec3f(0, ny, 0), Vec2f(0.5f * p.x / r + 0.5f, 0.5f * p.z / r + 0.5f), hit);
 }
 
@@ -113,7 +115,13 @@ float cross2(Vec2f a, Vec2f b) { return a.x * b.y - a.y * b.x; }
 
 }  // namespace
 
-bool intersect(const Sphere& s, const Ray& ray, Hit& hit) {
+// The kernels, each templated on Full: true fills the whole hit (t, point, normal, uv); false (any-hit, for shadow
+// rays) returns at the first hit in range with only hit.t set, skipping the normal, the point and the trigonometry of
+// the uv.
+namespace {
+
+template <bool Full>
+bool kernel(const Sphere& s, const Ray& ray, Hit& hit) {
   // The notes' quadratic |o + t d - c|^2 = r^2 in the form of Haines et al. ("Precision improvements for ray/sphere
   // intersection", Ray Tracing Gems ch. 7): the discriminant from the distance of the center to the line, roots by
   // the cancellation-free q.
@@ -129,13 +137,22 @@ bool intersect(const Sphere& s, const Ray& ray, Hit& hit) {
   if (t0 > t1) std::swap(t0, t1);
   const float t = in_range(ray, t0) ? t0 : t1;
   if (!in_range(ray, t)) return false;
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   const Vec3f n = glm::normalize(ray.at(t) - s.center);
   return accept(ray, t, n, spherical_uv(n), hit);
 }
 
-bool intersect(const Plane& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Plane& s, const Ray& ray, Hit& hit) {
   const float t = plane_t(s.point, s.normal, ray);
   if (!in_range(ray, t)) return false;  // false for NaN too
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   const Vec3f n = glm::normalize(s.normal);
   Vec3f t1, t2;
   tangent_frame(n, t1, t2);
@@ -143,7 +160,8 @@ bool intersect(const Plane& s, const Ray& ray, Hit& hit) {
   return accept(ray, t, n, Vec2f(glm::dot(d, t1), glm::dot(d, t2)), hit);
 }
 
-bool intersect(const Triangle& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Triangle& s, const Ray& ray, Hit& hit) {
   // Moller-Trumbore: solve o + t d = a + b1 (b - a) + b2 (c - a) by Cramer's rule.
   const Vec3f e1 = s.b - s.a, e2 = s.c - s.a;
   const Vec3f p = glm::cross(ray.dir, e2);
@@ -158,8 +176,14 @@ bool intersect(const Triangle& s, const Ray& ray, Hit& hit) {
   if (b2 < 0 || b1 + b2 > 1) return false;
   const float t = glm::dot(e2, q) * inv;
   if (!in_range(ray, t)) return false;
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   return accept(ray, t, glm::normalize(glm::cross(e1, e2)), Vec2f(b1, b2), hit);
 }
+
+}  // namespace
 
 bool point_in_polygon(std::span<const Vec2f> poly, Vec2f p, PointInPolygon test) {
   const size_t n = poly.size();
@@ -211,7 +235,10 @@ bool point_in_polygon(std::span<const Vec2f> poly, Vec2f p, PointInPolygon test)
   return false;
 }
 
-bool intersect(const Polygon& s, const Ray& ray, Hit& hit) {
+namespace {
+
+template <bool Full>
+bool kernel(const Polygon& s, const Ray& ray, Hit& hit) {
   // The notes: intersect the polygon's plane, project the point and the polygon to 2D by dropping the coordinate in
   // which the normal is largest, then test the point in the polygon.
   if (s.vertices.size() < 3) return false;
@@ -233,10 +260,15 @@ bool intersect(const Polygon& s, const Ray& ray, Hit& hit) {
   for (size_t i = 0; i < s.vertices.size(); ++i) proj[i] = Vec2f(s.vertices[i][a0], s.vertices[i][a1]);
   const Vec2f q(p[a0], p[a1]);
   if (!point_in_polygon({proj, s.vertices.size()}, q, s.test)) return false;
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   return accept(ray, t, glm::normalize(n), q, hit);
 }
 
-bool intersect(const Box& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Box& s, const Ray& ray, Hit& hit) {
   const Vec3f inv(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z);
   float t0, t1;
   const AABB box{s.lo, s.hi};
@@ -250,6 +282,10 @@ bool intersect(const Box& s, const Ray& ray, Hit& hit) {
   }
   const float t = tn >= ray.tmin ? tn : tf;
   if (!in_range(ray, t)) return false;
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   // The face: the axis along which the point is relatively farthest from the center.
   const Vec3f p = ray.at(t), c = 0.5f * (s.lo + s.hi), h = 0.5f * (s.hi - s.lo);
   const Vec3f rel = (p - c) / h;
@@ -261,7 +297,8 @@ bool intersect(const Box& s, const Ray& ray, Hit& hit) {
   return accept(ray, t, n, Vec2f(0.5f * rel[u] + 0.5f, 0.5f * rel[v] + 0.5f), hit);
 }
 
-bool intersect(const Cylinder& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Cylinder& s, const Ray& ray, Hit& hit) {
   const Vec3f o = ray.origin, d = ray.dir;
   float t_best = std::numeric_limits<float>::infinity();
   double t0, t1;
@@ -273,6 +310,10 @@ bool intersect(const Cylinder& s, const Ray& ray, Hit& hit) {
       if (!in_range(ray, t)) continue;
       const Vec3f p = ray.at(t);
       if (p.y < s.y0 || p.y > s.y1) continue;
+      if constexpr (!Full) {
+        hit.t = t;
+        return true;
+      }
       const Vec3f n = glm::normalize(Vec3f(p.x, 0, p.z));
       t_best = t;
       accept(ray, t, n, Vec2f(azimuth_u(p.x, p.z), (p.y - s.y0) / (s.y1 - s.y0)), hit);
@@ -280,13 +321,20 @@ bool intersect(const Cylinder& s, const Ray& ray, Hit& hit) {
     }
   }
   if (s.capped) {
-    cap_hit(s.y0, s.radius, -1.0f, ray, t_best, hit);
-    cap_hit(s.y1, s.radius, 1.0f, ray, t_best, hit);
+    if (cap_hit<Full>(s.y0, s.radius, -1.0f, ray, t_best, hit) && !Full) {
+      hit.t = t_best;
+      return true;
+    }
+    if (cap_hit<Full>(s.y1, s.radius, 1.0f, ray, t_best, hit) && !Full) {
+      hit.t = t_best;
+      return true;
+    }
   }
   return t_best < std::numeric_limits<float>::infinity();
 }
 
-bool intersect(const Cone& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Cone& s, const Ray& ray, Hit& hit) {
   // The notes' cone (x - xb)^2 + (z - zb)^2 = (k (y - yb))^2 with the ray substituted, in coordinates about the apex.
   const Vec3f o = ray.origin - s.apex, d = ray.dir;
   const double k2 = double(s.radius) * s.radius / (double(s.height) * s.height);
@@ -302,6 +350,10 @@ bool intersect(const Cone& s, const Ray& ray, Hit& hit) {
       const Vec3f p = ray.at(t);
       const float y = p.y - s.apex.y;
       if (y < 0 || y > s.height) continue;  // the other nappe, or beyond the base
+      if constexpr (!Full) {
+        hit.t = t;
+        return true;
+      }
       // The notes' normal: D from the axis to P, T1 = D rotated by pi/2 about y, T2 = B - P along the surface,
       // N = T1 x T2 normalized (pointing out of the cone; at the apex itself, straight down).
       const Vec3f dvec(p.x - s.apex.x, 0, p.z - s.apex.z);
@@ -315,13 +367,17 @@ bool intersect(const Cone& s, const Ray& ray, Hit& hit) {
     }
   }
   if (s.capped && ray.dir.y != 0) {
-    // The base cap: the plane y = yb + h, a hit when its distance to the base center is below the radius; N = (0, 1, 0).
+    // The base cap: the plane y = yb + h, a hit when its distance to the base center is below the radius; N = +y.
     const float t = (s.apex.y + s.height - ray.origin.y) / ray.dir.y;
     if (in_range(ray, t) && t < t_best) {
       const Vec3f p = ray.at(t);
       const float dx = p.x - s.apex.x, dz = p.z - s.apex.z;
       if (dx * dx + dz * dz <= s.radius * s.radius) {
         t_best = t;
+        if constexpr (!Full) {
+          hit.t = t;
+          return true;
+        }
         accept(ray, t, Vec3f(0, 1, 0), Vec2f(0.5f * dx / s.radius + 0.5f, 0.5f * dz / s.radius + 0.5f), hit);
       }
     }
@@ -329,12 +385,17 @@ bool intersect(const Cone& s, const Ray& ray, Hit& hit) {
   return t_best < std::numeric_limits<float>::infinity();
 }
 
-bool intersect(const Disk& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Disk& s, const Ray& ray, Hit& hit) {
   const float t = plane_t(s.center, s.normal, ray);
   if (!in_range(ray, t)) return false;
   const Vec3f d = ray.at(t) - s.center;
   const float r2 = glm::dot(d, d);
   if (r2 > s.radius * s.radius) return false;
+  if constexpr (!Full) {
+    hit.t = t;
+    return true;
+  }
   const Vec3f n = glm::normalize(s.normal);
   Vec3f t1, t2;
   tangent_frame(n, t1, t2);
@@ -343,16 +404,33 @@ bool intersect(const Disk& s, const Ray& ray, Hit& hit) {
   return accept(ray, t, n, Vec2f(std::sqrt(r2) / s.radius, phi / kTwoPi), hit);
 }
 
-bool intersect(const Ellipsoid& s, const Ray& ray, Hit& hit) {
+template <bool Full>
+bool kernel(const Ellipsoid& s, const Ray& ray, Hit& hit) {
   // Scale space so the ellipsoid becomes the unit sphere; t is unchanged because the direction is scaled too.
   Ray unit = ray;
   unit.origin = (ray.origin - s.center) / s.radii;
   unit.dir = ray.dir / s.radii;
   Hit h;
-  if (!intersect(Sphere{Vec3f(0.0f), 1.0f}, unit, h)) return false;
+  if (!kernel<Full>(Sphere{Vec3f(0.0f), 1.0f}, unit, h)) return false;
+  if constexpr (!Full) {
+    hit.t = h.t;
+    return true;
+  }
   // The gradient of sum(((P - c) / r)^2) is the normal: the unit sphere's normal divided by the radii.
   return accept(ray, h.t, glm::normalize(h.normal / s.radii), h.uv, hit);
 }
+
+}  // namespace
+
+bool intersect(const Sphere& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Plane& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Triangle& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Polygon& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Box& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Cylinder& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Cone& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Disk& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
+bool intersect(const Ellipsoid& s, const Ray& ray, Hit& hit) { return kernel<true>(s, ray, hit); }
 
 AABB bounds(const Sphere& s) { return {s.center - Vec3f(s.radius), s.center + Vec3f(s.radius)}; }
 
@@ -386,7 +464,12 @@ AABB bounds(const Disk& s) {
 AABB bounds(const Ellipsoid& s) { return {s.center - s.radii, s.center + s.radii}; }
 
 bool intersect(const Shape& shape, const Ray& ray, Hit& hit) {
-  return std::visit([&](const auto& s) { return intersect(s, ray, hit); }, shape);
+  return std::visit([&](const auto& s) { return kernel<true>(s, ray, hit); }, shape);
+}
+
+bool occludes(const Shape& shape, const Ray& ray) {
+  Hit hit;
+  return std::visit([&](const auto& s) { return kernel<false>(s, ray, hit); }, shape);
 }
 
 AABB bounds(const Shape& shape) {
@@ -395,8 +478,8 @@ AABB bounds(const Shape& shape) {
 
 Instance::Instance(Shape shape, const Mat4& to_world) : shape_(std::move(shape)), to_world_(to_world) {
   const double det = glm::determinant(Mat3(to_world));
-  if (!(std::abs(det) > 1e-12)) throw InvalidInput("Instance: the transform is singular (determinant " +
-                                                   std::to_string(det) + ")");
+  if (!(std::abs(det) > 1e-12))
+    throw InvalidInput("Instance: the transform is singular (determinant " + std::to_string(det) + ")");
   const Mat4 inv = glm::inverse(to_world);
   to_object_ = Mat4f(inv);
   normal_to_world_ = Mat3f(glm::transpose(Mat3(inv)));
@@ -412,6 +495,13 @@ bool Instance::intersect(const Ray& ray, Hit& hit) const {
   hit.point = ray.at(h.t);
   hit.normal = glm::normalize(normal_to_world_ * h.normal);
   return true;
+}
+
+bool Instance::occludes(const Ray& ray) const {
+  Ray local = ray;
+  local.origin = Vec3f(to_object_ * Vec4f(ray.origin, 1.0f));
+  local.dir = Mat3f(to_object_) * ray.dir;
+  return tessera::occludes(shape_, local);
 }
 
 AABB Instance::bounds() const {

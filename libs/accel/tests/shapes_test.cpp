@@ -451,5 +451,44 @@ TEST(Shapes, BoundsContainTheShapes) {
   EXPECT_FALSE(std::isfinite(bounds(Shape(Plane{})).lo.x));
 }
 
+/// The any-hit test (shadow rays) answers exactly whether intersect finds a hit in [tmin, tmax], for every shape and
+/// an instance, with random intervals and origins inside and outside (intersect itself is checked above against the
+/// implicit functions).
+TEST(Shapes, OccludesAgreesWithIntersect) {
+  const std::vector<Shape> shapes = {
+      Sphere{Vec3f(0.2f, 0, 0), 1.0f},
+      Plane{Vec3f(0, 0.3f, 0), Vec3f(0.2f, 1, 0.1f)},
+      Triangle{Vec3f(-1, -1, 0), Vec3f(1, -1, 0.2f), Vec3f(0, 1, -0.1f)},
+      Polygon{{Vec3f(-1, 0, -1), Vec3f(1, 0, -1), Vec3f(0.1f, 0, 0), Vec3f(1, 0, 1), Vec3f(-1, 0, 1)}},
+      Box{Vec3f(-1, -0.5f, -0.7f), Vec3f(0.8f, 0.9f, 1)},
+      Cylinder{0.8f, -1, 1, true},
+      Cylinder{0.8f, -1, 1, false},
+      Cone{Vec3f(0, -1, 0), 0.9f, 2, true},
+      Cone{Vec3f(0, -1, 0), 0.9f, 2, false},
+      Disk{Vec3f(0.1f, 0, 0), Vec3f(0.3f, 1, 0.2f), 1},
+      Ellipsoid{Vec3f(0), Vec3f(1, 0.5f, 0.8f)},
+  };
+  const Instance instance(Cone{Vec3f(0, -1, 0), 0.9f, 2, true},
+                          glm::rotate(glm::scale(Mat4(1), Vec3(1.5, 0.7, 1)), 0.6, Vec3(1, 1, 0)));
+  Rng rng(77);
+  for (size_t k = 0; k <= shapes.size(); ++k) {
+    int hits = 0;
+    for (int i = 0; i < 20000; ++i) {
+      Ray ray;
+      ray.origin = (i % 4 == 0 ? 0.5f : 3.0f) * random_unit(rng);
+      ray.dir = random_unit(rng) * (0.5f + rng.uniform());
+      ray.tmin = i % 3 == 0 ? 0.0f : 2.0f * rng.uniform();
+      ray.tmax = i % 5 == 0 ? std::numeric_limits<float>::infinity() : ray.tmin + 4.0f * rng.uniform();
+      Hit hit;
+      const bool found = k < shapes.size() ? intersect(shapes[k], ray, hit) : instance.intersect(ray, hit);
+      const bool any = k < shapes.size() ? occludes(shapes[k], ray) : instance.occludes(ray);
+      ASSERT_EQ(any, found) << "shape " << k << " ray " << i;
+      hits += found;
+    }
+    EXPECT_GT(hits, 500) << "shape " << k;  // both answers are exercised
+    EXPECT_LT(hits, 19000) << "shape " << k;
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -31,6 +31,27 @@ Mat4f motion_delta(const Motion& m, const Mat4f& start, const Mat4f& start_inver
   return delta;
 }
 
+/// The ray carried into a moving object's time-0 placement by the inverse of delta (direction unnormalized, so t is
+/// unchanged).
+Ray untransformed(const Ray& ray, const Mat4f& delta) {
+  const Mat4f inv = glm::inverse(delta);
+  Ray r = ray;
+  r.origin = Vec3f(inv * Vec4f(ray.origin, 1.0f));
+  r.dir = Vec3f(inv * Vec4f(ray.dir, 0.0f));
+  return r;
+}
+
+/// Whether the ray hits a World object (its geometry at the ray's time) in [tmin, tmax]: the shapes' and meshes'
+/// any-hit tests, which stop at the first hit and compute no normal or uv (shadow rays).
+template <class Object>
+bool occludes_object(const Object& o, const Ray& ray) {
+  const Ray r =
+      o.motion.moving() ? untransformed(ray, motion_delta(o.motion, o.start, o.start_inverse, ray.time)) : ray;
+  if (const auto* shape = std::get_if<Shape>(&o.geometry)) return occludes(*shape, r);
+  if (const auto* inst = std::get_if<Instance>(&o.geometry)) return inst->occludes(r);
+  return (*std::get_if<2>(&o.geometry))->accel.occluded(r);
+}
+
 }  // namespace
 
 int World::add_shape(const Shape& shape, const Mat4& to_world, int material, const Motion& motion) {
@@ -106,11 +127,9 @@ bool World::intersect_object(const Object& o, Ray& ray, Hit& hit) const {
   Ray r = ray;
   Mat4f delta(1.0f);
   const bool moving = o.motion.moving();
-  if (moving) {  // carry the ray into the object's time-0 placement (direction unnormalized, so t is unchanged)
+  if (moving) {
     delta = motion_delta(o.motion, o.start, o.start_inverse, ray.time);
-    const Mat4f inv = glm::inverse(delta);
-    r.origin = Vec3f(inv * Vec4f(ray.origin, 1.0f));
-    r.dir = Vec3f(inv * Vec4f(ray.dir, 0.0f));
+    r = untransformed(ray, delta);
   }
   bool found;
   if (const auto* shape = std::get_if<Shape>(&o.geometry)) {
@@ -164,16 +183,11 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
 
 bool World::occluded(const Ray& ray) const {
   TESSERA_CHECK(bvh_ != nullptr);
-  Hit hit;
-  for (int i : planes_) {
-    Ray r = ray;
-    if (objects_[size_t(i)].casts_shadows && intersect_object(objects_[size_t(i)], r, hit)) return true;
-  }
-  return bvh_->occluded(ray, [&](int prim, Ray& r) {
+  for (int i : planes_)
+    if (objects_[size_t(i)].casts_shadows && occludes_object(objects_[size_t(i)], ray)) return true;
+  return bvh_->occluded(ray, [&](int prim, const Ray& r) {
     const Object& o = objects_[size_t(bvh_objects_[size_t(prim)])];
-    if (!o.casts_shadows) return false;
-    Ray copy = r;
-    return intersect_object(o, copy, hit);
+    return o.casts_shadows && occludes_object(o, r);
   });
 }
 

@@ -23,9 +23,9 @@ struct BvhSettings {
   enum class Build { binned_sah, bottom_up } build = Build::binned_sah;
 };
 
-/// A flattened node (32 bytes). Interior (count 0): the first child follows the node, the second is at `first`;
+/// A flattened node (32 bytes, aligned so that no node straddles two cache lines). Interior (count 0): the first child follows the node, the second is at `first`;
 /// `axis` is the axis along which the first child lies before the second. Leaf: prim_indices()[first, first + count).
-struct BvhNode {
+struct alignas(32) BvhNode {
   AABB box;
   int32_t first;
   uint16_t count;
@@ -132,11 +132,13 @@ class Bvh {
         } else {
           // Near child first: the first child lies before the second along `axis`, so a ray going down that axis
           // visits the second first.
+          // The far child is fetched into the cache while the near one is traversed (incoherent rays wait on memory).
           if (test.neg[n.axis]) {
             stack[sp++] = node + 1;
             node = n.first;
           } else {
             stack[sp++] = n.first;
+            __builtin_prefetch(&nodes_[size_t(n.first)]);
             node = node + 1;
           }
           continue;

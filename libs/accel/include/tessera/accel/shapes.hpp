@@ -122,6 +122,9 @@ using Shape = std::variant<Sphere, Plane, Triangle, Polygon, Box, Cylinder, Cone
 bool intersect(const Shape& shape, const Ray& ray, Hit& hit);
 /// The shape's bounding box (infinite for a Plane).
 AABB bounds(const Shape& shape);
+/// Whether the ray hits the shape with t in [ray.tmin, ray.tmax] (shadow rays): intersect's test, returning at the
+/// first hit found and computing no point, normal or uv.
+bool occludes(const Shape& shape, const Ray& ray);
 
 /// A shape placed in the world by an affine transform (instancing). The ray is carried into object space (its
 /// direction is not renormalized, so t is the same in both spaces); hit points go back by to_world and normals by its
@@ -131,6 +134,8 @@ class Instance {
   explicit Instance(Shape shape, const Mat4& to_world = Mat4(1));
   /// Nearest hit in world space; t in [ray.tmin, ray.tmax].
   bool intersect(const Ray& ray, Hit& hit) const;
+  /// Whether the ray hits the shape with t in [ray.tmin, ray.tmax] (shadow rays; see tessera::occludes).
+  bool occludes(const Ray& ray) const;
   /// The world box: the 8 corners of the object box transformed (infinite for a plane).
   AABB bounds() const;
   const Shape& shape() const { return shape_; }
