@@ -23,12 +23,15 @@ inline uint32_t depth_to_unorm24(double z) {
   return uint32_t(z * double(kDepthMax) + 0.5);
 }
 
-/// A linear float color in [0, 1] to 8-bit RGBA (clamped, NaN to 0, rounded to nearest, alpha 255).
+/// A linear float color in [0, 1] to 8-bit RGBA (clamped, NaN to 0, alpha 255), rounded to nearest with ties to even
+/// as Mesa does (0.3 * 255 = 76.5 gives 76): adding and subtracting 1.5 * 2^23 leaves the float rounded to an integer
+/// in the default rounding mode, branch-free and vectorizable.
 inline glm::u8vec4 to_color8(const Vec3f& c) {
   const auto q = [](float v) {
     v = v > 0.0f ? v : 0.0f;  // NaN -> 0
     v = v < 1.0f ? v : 1.0f;
-    return uint8_t(v * 255.0f + 0.5f);
+    constexpr float kRound = 12582912.0f;  // 1.5 * 2^23
+    return uint8_t((v * 255.0f + kRound) - kRound);
   };
   return {q(c.x), q(c.y), q(c.z), 255};
 }
