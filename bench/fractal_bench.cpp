@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/fractal/escape_time.hpp"
 
@@ -160,11 +161,7 @@ int main(int argc, char** argv) {
   SummaryReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
 
-  double load = 0;
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &load) != 1) load = 0;
-    std::fclose(f);
-  }
+  const double load = tessera::bench::load_average();
   std::printf(
       "\nper core (CPU time): peak = FMA chains, share = 8 flops x iter/s / peak; scaling on wall time "
       "(load average %.1f)\n",

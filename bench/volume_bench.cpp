@@ -10,7 +10,6 @@
 //
 // TESSERA_VOLUME_BENCH_SIZES=256 (comma-separated) limits the sizes; the 512^3 peers run their slow members once.
 #include <benchmark/benchmark.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -20,12 +19,12 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "bench_util.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/procedural.hpp"
@@ -34,6 +33,8 @@
 namespace {
 
 using namespace tessera;
+using bench::load_average;
+using bench::process_cpu_seconds;
 
 // Where the peers' script lies: next to this file in the source tree (CMake passes absolute source paths).
 const std::filesystem::path kPeersScript = std::filesystem::path(__FILE__).parent_path() / "peers" / "volume_peers.py";
@@ -51,21 +52,6 @@ const FieldSpec kFields[] = {
     {"gyroid", 0.0f, [](int n) { return make_gyroid(n, 8); }},
     {"noise", 0.0f, [](int n) { return make_noise(n, 1); }},
 };
-
-double load_average() {
-  double one = 0;
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &one) != 1) one = 0;
-    std::fclose(f);
-  }
-  return one;
-}
-
-double process_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 // One field at a time is kept (a 512^3 field is 512 MiB), with its raw file for the peers.
 struct Field {
@@ -137,15 +123,12 @@ void tessera_mc(benchmark::State& state, const FieldSpec& spec, int n, bool topo
 // Runs the peers' script and parses its key=value line. Returns false (with `error`) when it did not run.
 bool run_peer_script(const std::string& args, std::map<std::string, std::string>& values, std::string& error) {
   const std::string command = fmt::format("{} {} {} 2>&1", kPython, kPeersScript.string(), args);
-  std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(command.c_str(), "r"), pclose);
-  if (!pipe) {
+  std::string output;
+  const int status = bench::run_command(command, output);
+  if (status == -1) {
     error = "popen failed";
     return false;
   }
-  std::string output;
-  char buffer[4096];
-  while (size_t got = std::fread(buffer, 1, sizeof buffer, pipe.get())) output.append(buffer, got);
-  const int status = pclose(pipe.release());
   std::istringstream lines(output);
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("peer=", 0) == 0) {

@@ -6,27 +6,13 @@
 set -euo pipefail
 tessera="$1"
 scratch="$2"
+data="$(cd "$(dirname "$0")/../data" && pwd)"
 rm -rf "$scratch" && mkdir -p "$scratch"
 cd "$scratch"
 py=/usr/bin/python3
 
 # The cube [-1,1]^3 as 6 quads, counterclockwise seen from outside.
-cat > cube.obj <<'OBJ'
-v -1 -1 -1
-v 1 -1 -1
-v 1 1 -1
-v -1 1 -1
-v -1 -1 1
-v 1 -1 1
-v 1 1 1
-v -1 1 1
-f 1 4 3 2
-f 5 6 7 8
-f 1 2 6 5
-f 2 3 7 6
-f 3 4 8 7
-f 4 1 5 8
-OBJ
+cp "$data/cube.obj" cube.obj
 # A 2 x 2 square in the plane z = 0, facing +z.
 cat > quad.obj <<'OBJ'
 v -1 -1 0

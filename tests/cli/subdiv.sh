@@ -18,23 +18,7 @@ expect_faces() {  # FILE COUNT
   [ "$n" = "$2" ] || fail "$1: expected $2 faces, got $n"
 }
 
-cat >"$dir/cube.obj" <<'EOF'
-# the box [-1,1]^3, faces counterclockwise seen from outside
-v -1 -1 -1
-v 1 -1 -1
-v 1 1 -1
-v -1 1 -1
-v -1 -1 1
-v 1 -1 1
-v 1 1 1
-v -1 1 1
-f 1 4 3 2
-f 5 6 7 8
-f 1 2 6 5
-f 3 4 8 7
-f 1 5 8 4
-f 2 3 7 6
-EOF
+cp "$(dirname "$0")/../data/cube.obj" "$dir/cube.obj"
 # The same cube as 12 triangles, and open (no top face) for boundaries.
 awk '/^v /{print} /^f /{print "f "$2" "$3" "$4; print "f "$2" "$4" "$5}' "$dir/cube.obj" >"$dir/cube_tris.obj"
 grep -v '^f 5 6 7 8$' "$dir/cube.obj" >"$dir/open_box.obj"
