@@ -9,6 +9,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <memory>
@@ -49,12 +50,23 @@ struct Box4 {
   AABB aabb() const { return AABB{Vec3f(lo[0], lo[1], lo[2]), Vec3f(hi[0], hi[1], hi[2])}; }
 };
 
-/// A primitive during the build: its box (as registers) and its index.
+/// A primitive during the build in 32 bytes (half a cache line): its box, with its index in the unused fourth lane of
+/// both corners (Embree's trick). The index is stored with its exponent field raised by 64, so that the lane holds a
+/// float in [2^-63, 2^127) whose sums and differences are never denormal (a denormal makes SSE arithmetic on the whole
+/// register slow); the box arithmetic never reads the lane.
 struct alignas(32) PrimRef {
   Box4 box;
-  int index;
+  PrimRef() = default;
+  PrimRef(const AABB& b, int index) {
+    const float tag = std::bit_cast<float>(uint32_t(index) + kIndexBias);
+    box = Box4{v4f{b.lo.x, b.lo.y, b.lo.z, tag}, v4f{b.hi.x, b.hi.y, b.hi.z, tag}};
+  }
+  int index() const { return int(std::bit_cast<uint32_t>(box.lo[3]) - kIndexBias); }
   v4f centroid2() const { return box.lo + box.hi; }  // twice the centroid: enough for binning
+  static constexpr uint32_t kIndexBias = 64u << 23;
+  static constexpr int kMaxIndex = (190 << 23) - 1;  // keeps the exponent field at most 253 (sums stay finite)
 };
+static_assert(sizeof(PrimRef) == 32);
 
 /// Box and centroid bounds of a range of references.
 struct RangeBounds {
@@ -154,7 +166,7 @@ class SahBuilder {
       mid = begin + n / 2;
       std::nth_element(refs + begin, refs + mid, refs + end, [axis](const PrimRef& a, const PrimRef& b) {
         const float ca = a.centroid2()[axis], cb = b.centroid2()[axis];
-        return ca < cb || (ca == cb && a.index < b.index);
+        return ca < cb || (ca == cb && a.index() < b.index());
       });
       left = range_bounds(refs + begin, mid - begin);
       right = range_bounds(refs + mid, end - mid);
@@ -444,6 +456,9 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
   if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
     throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
   std::vector<PrimRef> refs;
+  if (prim_bounds.size() > size_t(PrimRef::kMaxIndex))
+    throw InvalidInput("Bvh: " + std::to_string(prim_bounds.size()) + " primitives, more than the " +
+                       std::to_string(PrimRef::kMaxIndex) + " supported");
   refs.reserve(prim_bounds.size());
   for (size_t i = 0; i < prim_bounds.size(); ++i) {
     const AABB& b = prim_bounds[i];
@@ -451,7 +466,7 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
     if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) || !std::isfinite(b.hi.x) ||
         !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z))
       throw InvalidInput("Bvh: primitive " + std::to_string(i) + " has a non-finite box (planes cannot go in a BVH)");
-    refs.push_back(PrimRef{Box4{v4f{b.lo.x, b.lo.y, b.lo.z, 0}, v4f{b.hi.x, b.hi.y, b.hi.z, 0}}, int(i)});
+    refs.emplace_back(b, int(i));
   }
   if (refs.empty()) return;
   if (settings.build == BvhSettings::Build::bottom_up) {
@@ -473,7 +488,7 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
   }
   TESSERA_CHECK_LE(depth_, kMaxDepth);
   prim_indices_.resize(refs.size());
-  for (size_t i = 0; i < refs.size(); ++i) prim_indices_[i] = refs[i].index;
+  for (size_t i = 0; i < refs.size(); ++i) prim_indices_[i] = refs[i].index();
 }
 
 float Bvh::sah_cost() const {
