@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstring>
 
 #include "tessera/math/transform.hpp"
 
@@ -12,6 +13,28 @@ namespace {
 // Immediate-mode batches are drawn once they hold this many vertices (or on any state change): one setup pass of
 // independent triangles, small enough to stay in cache.
 constexpr size_t kBatchVertices = 3 * size_t(detail::kChunkTriangles) * detail::kPassChunks;
+
+// Slots of the direct-mapped cache of recent immediate-mode vertices (a power of two): enough to hold two rows of
+// a finely tessellated grid, small enough to stay in L1/L2.
+constexpr int kVertexCacheBits = 13;
+
+template <class T>
+bool same_bits(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// Fibonacci hashing of the words of the attributes; the top bits index the cache.
+template <class... T>
+uint32_t attribute_hash(const T&... values) {
+  uint32_t h = 0;
+  const auto mix = [&](const auto& value) {
+    uint32_t words[sizeof(value) / 4];
+    std::memcpy(words, &value, sizeof words);
+    for (const uint32_t w : words) h = (h ^ w) * 0x9E3779B1u;
+  };
+  (mix(values), ...);
+  return h >> (32 - kVertexCacheBits);
+}
 
 template <class T>
 std::vector<T> to_float_array(const auto& values, size_t expected, const char* what) {
@@ -74,6 +97,9 @@ void Context::initialize(int width, int height) {
   light_on_[0] = true;
   stats_ = DrawStats();
   in_shape_ = false;
+  shape_vertices_.clear();
+  batch_references_ = 0;
+  vertex_cache_.assign(size_t(1) << kVertexCacheBits, UINT32_MAX);
   batch_ = VertexArrays();
   batch_lines_.clear();
   batch_points_.clear();
@@ -90,6 +116,7 @@ void Context::flush() {
 }
 
 void Context::draw_batch() {
+  batch_references_ = 0;  // the cache's entries become stale: batch_vertex checks them against the batch
   if (batch_.positions.empty()) return;
   const VertexAttributes attributes = batch_.attributes();
   const auto count = uint32_t(batch_.positions.size());
@@ -228,10 +255,10 @@ void Context::begin(Primitive kind) {
   const bool pending_other = (!batch_.indices.empty() && primitive_class(kind) != PrimitiveClass::triangles) ||
                              (!batch_lines_.empty() && primitive_class(kind) != PrimitiveClass::lines) ||
                              (!batch_points_.empty() && primitive_class(kind) != PrimitiveClass::points);
-  if (pending_other || batch_.positions.size() >= kBatchVertices) flush();
+  if (pending_other || batch_references_ >= kBatchVertices) flush();
   in_shape_ = true;
   shape_kind_ = kind;
-  shape_first_ = uint32_t(batch_.positions.size());
+  shape_vertices_.clear();
 }
 
 // Vertices per primitive of the kinds whose long shapes can be cut between primitives, else 0.
@@ -253,16 +280,29 @@ static uint32_t independent_primitive_size(Primitive kind) {
 void Context::vertex(double x, double y, double z) {
   if (!in_shape_) throw InvalidInput("vertex outside begin/end");
   const uint32_t cut = independent_primitive_size(shape_kind_);
-  if (cut && batch_.positions.size() >= kBatchVertices && (batch_.positions.size() - shape_first_) % cut == 0) {
+  if (cut && batch_references_ >= kBatchVertices && shape_vertices_.size() % cut == 0) {
     // A long shape of independent primitives: draw what is complete, so the batch stays cache-sized.
     assemble_shape();
     draw_batch();
-    shape_first_ = 0;
   }
-  batch_.positions.emplace_back(x, y, z);
+  shape_vertices_.push_back(batch_vertex(Vec3f(x, y, z)));
+  ++batch_references_;
+}
+
+// The batch index of a vertex with these attributes: a recent equal one (bit for bit, so the vertex shader, a pure
+// function of them, gives the same output) or a new one.
+uint32_t Context::batch_vertex(const Vec3f& position) {
+  uint32_t& slot = vertex_cache_[attribute_hash(position, current_normal_, current_color_, current_uv_)];
+  if (slot < batch_.positions.size() && same_bits(batch_.positions[slot], position) &&
+      same_bits(batch_.normals[slot], current_normal_) && same_bits(batch_.colors[slot], current_color_) &&
+      same_bits(batch_.uvs[slot], current_uv_))
+    return slot;
+  slot = uint32_t(batch_.positions.size());
+  batch_.positions.push_back(position);
   batch_.normals.push_back(current_normal_);
   batch_.colors.push_back(current_color_);
   batch_.uvs.push_back(current_uv_);
+  return slot;
 }
 
 void Context::end() {
@@ -272,14 +312,21 @@ void Context::end() {
 }
 
 void Context::assemble_shape() {
-  const uint32_t f = shape_first_;
-  const uint32_t n = uint32_t(batch_.positions.size()) - f;
+  const std::vector<uint32_t>& v = shape_vertices_;
+  const auto n = uint32_t(v.size());
   auto& tris = batch_.indices;
-  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { tris.insert(tris.end(), {f + a, f + b, f + c}); };
-  auto line = [&](uint32_t a, uint32_t b) { batch_lines_.insert(batch_lines_.end(), {f + a, f + b}); };
+  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
+    tris.push_back(v[a]);
+    tris.push_back(v[b]);
+    tris.push_back(v[c]);
+  };
+  auto line = [&](uint32_t a, uint32_t b) {
+    batch_lines_.push_back(v[a]);
+    batch_lines_.push_back(v[b]);
+  };
   switch (shape_kind_) {
     case Primitive::points:
-      for (uint32_t i = 0; i < n; ++i) batch_points_.push_back(f + i);
+      batch_points_.insert(batch_points_.end(), v.begin(), v.end());
       break;
     case Primitive::lines:
       for (uint32_t i = 0; i + 1 < n; i += 2) line(i, i + 1);
@@ -308,6 +355,7 @@ void Context::assemble_shape() {
       for (uint32_t i = 1; i + 1 < n; ++i) tri(i, i + 1, 0);
       break;
   }
+  shape_vertices_.clear();
 }
 
 // ---- Batched ----

@@ -152,6 +152,7 @@ class Context {
   MatrixStack3& current_stack();
   void assemble_shape();
   void draw_batch();
+  uint32_t batch_vertex(const Vec3f& position);
 
   Framebuffer framebuffer_;
   MatrixStack3 projection_, model_view_;
@@ -169,9 +170,13 @@ class Context {
   // Immediate mode: the open shape's vertices, and the batch of assembled primitives waiting to be drawn.
   bool in_shape_ = false;
   Primitive shape_kind_ = Primitive::triangles;
-  uint32_t shape_first_ = 0;  // first vertex of the open shape in batch_
+  std::vector<uint32_t> shape_vertices_;  // the open shape's vertices: indices into batch_
+  size_t batch_references_ = 0;           // vertex() calls since the batch was last drawn
   VertexArrays batch_;
   std::vector<uint32_t> batch_lines_, batch_points_;
+  // Batch indices of recent vertices by hash of their attributes: a repeated vertex (a mesh sent as independent
+  // triangles) is stored and shaded once per batch.
+  std::vector<uint32_t> vertex_cache_;
 };
 
 }  // namespace tessera::raster3d
