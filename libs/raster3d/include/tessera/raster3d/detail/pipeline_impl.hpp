@@ -154,8 +154,8 @@ inline bool depth_passes(uint32_t d, uint32_t s) {
 /// One constant color over image-row pixels [lo, hi) with depth z(i) = z + zx i: depth test, depth and color
 /// writes, branch-free (the loop vectorizes; restrict lets the compiler keep the rows apart).
 template <DepthFunc F, bool WriteDepth>
-inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi, double z, double zx,
-                      uint32_t c32) {
+[[gnu::always_inline]] inline void fill_span_loop(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo,
+                                                  int hi, double z, double zx, uint32_t c32) {
   for (int i = lo; i < hi; ++i) {
     const uint32_t d = depth24(z + zx * i);
     const uint32_t stored = depth[i];
@@ -164,6 +164,25 @@ inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, 
     if constexpr (WriteDepth) depth[i] = pass ? d : stored;
     color[i] = pass ? c32 : old_color;
   }
+}
+
+/// The same loop compiled for AVX2: four doubles per instruction instead of SSE2's two. The same IEEE operations
+/// (no FMA: the target adds none), so the same results bit for bit.
+template <DepthFunc F, bool WriteDepth>
+[[gnu::target("avx2")]] void fill_span_avx2(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi,
+                                            double z, double zx, uint32_t c32) {
+  fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+}
+
+/// fill_span_loop, on AVX2 where the CPU has it.
+template <DepthFunc F, bool WriteDepth>
+inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi, double z, double zx,
+                      uint32_t c32) {
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  if (avx2)
+    fill_span_avx2<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+  else
+    fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
 }
 
 /// The depth test of image-row pixels [lo, hi) (early z): their depths into d[i - lo], the outcome into pass[i - lo].
