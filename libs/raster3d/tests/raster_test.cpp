@@ -451,3 +451,34 @@ TEST(Raster, FillSpanGivesTheSamePixelsInEveryInstructionSet) {
 
 }  // namespace
 }  // namespace tessera::raster3d
+
+namespace tessera::raster3d {
+namespace {
+
+TEST(Raster, CoversRectangleAgreesWithEveryPixelCenter) {
+  // The whole-rectangle shortcut of the span loops against testing each center of random rectangles against
+  // random edges (E = 256 (a i + b j) + c >= 0 inside), with both outcomes frequent.
+  Rng rng(5);
+  int covered = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    detail::TriangleRecord r{};
+    for (detail::Edge& e : r.edges) {
+      e.a = int32_t(rng.next_u32() % 512) - 256;
+      e.b = int32_t(rng.next_u32() % 512) - 256;
+      e.c = int64_t(rng.next_u32() % 40000000) - 2000000;
+    }
+    const int x0 = int(rng.next_u32() % 64), y0 = int(rng.next_u32() % 64);
+    const int x1 = x0 + 1 + int(rng.next_u32() % 64), y1 = y0 + 1 + int(rng.next_u32() % 64);
+    bool all = true;
+    for (int j = y0; j < y1; ++j)
+      for (int i = x0; i < x1; ++i)
+        for (const detail::Edge& e : r.edges) all = all && 256 * (int64_t(e.a) * i + int64_t(e.b) * j) + e.c >= 0;
+    EXPECT_EQ(detail::covers_rectangle(r, x0, x1, y0, y1), all) << trial;
+    covered += all;
+  }
+  EXPECT_GT(covered, 200);
+  EXPECT_LT(covered, 1800);
+}
+
+}  // namespace
+}  // namespace tessera::raster3d

@@ -270,6 +270,17 @@ inline void edge_span(const TriangleRecord& r, int j, int& lo, int& hi) {
   }
 }
 
+/// Whether the record's edges cover every pixel center of [x0, x1) x [y0, y1) (not empty): the edge functions are
+/// linear, so inside at the four corner centers means inside everywhere.
+inline bool covers_rectangle(const TriangleRecord& r, int x0, int x1, int y0, int y1) {
+  for (const Edge& e : r.edges) {
+    const int64_t ax = int64_t(e.a) * 256, by = int64_t(e.b) * 256;
+    const int64_t low_x = ax * (ax < 0 ? x1 - 1 : x0), low_y = by * (by < 0 ? y1 - 1 : y0);  // the smallest corner
+    if (low_x + low_y + e.c < 0) return false;
+  }
+  return true;
+}
+
 /// Rasterizes the records binned to `tile` of every chunk, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
@@ -314,9 +325,11 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         const glm::u8vec4 c8 = to_color8(c);
         uint32_t c32;
         std::memcpy(&c32, &c8, sizeof c32);
+        // Large triangles often cover the whole rectangle: no per-row edge divisions then.
+        const bool full = x1 - x0 > 8 && covers_rectangle(r, x0, x1, y0, y1);
         for (int j = y0; j < y1; ++j) {
           int lo = x0, hi = x1;
-          edge_span(r, j, lo, hi);
+          if (!full) edge_span(r, j, lo, hi);
           if (lo >= hi) continue;
           const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
           uint32_t* drow = depth.row(height - 1 - j);
