@@ -132,13 +132,11 @@ class Bvh {
         } else {
           // Near child first: the first child lies before the second along `axis`, so a ray going down that axis
           // visits the second first.
-          // The far child is fetched into the cache while the near one is traversed (incoherent rays wait on memory).
           if (test.neg[n.axis]) {
             stack[sp++] = node + 1;
             node = n.first;
           } else {
             stack[sp++] = n.first;
-            __builtin_prefetch(&nodes_[size_t(n.first)]);
             node = node + 1;
           }
           continue;
