@@ -6,7 +6,8 @@
 //   fill       z-tested flat fill at 1920x1080, 32 full-screen layers back to front (every fragment passes and
 //              writes); pixels/s, and as a share of the machine's memory bandwidth (12 bytes per pixel: depth read,
 //              depth write, color write)
-//   bandwidth  a STREAM-like copy and triad over 128 MiB arrays with oneTBB on all cores
+//   bandwidth  a STREAM-like copy and triad over 128 MiB arrays (3 of them: far beyond the caches) with oneTBB on
+//              1 and on 2 threads; the fill's share is taken against the same thread count
 // Each measurement is the best frame of a few (a frame = clear + draw + glFinish / return), in wall time and in
 // CPU time of all the process's threads (the steadier figure on a loaded machine). llvmpipe reads
 // LP_NUM_THREADS once per process, so every llvmpipe measurement runs in a child process (this program re-executed
@@ -242,7 +243,7 @@ struct Rates {
   double llvmpipe_cpu = 0, tessera_cpu = 0;  // the same per CPU second
 };
 std::map<std::string, Rates> g_rates;
-double g_bandwidth = 0;  // bytes/s, all cores
+std::map<int, double> g_bandwidth;  // bytes/s by thread count (the best of copy and triad)
 
 std::string key(Case c, int threads) { return fmt::format("{}/{}", case_name(c), threads); }
 
@@ -255,7 +256,8 @@ double rate_of(Case c, double seconds) {
 const Rates& record(benchmark::State& state, Case c, int threads, const Timing& timing, bool peer) {
   const double rate = rate_of(c, timing.wall);
   state.counters[c == Case::Fill ? "pixels_per_s" : "tris_per_s"] = rate;
-  if (c == Case::Fill && g_bandwidth > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth;
+  if (c == Case::Fill && g_bandwidth[threads] > 0)
+    state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
   state.counters["cpu_ms"] = 1e3 * timing.cpu;
   Rates& r = g_rates[key(c, threads)];
   double& best_wall = peer ? r.llvmpipe : r.tessera;
@@ -281,9 +283,10 @@ void BM_Llvmpipe(benchmark::State& state, Case c, int threads) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// Memory bandwidth: STREAM's copy (16 bytes per element) and triad (24 bytes), best of 5, all cores.
+// Memory bandwidth: STREAM's copy (16 bytes per element) and triad (24 bytes), best of 5, on `threads` threads.
 
-void BM_Bandwidth(benchmark::State& state, bool triad) {
+void BM_Bandwidth(benchmark::State& state, bool triad, int threads) {
+  const ThreadLimit limit(threads);
   constexpr int64_t kN = int64_t(1) << 24;  // 128 MiB per array, far beyond the caches
   constexpr int64_t kGrain = int64_t(1) << 16;
   std::unique_ptr<double[]> a(new double[kN]), b(new double[kN]), c(new double[kN]);
@@ -309,7 +312,7 @@ void BM_Bandwidth(benchmark::State& state, bool triad) {
   }
   benchmark::DoNotOptimize(a[kN / 2] + c[kN / 3]);
   state.counters["bytes_per_s"] = bytes / best;
-  g_bandwidth = std::max(g_bandwidth, bytes / best);
+  g_bandwidth[threads] = std::max(g_bandwidth[threads], bytes / best);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -393,11 +396,13 @@ int main(int argc, char** argv) {
   const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
   g_self = n > 0 ? std::string(self, size_t(n)) : std::string(argv[0]);
 
-  for (const bool triad : {false, true})
-    benchmark::RegisterBenchmark(triad ? "bandwidth/triad" : "bandwidth/copy", BM_Bandwidth, triad)
-        ->UseManualTime()
-        ->Iterations(1)
-        ->Unit(benchmark::kMillisecond);
+  for (int threads : {1, 2})
+    for (const bool triad : {false, true})
+      benchmark::RegisterBenchmark(fmt::format("bandwidth/{}/threads:{}", triad ? "triad" : "copy", threads).c_str(),
+                                   BM_Bandwidth, triad, threads)
+          ->UseManualTime()
+          ->Iterations(1)
+          ->Unit(benchmark::kMillisecond);
   for (Case c : {Case::Immediate, Case::Batched, Case::Fill})
     for (int threads : {1, 2})
       for (const bool peer : {true, false})  // the peer first, so that the Tessera run can report the ratio
@@ -411,16 +416,18 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   const double load_before = load_average();
   benchmark::RunSpecifiedBenchmarks();
-  std::printf("\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s)\n",
-              load_before, load_average(), g_bandwidth / 1e9);
+  std::printf("\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s "
+              "on 1 thread, %.1f GB/s on 2)\n",
+              load_before, load_average(), g_bandwidth[1] / 1e9, g_bandwidth[2] / 1e9);
   std::printf("%-14s %12s %12s %7s %14s %14s %7s %9s\n", "case/threads", "llvmpipe/s", "tessera/s", "ratio",
               "llvmpipe/cpu-s", "tessera/cpu-s", "ratio", "bw_share");
   for (const auto& [name, r] : g_rates) {
     const bool fill = name.rfind("fill", 0) == 0;
+    const double bandwidth = g_bandwidth[std::atoi(name.c_str() + name.find('/') + 1)];
     std::printf("%-14s %12.4g %12.4g %7.2f %14.4g %14.4g %7.2f %9s\n", name.c_str(), r.llvmpipe, r.tessera,
                 r.llvmpipe > 0 ? r.tessera / r.llvmpipe : 0.0, r.llvmpipe_cpu, r.tessera_cpu,
                 r.llvmpipe_cpu > 0 ? r.tessera_cpu / r.llvmpipe_cpu : 0.0,
-                fill && g_bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / g_bandwidth).c_str() : "");
+                fill && bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / bandwidth).c_str() : "");
   }
   benchmark::Shutdown();
   return 0;
