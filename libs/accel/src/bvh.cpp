@@ -18,6 +18,7 @@
 #include <string>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory.hpp"
 
 namespace tessera {
 
@@ -133,7 +134,7 @@ struct Split {
 
 class SahBuilder {
  public:
-  SahBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
+  SahBuilder(const BvhSettings& s, RawVector<PrimRef>& refs) : s_(s), refs_(refs) {}
 
   /// Builds the subtree of refs[begin, end), whose bounds are rb, into the 2 n - 1 slots from `self` on (enough for
   /// any binary tree over n primitives), depth-first: its root at self, the left subtree from self + 1, the right one
@@ -270,7 +271,7 @@ class SahBuilder {
   }
 
   const BvhSettings& s_;
-  std::vector<PrimRef>& refs_;
+  RawVector<PrimRef>& refs_;
 };
 
 /// Copies the tree that SahBuilder::build left in gapped slots from `slot` on into out[next...] (depth-first, gaps
@@ -298,7 +299,7 @@ uint32_t spread_bits(uint32_t v) {
 /// has the least area) within `kRadius` places on either side, and mutual nearest pairs merge, until one is left.
 class BottomUpBuilder {
  public:
-  BottomUpBuilder(const BvhSettings& s, std::vector<PrimRef>& refs) : s_(s), refs_(refs) {}
+  BottomUpBuilder(const BvhSettings& s, RawVector<PrimRef>& refs) : s_(s), refs_(refs) {}
 
   /// Returns the depth; fills nodes (depth-first) and reorders refs_ into leaf order.
   int build(std::vector<BvhNode>& nodes) {
@@ -326,7 +327,7 @@ class BottomUpBuilder {
     }
     // Collapse small subtrees into leaves where the SAH says a leaf is cheaper, then flatten depth-first.
     sah_collapse(clusters[0]);
-    std::vector<PrimRef> ordered;
+    RawVector<PrimRef> ordered;
     ordered.reserve(size_t(n));
     const int depth = flatten(clusters[0], nodes, ordered);
     refs_.swap(ordered);
@@ -362,7 +363,7 @@ class BottomUpBuilder {
       }
     });
     tbb::parallel_sort(keys.begin(), keys.end());  // pairs are distinct, so the order is unique
-    std::vector<PrimRef> sorted(refs_.size());
+    RawVector<PrimRef> sorted(refs_.size());
     for (size_t i = 0; i < keys.size(); ++i) sorted[i] = refs_[size_t(keys[i].second)];
     refs_.swap(sorted);
   }
@@ -408,7 +409,7 @@ class BottomUpBuilder {
     return u.cost;
   }
 
-  void gather(int id, std::vector<PrimRef>& ordered) const {
+  void gather(int id, RawVector<PrimRef>& ordered) const {
     const TreeNode& t = tree_[size_t(id)];
     if (t.left < 0) {
       ordered.push_back(refs_[size_t(t.prim)]);
@@ -418,7 +419,7 @@ class BottomUpBuilder {
     gather(t.right, ordered);
   }
 
-  int flatten(int id, std::vector<BvhNode>& nodes, std::vector<PrimRef>& ordered) const {
+  int flatten(int id, std::vector<BvhNode>& nodes, RawVector<PrimRef>& ordered) const {
     const TreeNode& t = tree_[size_t(id)];
     const int self = int(nodes.size());
     nodes.push_back(BvhNode{t.box, int(ordered.size()), 0, 0});
@@ -441,7 +442,7 @@ class BottomUpBuilder {
   }
 
   const BvhSettings& s_;
-  std::vector<PrimRef>& refs_;
+  RawVector<PrimRef>& refs_;
   std::vector<TreeNode> tree_;
 };
 
@@ -455,7 +456,7 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
     throw InvalidInput("BvhSettings: bins must be in [2, 64], got " + std::to_string(settings.bins));
   if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
     throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
-  std::vector<PrimRef> refs;
+  RawVector<PrimRef> refs;  // on huge pages when large (fewer page faults), as all the build's reference arrays
   if (prim_bounds.size() > size_t(PrimRef::kMaxIndex))
     throw InvalidInput("Bvh: " + std::to_string(prim_bounds.size()) + " primitives, more than the " +
                        std::to_string(PrimRef::kMaxIndex) + " supported");

@@ -4,24 +4,26 @@
 #include <string>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory.hpp"
 
 namespace tessera {
 
 MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangle_count();
-  std::vector<Vec3f> p(nv);
+  // Fresh arrays of tens of megabytes for large meshes: uninitialized and on huge pages (page faults dominated).
+  RawVector<Vec3f> p(nv);
   for (size_t i = 0; i < nv; ++i) {
     p[i] = Vec3f(mesh.positions[i]);
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
       throw InvalidInput("MeshAccel: vertex " + std::to_string(i) + " is not finite");
   }
-  std::vector<AABB> boxes(nt);
+  RawVector<AABB> boxes(nt);
   for (size_t t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = mesh.indices[3 * t + size_t(k)];
       if (v >= nv)
-        throw InvalidInput("MeshAccel: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) +
-                           " of " + std::to_string(nv));
+        throw InvalidInput("MeshAccel: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + " of " +
+                           std::to_string(nv));
       boxes[t].expand(p[v]);
     }
   }

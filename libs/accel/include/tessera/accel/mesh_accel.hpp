@@ -4,6 +4,7 @@
 
 #include "tessera/accel/bvh.hpp"
 #include "tessera/accel/shapes.hpp"
+#include "tessera/core/memory.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 
 namespace tessera {
@@ -32,7 +33,7 @@ class MeshAccel {
     int index;
   };
   Bvh bvh_;
-  std::vector<PackedTriangle> tris_;
+  RawVector<PackedTriangle> tris_;  // uninitialized growth on huge pages: written in full by the constructor
 };
 
 /// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel
