@@ -479,8 +479,11 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
   if (nodes_.empty()) {
     // Uninitialized slots: only the nodes written are touched (about n / 2 of the 2 n - 1 for leaves of 4).
     const size_t slot_count = 2 * refs.size() - 1;
-    const std::unique_ptr<std::byte[]> storage(new std::byte[slot_count * sizeof(BvhNode)]);
-    BvhNode* slots = reinterpret_cast<BvhNode*>(storage.get());
+    constexpr std::align_val_t kAlign{alignof(BvhNode)};  // nodes are 32-byte aligned (one cache-line half each)
+    const auto free_slots = [kAlign](BvhNode* p) { ::operator delete[](p, kAlign); };
+    const std::unique_ptr<BvhNode, decltype(free_slots)> storage(
+        static_cast<BvhNode*>(::operator new[](slot_count * sizeof(BvhNode), kAlign)), free_slots);
+    BvhNode* slots = storage.get();
     const auto built =
         SahBuilder(settings_, refs).build(0, int(refs.size()), range_bounds(refs.data(), int(refs.size())), slots, 0);
     depth_ = built.depth;
