@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "bench_util.hpp"
 #include "embree_reference.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/accel/ray_workloads.hpp"
@@ -176,15 +177,6 @@ void register_all() {
   }
 }
 
-double load_average() {
-  double one = 0;
-  if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-    if (std::fscanf(f, "%lf", &one) != 1) one = 0;
-    std::fclose(f);
-  }
-  return one;
-}
-
 void print_summary() {
   std::printf("\n%-8s %-8s %-8s %14s %14s %8s %10s\n", "mesh", "what", "threads", "tessera/s", "embree/s", "ratio",
               "2T-scaling");
@@ -201,7 +193,7 @@ void print_summary() {
                     t->second / e->second, scaling > 0 ? std::to_string(scaling).substr(0, 5).c_str() : "");
       }
   std::printf("(rates: rays/s, or primitives/s for build; %d hardware threads; load average %.2f)\n",
-              tessera::thread_count(), load_average());
+              tessera::thread_count(), bench::load_average());
 }
 
 }  // namespace
