@@ -17,6 +17,7 @@
 //   cmake -S . -B build/bench -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
 //   ninja -C build/bench bench_raster3d && build/bench/bench/bench_raster3d --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
+#include <fmt/format.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -31,8 +32,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "osmesa_renderer.hpp"
 #include "tessera/core/parallel.hpp"
@@ -233,7 +232,8 @@ bool run_llvmpipe(Case c, int threads, Timing& timing, std::string& error) {
   }
   timing.wall = std::strtod(output.c_str() + at + std::strlen("llvmpipe seconds="), nullptr);
   const size_t cpu_at = output.find("cpu_seconds=", at);
-  timing.cpu = cpu_at == std::string::npos ? 0 : std::strtod(output.c_str() + cpu_at + std::strlen("cpu_seconds="), nullptr);
+  timing.cpu =
+      cpu_at == std::string::npos ? 0 : std::strtod(output.c_str() + cpu_at + std::strlen("cpu_seconds="), nullptr);
   return true;
 }
 
@@ -256,8 +256,7 @@ double rate_of(Case c, double seconds) {
 const Rates& record(benchmark::State& state, Case c, int threads, const Timing& timing, bool peer) {
   const double rate = rate_of(c, timing.wall);
   state.counters[c == Case::Fill ? "pixels_per_s" : "tris_per_s"] = rate;
-  if (c == Case::Fill && g_bandwidth[threads] > 0)
-    state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
+  if (c == Case::Fill && g_bandwidth[threads] > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
   state.counters["cpu_ms"] = 1e3 * timing.cpu;
   Rates& r = g_rates[key(c, threads)];
   double& best_wall = peer ? r.llvmpipe : r.tessera;
@@ -327,8 +326,8 @@ void set_tessera_state(raster3d::Context& ctx, Case c) {
   if (gl.lighting) {
     ctx.light(0, raster3d::Light{gl.light.position, Vec3f(gl.light.ambient), Vec3f(gl.light.diffuse),
                                  Vec3f(gl.light.specular)});
-    ctx.material(raster3d::Material{Vec3f(gl.material.ambient), Vec3f(gl.material.diffuse),
-                                    Vec3f(gl.material.specular), Vec3f(gl.material.emission), gl.material.shininess});
+    ctx.material(raster3d::Material{Vec3f(gl.material.ambient), Vec3f(gl.material.diffuse), Vec3f(gl.material.specular),
+                                    Vec3f(gl.material.emission), gl.material.shininess});
     ctx.shading(raster3d::ShadingModel::gouraud);
   } else {
     ctx.shading(raster3d::ShadingModel::unlit);
@@ -416,9 +415,10 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   const double load_before = load_average();
   benchmark::RunSpecifiedBenchmarks();
-  std::printf("\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s "
-              "on 1 thread, %.1f GB/s on 2)\n",
-              load_before, load_average(), g_bandwidth[1] / 1e9, g_bandwidth[2] / 1e9);
+  std::printf(
+      "\nbest rates (frames of clear + draw + finish; load average %.1f before, %.1f after; bandwidth %.1f GB/s "
+      "on 1 thread, %.1f GB/s on 2)\n",
+      load_before, load_average(), g_bandwidth[1] / 1e9, g_bandwidth[2] / 1e9);
   std::printf("%-14s %12s %12s %7s %14s %14s %7s %9s\n", "case/threads", "llvmpipe/s", "tessera/s", "ratio",
               "llvmpipe/cpu-s", "tessera/cpu-s", "ratio", "bw_share");
   for (const auto& [name, r] : g_rates) {

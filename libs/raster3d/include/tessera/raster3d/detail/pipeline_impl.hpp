@@ -171,8 +171,7 @@ template <DepthFunc F, bool WriteDepth>
 template <DepthFunc F, bool WriteDepth>
 [[gnu::target("avx512f,avx512vl,avx512bw,avx512dq")]] void fill_span_avx512(uint32_t* __restrict depth,
                                                                             AliasedU32* __restrict color, int lo,
-                                                                            int hi, double z, double zx,
-                                                                            uint32_t c32) {
+                                                                            int hi, double z, double zx, uint32_t c32) {
   fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
 }
 template <DepthFunc F, bool WriteDepth>
@@ -183,11 +182,11 @@ template <DepthFunc F, bool WriteDepth>
 
 /// The widest instruction set the CPU has: 2 AVX-512, 1 AVX2, 0 the baseline.
 inline int span_isa() {
-  static const int isa = __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") &&
-                                 __builtin_cpu_supports("avx512dq")
-                             ? 2
-                         : __builtin_cpu_supports("avx2") ? 1
-                                                          : 0;
+  static const int isa = [] {
+    if (__builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
+      return 2;
+    return __builtin_cpu_supports("avx2") ? 1 : 0;
+  }();
   return isa;
 }
 
