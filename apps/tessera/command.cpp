@@ -57,7 +57,9 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
 
 Size2 CameraOptions::image_size() const { return parse_size(size, "--size"); }
 
-Camera CameraOptions::camera(const Vec3& mid, double radius, const Vec3& view_dir) const {
+Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi, const Vec3& view_dir) const {
+  const Vec3 mid = 0.5 * (lo + hi);
+  const double extent = 0.5 * glm::length(hi - lo);
   const auto vec = [](const std::string& text, const char* what, const Vec3& fallback) {
     if (text.empty()) return fallback;
     const auto d = parse_doubles(text, 3, what);
@@ -68,7 +70,7 @@ Camera CameraOptions::camera(const Vec3& mid, double radius, const Vec3& view_di
   Camera c;
   c.fovy = radians(fovy);
   c.aspect = double(s.width) / double(s.height);
-  radius = radius > 0 ? radius : 1.0;
+  const double radius = extent > 0 ? extent : 1.0;  // a single point: a unit sphere around it
   // Distance at which the bounding sphere fits the narrower of the two fields of view, with a small margin.
   const double half = std::min(c.fovy, 2 * std::atan(std::tan(c.fovy / 2) * c.aspect)) / 2;
   const double dist = 1.1 * radius / std::sin(half);

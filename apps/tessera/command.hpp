@@ -52,9 +52,9 @@ struct CameraOptions {
   void add(CLI::App& command, const std::string& default_size = "512x512");
   /// The image size from --size.
   Size2 image_size() const;
-  /// The camera: options that were given win; the rest frame the bounding sphere (center, radius) from the +z side
-  /// (eye on `view_dir` from the center when given, so that the sphere fills the view). The aspect is the image's.
-  Camera camera(const Vec3& center, double radius, const Vec3& view_dir = {0, 0, 1}) const;
+  /// The camera: options that were given win; the rest frame the bounding sphere of the box [lo, hi] from the +z side
+  /// (eye on `view_dir` from the center, so that the sphere fills the view). The aspect is the image's.
+  Camera camera(const Vec3& lo, const Vec3& hi, const Vec3& view_dir = {0, 0, 1}) const;
 };
 
 }  // namespace tessera::cli

@@ -53,7 +53,7 @@ void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to cast rays at", a.mesh));
   const Bounds3 b = bounding_box(poly);
-  const Camera camera = a.camera.camera(0.5 * (b.lo + b.hi), 0.5 * glm::length(b.hi - b.lo));
+  const Camera camera = a.camera.camera(b.lo, b.hi);
 
   auto start = std::chrono::steady_clock::now();
   const MeshAccel accel(mesh);

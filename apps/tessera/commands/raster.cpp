@@ -96,7 +96,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   if (shading == raster3d::ShadingModel::flat) mesh = faceted(mesh);
 
   const Bounds3 box = bounding_box(poly);
-  const Camera camera = a.camera.camera(0.5 * (box.lo + box.hi), 0.5 * glm::length(box.hi - box.lo));
+  const Camera camera = a.camera.camera(box.lo, box.hi);
 
   raster3d::Context ctx(width, height);
   ctx.perspective(camera.fovy, camera.near, camera.far, camera.aspect);

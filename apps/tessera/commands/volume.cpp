@@ -193,7 +193,7 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     o.mip = a->mip;
     // Framed as every 3D command frames its scene: the volume's bounding sphere fills the view from the +z side.
     const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1));
-    o.camera = a->camera.camera(0.5 * (lo + hi), 0.5 * glm::length(hi - lo));
+    o.camera = a->camera.camera(lo, hi);
     if (!a->tf.empty()) {
       o.transfer = TransferFunction::load(a->tf);
     } else if (!a->preset.empty()) {
