@@ -420,12 +420,6 @@ TEST(Raster, BadIndicesThrow) {
                InvalidInput);
 }
 
-}  // namespace
-}  // namespace tessera::raster3d
-
-namespace tessera::raster3d {
-namespace {
-
 TEST(Raster, FillSpanGivesTheSamePixelsInEveryInstructionSet) {
   // The constant-color span loop runs as AVX-512, AVX2 or SSE2 depending on the CPU: the same depths and colors on
   // random spans, depth planes and stored depths (the loop's clamps included) in each set the CPU has.
@@ -453,12 +447,6 @@ TEST(Raster, FillSpanGivesTheSamePixelsInEveryInstructionSet) {
   }
   EXPECT_GT(changed, 100);  // most spans have fragments that pass
 }
-
-}  // namespace
-}  // namespace tessera::raster3d
-
-namespace tessera::raster3d {
-namespace {
 
 TEST(Raster, CoversRectangleAgreesWithEveryPixelCenter) {
   // The whole-rectangle shortcut of the span loops against testing each center of random rectangles against
