@@ -1,14 +1,84 @@
-// Ray casting of triangle meshes over a Bvh, with the triangles stored in leaf order.
+// Ray casting of triangle meshes: the binary Bvh collapsed into a wide tree with triangles packed 4 to a block.
 #include "tessera/accel/mesh_accel.hpp"
 
+#include <algorithm>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
+#include "tessera/core/parallel.hpp"
+#include "mesh_traversal.hpp"
 
 namespace tessera {
 
-MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings) {
+namespace {
+
+/// Collapses the binary tree into a wide one (Wald et al. 2008, "Getting rid of packets"): a node takes its two children,
+/// then repeatedly replaces the interior child of largest area by that child's two children, until it has W.
+template <int W>
+class Collapser {
+ public:
+  Collapser(std::span<const BvhNode> binary, const std::vector<int32_t>& leaf_refs,
+            RawVector<MeshAccel::WideNode<W>>& out)
+      : bn_(binary), leaf_refs_(leaf_refs), out_(out) {}
+
+  /// The reference of binary node b's subtree (a wide node index, or a leaf reference).
+  int32_t ref(int b) {
+    if (bn_[size_t(b)].count > 0) return leaf_refs_[size_t(b)];
+    int kids[W] = {b + 1, bn_[size_t(b)].first};
+    int k = 2;
+    while (k < W) {
+      int widest = -1;
+      float area = -1;
+      for (int i = 0; i < k; ++i) {
+        const BvhNode& c = bn_[size_t(kids[i])];
+        if (c.count == 0 && c.box.area() > area) {
+          area = c.box.area();
+          widest = i;
+        }
+      }
+      if (widest < 0) break;
+      const int split = kids[widest];
+      kids[widest] = split + 1;
+      kids[k++] = bn_[size_t(split)].first;
+    }
+    const int self = int(out_.size());
+    out_.emplace_back();
+    MeshAccel::WideNode<W>& node = out_.back();
+    for (int i = 0; i < W; ++i) {
+      const AABB box = i < k ? bn_[size_t(kids[i])].box : AABB{};
+      for (int a = 0; a < 3; ++a) {
+        node.box[a][i] = box.lo[a];
+        node.box[3 + a][i] = box.hi[a];
+      }
+      node.child[i] = 0;
+    }
+    for (int i = 0; i < k; ++i) {
+      const int32_t r = ref(kids[i]);
+      out_[size_t(self)].child[i] = r;  // out_ may have grown: index again
+    }
+    return self;
+  }
+
+ private:
+  std::span<const BvhNode> bn_;
+  const std::vector<int32_t>& leaf_refs_;
+  RawVector<MeshAccel::WideNode<W>>& out_;
+};
+
+int pick_width(int requested) {
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  if (requested == 0) return avx2 ? 8 : 4;
+  if (requested == 4 || (requested == 8 && avx2)) return requested;
+  throw InvalidInput("MeshAccel: SIMD width must be 0, 4 or 8 (8 needs AVX2), got " + std::to_string(requested));
+}
+
+}  // namespace
+
+MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_width)
+    : triangle_count_(mesh.triangle_count()), width_(pick_width(simd_width)) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangle_count();
   // Fresh arrays of tens of megabytes for large meshes: uninitialized and on huge pages (page faults dominated).
   RawVector<Vec3f> p(nv);
@@ -27,80 +97,101 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings) {
       boxes[t].expand(p[v]);
     }
   }
-  bvh_ = Bvh(boxes, settings);
+  BvhSettings capped = settings;
+  capped.max_leaf_size = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
+  bvh_ = Bvh(boxes, capped);
+  const auto nodes = bvh_.nodes();
+  if (nodes.empty()) {
+    width_ = 0;
+    return;
+  }
+  // Blocks of 4 triangles, leaf after leaf (leaves come in depth-first order, which is the order of prim_indices).
+  std::vector<int32_t> leaf_refs(nodes.size(), 0);
+  std::vector<int32_t> leaf_first_block(nodes.size(), 0);
+  int64_t block_count = 0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    if (nodes[i].count == 0) continue;
+    const int blocks = (nodes[i].count + 3) / 4;
+    if (block_count + blocks > (int64_t(1) << 26))
+      throw InvalidInput("MeshAccel: " + std::to_string(nt) + " triangles, more than supported");
+    leaf_first_block[i] = int32_t(block_count);
+    leaf_refs[i] = leaf_ref(int(block_count), blocks);
+    block_count += blocks;
+  }
+  blocks_.resize(size_t(block_count));
   const auto order = bvh_.prim_indices();
-  tris_.resize(order.size());
-  for (size_t i = 0; i < order.size(); ++i) {
-    const size_t t = size_t(order[i]);
-    const Vec3f a = p[mesh.indices[3 * t]], b = p[mesh.indices[3 * t + 1]], c = p[mesh.indices[3 * t + 2]];
-    tris_[i] = PackedTriangle{a, b - a, c - a, int(t)};
+  parallel_for(0, int64_t(nodes.size()), 4096, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      const BvhNode& n = nodes[size_t(i)];
+      if (n.count == 0) continue;
+      for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
+        TriangleBlock& b = blocks_[size_t(leaf_first_block[size_t(i)] + k / 4)];
+        const int lane = k % 4;
+        Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
+        int index = -1;
+        if (k < n.count) {
+          const size_t t = size_t(order[size_t(n.first + k)]);
+          v0 = p[mesh.indices[3 * t]];
+          e1 = p[mesh.indices[3 * t + 1]] - v0;
+          e2 = p[mesh.indices[3 * t + 2]] - v0;
+          index = int(t);
+        }
+        for (int a = 0; a < 3; ++a) {
+          b.v0[a][lane] = v0[a];
+          b.e1[a][lane] = e1[a];
+          b.e2[a][lane] = e2[a];
+        }
+        b.index[lane] = index;
+      }
+    }
+  });
+  if (width_ == 8) {
+    nodes8_.reserve(nodes.size() / 2 + 1);
+    root_ = Collapser<8>(nodes, leaf_refs, nodes8_).ref(0);
+  } else {
+    nodes4_.reserve(nodes.size() / 2 + 1);
+    root_ = Collapser<4>(nodes, leaf_refs, nodes4_).ref(0);
   }
 }
 
-namespace {
-
-/// Moller-Trumbore on a packed triangle: on a hit inside (tmin, ray.tmax) returns true with t and barycentrics.
-template <class Tri>
-inline bool hit_triangle(const Tri& tri, const Ray& ray, float& t, float& b1, float& b2) {
-  const Vec3f p = glm::cross(ray.dir, tri.e2);
-  const float det = glm::dot(tri.e1, p);
-  if (det == 0) return false;
-  const float inv = 1.0f / det;
-  const Vec3f tv = ray.origin - tri.v0;
-  b1 = glm::dot(tv, p) * inv;
-  if (b1 < 0 || b1 > 1) return false;
-  const Vec3f q = glm::cross(tv, tri.e1);
-  b2 = glm::dot(ray.dir, q) * inv;
-  if (b2 < 0 || b1 + b2 > 1) return false;
-  t = glm::dot(tri.e2, q) * inv;
-  return t >= ray.tmin && t <= ray.tmax;
-}
-
-}  // namespace
-
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
-  int best = -1;
-  float best_b1 = 0, best_b2 = 0;
-  bvh_.traverse_leaves<false>(
-      ray,
-      [&](int first, int count, Ray& r) {
-        bool any = false;
-        for (int i = first; i < first + count; ++i) {
-          float t, b1, b2;
-          if (hit_triangle(tris_[size_t(i)], r, t, b1, b2)) {
-            r.tmax = t;
-            best = i;
-            best_b1 = b1;
-            best_b2 = b2;
-            any = true;
-          }
-        }
-        return any;
-      },
-      stats);
-  if (best < 0) return false;
-  const PackedTriangle& tri = tris_[size_t(best)];
+  if (width_ == 0) return false;
+  mesh_traversal::Nearest nearest;
+  const bool found =
+      width_ == 8 ? mesh_traversal::intersect8(nodes8_.data(), blocks_.data(), root_, ray, nearest, stats)
+                  : mesh_traversal::intersect4(nodes4_.data(), blocks_.data(), root_, ray, nearest, stats);
+  if (!found) return false;
+  const TriangleBlock& b = blocks_[size_t(nearest.block)];
+  const int l = nearest.lane;
+  const Vec3f e1(b.e1[0][l], b.e1[1][l], b.e1[2][l]), e2(b.e2[0][l], b.e2[1][l], b.e2[2][l]);
   hit.t = ray.tmax;
   hit.point = ray.at(ray.tmax);
-  hit.normal = glm::normalize(glm::cross(tri.e1, tri.e2));
-  hit.uv = Vec2f(best_b1, best_b2);
-  hit.prim = tri.index;
+  hit.normal = glm::normalize(glm::cross(e1, e2));
+  hit.uv = Vec2f(nearest.b1, nearest.b2);
+  hit.prim = b.index[l];
   return true;
 }
 
 bool MeshAccel::occluded(const Ray& ray) const {
+  if (width_ == 0) return false;
   Ray r = ray;
-  return bvh_.traverse_leaves<true>(
-      r,
-      [&](int first, int count, Ray& rr) {
-        for (int i = first; i < first + count; ++i) {
-          float t, b1, b2;
-          if (hit_triangle(tris_[size_t(i)], rr, t, b1, b2)) return true;
-        }
-        return false;
-      },
-      nullptr);
+  return width_ == 8 ? mesh_traversal::occluded8(nodes8_.data(), blocks_.data(), root_, r)
+                     : mesh_traversal::occluded4(nodes4_.data(), blocks_.data(), root_, r);
 }
+
+namespace mesh_traversal {
+
+bool intersect4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
+                Nearest& nearest, TraversalStats* stats) {
+  return stats ? traverse<4, false, true>(nodes, blocks, root, ray, &nearest, stats)
+               : traverse<4, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+}
+
+bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {
+  return traverse<4, true, false>(nodes, blocks, root, ray, nullptr, nullptr);
+}
+
+}  // namespace mesh_traversal
 
 Vec3f shading_normal(const TriMesh& mesh, const Hit& hit) {
   if (mesh.normals.size() != mesh.positions.size() || hit.prim < 0) return hit.normal;

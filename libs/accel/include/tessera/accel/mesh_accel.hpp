@@ -10,30 +10,57 @@
 namespace tessera {
 
 /// A triangle mesh ready for ray casting (a float copy of its geometry; the TriMesh need not outlive it).
+///
+/// The binary BVH (bvh()) is built by the settings' method and then collapsed into a wide tree (4 or 8 children per
+/// node, their boxes stored so that one SIMD slab test covers all of them) whose leaves hold the triangles packed 4 to
+/// a block for a SIMD Moller-Trumbore test. The width follows the CPU at run time: 8 with AVX2, else 4 (SSE).
 class MeshAccel {
  public:
   MeshAccel() = default;
   /// Builds the BVH (parallel, deterministic). Throws InvalidInput for an index out of range or a non-finite vertex.
-  explicit MeshAccel(const TriMesh& mesh, const BvhSettings& settings = {});
+  /// Leaves hold at most 128 triangles (a larger settings.max_leaf_size is capped). simd_width 4 or 8 forces the wide
+  /// tree's width (8 needs AVX2); 0 picks the widest this CPU runs.
+  explicit MeshAccel(const TriMesh& mesh, const BvhSettings& settings = {}, int simd_width = 0);
 
   /// Nearest hit with t in [ray.tmin, ray.tmax]; on a hit shrinks ray.tmax to it and fills hit: t, point, the unit
   /// geometric normal (b - a) x (c - a) of the triangle, prim = triangle index, uv = barycentrics (b1, b2) of
-  /// vertices 1 and 2 of the triangle. stats (optional) counts nodes visited and triangles tested.
+  /// vertices 1 and 2 of the triangle. stats (optional) counts wide nodes visited and triangles tested.
   bool intersect(Ray& ray, Hit& hit, TraversalStats* stats = nullptr) const;
   /// Any hit with t in [ray.tmin, ray.tmax] (shadow rays).
   bool occluded(const Ray& ray) const;
 
+  /// The binary tree the wide one was collapsed from (its boxes, depth and leaf order).
   const Bvh& bvh() const { return bvh_; }
-  size_t triangle_count() const { return tris_.size(); }
+  size_t triangle_count() const { return triangle_count_; }
+  /// The wide tree's width (4 or 8; 0 when the mesh is empty) and node count.
+  int simd_width() const { return width_; }
+  size_t wide_node_count() const { return width_ == 8 ? nodes8_.size() : nodes4_.size(); }
+
+  /// A node of the wide tree: the boxes of its W children as rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z of W floats
+  /// (an unused child has an empty box, which no ray hits), and the children: >= 0 a node, < 0 a leaf (see leaf_ref).
+  template <int W>
+  struct alignas(64) WideNode {
+    float box[6][W];
+    int32_t child[W];
+  };
+  /// Four triangles of a leaf, lane by lane: vertex 0, the edges to vertices 1 and 2, the mesh index (-1: unused lane,
+  /// whose zero edges make the determinant 0, so it never hits).
+  struct alignas(16) TriangleBlock {
+    float v0[3][4], e1[3][4], e2[3][4];
+    int32_t index[4];
+  };
+  static constexpr int kMaxLeafBlocks = 32;  ///< blocks of 4 triangles per leaf (128 triangles)
+  /// A leaf's child reference: its first block and block count packed into a negative number.
+  static int32_t leaf_ref(int first_block, int blocks) { return ~((first_block << 5) | (blocks - 1)); }
 
  private:
-  /// One triangle in leaf order: vertex 0, the edges to vertices 1 and 2, and its index in the mesh.
-  struct PackedTriangle {
-    Vec3f v0, e1, e2;
-    int index;
-  };
   Bvh bvh_;
-  RawVector<PackedTriangle> tris_;  // uninitialized growth on huge pages: written in full by the constructor
+  size_t triangle_count_ = 0;
+  int width_ = 0;
+  int32_t root_ = 0;  // the wide tree's root reference (a leaf for meshes of one leaf)
+  RawVector<WideNode<4>> nodes4_;
+  RawVector<WideNode<8>> nodes8_;
+  RawVector<TriangleBlock> blocks_;  // uninitialized growth on huge pages: written in full by the constructor
 };
 
 /// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel

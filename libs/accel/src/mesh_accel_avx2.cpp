@@ -1,0 +1,16 @@
+// MeshAccel's 8-wide traversal, compiled for AVX2 (chosen at run time by MeshAccel's constructor).
+#include "mesh_traversal.hpp"
+
+namespace tessera::mesh_traversal {
+
+bool intersect8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
+                Nearest& nearest, TraversalStats* stats) {
+  return stats ? traverse<8, false, true>(nodes, blocks, root, ray, &nearest, stats)
+               : traverse<8, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+}
+
+bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {
+  return traverse<8, true, false>(nodes, blocks, root, ray, nullptr, nullptr);
+}
+
+}  // namespace tessera::mesh_traversal
