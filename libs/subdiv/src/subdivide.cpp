@@ -2,6 +2,7 @@
 #include "tessera/subdiv/subdivide.hpp"
 
 #include <cmath>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -239,16 +240,16 @@ PolyMesh refine_with(const TopologyTables& topology, const detail::LevelSharpnes
   return child;
 }
 
-PolyMesh refine_once(const PolyMesh& mesh, const SubdivisionOptions& options) {
-  const TopologyTables topology(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
+PolyMesh refine_once(const TopologyTables& topology, const PolyMesh& mesh, const SubdivisionOptions& options,
+                     bool quads) {
   const detail::LevelSharpness sharpness(topology, mesh, options.boundary);
   switch (options.scheme) {
     case SubdivisionScheme::catmull_clark:
-      return refine_with(topology, sharpness, CatmarkRules{options.triangles}, mesh, options, true);
+      return refine_with(topology, sharpness, CatmarkRules{options.triangles}, mesh, options, quads);
     case SubdivisionScheme::loop:
-      return refine_with(topology, sharpness, LoopRules{options.loop_weights}, mesh, options, false);
+      return refine_with(topology, sharpness, LoopRules{options.loop_weights}, mesh, options, quads);
     case SubdivisionScheme::midpoint:
-      return refine_with(topology, sharpness, MidpointRules{}, mesh, options, !mesh.is_triangle_mesh());
+      return refine_with(topology, sharpness, MidpointRules{}, mesh, options, quads);
   }
   throw InvalidInput("subdivide: unknown scheme");
 }
@@ -270,10 +271,18 @@ PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options) {
     copy.corner_normals.clear();
     return copy;
   }
-  PolyMesh current = refine_once(mesh, options);
-  if (options.progress) options.progress->advance();
-  for (int level = 1; level < options.levels; ++level) {
-    current = refine_once(current, options);
+  // Only the cage's tables are built from its faces; every later level's are derived from its parent's.
+  const bool quads = options.scheme == SubdivisionScheme::catmull_clark ||
+                     (options.scheme == SubdivisionScheme::midpoint && !mesh.is_triangle_mesh());
+  auto topology = std::make_unique<TopologyTables>(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
+  PolyMesh current;  // the level `topology` describes from level 1 on
+  for (int level = 0; level < options.levels; ++level) {
+    PolyMesh child = refine_once(*topology, level == 0 ? mesh : current, options, quads);
+    if (level + 1 < options.levels)
+      topology = std::make_unique<TopologyTables>(
+          *topology, quads ? TopologyTables::Split::quads : TopologyTables::Split::triangles, child.face_offsets,
+          child.face_vertices);
+    current = std::move(child);  // the vectors keep their storage, which the new tables view
     if (options.progress) options.progress->advance();
   }
   return current;

@@ -20,6 +20,35 @@ void atomic_min(std::atomic<uint64_t>& slot, uint64_t value) {
 
 constexpr uint64_t kNoError = ~uint64_t(0);
 
+// The first value of every fixed chunk of kGrain indices of [0, n) in an exclusive prefix sum whose chunk totals
+// are count(begin, end), plus the grand total at the back: the same result for any thread count.
+template <class Count>
+std::vector<uint32_t> chunk_starts(int64_t n, const Count& count) {
+  const int64_t chunks = (n + kGrain - 1) / kGrain;
+  std::vector<uint32_t> first(size_t(chunks) + 1, 0);
+  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c) first[size_t(c) + 1] = count(c * kGrain, std::min(n, (c + 1) * kGrain));
+  });
+  for (size_t c = 0; c < size_t(chunks); ++c) first[c + 1] += first[c];
+  return first;
+}
+
+// Calls body(begin, end, first) for every chunk of chunk_starts() in parallel.
+template <class Body>
+void for_chunks(int64_t n, const std::vector<uint32_t>& first, const Body& body) {
+  parallel_for(0, int64_t(first.size()) - 1, 1, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c) body(c * kGrain, std::min(n, (c + 1) * kGrain), first[size_t(c)]);
+  });
+}
+
+// Rotates the ring of an interior child vertex to start at its smallest corner (the corner a build from the child
+// faces starts at) and writes it to `out`.
+template <size_t N>
+void write_from_smallest(const std::array<uint32_t, N>& ring, uint32_t* out) {
+  const size_t start = size_t(std::min_element(ring.begin(), ring.end()) - ring.begin());
+  for (size_t i = 0; i < N; ++i) out[i] = ring[(start + i) % N];
+}
+
 }  // namespace
 
 TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
@@ -122,32 +151,23 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
 
 void TopologyTables::build_edges() {
   // An edge belongs to its first corner in face order; numbering follows that order.
-  const size_t corners = face_vertices_.size();
-  corner_edges_.resize(corners);
+  const auto corners = int64_t(face_vertices_.size());
+  corner_edges_.resize(size_t(corners));
   auto owns = [&](uint32_t k) { return twins_[k] == kNone || k < twins_[k]; };
-  // A parallel prefix sum over fixed chunks (the same numbering for any thread count).
-  const int64_t chunks = (int64_t(corners) + kGrain - 1) / kGrain;
-  std::vector<uint32_t> first_edge(size_t(chunks) + 1, 0);
-  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
-    for (int64_t c = b; c < e; ++c) {
-      uint32_t n = 0;
-      for (auto k = uint32_t(c * kGrain); k < std::min<uint64_t>(corners, uint64_t(c + 1) * kGrain); ++k) n += owns(k);
-      first_edge[size_t(c) + 1] = n;
-    }
+  const std::vector<uint32_t> first = chunk_starts(corners, [&](int64_t b, int64_t e) {
+    uint32_t n = 0;
+    for (int64_t k = b; k < e; ++k) n += owns(uint32_t(k));
+    return n;
   });
-  for (size_t c = 0; c < size_t(chunks); ++c) first_edge[c + 1] += first_edge[c];
-  edge_corners_.resize(first_edge.back());
-  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
-    for (int64_t c = b; c < e; ++c) {
-      uint32_t edge = first_edge[size_t(c)];
-      for (auto k = uint32_t(c * kGrain); k < std::min<uint64_t>(corners, uint64_t(c + 1) * kGrain); ++k)
-        if (owns(k)) {
-          corner_edges_[k] = edge;
-          edge_corners_[edge++] = k;
-        }
-    }
+  edge_corners_.resize(first.back());
+  for_chunks(corners, first, [&](int64_t b, int64_t e, uint32_t edge) {
+    for (int64_t k = b; k < e; ++k)
+      if (owns(uint32_t(k))) {
+        corner_edges_[k] = edge;
+        edge_corners_[edge++] = uint32_t(k);
+      }
   });
-  parallel_for(0, int64_t(corners), kGrain, [&](int64_t b, int64_t e) {
+  parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
     for (int64_t c = b; c < e; ++c)
       if (!owns(uint32_t(c))) corner_edges_[c] = corner_edges_[twins_[c]];
   });
@@ -198,6 +218,111 @@ void TopologyTables::build_rings() {
     throw TopologyError(fmt::format("subdivision: non-manifold vertex {}: its faces do not form a single fan",
                                     uint64_t(bad_vertex)));
   max_valence_ = max_valence;
+}
+
+TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::span<const uint32_t> face_offsets,
+                               std::span<const uint32_t> face_vertices)
+    : face_offsets_(face_offsets), face_vertices_(face_vertices) {
+  const bool quads = split == Split::quads;
+  const auto corners = uint32_t(parent.corner_count()), faces = uint32_t(parent.face_count()),
+             vertices = uint32_t(parent.vertex_count()), edges = uint32_t(parent.edge_count());
+  uniform_size_ = quads ? 4 : 3;
+  const size_t child_faces = quads ? corners : 4 * size_t(faces);
+  if (face_offsets_.size() != child_faces + 1 || face_vertices_.size() != 4 * size_t(corners) ||
+      4 * size_t(corners) >= kNone)
+    throw InvalidInput("subdivision: the child faces do not have the sizes of the parent's refinement");
+
+  // Child corners: quads, corner i of the quad of parent corner k is 4k + i; triangles, corner i of the corner
+  // triangle of parent corner k (face f, position j) is 12f + 3j + i and the middle triangle's corner at edge
+  // point j is 12f + 9 + j.
+  auto at = [&](uint32_t k, uint32_t i) { return quads ? 4 * k + i : 4 * k - k % 3 + i; };
+  auto middle = [](uint32_t k) { return 12 * (k / 3) + 9 + k % 3; };
+  const uint32_t* parent_twins = parent.twins_.data();
+
+  // Twins: the halves of a parent edge pair up with the halves in the neighbouring face; the edges inside a parent
+  // face pair up inside it.
+  twins_.resize(4 * size_t(corners));
+  parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
+    for (auto k = uint32_t(b); k < uint32_t(e); ++k) {
+      const uint32_t t = parent_twins[k], p = parent.prev_corner(k), n = parent.next_corner(k), tp = parent_twins[p];
+      twins_[at(k, 0)] = t == kNone ? kNone : at(parent.next_corner(t), quads ? 3 : 2);
+      if (quads) {
+        twins_[4 * k + 1] = 4 * n + 2;
+        twins_[4 * k + 2] = 4 * p + 1;
+        twins_[4 * k + 3] = tp == kNone ? kNone : 4 * tp;
+      } else {
+        twins_[at(k, 1)] = middle(p);
+        twins_[at(k, 2)] = tp == kNone ? kNone : at(tp, 0);
+        twins_[middle(k)] = at(n, 1);
+      }
+    }
+  });
+  build_edges();
+
+  // Rings: a vertex keeps its parent ring (one child corner per parent corner); a face point's ring is its quads
+  // in order; an edge point's ring joins the child faces on both sides of its parent edge.
+  const size_t child_vertices = size_t(vertices) + (quads ? faces : 0) + edges;
+  vertex_offsets_.resize(child_vertices + 1);
+  ring_corners_.resize(4 * size_t(corners));
+  boundary_vertex_.resize(child_vertices);
+  parallel_for(0, vertices, kGrain, [&](int64_t b, int64_t e) {
+    for (int64_t v = b; v < e; ++v) {
+      vertex_offsets_[v] = parent.vertex_offsets_[v];
+      for (uint32_t i = parent.vertex_offsets_[v]; i < parent.vertex_offsets_[v + 1]; ++i)
+        ring_corners_[i] = at(parent.ring_corners_[i], 0);
+      boundary_vertex_[v] = parent.boundary_vertex_[v];
+    }
+  });
+  uint32_t max_face = 0;
+  if (quads) {
+    max_face = parent.uniform_size_;
+    for (uint32_t f = 0; f < faces && parent.uniform_size_ == 0; ++f) max_face = std::max(max_face, parent.face_size(f));
+    parallel_for(0, faces, kGrain, [&](int64_t b, int64_t e) {
+      for (int64_t f = b; f < e; ++f) {
+        const uint32_t o = parent.face_offset(f), n = parent.face_size(f);
+        vertex_offsets_[vertices + f] = corners + o;
+        for (uint32_t i = 0; i < n; ++i) ring_corners_[corners + o + i] = 4 * (o + i) + 2;
+        boundary_vertex_[vertices + f] = 0;
+      }
+    });
+  }
+  // Edge point e: 2 (quads) or 3 (triangles) child faces per face of e, after the rings of the older vertices.
+  const uint32_t first_edge_point = vertices + (quads ? faces : 0), first_ring = quads ? 2 * corners : corners,
+                 per_face = quads ? 2 : 3;
+  const std::vector<uint32_t> boundary_before = chunk_starts(edges, [&](int64_t b, int64_t e) {
+    uint32_t n = 0;
+    for (int64_t edge = b; edge < e; ++edge) n += parent.is_boundary_edge(size_t(edge));
+    return n;
+  });
+  for_chunks(edges, boundary_before, [&](int64_t b, int64_t e, uint32_t boundary) {
+    for (auto edge = uint32_t(b); edge < uint32_t(e); ++edge) {
+      const uint32_t offset = first_ring + per_face * (2 * edge - boundary);
+      uint32_t* ring = ring_corners_.data() + offset;
+      const uint32_t k = parent.edge_corners_[edge], t = parent_twins[k], n = parent.next_corner(k);
+      vertex_offsets_[first_edge_point + edge] = offset;
+      boundary_vertex_[first_edge_point + edge] = t == kNone;
+      if (t == kNone) {
+        // Starts at the face whose outgoing edge is the boundary half.
+        ring[0] = at(n, quads ? 3 : 2);
+        if (quads) {
+          ring[1] = 4 * k + 1;
+        } else {
+          ring[1] = middle(k);
+          ring[2] = at(k, 1);
+        }
+        ++boundary;
+      } else if (quads) {
+        write_from_smallest(std::array{4 * k + 1, 4 * parent.next_corner(t) + 3, 4 * t + 1, 4 * n + 3}, ring);
+      } else {
+        write_from_smallest(std::array{at(k, 1), at(parent.next_corner(t), 2), middle(t), at(t, 1), at(n, 2), middle(k)},
+                            ring);
+      }
+    }
+  });
+  vertex_offsets_[child_vertices] = 4 * corners;
+  const bool interior_edges = boundary_before.back() < edges;
+  const uint32_t edge_point_valence = edges == 0 ? 0 : (quads ? 3 : 4) + (interior_edges ? per_face - 1 : 0);
+  max_valence_ = std::max({parent.max_valence_, max_face, edge_point_valence});
 }
 
 uint32_t TopologyTables::find_edge(uint32_t a, uint32_t b) const {

@@ -2,8 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <string>
+#include <utility>
+
 #include "fixtures.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/mesh/triangulate.hpp"
 
 namespace tessera {
 namespace {
@@ -104,6 +109,70 @@ TEST(TopologyTables, IsolatedVerticesHaveEmptyRings) {
   EXPECT_EQ(t.ring_face_count(3), 0u);
   EXPECT_EQ(t.ring_edge_count(3), 0u);
   EXPECT_EQ(t.edge_count(), 3u);
+}
+
+// The child faces of one uniform step as subdivide() lays them out (child vertices: parent vertices, face points
+// for quads, then edge points), built here from the parent tables alone.
+PolyMesh split_faces(const TopologyTables& t, TopologyTables::Split split) {
+  PolyMesh child;
+  const auto edge_point = [&](uint32_t k) {
+    return uint32_t(t.vertex_count() + (split == TopologyTables::Split::quads ? t.face_count() : 0) + t.corner_edge(k));
+  };
+  for (uint32_t f = 0; f < t.face_count(); ++f) {
+    const uint32_t o = t.face_offset(f), n = t.face_size(f);
+    if (split == TopologyTables::Split::quads) {
+      for (uint32_t j = 0; j < n; ++j)
+        child.add_face({t.corner_vertex(o + j), edge_point(o + j), uint32_t(t.vertex_count() + f),
+                        edge_point(o + (j + n - 1) % n)});
+    } else {
+      for (uint32_t j = 0; j < 3; ++j) child.add_face({t.corner_vertex(o + j), edge_point(o + j), edge_point(o + (j + 2) % 3)});
+      child.add_face({edge_point(o), edge_point(o + 1), edge_point(o + 2)});
+    }
+  }
+  return child;
+}
+
+void expect_same_tables(const TopologyTables& a, const TopologyTables& b) {
+  ASSERT_EQ(a.vertex_count(), b.vertex_count());
+  ASSERT_EQ(a.edge_count(), b.edge_count());
+  ASSERT_EQ(a.corner_count(), b.corner_count());
+  EXPECT_EQ(a.max_valence(), b.max_valence());
+  for (uint32_t k = 0; k < a.corner_count(); ++k) {
+    ASSERT_EQ(a.twin(k), b.twin(k)) << "corner " << k;
+    ASSERT_EQ(a.corner_edge(k), b.corner_edge(k)) << "corner " << k;
+  }
+  for (uint32_t e = 0; e < a.edge_count(); ++e) ASSERT_EQ(a.edge_corners(e), b.edge_corners(e)) << "edge " << e;
+  for (uint32_t v = 0; v < a.vertex_count(); ++v) {
+    ASSERT_EQ(a.is_boundary_vertex(v), b.is_boundary_vertex(v)) << "vertex " << v;
+    const auto ra = a.ring_corners(v), rb = b.ring_corners(v);
+    ASSERT_EQ(std::vector<uint32_t>(ra.begin(), ra.end()), std::vector<uint32_t>(rb.begin(), rb.end())) << "vertex " << v;
+  }
+}
+
+// The tables derived from the parent's equal the tables built from the child faces, level after level, for closed
+// meshes, boundaries, mixed polygons and isolated vertices.
+TEST(TopologyTables, DerivedLevelsEqualLevelsBuiltFromFaces) {
+  PolyMesh with_isolated = test::grid(3, 2);
+  with_isolated.positions.push_back({5, 5, 5});
+  const std::pair<PolyMesh, TopologyTables::Split> cases[] = {
+      {test::cube(), TopologyTables::Split::quads},           {test::grid(4, 3), TopologyTables::Split::quads},
+      {test::house(), TopologyTables::Split::quads},          {with_isolated, TopologyTables::Split::quads},
+      {test::icosahedron(), TopologyTables::Split::triangles}, {test::torus(6, 5, true), TopologyTables::Split::triangles},
+      {triangulate(test::grid(4, 3)), TopologyTables::Split::triangles}};
+  for (const auto& [cage, split] : cases) {
+    std::vector<PolyMesh> levels{cage};
+    auto derived = std::make_unique<TopologyTables>(cage.face_offsets, cage.face_vertices, cage.vertex_count());
+    for (int level = 1; level <= 3; ++level) {
+      const size_t vertices = derived->vertex_count() +
+                              (split == TopologyTables::Split::quads ? derived->face_count() : 0) + derived->edge_count();
+      levels.push_back(split_faces(*derived, split));
+      const PolyMesh& child = levels.back();
+      derived = std::make_unique<TopologyTables>(*derived, split, child.face_offsets, child.face_vertices);
+      const TopologyTables built(child.face_offsets, child.face_vertices, vertices);
+      SCOPED_TRACE("level " + std::to_string(level) + ", " + std::to_string(cage.face_count()) + " faces");
+      expect_same_tables(*derived, built);
+    }
+  }
 }
 
 }  // namespace

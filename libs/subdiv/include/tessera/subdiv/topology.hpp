@@ -28,6 +28,18 @@ class TopologyTables {
   TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
                  size_t vertex_count);
 
+  /// How one uniform refinement step splits the faces (subdivide.hpp): every n-gon into n quads, child face k made
+  /// from parent corner k as (vertex, edge point, face point, previous edge point); or every triangle f into the
+  /// four triangles 4f + j = (vertex j, edge point j, edge point j - 1) and 4f + 3 = (edge points 0, 1, 2).
+  enum class Split { quads, triangles };
+
+  /// The tables of the refined level, derived from the parent's in parallel without any search or sort (as
+  /// OpenSubdiv's Vtr refines a level): identical to building them from the child faces, which `face_offsets` and
+  /// `face_vertices` hold (viewed as above). Child vertices: the parent's, the face points (quads), then one edge
+  /// point per parent edge. Throws InvalidInput when the arrays do not have the sizes of that refinement.
+  TopologyTables(const TopologyTables& parent, Split split, std::span<const uint32_t> face_offsets,
+                 std::span<const uint32_t> face_vertices);
+
   size_t vertex_count() const { return vertex_offsets_.size() - 1; }
   size_t face_count() const { return face_offsets_.size() - 1; }
   size_t edge_count() const { return edge_corners_.size(); }
