@@ -113,13 +113,21 @@ def dvr(args):
     color, opacity = vtk.vtkColorTransferFunction(), vtk.vtkPiecewiseFunction()
     for value, r, g, b, a in ((0.0, 0.9, 0.6, 0.4, 0.0), (0.2, 0.9, 0.6, 0.4, 0.5), (0.6, 1.0, 1.0, 0.9, 1.0)):
         color.AddRGBPoint(value, r, g, b)
-        # VTK's opacity is per unit of sample distance; Tessera's is per world unit: convert.
-        opacity.AddPoint(value, 1.0 - (1.0 - a) ** float(step))
+        # Opacity per world unit, as Tessera's: the mapper itself corrects it to the sample distance,
+        # alpha = 1 - (1 - opacity)^(SampleDistance / ScalarOpacityUnitDistance) (vtkFixedPointVolumeRayCastMapper::
+        # UpdateColorTable), with the unit distance 1.
+        opacity.AddPoint(value, a)
     prop = vtk.vtkVolumeProperty()
     prop.SetColor(color)
     prop.SetScalarOpacity(opacity)
+    prop.SetScalarOpacityUnitDistance(1.0)
     prop.SetInterpolationTypeToLinear()
     prop.ShadeOn()
+    # Tessera's lighting defaults (ambient + diffuse + Blinn specular; the renderer's default light is a headlight).
+    prop.SetAmbient(0.3)
+    prop.SetDiffuse(0.7)
+    prop.SetSpecular(0.3)
+    prop.SetSpecularPower(32.0)
     mapper = vtk.vtkFixedPointVolumeRayCastMapper()
     mapper.SetInputData(image)
     mapper.AutoAdjustSampleDistancesOff()
@@ -146,6 +154,14 @@ def dvr(args):
         return 0
 
     wall, cpu, _ = best_of(repeat, run)
+    if os.environ.get("TESSERA_DVR_IMAGE_DIR"):  # for comparing the pictures (the benchmark writes Tessera's there)
+        grab = vtk.vtkWindowToImageFilter()
+        grab.SetInput(window)
+        grab.ReadFrontBufferOff()
+        writer = vtk.vtkPNGWriter()
+        writer.SetFileName(os.path.join(os.environ["TESSERA_DVR_IMAGE_DIR"], f"dvr_vtk_{threads}.png"))
+        writer.SetInputConnection(grab.GetOutputPort())
+        writer.Write()
     print(f"peer=vtk_fixed_point_ray_cast backend={backend} threads={used} best_ms={wall * 1e3:.1f} cpu_ms={cpu * 1e3:.1f}")
 
 
