@@ -82,6 +82,9 @@ struct RangeBounds {
   }
 };
 
+/// The tests a leaf of n primitives costs: whole blocks of settings.leaf_block.
+float leaf_tests(const BvhSettings& s, int n) { return float((n + s.leaf_block - 1) / s.leaf_block); }
+
 constexpr int kParallelPrims = 4096;     // ranges above this build their two halves as parallel tasks
 constexpr int kParallelBinning = 65536;  // ranges above this bin in parallel
 constexpr int kMaxBins = 64;
@@ -151,7 +154,7 @@ class SahBuilder {
     BvhNode& node = slots[self];
     const Split split = n > 1 ? find_split(begin, n, rb) : Split{};
     const bool fits = n <= s_.max_leaf_size;
-    if (n == 1 || (fits && s_.intersection_cost * float(n) <= split.cost)) {
+    if (n == 1 || (fits && s_.intersection_cost * leaf_tests(s_, n) <= split.cost)) {
       node.count = uint16_t(n);
       return {1, 1};
     }
@@ -263,7 +266,8 @@ class SahBuilder {
         // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
         const float cost =
             s_.traversal_cost +
-            s_.intersection_cost * inv_area * (acc.area() * float(cnt) + right_box[b].area() * float(right_count[b]));
+            s_.intersection_cost * inv_area *
+                (acc.area() * leaf_tests(s_, cnt) + right_box[b].area() * leaf_tests(s_, right_count[b]));
         if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, right_box[b]};
       }
     }
@@ -400,7 +404,7 @@ class BottomUpBuilder {
     const float children = sah_collapse(t.left) + sah_collapse(tree_[size_t(id)].right);
     TreeNode& u = tree_[size_t(id)];
     const float area = u.box.area();
-    const float as_leaf = s_.intersection_cost * float(u.count) * area;
+    const float as_leaf = s_.intersection_cost * leaf_tests(s_, u.count) * area;
     u.cost = s_.traversal_cost * area + children;
     if (u.count <= s_.max_leaf_size && as_leaf <= u.cost) {
       u.cost = as_leaf;
@@ -454,6 +458,8 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
                        std::to_string(settings.max_leaf_size));
   if (!(settings.bins >= 2 && settings.bins <= kMaxBins))
     throw InvalidInput("BvhSettings: bins must be in [2, 64], got " + std::to_string(settings.bins));
+  if (!(settings.leaf_block >= 1 && settings.leaf_block <= 64))
+    throw InvalidInput("BvhSettings: leaf_block must be in [1, 64], got " + std::to_string(settings.leaf_block));
   if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
     throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
   RawVector<PrimRef> refs;  // on huge pages when large (fewer page faults), as all the build's reference arrays
@@ -501,7 +507,7 @@ float Bvh::sah_cost() const {
   double cost = 0;
   for (const BvhNode& n : nodes_)
     cost += double(n.box.area() * inv_root) *
-            (n.count > 0 ? settings_.intersection_cost * float(n.count) : settings_.traversal_cost);
+            (n.count > 0 ? settings_.intersection_cost * leaf_tests(settings_, n.count) : settings_.traversal_cost);
   return float(cost);
 }
 

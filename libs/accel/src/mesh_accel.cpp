@@ -99,6 +99,7 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
   }
   BvhSettings capped = settings;
   capped.max_leaf_size = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
+  capped.leaf_block = 4;  // the leaves' triangles are tested 4 at a time
   bvh_ = Bvh(boxes, capped);
   const auto nodes = bvh_.nodes();
   if (nodes.empty()) {

@@ -35,8 +35,7 @@ typedef int32_t v4i __attribute__((vector_size(16)));
 inline v4f splat4(float x) { return v4f{x, x, x, x}; }
 inline int mask_of(v4i m) { return _mm_movemask_ps(reinterpret_cast<__m128>(m)); }
 
-/// Four triangles against one ray (Moller-Trumbore, operation by operation as a scalar float Moller-Trumbore with glm
-/// cross and dot: the same rounding). Returns the mask of lanes that hit with t in [tmin, tmax] and their t, b1, b2.
+/// A ray's origin and direction, splatted.
 struct RayLanes {
   v4f ox, oy, oz, dx, dy, dz;
   explicit RayLanes(const Ray& r)
@@ -44,6 +43,8 @@ struct RayLanes {
         dy(splat4(r.dir.y)), dz(splat4(r.dir.z)) {}
 };
 
+/// Four triangles against one ray (Moller-Trumbore, operation by operation as a scalar float Moller-Trumbore with glm
+/// cross and dot: the same rounding). Returns the mask of lanes that hit with t in [tmin, tmax] and their t, b1, b2.
 inline int hit_block(const MeshAccel::TriangleBlock& b, const RayLanes& r, float tmin, float tmax, v4f& t, v4f& b1,
                      v4f& b2) {
   const auto row = [](const float (&v)[4]) { return *reinterpret_cast<const v4f*>(v); };

@@ -18,6 +18,9 @@ struct BvhSettings {
   float intersection_cost = 1.0f;  ///< SAH cost of one primitive test
   int max_leaf_size = 4;           ///< a range of at most this many primitives may become a leaf (SAH permitting)
   int bins = 16;                   ///< SAH bins per axis (binned_sah)
+  /// Primitives a leaf tests at once (a SIMD test of several): the SAH charges a leaf of n primitives
+  /// ceil(n / leaf_block) tests, which favours full blocks (MeshAccel sets 4).
+  int leaf_block = 1;
   /// binned_sah: top-down, the split of least SAH cost among the bin boundaries of the three axes.
   /// bottom_up: the notes' bottom-up build, repeatedly merging nearest clusters (see docs/accel.md).
   enum class Build { binned_sah, bottom_up } build = Build::binned_sah;
