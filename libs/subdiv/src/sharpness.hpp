@@ -24,6 +24,8 @@ class LevelSharpness {
     if (topology_.is_boundary_edge(e)) return kInfiniteSharpness;
     return edges_.empty() ? 0.0f : edges_[e];
   }
+  /// True when interior edge e carries a crease tag (a sharpness > 0).
+  bool tagged_edge(uint32_t e) const { return !edges_.empty() && edges_[e] > 0.0f; }
   /// Sharpness of vertex v: its corner tag, infinite for a boundary corner under edge_and_corner.
   float vertex(uint32_t v) const { return vertices_.empty() ? 0.0f : vertices_[v]; }
   /// False when vertex v certainly follows the smooth rule: interior, no tag on it or on its edges.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "sharpness.hpp"
@@ -26,7 +27,13 @@ class LevelRefiner {
  public:
   LevelRefiner(const TopologyTables& topology, const detail::LevelSharpness& sharpness, const Rules& rules,
                CreaseMethod method, bool quad_split)
-      : t_(topology), sharp_(sharpness), rules_(rules), method_(method), quads_(quad_split) {}
+      : t_(topology), sharp_(sharpness), rules_(rules), method_(method), quads_(quad_split) {
+    if constexpr (!Rules::kLinear) {
+      smooth_edge_ = rules_.smooth_edge(2, 4, 4);
+      smooth_vertex_.resize(size_t(t_.max_valence()) + 1);
+      for (uint32_t k = 1; k <= t_.max_valence(); ++k) smooth_vertex_[k] = rules_.smooth_vertex(k);
+    }
+  }
 
   size_t child_vertex_count() const { return first_edge_point() + t_.edge_count(); }
 
@@ -141,14 +148,25 @@ class LevelRefiner {
     return {.end = s * 0.5 + (1.0 - s) * smooth.end, .face = (1.0 - s) * smooth.face};
   }
 
+  // The smooth mask of an interior edge between the faces of corners k0 and k1 (the same for every edge unless
+  // Catmull-Clark weighs triangles differently).
+  EdgeMask interior_smooth_edge(uint32_t k0, uint32_t k1) const {
+    if constexpr (std::is_same_v<Rules, CatmarkRules>) {
+      if (rules_.triangles != TriangleSubdivision::catmark)
+        return rules_.smooth_edge(2, t_.face_size(t_.corner_face(k0)), t_.face_size(t_.corner_face(k1)));
+    }
+    return smooth_edge_;
+  }
+
   template <class T>
   T edge_point_value(uint32_t e, std::span<const T> parent, std::span<const T> child,
                      std::vector<float>& buffer) const {
-    const EdgeMask m = edge_mask(e, buffer);
-    const auto [a, b] = t_.edge_vertices(e);
-    T value = (parent[a] + parent[b]) * m.end;
+    const auto [k0, k1] = t_.edge_corners(e);
+    const bool smooth = !Rules::kLinear && k1 != TopologyTables::kNone && !sharp_.tagged_edge(e);
+    const EdgeMask m = smooth ? interior_smooth_edge(k0, k1) : edge_mask(e, buffer);
+    T value = (parent[t_.corner_vertex(k0)] + parent[t_.corner_vertex(t_.next_corner(k0))]) * m.end;
     if (m.face != 0.0) {
-      for (uint32_t k : t_.edge_corners(e)) {
+      for (uint32_t k : {k0, k1}) {
         if (k == TopologyTables::kNone) continue;
         if constexpr (Rules::kFacePoints)
           value += child[t_.vertex_count() + t_.corner_face(k)] * m.face;
@@ -162,7 +180,7 @@ class LevelRefiner {
   VertexMask vertex_mask(uint32_t v, std::vector<float>& buffer) const {
     if constexpr (Rules::kLinear) return {};
     const uint32_t faces = t_.ring_face_count(v), edges = t_.ring_edge_count(v);
-    if (!sharp_.may_be_sharp(v) && faces > 0) return rules_.smooth_vertex(faces);
+    if (!sharp_.may_be_sharp(v) && faces > 0) return smooth_vertex_[faces];
     if (edges == 0) return corner_vertex_mask();
     const std::span<float> parent(buffer.data(), edges), child(buffer.data() + edges, edges);
     const VertexRule parent_rule = sharp_.rule(v, parent);
@@ -218,6 +236,8 @@ class LevelRefiner {
   const Rules& rules_;
   CreaseMethod method_;
   bool quads_;
+  EdgeMask smooth_edge_;                   // the smooth mask of an interior edge between quads (or triangles)
+  std::vector<VertexMask> smooth_vertex_;  // the smooth mask of an interior vertex by valence
 };
 
 template <class Rules>
