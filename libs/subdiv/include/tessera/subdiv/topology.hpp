@@ -56,15 +56,18 @@ class TopologyTables {
   uint32_t corner_vertex(uint32_t k) const { return face_vertices_[k]; }
   uint32_t corner_face(uint32_t k) const {
     if (uniform_size_ == 4) return k >> 2;
+    if (uniform_size_ == 3) return k / 3;  // a multiplication, where k / uniform_size_ is a division
     return uniform_size_ != 0 ? k / uniform_size_ : corner_faces_[k];
   }
   uint32_t next_corner(uint32_t k) const {
     if (uniform_size_ == 4) return (k & ~3u) | ((k + 1) & 3u);
+    if (uniform_size_ == 3) return k % 3 == 2 ? k - 2 : k + 1;
     const uint32_t f = corner_face(k);
     return k + 1 == face_offsets_[f + 1] ? face_offsets_[f] : k + 1;
   }
   uint32_t prev_corner(uint32_t k) const {
     if (uniform_size_ == 4) return (k & ~3u) | ((k - 1) & 3u);
+    if (uniform_size_ == 3) return k % 3 == 0 ? k + 2 : k - 1;
     const uint32_t f = corner_face(k);
     return k == face_offsets_[f] ? face_offsets_[f + 1] - 1 : k - 1;
   }
