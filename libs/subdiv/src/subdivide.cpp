@@ -18,6 +18,7 @@ namespace tessera {
 namespace {
 
 constexpr int64_t kGrain = 2048;
+constexpr int64_t kAhead = 8;  // elements between a prefetch and its use
 constexpr int kMaxLevels = 12;
 
 // One level of one scheme. Child vertices: vertex points [0, V), face points [V, V + F) for quad splits, then edge
@@ -50,14 +51,20 @@ class LevelRefiner {
         }
       });
     }
+    // The gathers are bound by the latency of scattered loads: fetch the points a few elements ahead.
     parallel_for(0, int64_t(t_.edge_count()), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(t_.max_valence());
-      for (int64_t edge = b; edge < e; ++edge)
+      for (int64_t edge = b; edge < e; ++edge) {
+        if (edge + kAhead < e) prefetch_edge<T>(uint32_t(edge + kAhead), parent, child);
         child[edge_point(uint32_t(edge))] = edge_point_value<T>(uint32_t(edge), parent, child, buffer);
+      }
     });
     parallel_for(0, int64_t(n), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(2 * size_t(t_.max_valence()));
-      for (int64_t v = b; v < e; ++v) child[v] = vertex_point_value<T>(uint32_t(v), parent, child, buffer);
+      for (int64_t v = b; v < e; ++v) {
+        if (v + kAhead < e) prefetch_vertex<T>(uint32_t(v + kAhead), parent, child);
+        child[v] = vertex_point_value<T>(uint32_t(v), parent, child, buffer);
+      }
     });
   }
 
@@ -146,6 +153,28 @@ class LevelRefiner {
     if (s <= 0.0f) return smooth;
     // Semi-sharp edge decaying to smooth: blend the crease (midpoint) and smooth rules by the sharpness.
     return {.end = s * 0.5 + (1.0 - s) * smooth.end, .face = (1.0 - s) * smooth.face};
+  }
+
+  // Asks the caches for the points that edge e's and vertex v's masks weigh.
+  template <class T>
+  void prefetch_edge(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
+    const auto [k0, k1] = t_.edge_corners(e);
+    __builtin_prefetch(&parent[t_.corner_vertex(k0)]);
+    __builtin_prefetch(&parent[t_.corner_vertex(t_.next_corner(k0))]);
+    for (uint32_t k : {k0, k1}) {
+      if (k == TopologyTables::kNone) continue;
+      if constexpr (Rules::kFacePoints)
+        __builtin_prefetch(&child[t_.vertex_count() + t_.corner_face(k)]);
+      else
+        __builtin_prefetch(&parent[t_.corner_vertex(t_.prev_corner(k))]);
+    }
+  }
+  template <class T>
+  void prefetch_vertex(uint32_t v, std::span<const T> parent, std::span<const T> child) const {
+    for (uint32_t k : t_.ring_corners(v)) {
+      __builtin_prefetch(&parent[t_.corner_vertex(t_.next_corner(k))]);
+      if constexpr (Rules::kFacePoints) __builtin_prefetch(&child[t_.vertex_count() + t_.corner_face(k)]);
+    }
   }
 
   // The smooth mask of an interior edge between the faces of corners k0 and k1 (the same for every edge unless
