@@ -83,7 +83,9 @@ struct RangeBounds {
 };
 
 /// The tests a leaf of n primitives costs: whole blocks of settings.leaf_block.
-float leaf_tests(const BvhSettings& s, int n) { return float((n + s.leaf_block - 1) / s.leaf_block); }
+float leaf_tests(const BvhSettings& s, int n) {
+  return float(unsigned(n + s.leaf_block - 1) >> std::countr_zero(unsigned(s.leaf_block)));
+}
 
 constexpr int kParallelPrims = 4096;     // ranges above this build their two halves as parallel tasks
 constexpr int kParallelBinning = 65536;  // ranges above this bin in parallel
@@ -105,14 +107,16 @@ RangeBounds range_bounds(const PrimRef* refs, int n) {
                               });
 }
 
-/// Per-axis SAH bins (only the first `bins` of each axis are used and initialized).
+/// Per-axis SAH bins (only the first `bins` of each axis are used and initialized; plain vectors, so that nothing
+/// else is written: a split of a few primitives would otherwise spend its time clearing 192 boxes).
 struct Bins {
-  Box4 box[3][kMaxBins];
+  v4f lo[3][kMaxBins], hi[3][kMaxBins];
   int count[3][kMaxBins];
   explicit Bins(int bins) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < bins; ++b) {
-        box[a][b] = Box4{};
+        lo[a][b] = splat(std::numeric_limits<float>::infinity());
+        hi[a][b] = splat(-std::numeric_limits<float>::infinity());
         count[a][b] = 0;
       }
   }
@@ -120,10 +124,17 @@ struct Bins {
   void add(const Bins& o, int bins) {
     for (int a = 0; a < 3; ++a)
       for (int b = 0; b < bins; ++b) {
-        box[a][b].expand(o.box[a][b]);
+        lo[a][b] = vmin(lo[a][b], o.lo[a][b]);
+        hi[a][b] = vmax(hi[a][b], o.hi[a][b]);
         count[a][b] += o.count[a][b];
       }
   }
+  void add(int a, int b, const Box4& box) {
+    lo[a][b] = vmin(lo[a][b], box.lo);
+    hi[a][b] = vmax(hi[a][b], box.hi);
+    ++count[a][b];
+  }
+  Box4 box(int a, int b) const { return Box4{lo[a][b], hi[a][b]}; }
 };
 
 /// A split: axis, first bin of the right side (-1: none, the centroids coincide), SAH cost, the binning origin and
@@ -221,10 +232,7 @@ class SahBuilder {
         const PrimRef& p = refs[i];
         v4i b = __builtin_convertvector((p.centroid2() - clo) * scale, v4i);
         b = b < zero ? zero : (b > last ? last : b);
-        for (int a = 0; a < 3; ++a) {
-          acc.box[a][b[a]].expand(p.box);
-          ++acc.count[a][b[a]];
-        }
+        for (int a = 0; a < 3; ++a) acc.add(a, b[a], p.box);
       }
     };
     Bins bins(nb);
@@ -246,31 +254,32 @@ class SahBuilder {
     Split best;
     for (int a = 0; a < 3; ++a) {
       if (!(cext[a] > 0)) continue;
-      // Sweep from the right for the boxes and counts of the right sides, then from the left.
-      Box4 right_box[kMaxBins];
+      // Sweep from the right for the areas and counts of the right sides, then from the left.
+      float right_area[kMaxBins];
       int right_count[kMaxBins];
       Box4 acc;
       int cnt = 0;
       for (int b = nb - 1; b > 0; --b) {
-        acc.expand(bins.box[a][b]);
+        acc.expand(bins.box(a, b));
         cnt += bins.count[a][b];
-        right_box[b] = acc;
+        right_area[b] = acc.area();
         right_count[b] = cnt;
       }
       acc = Box4{};
       cnt = 0;
       for (int b = 1; b < nb; ++b) {
-        acc.expand(bins.box[a][b - 1]);
+        acc.expand(bins.box(a, b - 1));
         cnt += bins.count[a][b - 1];
         if (cnt == 0 || right_count[b] == 0) continue;
         // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
-        const float cost =
-            s_.traversal_cost +
-            s_.intersection_cost * inv_area *
-                (acc.area() * leaf_tests(s_, cnt) + right_box[b].area() * leaf_tests(s_, right_count[b]));
-        if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, right_box[b]};
+        const float cost = s_.traversal_cost + s_.intersection_cost * inv_area *
+                                                   (acc.area() * leaf_tests(s_, cnt) +
+                                                    right_area[b] * leaf_tests(s_, right_count[b]));
+        if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, Box4{}};
       }
     }
+    if (best.bin >= 0)
+      for (int b = best.bin; b < nb; ++b) best.right.expand(bins.box(best.axis, b));
     return best;
   }
 
@@ -306,7 +315,7 @@ class BottomUpBuilder {
   BottomUpBuilder(const BvhSettings& s, RawVector<PrimRef>& refs) : s_(s), refs_(refs) {}
 
   /// Returns the depth; fills nodes (depth-first) and reorders refs_ into leaf order.
-  int build(std::vector<BvhNode>& nodes) {
+  int build(RawVector<BvhNode>& nodes) {
     const int n = int(refs_.size());
     sort_by_morton();
     tree_.reserve(2 * size_t(n));
@@ -423,7 +432,7 @@ class BottomUpBuilder {
     gather(t.right, ordered);
   }
 
-  int flatten(int id, std::vector<BvhNode>& nodes, RawVector<PrimRef>& ordered) const {
+  int flatten(int id, RawVector<BvhNode>& nodes, RawVector<PrimRef>& ordered) const {
     const TreeNode& t = tree_[size_t(id)];
     const int self = int(nodes.size());
     nodes.push_back(BvhNode{t.box, int(ordered.size()), 0, 0});
@@ -458,8 +467,9 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
                        std::to_string(settings.max_leaf_size));
   if (!(settings.bins >= 2 && settings.bins <= kMaxBins))
     throw InvalidInput("BvhSettings: bins must be in [2, 64], got " + std::to_string(settings.bins));
-  if (!(settings.leaf_block >= 1 && settings.leaf_block <= 64))
-    throw InvalidInput("BvhSettings: leaf_block must be in [1, 64], got " + std::to_string(settings.leaf_block));
+  if (!(settings.leaf_block >= 1 && settings.leaf_block <= 64 && std::has_single_bit(unsigned(settings.leaf_block))))
+    throw InvalidInput("BvhSettings: leaf_block must be a power of two in [1, 64], got " +
+                       std::to_string(settings.leaf_block));
   if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
     throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
   RawVector<PrimRef> refs;  // on huge pages when large (fewer page faults), as all the build's reference arrays
@@ -483,13 +493,10 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
     }
   }
   if (nodes_.empty()) {
-    // Uninitialized slots: only the nodes written are touched (about n / 2 of the 2 n - 1 for leaves of 4).
-    const size_t slot_count = 2 * refs.size() - 1;
-    constexpr std::align_val_t kAlign{alignof(BvhNode)};  // nodes are 32-byte aligned (one cache-line half each)
-    const auto free_slots = [kAlign](BvhNode* p) { ::operator delete[](p, kAlign); };
-    const std::unique_ptr<BvhNode, decltype(free_slots)> storage(
-        static_cast<BvhNode*>(::operator new[](slot_count * sizeof(BvhNode), kAlign)), free_slots);
-    BvhNode* slots = storage.get();
+    // Uninitialized slots on huge pages: only the nodes written are touched (about n / 2 of the 2 n - 1 for leaves
+    // of 4), and with 4 KiB pages their first touches (page faults) cost as much as the binning.
+    RawVector<BvhNode> storage(2 * refs.size() - 1);
+    BvhNode* slots = storage.data();
     const auto built =
         SahBuilder(settings_, refs).build(0, int(refs.size()), range_bounds(refs.data(), int(refs.size())), slots, 0);
     depth_ = built.depth;

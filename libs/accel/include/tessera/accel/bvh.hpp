@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "tessera/core/memory.hpp"
 #include "tessera/math/ray.hpp"
 
 namespace tessera {
@@ -18,7 +19,7 @@ struct BvhSettings {
   float intersection_cost = 1.0f;  ///< SAH cost of one primitive test
   int max_leaf_size = 4;           ///< a range of at most this many primitives may become a leaf (SAH permitting)
   int bins = 16;                   ///< SAH bins per axis (binned_sah)
-  /// Primitives a leaf tests at once (a SIMD test of several): the SAH charges a leaf of n primitives
+  /// Primitives a leaf tests at once (a SIMD test of several; a power of two): the SAH charges a leaf of n primitives
   /// ceil(n / leaf_block) tests, which favours full blocks (MeshAccel sets 4).
   int leaf_block = 1;
   /// binned_sah: top-down, the split of least SAH cost among the bin boundaries of the three axes.
@@ -165,8 +166,8 @@ class Bvh {
   static constexpr int kMaxDepth = 64;  ///< builds keep the depth below this (the traversal stack size)
 
  private:
-  std::vector<BvhNode> nodes_;
-  std::vector<int> prim_indices_;
+  RawVector<BvhNode> nodes_;  // uninitialized growth on huge pages: written in full by the constructor
+  RawVector<int> prim_indices_;
   int depth_ = 0;
   BvhSettings settings_;
 };
