@@ -387,7 +387,7 @@ void Context::draw_wireframe(const TriMesh& mesh) {
 
 FixedFunctionUniforms Context::uniforms() const {
   FixedFunctionUniforms u;
-  u.model_view_projection = Mat4f(projection() * model_view());
+  u.model_view_projection = gl_matrix_product(Mat4f(projection()), Mat4f(model_view()));
   u.model_view = Mat4f(model_view());
   u.normal_matrix = Mat3f(normal_matrix(model_view()));
   Lighting lighting = lighting_;

@@ -13,10 +13,11 @@ namespace {
 constexpr int kMaxStride = 4 + kMaxVaryings;
 constexpr int kMaxClipVertices = 3 + 6;  // each of the six planes adds at most one vertex to a convex polygon
 
-// Signed distance of a clip-space point to plane p of the clip volume -w <= x, y, z <= w (inside when >= 0).
+// Signed distance of a clip-space point to plane p of the clip volume -w <= x, y, z <= w (inside when >= 0), the
+// planes in the order Mesa's clipper takes them (draw_context.c): x <= w, -w <= x, y <= w, -w <= y, -w <= z, z <= w.
 inline float plane_distance(const float* v, int p) {
   const float c = v[p >> 1];
-  return (p & 1) ? v[3] - c : v[3] + c;
+  return ((p & 1) != (p >> 1 == 2)) ? v[3] + c : v[3] - c;
 }
 
 inline bool finite_position(const float* v) {
@@ -30,16 +31,21 @@ inline unsigned outcode(const float* v) {
   return code;
 }
 
-// r = in + t (out - in) with t where the segment crosses the plane; always computed from the inside end, so two
-// triangles sharing a clipped edge get bit-identical new vertices.
-inline void intersect(const float* in, const float* out, float d_in, float d_out, int stride, float* r) {
-  const float t = d_in / (d_in - d_out);
-  for (int k = 0; k < stride; ++k) r[k] = in[k] + t * (out[k] - in[k]);
+// The new vertex where edge a-b crosses a plane (distances da, db of opposite signs), as Mesa's clipper computes it
+// (draw_pipe_clip.c): from the end nearer the plane (the inside end on a tie), r = a + t (b - a), t = da / (da - db).
+// Two triangles sharing a clipped edge get bit-identical new vertices whichever way they walk it.
+inline void intersect(const float* a, const float* b, float da, float db, int stride, float* r) {
+  const bool from_a = std::abs(da) < std::abs(db) || (std::abs(da) == std::abs(db) && da >= 0);
+  if (!from_a) std::swap(a, b), std::swap(da, db);
+  const float t = da / (da - db);
+  for (int k = 0; k < stride; ++k) r[k] = a[k] + t * (b[k] - a[k]);
 }
 
-// Sutherland-Hodgman against the planes in `planes` (bit mask): clips the polygon in a (count vertices), using b as
-// the second buffer. Returns the vertex count of the result, which ends in a.
-int clip_polygon(float (*a)[kMaxStride], float (*b)[kMaxStride], int count, int stride, unsigned planes) {
+// Sutherland-Hodgman against the planes in `planes` (bit mask), in Mesa's order and walk (so that the polygon and
+// its fan are Mesa's): clips the polygon in a (count vertices; new[i] marks vertices made by clipping), using b and
+// new_b as the second buffers. Returns the vertex count of the result, which ends in a and new_a.
+int clip_polygon(float (*a)[kMaxStride], bool* new_a, float (*b)[kMaxStride], bool* new_b, int count, int stride,
+                 unsigned planes) {
   for (int p = 0; p < 6 && count >= 3; ++p) {
     if (!(planes & (1u << p))) continue;
     int n = 0;
@@ -47,15 +53,19 @@ int clip_polygon(float (*a)[kMaxStride], float (*b)[kMaxStride], int count, int 
       const float* cur = a[i];
       const float* next = a[(i + 1) % count];
       const float dc = plane_distance(cur, p), dn = plane_distance(next, p);
-      if (dc >= 0) std::copy(cur, cur + stride, b[n++]);
+      if (dc >= 0) {
+        std::copy(cur, cur + stride, b[n]);
+        new_b[n++] = new_a[i];
+      }
       if ((dc >= 0) != (dn >= 0)) {
-        if (dc >= 0)
-          intersect(cur, next, dc, dn, stride, b[n++]);
-        else
-          intersect(next, cur, dn, dc, stride, b[n++]);
+        intersect(cur, next, dc, dn, stride, b[n]);
+        new_b[n++] = true;
       }
     }
-    for (int i = 0; i < n; ++i) std::copy(b[i], b[i] + stride, a[i]);
+    for (int i = 0; i < n; ++i) {
+      std::copy(b[i], b[i] + stride, a[i]);
+      new_a[i] = new_b[i];
+    }
     count = n;
   }
   return count;
@@ -82,22 +92,60 @@ PlaneSetup plane_setup(double x0, double y0, double x1, double y1, double x2, do
   return s;
 }
 
+// A vertex's window position as Gallium has it: y down for a window-system framebuffer (viewport scale -h/2,
+// translate H - (y + h/2)). The vertex stage's viewport transform (draw_llvm.c) fuses ndc * scale + translate into
+// one multiply-add; the clipper's (draw_pipe_clip.c, plain C) rounds twice for the vertices it makes.
+struct GalliumVertex {
+  float x, y, z;
+};
+GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool made_by_clipping) {
+  const float inv_w = 1.0f / clip[3];
+  const float half_w = float(params.vw) * 0.5f, half_h = float(params.vh) * 0.5f;
+  const float translate_x = float(params.vx) + half_w;
+  const float translate_y = float(params.fb_height) - (float(params.vy) + half_h);
+  const float x = clip[0] * inv_w, y = clip[1] * inv_w;
+  const float z = clip[2] * inv_w * 0.5f + 0.5f;  // exact either way
+  if (made_by_clipping) return {x * half_w + translate_x, y * -half_h + translate_y, z};
+  return {__builtin_fmaf(x, half_w, translate_x), __builtin_fmaf(y, -half_h, translate_y), z};
+}
+
+// The depth plane of a triangle as llvmpipe sets it up (Mesa 22.3, lp_state_setup.c: float32, in Gallium's window
+// frame with y down, relative to the first vertex moved by half a pixel): za is the depth at the center of image
+// pixel (0, 0), zdx and zdy the steps per pixel. llvmpipe hands the vertices over in their order when they wind
+// counterclockwise on the GL screen, else with the first two swapped (lp_setup_tri.c, triangle_both).
+void depth_plane(const GalliumVertex* g, bool gl_ccw, TriangleRecord& r) {
+  const GalliumVertex& v0 = g[gl_ccw ? 0 : 1];
+  const GalliumVertex& v1 = g[gl_ccw ? 1 : 0];
+  const GalliumVertex& v2 = g[2];
+  const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+  const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
+  const float dx01o = dx01 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dy20o = dy20 * ooa;
+  const float dz01 = v0.z - v1.z, dz20 = v2.z - v0.z;
+  const float dzdx = dz01 * dy20o - dz20 * dy01o;
+  const float dzdy = dz20 * dx01o - dz01 * dx20o;
+  r.za = v0.z - (dzdx * (v0.x - 0.5f) + dzdy * (v0.y - 0.5f));
+  r.zdx = dzdx;
+  r.zdy = dzdy;
+  if (!std::isfinite(r.za) || !std::isfinite(dzdx) || !std::isfinite(dzdy)) {
+    // Collinear in float although not after snapping (a sliver): the first vertex's depth.
+    r.za = v0.z;
+    r.zdx = r.zdy = 0;
+  }
+}
+
 // Sets up one (clipped) triangle and bins it.
 void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0, const float* v1, const float* v2,
-                   const float* flat_values, SetupChunk& chunk) {
+                   const bool* made_by_clipping, const float* flat_values, SetupChunk& chunk) {
   const float* v[3] = {v0, v1, v2};
   WindowVertex w[3];
+  GalliumVertex g[3];
   int32_t X[3], Y[3];
-  // Window y is snapped as Gallium computes it for a window-system framebuffer, whose rows run top to bottom:
-  // yd = scale -h/2, translate H - (y + h/2); mirroring the snapped integer gives the GL y-up coordinate exactly.
-  const float half_h = float(params.vh) * 0.5f;
-  const float translate_yd = float(params.fb_height) - (float(params.vy) + half_h);
   for (int k = 0; k < 3; ++k) {
     if (!(v[k][3] > 0)) return;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
     w[k] = to_window(params, v[k]);
-    const float yd = v[k][1] * w[k].inv_w * -half_h + translate_yd;
-    X[k] = round_to_int(w[k].x * 256.0f);  // snap to 1/256 pixel
-    Y[k] = params.fb_height * 256 - round_to_int(yd * 256.0f);
+    g[k] = gallium_window(params, v[k], made_by_clipping[k]);
+    X[k] = round_to_int(g[k].x * 256.0f);  // snap to 1/256 pixel
+    Y[k] = params.fb_height * 256 - round_to_int(g[k].y * 256.0f);  // mirrored: exactly the GL y-up value
   }
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
@@ -128,11 +176,7 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   // collinear in floating point.
   PlaneSetup ps = plane_setup(w[0].x, w[0].y, w[1].x, w[1].y, w[2].x, w[2].y);
   if (!ps.valid()) ps = plane_setup(X[0] / 256.0, Y[0] / 256.0, X[1] / 256.0, Y[1] / 256.0, X[2] / 256.0, Y[2] / 256.0);
-  double zx, zy;
-  ps.solve(w[0].z, w[1].z, w[2].z, zx, zy);
-  r.zx = zx;
-  r.zy = zy;
-  r.z0 = w[0].z - zx * ps.x0 - zy * ps.y0;
+  depth_plane(g, area > 0, r);
   r.rx = float(ps.x0);
   r.ry = float(ps.y0);
   const int n = params.varying_count;
@@ -172,6 +216,8 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
   const int stride = 4 + n;
   const Scissor sc = scissor(params);
   float a[kMaxClipVertices][kMaxStride], b[kMaxClipVertices][kMaxStride];
+  bool new_a[kMaxClipVertices], new_b[kMaxClipVertices];
+  constexpr bool kOriginal[3] = {false, false, false};
   float flat[kMaxVaryings];
   for (size_t t = first; t < first + count; ++t) {
     const float* v[3];
@@ -181,13 +227,17 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
     if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
     if (!(c0 | c1 | c2)) {
-      emit_triangle(params, sc, v[0], v[1], v[2], provoking, chunk);
+      emit_triangle(params, sc, v[0], v[1], v[2], kOriginal, provoking, chunk);
       continue;
     }
     std::copy(provoking, provoking + n, flat);
-    for (int k = 0; k < 3; ++k) std::copy(v[k], v[k] + stride, a[k]);
-    const int m = clip_polygon(a, b, 3, stride, c0 | c1 | c2);
-    for (int k = 1; k + 1 < m; ++k) emit_triangle(params, sc, a[0], a[k], a[k + 1], flat, chunk);
+    for (int k = 0; k < 3; ++k) std::copy(v[k], v[k] + stride, a[k]), new_a[k] = false;
+    const int m = clip_polygon(a, new_a, b, new_b, 3, stride, c0 | c1 | c2);
+    // Mesa's fan (emit_poly, last vertex provoking): (i - 1, i, 0).
+    for (int i = 2; i < m; ++i) {
+      const bool made[3] = {new_a[i - 1], new_a[i], new_a[0]};
+      emit_triangle(params, sc, a[i - 1], a[i], a[0], made, flat, chunk);
+    }
   }
 }
 

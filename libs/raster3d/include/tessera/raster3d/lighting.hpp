@@ -99,9 +99,21 @@ class PreparedLighting {
 
 // ---- The fixed-function pipeline as a shader pair ------------------------------------------------------------------
 
+/// An object position (w = 1) through a float32 matrix the way OpenGL on Mesa does it (the fixed-function vertex
+/// program's MUL and MADs): m[0] x + m[1] y + m[2] z + m[3], summed left to right. glm's operator* adds the terms in
+/// pairs, which rounds differently and moves depth by a unit of 2^-24 on many pixels.
+inline Vec4f gl_transform(const Mat4f& m, const Vec3f& p) { return ((m[0] * p.x + m[1] * p.y) + m[2] * p.z) + m[3]; }
+
+/// The float32 product a b as Mesa forms P * MV (m_matrix.c): each entry's four products summed left to right.
+inline Mat4f gl_matrix_product(const Mat4f& a, const Mat4f& b) {
+  Mat4f p;
+  for (int j = 0; j < 4; ++j) p[j] = ((a[0] * b[j].x + a[1] * b[j].y) + a[2] * b[j].z) + a[3] * b[j].w;
+  return p;
+}
+
 /// Uniforms of the fixed-function shaders: the matrices (float32, as OpenGL), lighting, and the constant attributes.
 struct FixedFunctionUniforms {
-  Mat4f model_view_projection{1.0f};  ///< P * MV, one float32 matrix for positions
+  Mat4f model_view_projection{1.0f};  ///< P * MV, one float32 matrix for positions (gl_matrix_product)
   Mat4f model_view{1.0f};
   Mat3f normal_matrix{1.0f};  ///< inverse transpose of MV's upper 3x3
   PreparedLighting lighting;
@@ -117,11 +129,11 @@ struct FixedFunctionVertexShader {
 
   VertexOut<ColorVaryings> operator()(uint32_t i) const {
     const FixedFunctionUniforms& u = *uniforms;
-    const Vec4f object(attributes.positions[i], 1.0f);
     const Vec3f color = attributes.color_or(i, u.color);
-    if (!u.lit) return {u.model_view_projection * object, {color}};
+    const Vec4f clip = gl_transform(u.model_view_projection, attributes.positions[i]);
+    if (!u.lit) return {clip, {color}};
     const Vec3f n = glm::normalize(u.normal_matrix * attributes.normal_or(i, u.normal));
-    return {u.model_view_projection * object, {u.lighting.shade(n, Vec3f(u.model_view * object), color)}};
+    return {clip, {u.lighting.shade(n, Vec3f(u.model_view * Vec4f(attributes.positions[i], 1.0f)), color)}};
   }
 };
 
@@ -140,7 +152,7 @@ struct PhongVertexShader {
   VertexOut<PhongVaryings> operator()(uint32_t i) const {
     const FixedFunctionUniforms& u = *uniforms;
     const Vec4f object(attributes.positions[i], 1.0f);
-    return {u.model_view_projection * object,
+    return {gl_transform(u.model_view_projection, attributes.positions[i]),
             {u.normal_matrix * attributes.normal_or(i, u.normal), Vec3f(u.model_view * object),
              attributes.color_or(i, u.color)}};
   }

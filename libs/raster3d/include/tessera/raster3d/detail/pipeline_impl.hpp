@@ -32,7 +32,8 @@ struct Edge {
 struct TriangleRecord {
   Edge edges[3];
   int32_t x0, y0, x1, y1;  // covered GL pixels lie in [x0, x1) x [y0, y1) (scissored)
-  double z0, zx, zy;       // window z at GL pixel center (px, py): z0 + zx px + zy py
+  float za, zdx, zdy;      // the depth plane as llvmpipe evaluates it: window z at image pixel (i, row r) is
+                           // fragment_depth(za, zdx, zdy, i, r) (see there)
   float rx, ry;            // the varying planes' origin (window position of the first vertex)
   uint32_t varyings;       // offset in the chunk's varyings: constant, N floats; else the planes c[N+1], cx[N+1],
                            // cy[N+1] of 1/w and of each varying / w: value(px, py) = c + cx (px - rx) + cy (py - ry)
@@ -122,12 +123,18 @@ const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& 
 /// A 32-bit word that may alias the 8-bit RGBA pixels (one store per pixel in the constant-color loop).
 using AliasedU32 = uint32_t __attribute__((may_alias));
 
-/// depth_to_unorm24 for the plane depth at a pixel center inside the triangle (in [0, 1] up to rounding), clamped
-/// in integers so that span loops vectorize.
-inline uint32_t depth24(double z) {
-  const int32_t d = int32_t(z * double(kDepthMax) + 0.5);
-  const int32_t low = d > 0 ? d : 0;
-  return uint32_t(low < int32_t(kDepthMax) ? low : int32_t(kDepthMax));
+/// The window z of the fragment at image pixel (i, row r) from the triangle's float depth plane, in llvmpipe's
+/// arithmetic (Mesa 22.3, lp_bld_interp.c): a0 + dadx i, then + dady r, each a fused multiply-add.
+[[gnu::always_inline]] inline float fragment_depth(float za, float zdx, float zdy, float i, float r) {
+  return __builtin_fmaf(zdy, r, __builtin_fmaf(zdx, i, za));
+}
+
+/// A fragment's window z to the stored 24-bit value as llvmpipe converts it (lp_build_clamped_float_to_unsigned_norm
+/// for 24 bits): clamped to [0, 1] (NaN to 0), times 2^24 - 1 in float, rounded to nearest with ties to even.
+[[gnu::always_inline]] inline uint32_t depth24(float z) {
+  z = z > 0.0f ? z : 0.0f;
+  z = z < 1.0f ? z : 1.0f;
+  return uint32_t(int32_t(__builtin_rintf(z * 16777215.0f)));
 }
 
 /// Whether a fragment of depth d passes against the stored depth s.
@@ -151,13 +158,13 @@ inline bool depth_passes(uint32_t d, uint32_t s) {
     return true;
 }
 
-/// One constant color over image-row pixels [lo, hi) with depth z(i) = z + zx i: depth test, depth and color
-/// writes, branch-free (the loop vectorizes; restrict lets the compiler keep the rows apart).
+/// One constant color over image-row pixels [lo, hi) of image row r with the depth plane (za, zdx, zdy): depth test,
+/// depth and color writes, branch-free (the loop vectorizes; restrict lets the compiler keep the rows apart).
 template <DepthFunc F, bool WriteDepth>
 [[gnu::always_inline]] inline void fill_span_loop(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo,
-                                                  int hi, double z, double zx, uint32_t c32) {
+                                                  int hi, float za, float zdx, float zdy, float r, uint32_t c32) {
   for (int i = lo; i < hi; ++i) {
-    const uint32_t d = depth24(z + zx * i);
+    const uint32_t d = depth24(fragment_depth(za, zdx, zdy, float(i), r));
     const uint32_t stored = depth[i];
     const uint32_t old_color = color[i];
     const bool pass = depth_passes<F>(d, stored);
@@ -166,23 +173,49 @@ template <DepthFunc F, bool WriteDepth>
   }
 }
 
-/// The same loop compiled for AVX-512 and for AVX2: eight or four doubles per instruction instead of SSE2's two.
-/// The same IEEE operations (no FMA contraction: CMakeLists.txt passes -ffp-contract=off), so the same pixels.
-template <DepthFunc F, bool WriteDepth>
-[[gnu::target("avx512f,avx512vl,avx512bw,avx512dq")]] void fill_span_avx512(uint32_t* __restrict depth,
-                                                                            AliasedU32* __restrict color, int lo,
-                                                                            int hi, double z, double zx, uint32_t c32) {
-  fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
-}
-template <DepthFunc F, bool WriteDepth>
-[[gnu::target("avx2")]] void fill_span_avx2(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi,
-                                            double z, double zx, uint32_t c32) {
-  fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+/// The depth test of image-row pixels [lo, hi) of row r (early z): their depths into d[i - lo], the outcome into
+/// pass[i - lo].
+template <DepthFunc F>
+[[gnu::always_inline]] inline void test_span_loop(const uint32_t* __restrict depth, int lo, int hi, float za, float zdx,
+                                                  float zdy, float r, uint32_t* __restrict d, bool* __restrict pass) {
+  for (int i = lo; i < hi; ++i) {
+    d[i - lo] = depth24(fragment_depth(za, zdx, zdy, float(i), r));
+    pass[i - lo] = depth_passes<F>(d[i - lo], depth[i]);
+  }
 }
 
-/// The widest instruction set the CPU has: 2 AVX-512, 1 AVX2, 0 the baseline.
+// The same loops compiled for AVX-512 and for AVX2 (with FMA): sixteen or eight floats per instruction instead of
+// SSE2's four. The same IEEE operations (the multiply-adds are explicit fmaf calls, a library call in the baseline;
+// no other contraction: CMakeLists.txt passes -ffp-contract=off), so the same pixels.
+#define TESSERA_AVX512 gnu::target("avx512f,avx512vl,avx512bw,avx512dq,fma")
+#define TESSERA_AVX2 gnu::target("avx2,fma")
+template <DepthFunc F, bool WriteDepth>
+[[TESSERA_AVX512]] void fill_span_avx512(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi,
+                                         float za, float zdx, float zdy, float r, uint32_t c32) {
+  fill_span_loop<F, WriteDepth>(depth, color, lo, hi, za, zdx, zdy, r, c32);
+}
+template <DepthFunc F, bool WriteDepth>
+[[TESSERA_AVX2]] void fill_span_avx2(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi,
+                                     float za, float zdx, float zdy, float r, uint32_t c32) {
+  fill_span_loop<F, WriteDepth>(depth, color, lo, hi, za, zdx, zdy, r, c32);
+}
+template <DepthFunc F>
+[[TESSERA_AVX512]] void test_span_avx512(const uint32_t* __restrict depth, int lo, int hi, float za, float zdx,
+                                         float zdy, float r, uint32_t* __restrict d, bool* __restrict pass) {
+  test_span_loop<F>(depth, lo, hi, za, zdx, zdy, r, d, pass);
+}
+template <DepthFunc F>
+[[TESSERA_AVX2]] void test_span_avx2(const uint32_t* __restrict depth, int lo, int hi, float za, float zdx,
+                                     float zdy, float r, uint32_t* __restrict d, bool* __restrict pass) {
+  test_span_loop<F>(depth, lo, hi, za, zdx, zdy, r, d, pass);
+}
+#undef TESSERA_AVX512
+#undef TESSERA_AVX2
+
+/// The widest instruction set the CPU has: 2 AVX-512, 1 AVX2 with FMA, 0 the baseline.
 inline int span_isa() {
   static const int isa = [] {
+    if (!__builtin_cpu_supports("fma")) return 0;
     if (__builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
       return 2;
     return __builtin_cpu_supports("avx2") ? 1 : 0;
@@ -192,25 +225,29 @@ inline int span_isa() {
 
 /// fill_span_loop in the widest instruction set the CPU has.
 template <DepthFunc F, bool WriteDepth>
-inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi, double z, double zx,
-                      uint32_t c32) {
+inline void fill_span(uint32_t* __restrict depth, AliasedU32* __restrict color, int lo, int hi, float za, float zdx,
+                      float zdy, float r, uint32_t c32) {
   switch (span_isa()) {
     case 2:
-      return fill_span_avx512<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+      return fill_span_avx512<F, WriteDepth>(depth, color, lo, hi, za, zdx, zdy, r, c32);
     case 1:
-      return fill_span_avx2<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+      return fill_span_avx2<F, WriteDepth>(depth, color, lo, hi, za, zdx, zdy, r, c32);
     default:
-      return fill_span_loop<F, WriteDepth>(depth, color, lo, hi, z, zx, c32);
+      return fill_span_loop<F, WriteDepth>(depth, color, lo, hi, za, zdx, zdy, r, c32);
   }
 }
 
-/// The depth test of image-row pixels [lo, hi) (early z): their depths into d[i - lo], the outcome into pass[i - lo].
+/// test_span_loop in the widest instruction set the CPU has.
 template <DepthFunc F>
-inline void test_span(const uint32_t* __restrict depth, int lo, int hi, double z, double zx, uint32_t* __restrict d,
-                      bool* __restrict pass) {
-  for (int i = lo; i < hi; ++i) {
-    d[i - lo] = depth24(z + zx * i);
-    pass[i - lo] = depth_passes<F>(d[i - lo], depth[i]);
+inline void test_span(const uint32_t* __restrict depth, int lo, int hi, float za, float zdx, float zdy, float r,
+                      uint32_t* __restrict d, bool* __restrict pass) {
+  switch (span_isa()) {
+    case 2:
+      return test_span_avx512<F>(depth, lo, hi, za, zdx, zdy, r, d, pass);
+    case 1:
+      return test_span_avx2<F>(depth, lo, hi, za, zdx, zdy, r, d, pass);
+    default:
+      return test_span_loop<F>(depth, lo, hi, za, zdx, zdy, r, d, pass);
   }
 }
 
@@ -330,13 +367,13 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
           int lo = x0, hi = x1;
           if (!full) edge_span(r, j, lo, hi);
           if (lo >= hi) continue;
-          const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
-          uint32_t* drow = depth.row(height - 1 - j);
-          AliasedU32* crow = reinterpret_cast<AliasedU32*>(color.row(height - 1 - j));
+          const int row = height - 1 - j;
+          uint32_t* drow = depth.row(row);
+          AliasedU32* crow = reinterpret_cast<AliasedU32*>(color.row(row));
           if (write_depth)
-            fill_span<F, true>(drow, crow, lo, hi, zrow, r.zx, c32);
+            fill_span<F, true>(drow, crow, lo, hi, r.za, r.zdx, r.zdy, float(row), c32);
           else
-            fill_span<F, false>(drow, crow, lo, hi, zrow, r.zx, c32);
+            fill_span<F, false>(drow, crow, lo, hi, r.za, r.zdx, r.zdy, float(row), c32);
         }
         continue;
       }
@@ -347,14 +384,14 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         int lo = x0, hi = x1;
         edge_span(r, j, lo, hi);
         if (lo >= hi) continue;
-        uint32_t* drow = depth.row(height - 1 - j);
-        glm::u8vec4* crow = color.row(height - 1 - j);
-        const double zrow = r.z0 + r.zy * (j + 0.5) + r.zx * 0.5;
+        const int row = height - 1 - j;
+        uint32_t* drow = depth.row(row);
+        glm::u8vec4* crow = color.row(row);
         // Depth test of the whole span first (vectorizes), then the fragment shader where it passed.
         uint32_t d[kTileSize];
         bool pass[kTileSize];
         const int n = hi - lo;
-        test_span<F>(drow, lo, hi, zrow, r.zx, d, pass);
+        test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
         const float dy = float(j) + 0.5f - r.ry;
         const float dx0 = float(lo) + 0.5f - r.rx;
         std::array<float, N + 1> value;
