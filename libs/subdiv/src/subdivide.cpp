@@ -55,6 +55,7 @@ class LevelRefiner {
     parallel_for(0, int64_t(t_.edge_count()), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(t_.max_valence());
       for (int64_t edge = b; edge < e; ++edge) {
+        if (edge + 2 * kAhead < e) prefetch_edge_topology(uint32_t(edge + 2 * kAhead));
         if (edge + kAhead < e) prefetch_edge<T>(uint32_t(edge + kAhead), parent, child);
         child[edge_point(uint32_t(edge))] = edge_point_value<T>(uint32_t(edge), parent, child, buffer);
       }
@@ -62,6 +63,7 @@ class LevelRefiner {
     parallel_for(0, int64_t(n), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(2 * size_t(t_.max_valence()));
       for (int64_t v = b; v < e; ++v) {
+        if (v + 2 * kAhead < e) prefetch_vertex_topology(uint32_t(v + 2 * kAhead));
         if (v + kAhead < e) prefetch_vertex<T>(uint32_t(v + kAhead), parent, child);
         child[v] = vertex_point_value<T>(uint32_t(v), parent, child, buffer);
       }
@@ -155,7 +157,12 @@ class LevelRefiner {
     return {.end = s * 0.5 + (1.0 - s) * smooth.end, .face = (1.0 - s) * smooth.face};
   }
 
-  // Asks the caches for the points that edge e's and vertex v's masks weigh.
+  // Asks the caches for the topology that finds the points of edge e's and vertex v's masks (two steps ahead), then
+  // for the points themselves (one step ahead).
+  void prefetch_edge_topology(uint32_t e) const { t_.prefetch_edge(e); }
+  void prefetch_vertex_topology(uint32_t v) const {
+    for (uint32_t k : t_.ring_corners(v)) t_.prefetch_corner(t_.next_corner(k));
+  }
   template <class T>
   void prefetch_edge(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
     const auto [k0, k1] = t_.edge_corners(e);

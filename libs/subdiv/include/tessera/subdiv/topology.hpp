@@ -104,6 +104,15 @@ class TopologyTables {
     return i < n ? face_vertices_[next_corner(ring_corners_[vertex_offsets_[v] + i])]
                  : face_vertices_[prev_corner(ring_corners_[vertex_offsets_[v] + n - 1])];
   }
+  /// Hints for gathers: asks the caches for the entries that edge_corners(e) and edge_vertices(e) read, and that
+  /// corner_vertex(k) reads.
+  void prefetch_edge(size_t e) const {
+    const uint32_t k = edge_corners_[e];
+    __builtin_prefetch(&twins_[k]);
+    __builtin_prefetch(&face_vertices_[k]);
+  }
+  void prefetch_corner(uint32_t k) const { __builtin_prefetch(&face_vertices_[k]); }
+
   /// The largest number of edges around a vertex.
   uint32_t max_valence() const { return max_valence_; }
 
