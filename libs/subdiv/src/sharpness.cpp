@@ -6,6 +6,15 @@
 #include "tessera/core/error.hpp"
 
 namespace tessera::detail {
+namespace {
+
+// A tag may be given twice: keep each id once, in increasing order (the order the child's tags are made in).
+void sort_unique(std::vector<uint32_t>& ids) {
+  std::sort(ids.begin(), ids.end());
+  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+}
+
+}  // namespace
 
 LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& mesh, BoundaryInterpolation boundary)
     : topology_(topology) {
@@ -22,10 +31,12 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     if (c.sharpness > 0.0f && !topology.is_boundary_edge(e)) {
       if (edges_.empty()) edges_.assign(topology.edge_count(), 0.0f);
       edges_[e] = std::min(c.sharpness, kInfiniteSharpness);
+      tagged_edge_ids_.push_back(e);
       touch(c.v0);
       touch(c.v1);
     }
   }
+  sort_unique(tagged_edge_ids_);
   for (const VertexCorner& c : mesh.corners) {
     if (std::isnan(c.sharpness)) throw InvalidInput(fmt::format("corner {}: sharpness is NaN", c.v));
     if (c.v >= topology.vertex_count())
@@ -33,9 +44,11 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     if (c.sharpness > 0.0f) {
       if (tagged_vertices_.empty()) tagged_vertices_.assign(topology.vertex_count(), 0.0f);
       tagged_vertices_[c.v] = std::min(c.sharpness, kInfiniteSharpness);
+      tagged_vertex_ids_.push_back(c.v);
       touch(c.v);
     }
   }
+  sort_unique(tagged_vertex_ids_);
   vertices_ = tagged_vertices_;
   if (boundary == BoundaryInterpolation::edge_and_corner) {
     for (uint32_t v = 0; v < topology.vertex_count(); ++v) {

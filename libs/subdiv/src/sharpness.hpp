@@ -34,8 +34,12 @@ class LevelSharpness {
   }
   /// The explicit (interior) edge tags, empty when none.
   std::span<const float> edges() const { return edges_; }
+  /// The interior edges with a tag > 0, in increasing order.
+  std::span<const uint32_t> tagged_edge_ids() const { return tagged_edge_ids_; }
   /// The corner tags as given (without boundary corners), empty when none.
   std::span<const float> tagged_vertices() const { return tagged_vertices_; }
+  /// The vertices with a corner tag > 0, in increasing order.
+  std::span<const uint32_t> tagged_vertex_ids() const { return tagged_vertex_ids_; }
 
   /// The rule of vertex v, with the sharpness of its ring edges written to `ring` (ring_edge_count(v) entries).
   VertexRule rule(uint32_t v, std::span<float> ring) const;
@@ -43,6 +47,7 @@ class LevelSharpness {
  private:
   const TopologyTables& topology_;
   std::vector<float> edges_, vertices_, tagged_vertices_;
+  std::vector<uint32_t> tagged_edge_ids_, tagged_vertex_ids_;
   std::vector<uint8_t> touched_;  // per vertex: tagged, or an end of a tagged edge (empty when nothing is tagged)
 };
 

@@ -114,14 +114,13 @@ class LevelRefiner {
       for (uint32_t i = 0; i < n; ++i) around[i] = sharp_.edge(t_.ring_edge(v, i));
       return child_edge_sharpness(method_, s, std::span<const float>(around.data(), n));
     };
-    for (uint32_t e = 0; e < edges.size(); ++e) {
-      if (edges[e] <= 0.0f) continue;
+    for (uint32_t e : sharp_.tagged_edge_ids()) {
       const auto [a, b] = t_.edge_vertices(e);
       if (const float sa = sharpness_at(a, edges[e]); sa > 0.0f) child.creases.push_back({a, edge_point(e), sa});
       if (const float sb = sharpness_at(b, edges[e]); sb > 0.0f) child.creases.push_back({edge_point(e), b, sb});
     }
     const std::span<const float> corners = sharp_.tagged_vertices();
-    for (uint32_t v = 0; v < corners.size(); ++v)
+    for (uint32_t v : sharp_.tagged_vertex_ids())
       if (const float s = decrement_sharpness(corners[v]); s > 0.0f) child.corners.push_back({v, s});
   }
 
