@@ -6,8 +6,8 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
-#if defined(__SSE2__)
-#include <emmintrin.h>
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
 #endif
 
 #include "tessera/core/atomic_file.hpp"
@@ -89,6 +89,11 @@ TransferFunction TransferFunction::load(const std::filesystem::path& path) {
 
 namespace {
 
+using Corner = std::array<int16_t, 4>;  // quantized value, gradient x, y, z
+
+/// Rounds to the nearest integer, halves away from zero (inline; std::lround is a library call).
+int round_to_int(float x) { return int(x + (x >= 0 ? 0.5f : -0.5f)); }
+
 /// The volume as the ray caster reads it: per voxel the value and the central-difference gradient (world units),
 /// each quantized to 16 bits and interleaved, so that one 8-byte load per cell corner gives everything a shaded
 /// sample needs (VTK's fixed-point mapper also works on 16-bit values with precomputed gradients). Built once per
@@ -96,36 +101,60 @@ namespace {
 struct PackedVolume {
   glm::ivec3 dims;
   size_t stride_y, stride_z;
-  float value_lo, value_scale;  ///< quantized = (v - value_lo) * value_scale - 32768
-  float gradient_scale;         ///< quantized = g * gradient_scale
-  RawVector<std::array<int16_t, 4>> voxels;
+  float value_scale;     ///< quantized = (v - lo) * value_scale - 32768
+  float gradient_scale;  ///< quantized = g * gradient_scale
+  RawVector<Corner> voxels;
 
   PackedVolume(const Volume<float>& v, float lo, float hi, bool with_gradient)
-      : dims(v.dims()), stride_y(size_t(dims.x)), stride_z(size_t(dims.x) * size_t(dims.y)), value_lo(lo) {
+      : dims(v.dims()), stride_y(size_t(dims.x)), stride_z(size_t(dims.x) * size_t(dims.y)) {
     value_scale = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
     // The largest gradient component (a max, so the same for any thread count) sets the gradient's scale.
     std::vector<float> slab_max(size_t(dims.z), 0.0f);
     if (with_gradient)
       parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
+        std::vector<Vec3f> g(size_t(dims.x));
         for (int z = int(z0); z < int(z1); ++z)
-          for (int y = 0; y < dims.y; ++y)
-            for (int x = 0; x < dims.x; ++x) {
-              const Vec3f g = v.gradient(x, y, z);
-              slab_max[size_t(z)] = std::max({slab_max[size_t(z)], std::abs(g.x), std::abs(g.y), std::abs(g.z)});
-            }
+          for (int y = 0; y < dims.y; ++y) {
+            gradient_row(v, y, z, g);
+            for (const Vec3f& d : g)
+              slab_max[size_t(z)] = std::max({slab_max[size_t(z)], std::abs(d.x), std::abs(d.y), std::abs(d.z)});
+          }
       });
     const float gmax = *std::max_element(slab_max.begin(), slab_max.end());
     gradient_scale = gmax > 0 ? 32767.0f / gmax : 0.0f;
     voxels.resize(v.voxel_count());
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
+      std::vector<Vec3f> g(size_t(dims.x), Vec3f(0.0f));
       for (int z = int(z0); z < int(z1); ++z)
-        for (int y = 0; y < dims.y; ++y)
+        for (int y = 0; y < dims.y; ++y) {
+          if (with_gradient) gradient_row(v, y, z, g);
+          const float* row = &v(0, y, z);
+          Corner* out = &voxels[v.index(0, y, z)];
           for (int x = 0; x < dims.x; ++x) {
-            const Vec3f g = with_gradient ? v.gradient(x, y, z) * gradient_scale : Vec3f(0.0f);
-            voxels[v.index(x, y, z)] = {int16_t(std::lround((v(x, y, z) - lo) * value_scale) - 32768),
-                                        int16_t(std::lround(g.x)), int16_t(std::lround(g.y)), int16_t(std::lround(g.z))};
+            const Vec3f q = g[size_t(x)] * gradient_scale;
+            out[x] = {int16_t(round_to_int((row[x] - lo) * value_scale) - 32768), int16_t(round_to_int(q.x)),
+                      int16_t(round_to_int(q.y)), int16_t(round_to_int(q.z))};
           }
+        }
     });
+  }
+
+  /// Volume::gradient for a whole row (central differences, one-sided on the border), without its per-voxel clamps.
+  static void gradient_row(const Volume<float>& v, int y, int z, std::vector<Vec3f>& g) {
+    const glm::ivec3 d = v.dims();
+    const Vec3f sp(v.spacing());
+    const float* row = &v(0, y, z);
+    const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, d.y - 1), z0 = std::max(z - 1, 0), z1 = std::min(z + 1, d.z - 1);
+    const float* ylo = &v(0, y0, z);
+    const float* yhi = &v(0, y1, z);
+    const float* zlo = &v(0, y, z0);
+    const float* zhi = &v(0, y, z1);
+    const float sy = y1 > y0 ? 1.0f / (float(y1 - y0) * sp.y) : 0.0f, sz = z1 > z0 ? 1.0f / (float(z1 - z0) * sp.z) : 0.0f;
+    for (int x = 0; x < d.x; ++x) {
+      const int x0 = std::max(x - 1, 0), x1 = std::min(x + 1, d.x - 1);
+      const float sx = x1 > x0 ? 1.0f / (float(x1 - x0) * sp.x) : 0.0f;
+      g[size_t(x)] = {(row[x1] - row[x0]) * sx, (yhi[x] - ylo[x]) * sy, (zhi[x] - zlo[x]) * sz};
+    }
   }
 
   /// The cell holding voxel coordinates p (clamped to the grid; its lower corner) and p's offset in it.
@@ -135,14 +164,19 @@ struct PackedVolume {
     offset = q - Vec3f(cell);
     return cell;
   }
+  /// Memory offsets of a cell's corners from its lower corner (0 along an axis of one voxel).
+  glm::ivec3 corner_steps() const {
+    return {dims.x > 1 ? 1 : 0, dims.y > 1 ? int(stride_y) : 0, dims.z > 1 ? int(stride_z) : 0};
+  }
 
   /// Trilinear (value, gradient) in quantized units at `offset` in `cell`.
   Vec4f interpolate(const glm::ivec3& cell, const Vec3f& offset) const {
-    const size_t dx = dims.x > 1 ? 1 : 0, dy = dims.y > 1 ? stride_y : 0, dz = dims.z > 1 ? stride_z : 0;
-    const std::array<int16_t, 4>* c = voxels.data() + size_t(cell.x) + stride_y * size_t(cell.y) + stride_z * size_t(cell.z);
+    const glm::ivec3 st = corner_steps();
+    const size_t dx = size_t(st.x), dy = size_t(st.y), dz = size_t(st.z);
+    const Corner* c = voxels.data() + size_t(cell.x) + stride_y * size_t(cell.y) + stride_z * size_t(cell.z);
 #if defined(__SSE2__)
     // Four components at once: sign-extend the four int16 of a corner to floats, then seven lerps.
-    const auto load = [](const std::array<int16_t, 4>& a) {
+    const auto load = [](const Corner& a) {
       const __m128i x = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(a.data()));
       return _mm_cvtepi32_ps(_mm_srai_epi32(_mm_unpacklo_epi16(x, x), 16));
     };
@@ -154,7 +188,7 @@ struct PackedVolume {
     _mm_store_ps(out, lerp(lerp(c00, c10, ty), lerp(c01, c11, ty), tz));
     return Vec4f(out[0], out[1], out[2], out[3]);
 #else
-    const auto load = [](const std::array<int16_t, 4>& a) { return Vec4f(a[0], a[1], a[2], a[3]); };
+    const auto load = [](const Corner& a) { return Vec4f(a[0], a[1], a[2], a[3]); };
     const auto lerp = [](const Vec4f& a, const Vec4f& b, float t) { return a + t * (b - a); };
     const Vec4f c00 = lerp(load(c[0]), load(c[dx]), offset.x), c10 = lerp(load(c[dy]), load(c[dy + dx]), offset.x);
     const Vec4f c01 = lerp(load(c[dz]), load(c[dz + dx]), offset.x);
@@ -164,42 +198,37 @@ struct PackedVolume {
   }
 };
 
-/// The transfer function tabulated over the quantized value range, with each entry's opacity already corrected to
-/// the step (alpha = 1 - (1 - opacity)^step), so a sample costs a table lerp instead of a search and a pow.
+/// The transfer function tabulated over the value range (16384 entries, the nearest one is used: 256 KiB, which
+/// stays in the L2 cache, where a table per quantized value missed it), with each entry's opacity already corrected
+/// to the step (alpha = 1 - (1 - opacity)^step): a sample costs one lookup instead of a search and a pow.
 struct TransferTable {
-  static constexpr int kSize = 4096;
-  std::vector<Vec4f> entries;  ///< rgb, alpha per step
-  float index_scale;           ///< table position = (quantized + 32768) * index_scale
+  static constexpr int kSize = 16384;
+  static constexpr float kScale = float(kSize - 1) / 65535.0f;  ///< entry = (quantized + 32768) * kScale, rounded
+  std::vector<Vec4f> entries;    ///< rgb, alpha per step
+  std::vector<int> lit_before;  ///< entries with a non-zero alpha before entry i (for any_lit)
 
-  TransferTable(const TransferFunction& tf, float lo, float hi, float step) : entries(kSize) {
-    index_scale = float(kSize - 1) / 65535.0f;
+  TransferTable(const TransferFunction& tf, float lo, float hi, float step) : entries(kSize), lit_before(kSize + 1, 0) {
     const float span = hi > lo ? hi - lo : 0.0f;
     for (int i = 0; i < kSize; ++i) {
       const Vec4f c = tf(lo + span * float(i) / float(kSize - 1));
       entries[size_t(i)] = Vec4f(Vec3f(c), 1.0f - std::pow(1.0f - c.w, step));
+      lit_before[size_t(i) + 1] = lit_before[size_t(i)] + (entries[size_t(i)].w > 0);
     }
   }
-  Vec4f operator()(float quantized) const {
-    const float s = std::clamp((quantized + 32768.0f) * index_scale, 0.0f, float(kSize - 1));
-    const int i = std::min(int(s), kSize - 2);
-    return entries[size_t(i)] + (s - float(i)) * (entries[size_t(i) + 1] - entries[size_t(i)]);
-  }
-  /// The largest alpha over quantized values [lo, hi]: every table entry a lerp in that range can touch.
-  float max_alpha(float lo, float hi) const {
-    const int a = std::clamp(int((lo + 32768.0f) * index_scale) - 1, 0, kSize - 1);  // - 1: rounding below lo
-    const int b = std::clamp(int((hi + 32768.0f) * index_scale) + 1, 0, kSize - 1);
-    float m = 0;
-    for (int i = a; i <= b; ++i) m = std::max(m, entries[size_t(i)].w);
-    return m;
-  }
+  /// The entry of an interpolated quantized value (in [-32768, 32767]).
+  static int index(float quantized) { return std::clamp(int((quantized + 32768.0f) * kScale + 0.5f), 0, kSize - 1); }
+  const Vec4f& operator()(float quantized) const { return entries[size_t(index(quantized))]; }
+  /// Whether some value in quantized [lo, hi] has a non-zero alpha (interpolated values stay in that range).
+  bool any_lit(int lo, int hi) const { return lit_before[size_t(index(float(hi))) + 1] > lit_before[size_t(index(float(lo)))]; }
 };
 
-/// Empty flags per block of `block` cells per side: a block is empty when no table lerp over its voxels' quantized
-/// range gives a non-zero alpha, so skipping its samples leaves the image unchanged.
+/// Empty flags per block of `block` cells per side: a block is empty when every table entry its voxels' quantized
+/// range can reach has zero alpha, so skipping its samples leaves the image unchanged.
 struct BlockGrid {
   int size;
   glm::ivec3 count;
-  std::vector<uint8_t> empty;
+  std::vector<int32_t> empty;                 ///< int32 so that 8 lanes can gather them
+  std::array<std::vector<int32_t>, 3> of_cell;  ///< block coordinate of each cell coordinate, per axis
 
   BlockGrid(const PackedVolume& v, int block, const TransferTable& table) : size(block) {
     const glm::ivec3 d = v.dims;
@@ -217,12 +246,13 @@ struct BlockGrid {
                   lo = std::min(lo, q);
                   hi = std::max(hi, q);
                 }
-            empty[index(glm::ivec3(bx, by, bz))] = table.max_alpha(float(lo), float(hi)) <= 0.0f;
+            empty[index(glm::ivec3(bx, by, bz))] = !table.any_lit(lo, hi);
           }
     });
     for (int axis = 0; axis < 3; ++axis) {
-      of_cell[axis].resize(size_t(std::max(d[axis] - 1, 1)));
-      for (int c = 0; c < int(of_cell[axis].size()); ++c) of_cell[axis][size_t(c)] = std::min(c / size, count[axis] - 1);
+      of_cell[size_t(axis)].resize(size_t(std::max(d[axis] - 1, 1)));
+      for (int c = 0; c < int(of_cell[size_t(axis)].size()); ++c)
+        of_cell[size_t(axis)][size_t(c)] = std::min(c / size, count[axis] - 1);
     }
   }
   size_t index(const glm::ivec3& b) const { return size_t(b.x) + size_t(count.x) * (size_t(b.y) + size_t(count.y) * size_t(b.z)); }
@@ -230,7 +260,15 @@ struct BlockGrid {
   glm::ivec3 block_of(const glm::ivec3& cell) const {
     return {of_cell[0][size_t(cell.x)], of_cell[1][size_t(cell.y)], of_cell[2][size_t(cell.z)]};
   }
-  std::array<std::vector<int>, 3> of_cell;
+  /// The sample parameter (in steps from `first`) where a ray first + s * delta leaves block b.
+  float exit(const glm::ivec3& b, const Vec3f& first, const Vec3f& delta) const {
+    float s = INFINITY;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (delta[axis] > 0) s = std::min(s, (float((b[axis] + 1) * size) - first[axis]) / delta[axis]);
+      if (delta[axis] < 0) s = std::min(s, (float(b[axis] * size) - first[axis]) / delta[axis]);
+    }
+    return s;
+  }
 };
 
 /// c^shininess for c in [0, 1], tabulated (the specular term is a pow per sample otherwise).
@@ -246,6 +284,223 @@ struct PowerTable {
     return values[size_t(i)] + (s - float(i)) * (values[size_t(i) + 1] - values[size_t(i)]);
   }
 };
+
+/// One ray's samples in voxel space: sample k < n is at first + k * delta, except that when the last segment is
+/// shorter than a step (last_length < step) the last sample is at the middle of that segment, `last_point`.
+struct RaySamples {
+  Vec3f first{0.0f}, delta{0.0f}, light{0.0f}, last_point{0.0f};
+  int n = 0;
+  float last_length = 0;
+  /// Samples that are a whole step apart (the SIMD path marches these; the scalar one finishes the ray).
+  int regular() const { return last_length < step_length ? n - 1 : n; }
+  float step_length = 0;
+};
+
+/// What every ray reads; march() is the scalar ray caster, march8 (AVX2) its eight-ray version.
+struct Caster {
+  const PackedVolume& volume;
+  const TransferTable& table;
+  const BlockGrid& blocks;
+  const PowerTable& power;
+  const VolumeRenderOptions& options;
+  float step;
+  float min_gradient2;  ///< a gradient shorter than 1e-6 (world units) leaves the sample unshaded
+
+  /// Composites samples k, k + 1, ... of `ray` onto (color, alpha) until the ray ends or is opaque.
+  void march(const RaySamples& ray, int k, Vec3f& color, float& alpha) const {
+    for (; k < ray.n && alpha < options.termination; ++k) {
+      const bool last = k == ray.n - 1 && ray.last_length < step;
+      const Vec3f p = last ? ray.last_point : ray.first + float(k) * ray.delta;
+      Vec3f offset;
+      const glm::ivec3 cell = volume.locate(p, offset);
+      const glm::ivec3 b = blocks.block_of(cell);
+      if (blocks.empty[blocks.index(b)]) {
+        // Jump to the sample before the one where the ray leaves the block (the samples skipped are at least a
+        // step inside it, so rounding cannot skip a sample of another block).
+        const float exit = blocks.exit(b, ray.first, ray.delta);
+        k = exit < float(ray.n) ? std::max(k, int(exit) - 1) : ray.n;
+        continue;
+      }
+      // No branch on a clear sample (alpha 0 adds nothing): in noisy data its outcome is a coin toss.
+      const Vec4f s = volume.interpolate(cell, offset);
+      Vec4f c = table(s.x);
+      if (last) c.w = 1.0f - std::pow(1.0f - c.w, ray.last_length / step);
+      Vec3f rgb(c);
+      if (options.shading) {
+        const Vec3f g(s.y, s.z, s.w);
+        const float len2 = glm::dot(g, g);
+        const bool lit = len2 > min_gradient2;
+        const float cosine = std::abs(glm::dot(g, ray.light)) / std::sqrt(lit ? len2 : 1.0f);  // Blinn: h = l
+        const float shade = lit ? options.ambient + options.diffuse * cosine : 1.0f;
+        const float highlight = lit ? options.specular * power(cosine) : 0.0f;
+        rgb = rgb * shade + Vec3f(highlight);
+      }
+      color += (1 - alpha) * c.w * rgb;
+      alpha += (1 - alpha) * c.w;
+    }
+  }
+};
+
+#if defined(__x86_64__) || defined(__i386__)
+#define TESSERA_VOLUME_AVX2 1
+
+[[gnu::target("avx2,fma")]] inline __m256 lerp(__m256 a, __m256 b, __m256 t) {
+  return _mm256_fmadd_ps(t, _mm256_sub_ps(b, a), a);
+}
+/// The low and high int16 of each int32, as floats.
+[[gnu::target("avx2,fma")]] inline __m256 low16(__m256i x) {
+  return _mm256_cvtepi32_ps(_mm256_srai_epi32(_mm256_slli_epi32(x, 16), 16));
+}
+[[gnu::target("avx2,fma")]] inline __m256 high16(__m256i x) { return _mm256_cvtepi32_ps(_mm256_srai_epi32(x, 16)); }
+
+/// march() for up to 8 rays at once (AVX2 + FMA): each lane keeps its own sample index, so empty-block jumps and
+/// early termination stay per ray; the lanes' cell corners, table entries and block flags are gathered. Marches
+/// the regular samples only and returns each lane's next sample in k[]; the caller finishes every ray with march()
+/// (the shorter last segment). The same samples, skips and arithmetic as march(), up to rounding (FMA).
+[[gnu::target("avx2,fma")]] void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
+                                        float* alpha, int* k_out) {
+  alignas(32) float f[3][8] = {}, d[3][8] = {}, l[3][8] = {};
+  alignas(32) int n[8] = {}, regular[8] = {};
+  for (int i = 0; i < count; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      f[a][i] = rays[i].first[a];
+      d[a][i] = rays[i].delta[a];
+      l[a][i] = rays[i].light[a];
+    }
+    n[i] = rays[i].n;
+    regular[i] = rays[i].regular();
+  }
+  const PackedVolume& vol = cast.volume;
+  const BlockGrid& blocks = cast.blocks;
+  const VolumeRenderOptions& o = cast.options;
+  __m256 first[3], delta[3], light[3], hi[3];
+  __m256i max_cell[3];
+  for (int a = 0; a < 3; ++a) {
+    first[a] = _mm256_load_ps(f[a]);
+    delta[a] = _mm256_load_ps(d[a]);
+    light[a] = _mm256_load_ps(l[a]);
+    hi[a] = _mm256_set1_ps(float(vol.dims[a] - 1));
+    max_cell[a] = _mm256_set1_epi32(std::max(vol.dims[a] - 2, 0));
+  }
+  const __m256i n_all = _mm256_load_si256(reinterpret_cast<const __m256i*>(n));
+  const __m256i n_regular = _mm256_load_si256(reinterpret_cast<const __m256i*>(regular));
+  const __m256 nf = _mm256_cvtepi32_ps(n_all);
+  const glm::ivec3 steps = vol.corner_steps();
+  // Corner offsets in int32 units (a corner is two int32: value and gradient x, gradient y and z).
+  const int corner[8] = {0, 2 * steps.x, 2 * steps.y, 2 * (steps.y + steps.x), 2 * steps.z, 2 * (steps.z + steps.x),
+                         2 * (steps.z + steps.y), 2 * (steps.z + steps.y + steps.x)};
+  const __m256i stride_y = _mm256_set1_epi32(int(2 * vol.stride_y)), stride_z = _mm256_set1_epi32(int(2 * vol.stride_z));
+  const __m256i count_x = _mm256_set1_epi32(blocks.count.x), count_y = _mm256_set1_epi32(blocks.count.y);
+  const __m256 block_size = _mm256_set1_ps(float(blocks.size));
+  const int* voxels = reinterpret_cast<const int*>(vol.voxels.data());
+  const float* table = &cast.table.entries[0].x;
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), termination = _mm256_set1_ps(o.termination);
+  const __m256 infinity = _mm256_set1_ps(INFINITY);
+
+  __m256i k = _mm256_setzero_si256();
+  __m256 red = zero, green = zero, blue = zero, a_acc = zero;
+  for (;;) {
+    const __m256i active = _mm256_and_si256(_mm256_cmpgt_epi32(n_regular, k),
+                                            _mm256_castps_si256(_mm256_cmp_ps(a_acc, termination, _CMP_LT_OQ)));
+    if (_mm256_testz_si256(active, active)) break;
+    const __m256 kf = _mm256_cvtepi32_ps(k);
+    __m256i cell[3], block[3];
+    __m256 offset[3];
+    for (int a = 0; a < 3; ++a) {
+      const __m256 q = _mm256_min_ps(_mm256_max_ps(_mm256_fmadd_ps(kf, delta[a], first[a]), zero), hi[a]);
+      cell[a] = _mm256_min_epi32(_mm256_cvttps_epi32(q), max_cell[a]);
+      offset[a] = _mm256_sub_ps(q, _mm256_cvtepi32_ps(cell[a]));
+      block[a] = _mm256_i32gather_epi32(blocks.of_cell[size_t(a)].data(), cell[a], 4);
+    }
+    const __m256i block_index =
+        _mm256_add_epi32(block[0], _mm256_mullo_epi32(count_x, _mm256_add_epi32(block[1], _mm256_mullo_epi32(count_y, block[2]))));
+    const __m256i is_empty = _mm256_cmpgt_epi32(_mm256_i32gather_epi32(blocks.empty.data(), block_index, 4), _mm256_setzero_si256());
+    const __m256i skip = _mm256_and_si256(is_empty, active);
+    if (!_mm256_testz_si256(skip, skip)) {
+      __m256 exit = infinity;
+      for (int a = 0; a < 3; ++a) {
+        const __m256 b = _mm256_cvtepi32_ps(block[a]);
+        const __m256 upper = _mm256_mul_ps(_mm256_add_ps(b, one), block_size), lower = _mm256_mul_ps(b, block_size);
+        const __m256 forward = _mm256_cmp_ps(delta[a], zero, _CMP_GT_OQ), backward = _mm256_cmp_ps(delta[a], zero, _CMP_LT_OQ);
+        const __m256 s = _mm256_div_ps(_mm256_sub_ps(_mm256_blendv_ps(lower, upper, forward), first[a]), delta[a]);
+        exit = _mm256_min_ps(exit, _mm256_blendv_ps(infinity, s, _mm256_or_ps(forward, backward)));
+      }
+      const __m256i inside = _mm256_castps_si256(_mm256_cmp_ps(exit, nf, _CMP_LT_OQ));
+      // Where the exit is beyond the ray, cvtt would overflow: those lanes take n instead.
+      const __m256i jump = _mm256_max_epi32(k, _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_min_ps(exit, nf)), _mm256_set1_epi32(1)));
+      k = _mm256_blendv_epi8(k, _mm256_blendv_epi8(n_all, jump, inside), skip);
+    }
+    const __m256i sample = _mm256_andnot_si256(is_empty, active);
+    if (!_mm256_testz_si256(sample, sample)) {
+      const __m256i base = _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(cell[0], 1), _mm256_mullo_epi32(cell[1], stride_y)),
+                                            _mm256_mullo_epi32(cell[2], stride_z));
+      __m256 x_lerped[4][4];  // [corner pair (y, z)][component]
+      for (int pair = 0; pair < 4; ++pair) {
+        __m256 c[2][4];
+        for (int side = 0; side < 2; ++side) {
+          const __m256i at = _mm256_add_epi32(base, _mm256_set1_epi32(corner[2 * pair + side]));
+          const __m256i g0 = _mm256_i32gather_epi32(voxels, at, 4);
+          const __m256i g1 = _mm256_i32gather_epi32(voxels, _mm256_add_epi32(at, _mm256_set1_epi32(1)), 4);
+          c[side][0] = low16(g0);
+          c[side][1] = high16(g0);
+          c[side][2] = low16(g1);
+          c[side][3] = high16(g1);
+        }
+        for (int comp = 0; comp < 4; ++comp) x_lerped[pair][comp] = lerp(c[0][comp], c[1][comp], offset[0]);
+      }
+      __m256 s[4];
+      for (int comp = 0; comp < 4; ++comp)
+        s[comp] = lerp(lerp(x_lerped[0][comp], x_lerped[1][comp], offset[1]),
+                       lerp(x_lerped[2][comp], x_lerped[3][comp], offset[1]), offset[2]);
+      const __m256 position = _mm256_fmadd_ps(_mm256_add_ps(s[0], _mm256_set1_ps(32768.0f)),
+                                              _mm256_set1_ps(TransferTable::kScale), _mm256_set1_ps(0.5f));
+      const __m256i entry = _mm256_slli_epi32(
+          _mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(position), _mm256_setzero_si256()),
+                           _mm256_set1_epi32(TransferTable::kSize - 1)),
+          2);
+      __m256 r = _mm256_i32gather_ps(table, entry, 4);
+      __m256 g = _mm256_i32gather_ps(table + 1, entry, 4);
+      __m256 b = _mm256_i32gather_ps(table + 2, entry, 4);
+      const __m256 w = _mm256_and_ps(_mm256_i32gather_ps(table + 3, entry, 4), _mm256_castsi256_ps(sample));
+      if (o.shading) {
+        const __m256 len2 = _mm256_fmadd_ps(s[1], s[1], _mm256_fmadd_ps(s[2], s[2], _mm256_mul_ps(s[3], s[3])));
+        const __m256 lit = _mm256_cmp_ps(len2, _mm256_set1_ps(cast.min_gradient2), _CMP_GT_OQ);
+        const __m256 dot = _mm256_fmadd_ps(s[1], light[0], _mm256_fmadd_ps(s[2], light[1], _mm256_mul_ps(s[3], light[2])));
+        const __m256 abs_dot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dot);
+        const __m256 cosine = _mm256_div_ps(abs_dot, _mm256_sqrt_ps(_mm256_blendv_ps(one, len2, lit)));
+        const __m256 ps = _mm256_mul_ps(_mm256_min_ps(_mm256_max_ps(cosine, zero), one), _mm256_set1_ps(float(PowerTable::kSize)));
+        const __m256i pi = _mm256_min_epi32(_mm256_cvttps_epi32(ps), _mm256_set1_epi32(PowerTable::kSize - 1));
+        const __m256 p0 = _mm256_i32gather_ps(cast.power.values.data(), pi, 4);
+        const __m256 p1 = _mm256_i32gather_ps(cast.power.values.data() + 1, pi, 4);
+        const __m256 pw = lerp(p0, p1, _mm256_sub_ps(ps, _mm256_cvtepi32_ps(pi)));
+        const __m256 shade = _mm256_blendv_ps(one, _mm256_fmadd_ps(_mm256_set1_ps(o.diffuse), cosine, _mm256_set1_ps(o.ambient)), lit);
+        const __m256 highlight = _mm256_and_ps(_mm256_mul_ps(_mm256_set1_ps(o.specular), pw), lit);
+        r = _mm256_fmadd_ps(r, shade, highlight);
+        g = _mm256_fmadd_ps(g, shade, highlight);
+        b = _mm256_fmadd_ps(b, shade, highlight);
+      }
+      const __m256 weight = _mm256_mul_ps(_mm256_sub_ps(one, a_acc), w);
+      red = _mm256_fmadd_ps(weight, r, red);
+      green = _mm256_fmadd_ps(weight, g, green);
+      blue = _mm256_fmadd_ps(weight, b, blue);
+      a_acc = _mm256_add_ps(a_acc, weight);
+    }
+    k = _mm256_sub_epi32(k, active);  // active lanes are all ones (-1): k + 1
+  }
+  alignas(32) float out[4][8];
+  alignas(32) int ks[8];
+  _mm256_store_ps(out[0], red);
+  _mm256_store_ps(out[1], green);
+  _mm256_store_ps(out[2], blue);
+  _mm256_store_ps(out[3], a_acc);
+  _mm256_store_si256(reinterpret_cast<__m256i*>(ks), k);
+  for (int i = 0; i < count; ++i) {
+    color[i] = {out[0][i], out[1][i], out[2][i]};
+    alpha[i] = out[3][i];
+    k_out[i] = ks[i];
+  }
+}
+#endif
 
 }  // namespace
 
@@ -283,58 +538,51 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
   const TransferTable table(options.transfer, float(vlo), float(vhi), step);
   // Without skipping one block covers the volume: it is "empty" only when every sample would be clear anyway.
   const BlockGrid blocks(packed, options.skip_empty ? std::max(1, options.block) : 1 << 20, table);
-  const PowerTable specular_power(options.shininess);
-  // A gradient shorter than this (world units) leaves the sample unshaded.
-  const float min_gradient2 = (1e-6f * packed.gradient_scale) * (1e-6f * packed.gradient_scale);
+  const PowerTable power(options.shininess);
+  const float min_gradient = 1e-6f * packed.gradient_scale;
+  const Caster cast{packed, table, blocks, power, options, step, min_gradient * min_gradient};
+  const auto setup = [&](int i, int j) {
+    RaySamples r;
+    const Ray ray = rays.ray(i, j);
+    float t0 = 0, t1 = 0;
+    if (!intersect_slabs(box, ray, 1.0f / ray.dir, t0, t1)) return r;
+    // Sample k is at the middle of [t0 + k step, min(t1, t0 + (k + 1) step)].
+    r.n = int(std::ceil((t1 - t0) / step));
+    r.step_length = step;
+    r.last_length = t1 - (t0 + float(r.n - 1) * step);
+    r.first = (ray.at(t0 + 0.5f * step) - origin) * inv_spacing;
+    r.delta = ray.dir * step * inv_spacing;
+    r.last_point = (ray.at(t1 - 0.5f * r.last_length) - origin) * inv_spacing;
+    r.light = -ray.dir;  // headlight: light and viewer at the eye
+    return r;
+  };
+#if TESSERA_VOLUME_AVX2
+  // The gathers index the packed voxels with int32 (two per voxel).
+  const bool simd = options.simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+                    packed.voxels.size() < (size_t(1) << 30);
+#else
+  const bool simd = false;
+#endif
   parallel_tiles(options.width, options.height, 16, [&](const Tile& tile) {
     for (int j = tile.y0; j < tile.y1; ++j)
-      for (int i = tile.x0; i < tile.x1; ++i) {
-        const Ray ray = rays.ray(i, j);
-        float t0 = 0, t1 = 0;
-        if (!intersect_slabs(box, ray, 1.0f / ray.dir, t0, t1)) continue;
-        // Sample k is at the middle of [t0 + k step, min(t1, t0 + (k + 1) step)]: in voxel space first + k * delta,
-        // except the last, shorter segment's.
-        const int n = int(std::ceil((t1 - t0) / step));
-        const float last_length = t1 - (t0 + float(n - 1) * step);
-        const Vec3f first = (ray.at(t0 + 0.5f * step) - origin) * inv_spacing;
-        const Vec3f delta = ray.dir * step * inv_spacing;
-        const Vec3f light = -ray.dir;  // headlight: light and viewer at the eye
-        Vec3f color(0.0f);
-        float alpha = 0;
-        for (int k = 0; k < n && alpha < options.termination; ++k) {
-          const bool last = k == n - 1 && last_length < step;
-          const Vec3f p = last ? (ray.at(t1 - 0.5f * last_length) - origin) * inv_spacing : first + float(k) * delta;
-          Vec3f offset;
-          const glm::ivec3 cell = packed.locate(p, offset);
-          const glm::ivec3 b = blocks.block_of(cell);
-          if (blocks.empty[blocks.index(b)]) {
-            // Jump to the sample before the one where the ray leaves the block (the samples skipped are at least a
-            // step inside it, so rounding cannot skip a sample of another block).
-            float exit = INFINITY;
-            for (int axis = 0; axis < 3; ++axis) {
-              if (delta[axis] > 0) exit = std::min(exit, (float((b[axis] + 1) * blocks.size) - first[axis]) / delta[axis]);
-              if (delta[axis] < 0) exit = std::min(exit, (float(b[axis] * blocks.size) - first[axis]) / delta[axis]);
-            }
-            k = exit < float(n) ? std::max(k, int(exit) - 1) : n;
-            continue;
-          }
-          const Vec4f s = packed.interpolate(cell, offset);
-          Vec4f c = table(s.x);
-          if (c.w <= 0) continue;
-          if (last) c.w = 1.0f - std::pow(1.0f - c.w, last_length / step);
-          Vec3f rgb(c);
-          if (options.shading) {
-            const Vec3f g(s.y, s.z, s.w);
-            const float len2 = glm::dot(g, g);
-            if (len2 > min_gradient2) {
-              const float cosine = std::abs(glm::dot(g, light)) / std::sqrt(len2);  // Blinn: h = l for a headlight
-              rgb = rgb * (options.ambient + options.diffuse * cosine) + Vec3f(options.specular * specular_power(cosine));
-            }
-          }
-          color += (1 - alpha) * c.w * rgb;
-          alpha += (1 - alpha) * c.w;
+      for (int i0 = tile.x0; i0 < tile.x1; i0 += 8) {
+        const int count = std::min(8, tile.x1 - i0);
+        RaySamples r[8];
+        Vec3f color[8];
+        float alpha[8];
+        int k[8] = {};
+        for (int lane = 0; lane < count; ++lane) {
+          r[lane] = setup(i0 + lane, j);
+          color[lane] = Vec3f(0.0f);
+          alpha[lane] = 0;
         }
-        image(i, j) = color + (1 - alpha) * options.background;
+#if TESSERA_VOLUME_AVX2
+        if (simd) march8(cast, r, count, color, alpha, k);
+#endif
+        for (int lane = 0; lane < count; ++lane) {
+          cast.march(r[lane], k[lane], color[lane], alpha[lane]);
+          image(i0 + lane, j) = color[lane] + (1 - alpha[lane]) * options.background;
+        }
       }
   });
   return image;

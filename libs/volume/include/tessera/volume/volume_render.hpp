@@ -56,6 +56,7 @@ struct VolumeRenderOptions {
   float termination = 0.99f;     ///< early ray termination when accumulated opacity reaches this
   bool skip_empty = true;        ///< skip blocks whose values all map to zero opacity (same image, faster)
   int block = 8;                 ///< voxels per empty-space block side
+  bool simd = true;              ///< 8 rays at a time with AVX2 where the CPU has it (same image up to rounding)
   Vec3f background{0.0f};
 };
 
