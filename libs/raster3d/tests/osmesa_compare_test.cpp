@@ -381,6 +381,20 @@ TEST(OsmesaReference, FrameIsTopRowFirstWithTheExpectedDepth) {
   }
 }
 
+// The vector loops (AVX2/AVX-512, picked at run time) give the same frame as the baseline loops.
+TEST(OsmesaCompareThreads, InstructionSetsGiveTheSameFrame) {
+  for (const bool lit : {false, true}) {
+    const Scene scene = scene_named(lit ? "torus_screen_edges" : "soup_perspective");
+    const DrawSetup setup{.lit = lit, .vertex_colors = !lit};
+    const raster3d::Framebuffer wide = render_tessera(scene, setup);
+    raster3d::detail::span_isa_cap() = 0;
+    const raster3d::Framebuffer baseline = render_tessera(scene, setup);
+    raster3d::detail::span_isa_cap() = -1;
+    EXPECT_TRUE(std::ranges::equal(wide.color().pixels(), baseline.color().pixels())) << scene.name;
+    EXPECT_TRUE(std::ranges::equal(wide.depth().pixels(), baseline.depth().pixels())) << scene.name;
+  }
+}
+
 // The comparison does not depend on Tessera's thread count (binning to tiles in parallel is deterministic).
 TEST(OsmesaCompareThreads, OneAndTwoThreadsGiveTheSameFrame) {
   const Scene scene = scene_named("torus_screen_edges");

@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
+#include <immintrin.h>
 #include <span>
 #include <vector>
 
@@ -212,7 +214,13 @@ template <DepthFunc F>
 #undef TESSERA_AVX512
 #undef TESSERA_AVX2
 
-/// The widest instruction set the CPU has: 2 AVX-512, 1 AVX2 with FMA, 0 the baseline.
+/// A cap on the instruction set the span loops use (tests set it to 0 to compare with the baseline; -1: none).
+inline int& span_isa_cap() {
+  static int cap = -1;
+  return cap;
+}
+
+/// The widest instruction set the CPU has (under span_isa_cap): 2 AVX-512, 1 AVX2 with FMA, 0 the baseline.
 inline int span_isa() {
   static const int isa = [] {
     if (!__builtin_cpu_supports("fma")) return 0;
@@ -220,7 +228,7 @@ inline int span_isa() {
       return 2;
     return __builtin_cpu_supports("avx2") ? 1 : 0;
   }();
-  return isa;
+  return span_isa_cap() < 0 ? isa : std::min(isa, span_isa_cap());
 }
 
 /// fill_span_loop in the widest instruction set the CPU has.
@@ -317,6 +325,103 @@ inline bool covers_rectangle(const TriangleRecord& r, int x0, int x1, int y0, in
   return true;
 }
 
+/// Whether the record's edge functions stay within int32 over the rectangle [x0, x1) x [y0, y1) and eight pixels
+/// beyond its right side (the vector loop's lanes), so that they can be stepped in 32-bit lanes.
+inline bool fits_int32_block(const TriangleRecord& r, int x0, int x1, int y0, int y1) {
+  constexpr int64_t kLimit = int64_t(1) << 30;
+  for (const Edge& e : r.edges) {
+    const int64_t ax = int64_t(e.a) * 256, by = int64_t(e.b) * 256;
+    if (ax > (1 << 20) || ax < -(1 << 20)) return false;
+    for (const int i : {x0, x1 + 8})
+      for (const int j : {y0, y1 - 1}) {
+        const int64_t v = ax * i + by * j + e.c;
+        if (v > kLimit || v < -kLimit) return false;
+      }
+  }
+  return true;
+}
+
+/// A depth comparison of eight lanes (values below 2^24, so signed compares are exact): all ones where it passes.
+template <DepthFunc F>
+[[gnu::target("avx2,fma"), gnu::always_inline]] inline __m256i depth_passes8(__m256i d, __m256i s) {
+  if constexpr (F == DepthFunc::never)
+    return _mm256_setzero_si256();
+  else if constexpr (F == DepthFunc::less)
+    return _mm256_cmpgt_epi32(s, d);
+  else if constexpr (F == DepthFunc::equal)
+    return _mm256_cmpeq_epi32(d, s);
+  else if constexpr (F == DepthFunc::lequal)
+    return _mm256_xor_si256(_mm256_cmpgt_epi32(d, s), _mm256_set1_epi32(-1));
+  else if constexpr (F == DepthFunc::greater)
+    return _mm256_cmpgt_epi32(d, s);
+  else if constexpr (F == DepthFunc::notequal)
+    return _mm256_xor_si256(_mm256_cmpeq_epi32(d, s), _mm256_set1_epi32(-1));
+  else if constexpr (F == DepthFunc::gequal)
+    return _mm256_xor_si256(_mm256_cmpgt_epi32(s, d), _mm256_set1_epi32(-1));
+  else
+    return _mm256_set1_epi32(-1);
+}
+
+/// Rasterizes a Gouraud record (three color varyings, ColorFragmentShader) over the rectangle [x0, x1) x [y0, y1)
+/// (GL pixels) eight pixels at a time: coverage from the edge functions in 32-bit lanes, depth as fragment_depth and
+/// depth24, the early depth test, then the color planes with one division per eight pixels and to_color8's rounding.
+/// The same IEEE operations in the same order as raster_tile's scalar loop, so the same pixels.
+template <DepthFunc F>
+[[gnu::target("avx2,fma")]] void gouraud_rect_avx2(const TriangleRecord& r, const float* planes, int x0, int x1,
+                                                     int y0, int y1, Image<uint32_t>& depth, ImageRGBA8& color,
+                                                     bool write_depth) {
+  const int height = depth.height();
+  const float* pc = planes;
+  const float* px = planes + 4;
+  const float* py = planes + 8;
+  const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  __m256i step[3];
+  for (int k = 0; k < 3; ++k) step[k] = _mm256_set1_epi32(r.edges[k].a * 256);
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
+  const __m256 rx = _mm256_set1_ps(r.rx), zdx = _mm256_set1_ps(r.zdx), zdy = _mm256_set1_ps(r.zdy);
+  const __m256 za = _mm256_set1_ps(r.za), depth_scale = _mm256_set1_ps(16777215.0f);
+  const __m256 c255 = _mm256_set1_ps(255.0f), round_magic = _mm256_set1_ps(12582912.0f);
+  __m256 pxv[4];
+  for (int k = 0; k < 4; ++k) pxv[k] = _mm256_set1_ps(px[k]);
+  for (int j = y0; j < y1; ++j) {
+    const int row = height - 1 - j;
+    uint32_t* drow = depth.row(row);
+    int32_t* crow = reinterpret_cast<int32_t*>(color.row(row));
+    const float dy = float(j) + 0.5f - r.ry;
+    __m256 base[4];
+    for (int k = 0; k < 4; ++k) base[k] = _mm256_set1_ps(pc[k] + py[k] * dy);
+    const __m256 rowv = _mm256_set1_ps(float(row));
+    for (int x = x0; x < x1; x += 8) {
+      __m256i cover = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), lane);
+      for (int k = 0; k < 3; ++k) {
+        const Edge& e = r.edges[k];
+        const auto e0 = int32_t(int64_t(e.a) * 256 * x + int64_t(e.b) * 256 * j + e.c);
+        const __m256i ev = _mm256_add_epi32(_mm256_set1_epi32(e0), _mm256_mullo_epi32(lane, step[k]));
+        cover = _mm256_andnot_si256(_mm256_srai_epi32(ev, 31), cover);  // E >= 0
+      }
+      if (_mm256_testz_si256(cover, cover)) continue;
+      const __m256 fi = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x), lane));
+      __m256 z = _mm256_fmadd_ps(zdy, rowv, _mm256_fmadd_ps(zdx, fi, za));
+      z = _mm256_min_ps(_mm256_max_ps(z, zero), one);
+      const __m256i d = _mm256_cvtps_epi32(_mm256_mul_ps(z, depth_scale));
+      const __m256i stored = _mm256_maskload_epi32(reinterpret_cast<const int*>(drow + x), cover);
+      const __m256i pass = _mm256_and_si256(cover, depth_passes8<F>(d, stored));
+      if (_mm256_testz_si256(pass, pass)) continue;
+      const __m256 dx = _mm256_sub_ps(_mm256_add_ps(fi, half), rx);
+      const __m256 w = _mm256_div_ps(one, _mm256_add_ps(base[0], _mm256_mul_ps(pxv[0], dx)));
+      __m256i rgba = _mm256_set1_epi32(int32_t(0xff000000u));
+      for (int k = 1; k < 4; ++k) {
+        __m256 c = _mm256_mul_ps(_mm256_add_ps(base[k], _mm256_mul_ps(pxv[k], dx)), w);
+        c = _mm256_min_ps(_mm256_max_ps(c, zero), one);
+        c = _mm256_sub_ps(_mm256_add_ps(_mm256_mul_ps(c, c255), round_magic), round_magic);
+        rgba = _mm256_or_si256(rgba, _mm256_slli_epi32(_mm256_cvttps_epi32(c), 8 * (k - 1)));
+      }
+      _mm256_maskstore_epi32(crow + x, pass, rgba);
+      if (write_depth) _mm256_maskstore_epi32(reinterpret_cast<int*>(drow + x), pass, d);
+    }
+  }
+}
+
 /// Rasterizes the records binned to `tile` of every chunk, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
@@ -377,6 +482,13 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         }
         continue;
       }
+      if constexpr (std::is_same_v<FS, ColorFragmentShader>) {
+        // Gouraud with the built-in pass-through fragment shader: eight pixels at a time.
+        if (span_isa() >= 1 && fits_int32_block(r, x0, x1, y0, y1)) {
+          gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
+          continue;
+        }
+      }
       const float* pc = data;
       const float* px = data + (N + 1);
       const float* py = data + 2 * (N + 1);
@@ -392,17 +504,16 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
         bool pass[kTileSize];
         const int n = hi - lo;
         test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
+        // Each varying plane evaluated directly at the pixel center, (c + cy dy) + cx dx, as the vector loop does.
         const float dy = float(j) + 0.5f - r.ry;
-        const float dx0 = float(lo) + 0.5f - r.rx;
-        std::array<float, N + 1> value;
-        for (int k = 0; k <= N; ++k) value[k] = pc[k] + py[k] * dy + px[k] * dx0;
-        for (int k = 0; k < n; ++k, [&] {
-               for (int q = 0; q <= N; ++q) value[q] += px[q];
-             }()) {
+        std::array<float, N + 1> base;
+        for (int k = 0; k <= N; ++k) base[k] = pc[k] + py[k] * dy;
+        for (int k = 0; k < n; ++k) {
           if (!pass[k]) continue;
-          const float w = 1.0f / value[0];
+          const float dx = float(lo + k) + 0.5f - r.rx;
+          const float w = 1.0f / (base[0] + px[0] * dx);
           std::array<float, N> values;
-          for (int q = 0; q < N; ++q) values[q] = value[q + 1] * w;
+          for (int q = 0; q < N; ++q) values[q] = (base[q + 1] + px[q + 1] * dx) * w;
           V v;
           std::memcpy(&v, values.data(), sizeof(float) * N);
           Vec3f c;
