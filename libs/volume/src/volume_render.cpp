@@ -271,15 +271,25 @@ struct BlockGrid {
   }
 };
 
-/// c^shininess for c in [0, 1], tabulated (the specular term is a pow per sample otherwise).
-struct PowerTable {
+/// c^shininess for c in [0, 1]: by repeated squaring when the exponent is a whole number up to 1024 (the usual
+/// case), else from a table (the specular term is a pow per sample otherwise).
+struct SpecularPower {
   static constexpr int kSize = 1024;
+  int whole = 0;  ///< the exponent when it is a whole number in [1, 1024], else 0
   std::array<float, kSize + 1> values;
-  explicit PowerTable(float exponent) {
+  explicit SpecularPower(float exponent) {
+    if (exponent >= 1 && exponent <= 1024 && exponent == std::floor(exponent)) whole = int(exponent);
     for (int i = 0; i <= kSize; ++i) values[size_t(i)] = std::pow(float(i) / kSize, exponent);
   }
   float operator()(float c) const {
-    const float s = std::clamp(c, 0.0f, 1.0f) * kSize;
+    c = std::clamp(c, 0.0f, 1.0f);
+    if (whole) {
+      float result = 1, base = c;
+      for (int e = whole; e; e >>= 1, base *= base)
+        if (e & 1) result *= base;
+      return result;
+    }
+    const float s = c * kSize;
     const int i = std::min(int(s), kSize - 1);
     return values[size_t(i)] + (s - float(i)) * (values[size_t(i) + 1] - values[size_t(i)]);
   }
@@ -301,7 +311,7 @@ struct Caster {
   const PackedVolume& volume;
   const TransferTable& table;
   const BlockGrid& blocks;
-  const PowerTable& power;
+  const SpecularPower& power;
   const VolumeRenderOptions& options;
   float step;
   float min_gradient2;  ///< a gradient shorter than 1e-6 (world units) leaves the sample unshaded
@@ -386,14 +396,19 @@ struct Caster {
   const __m256i n_regular = _mm256_load_si256(reinterpret_cast<const __m256i*>(regular));
   const __m256 nf = _mm256_cvtepi32_ps(n_all);
   const glm::ivec3 steps = vol.corner_steps();
-  // Corner offsets in int32 units (a corner is two int32: value and gradient x, gradient y and z).
-  const int corner[8] = {0, 2 * steps.x, 2 * steps.y, 2 * (steps.y + steps.x), 2 * steps.z, 2 * (steps.z + steps.x),
-                         2 * (steps.z + steps.y), 2 * (steps.z + steps.y + steps.x)};
-  const __m256i stride_y = _mm256_set1_epi32(int(2 * vol.stride_y)), stride_z = _mm256_set1_epi32(int(2 * vol.stride_z));
+  // Corner offsets in voxels (a corner is 64 bits: value and gradient x, gradient y and z).
+  const int corner[8] = {0, steps.x, steps.y, steps.y + steps.x, steps.z, steps.z + steps.x, steps.z + steps.y,
+                         steps.z + steps.y + steps.x};
+  const __m256i stride_y = _mm256_set1_epi32(int(vol.stride_y)), stride_z = _mm256_set1_epi32(int(vol.stride_z));
   const __m256i count_x = _mm256_set1_epi32(blocks.count.x), count_y = _mm256_set1_epi32(blocks.count.y);
-  const __m256 block_size = _mm256_set1_ps(float(blocks.size));
-  const int* voxels = reinterpret_cast<const int*>(vol.voxels.data());
-  const float* table = &cast.table.entries[0].x;
+  const __m256 block_size = _mm256_set1_ps(float(blocks.size)), inv_block = _mm256_set1_ps(1.0f / float(blocks.size));
+  const __m256i last_block[3] = {_mm256_set1_epi32(blocks.count.x - 1), _mm256_set1_epi32(blocks.count.y - 1),
+                                 _mm256_set1_epi32(blocks.count.z - 1)};
+  // 64-bit gathers fill 4 lanes: gathering lanes (0, 1, 4, 5) and (2, 3, 6, 7) and interleaving the halves with
+  // shufps gives the eight lanes in order.
+  const __m256i halves = _mm256_setr_epi32(0, 1, 4, 5, 2, 3, 6, 7);
+  const auto* voxels = reinterpret_cast<const long long*>(vol.voxels.data());
+  const auto* table = reinterpret_cast<const long long*>(cast.table.entries.data());
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), termination = _mm256_set1_ps(o.termination);
   const __m256 infinity = _mm256_set1_ps(INFINITY);
 
@@ -410,7 +425,10 @@ struct Caster {
       const __m256 q = _mm256_min_ps(_mm256_max_ps(_mm256_fmadd_ps(kf, delta[a], first[a]), zero), hi[a]);
       cell[a] = _mm256_min_epi32(_mm256_cvttps_epi32(q), max_cell[a]);
       offset[a] = _mm256_sub_ps(q, _mm256_cvtepi32_ps(cell[a]));
-      block[a] = _mm256_i32gather_epi32(blocks.of_cell[size_t(a)].data(), cell[a], 4);
+      // cell / size: (cell + 0.5) / size is at least 0.5 / size from a whole number, far more than the rounding
+      // (cells < 2^23), so truncating it is exact.
+      const __m256 quotient = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(cell[a]), _mm256_set1_ps(0.5f)), inv_block);
+      block[a] = _mm256_min_epi32(_mm256_cvttps_epi32(quotient), last_block[a]);
     }
     const __m256i block_index =
         _mm256_add_epi32(block[0], _mm256_mullo_epi32(count_x, _mm256_add_epi32(block[1], _mm256_mullo_epi32(count_y, block[2]))));
@@ -432,19 +450,25 @@ struct Caster {
     }
     const __m256i sample = _mm256_andnot_si256(is_empty, active);
     if (!_mm256_testz_si256(sample, sample)) {
-      const __m256i base = _mm256_add_epi32(_mm256_add_epi32(_mm256_slli_epi32(cell[0], 1), _mm256_mullo_epi32(cell[1], stride_y)),
-                                            _mm256_mullo_epi32(cell[2], stride_z));
+      const __m256i base = _mm256_permutevar8x32_epi32(
+          _mm256_add_epi32(_mm256_add_epi32(cell[0], _mm256_mullo_epi32(cell[1], stride_y)), _mm256_mullo_epi32(cell[2], stride_z)),
+          halves);
+      const __m128i base_a = _mm256_castsi256_si128(base), base_b = _mm256_extracti128_si256(base, 1);
       __m256 x_lerped[4][4];  // [corner pair (y, z)][component]
       for (int pair = 0; pair < 4; ++pair) {
         __m256 c[2][4];
         for (int side = 0; side < 2; ++side) {
-          const __m256i at = _mm256_add_epi32(base, _mm256_set1_epi32(corner[2 * pair + side]));
-          const __m256i g0 = _mm256_i32gather_epi32(voxels, at, 4);
-          const __m256i g1 = _mm256_i32gather_epi32(voxels, _mm256_add_epi32(at, _mm256_set1_epi32(1)), 4);
-          c[side][0] = low16(g0);
-          c[side][1] = high16(g0);
-          c[side][2] = low16(g1);
-          c[side][3] = high16(g1);
+          const __m128i at = _mm_set1_epi32(corner[2 * pair + side]);
+          const __m256i a = _mm256_i32gather_epi64(voxels, _mm_add_epi32(base_a, at), 8);
+          const __m256i b = _mm256_i32gather_epi64(voxels, _mm_add_epi32(base_b, at), 8);
+          const __m256i value_gx = _mm256_castps_si256(
+              _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _MM_SHUFFLE(2, 0, 2, 0)));
+          const __m256i gy_gz = _mm256_castps_si256(
+              _mm256_shuffle_ps(_mm256_castsi256_ps(a), _mm256_castsi256_ps(b), _MM_SHUFFLE(3, 1, 3, 1)));
+          c[side][0] = low16(value_gx);
+          c[side][1] = high16(value_gx);
+          c[side][2] = low16(gy_gz);
+          c[side][3] = high16(gy_gz);
         }
         for (int comp = 0; comp < 4; ++comp) x_lerped[pair][comp] = lerp(c[0][comp], c[1][comp], offset[0]);
       }
@@ -454,25 +478,40 @@ struct Caster {
                        lerp(x_lerped[2][comp], x_lerped[3][comp], offset[1]), offset[2]);
       const __m256 position = _mm256_fmadd_ps(_mm256_add_ps(s[0], _mm256_set1_ps(32768.0f)),
                                               _mm256_set1_ps(TransferTable::kScale), _mm256_set1_ps(0.5f));
-      const __m256i entry = _mm256_slli_epi32(
-          _mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(position), _mm256_setzero_si256()),
-                           _mm256_set1_epi32(TransferTable::kSize - 1)),
-          2);
-      __m256 r = _mm256_i32gather_ps(table, entry, 4);
-      __m256 g = _mm256_i32gather_ps(table + 1, entry, 4);
-      __m256 b = _mm256_i32gather_ps(table + 2, entry, 4);
-      const __m256 w = _mm256_and_ps(_mm256_i32gather_ps(table + 3, entry, 4), _mm256_castsi256_ps(sample));
+      // Entries are 16 bytes: (r, g) and (b, alpha) are 64-bit halves, gathered like the corners.
+      const __m256i entry = _mm256_permutevar8x32_epi32(
+          _mm256_slli_epi32(_mm256_min_epi32(_mm256_max_epi32(_mm256_cvttps_epi32(position), _mm256_setzero_si256()),
+                                             _mm256_set1_epi32(TransferTable::kSize - 1)),
+                            1),
+          halves);
+      const __m128i entry_a = _mm256_castsi256_si128(entry), entry_b = _mm256_extracti128_si256(entry, 1);
+      const __m256 rg_a = _mm256_castsi256_ps(_mm256_i32gather_epi64(table, entry_a, 8));
+      const __m256 rg_b = _mm256_castsi256_ps(_mm256_i32gather_epi64(table, entry_b, 8));
+      const __m256 ba_a = _mm256_castsi256_ps(_mm256_i32gather_epi64(table + 1, entry_a, 8));
+      const __m256 ba_b = _mm256_castsi256_ps(_mm256_i32gather_epi64(table + 1, entry_b, 8));
+      __m256 r = _mm256_shuffle_ps(rg_a, rg_b, _MM_SHUFFLE(2, 0, 2, 0));
+      __m256 g = _mm256_shuffle_ps(rg_a, rg_b, _MM_SHUFFLE(3, 1, 3, 1));
+      __m256 b = _mm256_shuffle_ps(ba_a, ba_b, _MM_SHUFFLE(2, 0, 2, 0));
+      const __m256 w = _mm256_and_ps(_mm256_shuffle_ps(ba_a, ba_b, _MM_SHUFFLE(3, 1, 3, 1)), _mm256_castsi256_ps(sample));
       if (o.shading) {
         const __m256 len2 = _mm256_fmadd_ps(s[1], s[1], _mm256_fmadd_ps(s[2], s[2], _mm256_mul_ps(s[3], s[3])));
         const __m256 lit = _mm256_cmp_ps(len2, _mm256_set1_ps(cast.min_gradient2), _CMP_GT_OQ);
         const __m256 dot = _mm256_fmadd_ps(s[1], light[0], _mm256_fmadd_ps(s[2], light[1], _mm256_mul_ps(s[3], light[2])));
         const __m256 abs_dot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dot);
         const __m256 cosine = _mm256_div_ps(abs_dot, _mm256_sqrt_ps(_mm256_blendv_ps(one, len2, lit)));
-        const __m256 ps = _mm256_mul_ps(_mm256_min_ps(_mm256_max_ps(cosine, zero), one), _mm256_set1_ps(float(PowerTable::kSize)));
-        const __m256i pi = _mm256_min_epi32(_mm256_cvttps_epi32(ps), _mm256_set1_epi32(PowerTable::kSize - 1));
-        const __m256 p0 = _mm256_i32gather_ps(cast.power.values.data(), pi, 4);
-        const __m256 p1 = _mm256_i32gather_ps(cast.power.values.data() + 1, pi, 4);
-        const __m256 pw = lerp(p0, p1, _mm256_sub_ps(ps, _mm256_cvtepi32_ps(pi)));
+        const __m256 clamped = _mm256_min_ps(_mm256_max_ps(cosine, zero), one);
+        __m256 pw = one;
+        if (cast.power.whole) {
+          __m256 square = clamped;
+          for (int e = cast.power.whole; e; e >>= 1, square = _mm256_mul_ps(square, square))
+            if (e & 1) pw = _mm256_mul_ps(pw, square);
+        } else {
+          const __m256 ps = _mm256_mul_ps(clamped, _mm256_set1_ps(float(SpecularPower::kSize)));
+          const __m256i pi = _mm256_min_epi32(_mm256_cvttps_epi32(ps), _mm256_set1_epi32(SpecularPower::kSize - 1));
+          const __m256 p0 = _mm256_i32gather_ps(cast.power.values.data(), pi, 4);
+          const __m256 p1 = _mm256_i32gather_ps(cast.power.values.data() + 1, pi, 4);
+          pw = lerp(p0, p1, _mm256_sub_ps(ps, _mm256_cvtepi32_ps(pi)));
+        }
         const __m256 shade = _mm256_blendv_ps(one, _mm256_fmadd_ps(_mm256_set1_ps(o.diffuse), cosine, _mm256_set1_ps(o.ambient)), lit);
         const __m256 highlight = _mm256_and_ps(_mm256_mul_ps(_mm256_set1_ps(o.specular), pw), lit);
         r = _mm256_fmadd_ps(r, shade, highlight);
@@ -538,7 +577,7 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
   const TransferTable table(options.transfer, float(vlo), float(vhi), step);
   // Without skipping one block covers the volume: it is "empty" only when every sample would be clear anyway.
   const BlockGrid blocks(packed, options.skip_empty ? std::max(1, options.block) : 1 << 20, table);
-  const PowerTable power(options.shininess);
+  const SpecularPower power(options.shininess);
   const float min_gradient = 1e-6f * packed.gradient_scale;
   const Caster cast{packed, table, blocks, power, options, step, min_gradient * min_gradient};
   const auto setup = [&](int i, int j) {
@@ -557,9 +596,9 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
     return r;
   };
 #if TESSERA_VOLUME_AVX2
-  // The gathers index the packed voxels with int32 (two per voxel).
+  // The gathers index the packed voxels with int32, and march8 divides cells by the block size in float.
   const bool simd = options.simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                    packed.voxels.size() < (size_t(1) << 30);
+                    packed.voxels.size() < (size_t(1) << 31) && glm::all(glm::lessThan(packed.dims, glm::ivec3(1 << 23)));
 #else
   const bool simd = false;
 #endif
