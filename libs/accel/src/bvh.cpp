@@ -9,6 +9,7 @@
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstddef>
@@ -19,6 +20,7 @@
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
+#include "tessera/core/parallel.hpp"
 
 namespace tessera {
 
@@ -227,13 +229,26 @@ class SahBuilder {
     scale[3] = 0;
     const PrimRef* refs = refs_.data() + begin;
     const v4i last{nb - 1, nb - 1, nb - 1, nb - 1}, zero{0, 0, 0, 0};
+    auto bin_one = [&](const PrimRef& p, Bins& into) {
+      v4i b = __builtin_convertvector((p.centroid2() - clo) * scale, v4i);
+      b = b < zero ? zero : (b > last ? last : b);
+      for (int a = 0; a < 3; ++a) into.add(a, b[a], p.box);
+    };
     auto bin_into = [&](int first, int last_index, Bins& acc) {
-      for (int i = first; i < last_index; ++i) {
-        const PrimRef& p = refs[i];
-        v4i b = __builtin_convertvector((p.centroid2() - clo) * scale, v4i);
-        b = b < zero ? zero : (b > last ? last : b);
-        for (int a = 0; a < 3; ++a) acc.add(a, b[a], p.box);
+      if (last_index - first < 256) {
+        for (int i = first; i < last_index; ++i) bin_one(refs[i], acc);
+        return;
       }
+      // Neighbouring primitives mostly fall in the same bins: alternating two sets of bins halves the chains of
+      // read-modify-writes through the same memory.
+      Bins odd(nb);
+      int i = first;
+      for (; i + 1 < last_index; i += 2) {
+        bin_one(refs[i], acc);
+        bin_one(refs[i + 1], odd);
+      }
+      if (i < last_index) bin_one(refs[i], acc);
+      acc.add(odd, nb);
     };
     Bins bins(nb);
     if (n < kParallelBinning) {
@@ -461,7 +476,11 @@ class BottomUpBuilder {
 
 }  // namespace
 
-Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : settings_(settings) {
+Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings)
+    : Bvh(prim_bounds.size(), [prim_bounds](size_t i) { return prim_bounds[i]; }, settings) {}
+
+Bvh::Bvh(size_t count, const std::function<AABB(size_t)>& prim_box, const BvhSettings& settings)
+    : settings_(settings) {
   if (!(settings.max_leaf_size >= 1 && settings.max_leaf_size <= kMaxLeafCount))
     throw InvalidInput("BvhSettings: max_leaf_size must be in [1, 65535], got " +
                        std::to_string(settings.max_leaf_size));
@@ -472,18 +491,36 @@ Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings) : setti
                        std::to_string(settings.leaf_block));
   if (!(settings.traversal_cost >= 0 && settings.intersection_cost > 0))
     throw InvalidInput("BvhSettings: costs must be traversal >= 0 and intersection > 0");
-  RawVector<PrimRef> refs;  // on huge pages when large (fewer page faults), as all the build's reference arrays
-  if (prim_bounds.size() > size_t(PrimRef::kMaxIndex))
-    throw InvalidInput("Bvh: " + std::to_string(prim_bounds.size()) + " primitives, more than the " +
+  if (count > size_t(PrimRef::kMaxIndex))
+    throw InvalidInput("Bvh: " + std::to_string(count) + " primitives, more than the " +
                        std::to_string(PrimRef::kMaxIndex) + " supported");
-  refs.reserve(prim_bounds.size());
-  for (size_t i = 0; i < prim_bounds.size(); ++i) {
-    const AABB& b = prim_bounds[i];
-    if (b.empty()) continue;  // never hit
-    if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) || !std::isfinite(b.hi.x) ||
-        !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z))
-      throw InvalidInput("Bvh: primitive " + std::to_string(i) + " has a non-finite box (planes cannot go in a BVH)");
-    refs.emplace_back(b, int(i));
+  // The references straight from the boxes, in parallel (on huge pages when large, as all the build's reference
+  // arrays); empty boxes (never hit) are squeezed out afterwards, and the first non-finite box is reported.
+  RawVector<PrimRef> refs(count);
+  std::atomic<size_t> first_bad{count};
+  std::atomic<bool> any_empty{false};
+  parallel_for(0, int64_t(count), 16384, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      const AABB b = prim_box(size_t(i));
+      refs[size_t(i)] = PrimRef(b, int(i));
+      if (b.empty()) {
+        any_empty = true;
+      } else if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) ||
+                 !std::isfinite(b.hi.x) || !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z)) {
+        size_t seen = first_bad.load();
+        while (size_t(i) < seen && !first_bad.compare_exchange_weak(seen, size_t(i))) {
+        }
+      }
+    }
+  });
+  if (first_bad < count)
+    throw InvalidInput("Bvh: primitive " + std::to_string(first_bad.load()) +
+                       " has a non-finite box (planes cannot go in a BVH)");
+  if (any_empty) {
+    const auto is_empty = [](const PrimRef& r) {
+      return r.box.lo[0] > r.box.hi[0] || r.box.lo[1] > r.box.hi[1] || r.box.lo[2] > r.box.hi[2];
+    };
+    refs.erase(std::remove_if(refs.begin(), refs.end(), is_empty), refs.end());
   }
   if (refs.empty()) return;
   if (settings.build == BvhSettings::Build::bottom_up) {

@@ -87,20 +87,24 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
       throw InvalidInput("MeshAccel: vertex " + std::to_string(i) + " is not finite");
   }
-  RawVector<AABB> boxes(nt);
-  for (size_t t = 0; t < nt; ++t) {
+  for (size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = mesh.indices[3 * t + size_t(k)];
       if (v >= nv)
         throw InvalidInput("MeshAccel: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + " of " +
                            std::to_string(nv));
-      boxes[t].expand(p[v]);
     }
-  }
   BvhSettings capped = settings;
   capped.max_leaf_size = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
   capped.leaf_block = 4;  // the leaves' triangles are tested 4 at a time
-  bvh_ = Bvh(boxes, capped);
+  bvh_ = Bvh(
+      nt,
+      [&](size_t t) {
+        AABB box;
+        for (int k = 0; k < 3; ++k) box.expand(p[mesh.indices[3 * t + size_t(k)]]);
+        return box;
+      },
+      capped);
   const auto nodes = bvh_.nodes();
   if (nodes.empty()) {
     width_ = 0;

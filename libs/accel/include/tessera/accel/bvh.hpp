@@ -5,6 +5,7 @@
 // The BVH knows only boxes: what a primitive is comes in through the hit_prim callback, so the same structure serves
 // meshes, shapes and instances (shapes are kernels fed to one acceleration structure).
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -82,6 +83,9 @@ class Bvh {
   /// (oneTBB) and deterministic: the same tree for any thread count. Throws InvalidInput for bad settings or a
   /// non-finite box.
   explicit Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings = {});
+  /// The same over `count` primitives whose boxes come from prim_box(i) (called once per primitive, in parallel),
+  /// without an array of boxes.
+  Bvh(size_t count, const std::function<AABB(size_t)>& prim_box, const BvhSettings& settings = {});
 
   /// Nearest hit: calls hit_prim(int prim, Ray& ray) -> bool for the primitives whose boxes the ray reaches, near
   /// subtrees first; hit_prim tests primitive prim and on a hit shrinks ray.tmax and returns true. Returns whether any
