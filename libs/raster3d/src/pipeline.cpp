@@ -95,9 +95,6 @@ PlaneSetup plane_setup(double x0, double y0, double x1, double y1, double x2, do
 // A vertex's window position as Gallium has it: y down for a window-system framebuffer (viewport scale -h/2,
 // translate H - (y + h/2)). The vertex stage's viewport transform (draw_llvm.c) fuses ndc * scale + translate into
 // one multiply-add; the clipper's (draw_pipe_clip.c, plain C) rounds twice for the vertices it makes.
-struct GalliumVertex {
-  float x, y, z;
-};
 GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool made_by_clipping) {
   const float inv_w = 1.0f / clip[3];
   const float half_w = float(params.vw) * 0.5f, half_h = float(params.vh) * 0.5f;
@@ -108,6 +105,31 @@ GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool 
   if (made_by_clipping) return {x * half_w + translate_x, y * -half_h + translate_y, z};
   return {__builtin_fmaf(x, half_w, translate_x), __builtin_fmaf(y, -half_h, translate_y), z};
 }
+
+}  // namespace
+
+PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool made_by_clipping) {
+  PreparedVertex p{};
+  p.valid = clip[3] > 0;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
+  if (!p.valid) return p;
+  p.w = to_window(params, clip);
+  p.g = gallium_window(params, clip, made_by_clipping);
+  p.X = round_to_int(p.g.x * 256.0f);                            // snap to 1/256 pixel
+  p.Y = params.fb_height * 256 - round_to_int(p.g.y * 256.0f);  // mirrored: exactly the GL y-up value
+  return p;
+}
+
+void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count) {
+  scratch.prepared.resize(count);
+  PreparedVertex* out = scratch.prepared.data();
+  const int stride = 4 + params.varying_count;
+  parallel_for(0, count, 4096, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) out[i] = prepare_vertex(params, params.vertices + i * stride, false);
+  });
+  params.prepared = out;
+}
+
+namespace {
 
 // The depth plane of a triangle as llvmpipe sets it up (Mesa 22.3, lp_state_setup.c: float32, in Gallium's window
 // frame with y down, relative to the first vertex moved by half a pixel): za is the depth at the center of image
@@ -134,19 +156,13 @@ void depth_plane(const GalliumVertex* g, bool gl_ccw, TriangleRecord& r) {
 }
 
 // Sets up one (clipped) triangle and bins it.
-void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0, const float* v1, const float* v2,
-                   const bool* made_by_clipping, const float* flat_values, SetupChunk& chunk) {
-  const float* v[3] = {v0, v1, v2};
-  WindowVertex w[3];
-  GalliumVertex g[3];
-  int32_t X[3], Y[3];
-  for (int k = 0; k < 3; ++k) {
-    if (!(v[k][3] > 0)) return;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
-    w[k] = to_window(params, v[k]);
-    g[k] = gallium_window(params, v[k], made_by_clipping[k]);
-    X[k] = round_to_int(g[k].x * 256.0f);  // snap to 1/256 pixel
-    Y[k] = params.fb_height * 256 - round_to_int(g[k].y * 256.0f);  // mirrored: exactly the GL y-up value
-  }
+// Sets up one (clipped) triangle of vertices v (clip position and varyings) with their window positions p, and bins it.
+void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* p,
+                   const float* flat_values, SetupChunk& chunk) {
+  if (!(p[0]->valid && p[1]->valid && p[2]->valid)) return;
+  const WindowVertex w[3] = {p[0]->w, p[1]->w, p[2]->w};
+  const GalliumVertex g[3] = {p[0]->g, p[1]->g, p[2]->g};
+  const int32_t X[3] = {p[0]->X, p[1]->X, p[2]->X}, Y[3] = {p[0]->Y, p[1]->Y, p[2]->Y};
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
   if ((params.cull == 1 && area < 0) || (params.cull == 2 && area > 0)) return;
@@ -180,6 +196,7 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   r.rx = float(ps.x0);
   r.ry = float(ps.y0);
   const int n = params.varying_count;
+  const float *v0 = v[0], *v1 = v[1], *v2 = v[2];
   r.varyings = uint32_t(chunk.varyings.size());
   // Equal varyings at the three vertices interpolate to themselves: no planes needed (uniformly colored meshes).
   r.constant =
@@ -210,6 +227,16 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
       chunk.bins[size_t(ty) * params.tiles_x + tx].push_back(index);
 }
 
+// Sets up a triangle made by clipping (made_by_clipping[k]: vertex k is new) and bins it.
+void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0, const float* v1, const float* v2,
+                   const bool* made_by_clipping, const float* flat_values, SetupChunk& chunk) {
+  const float* v[3] = {v0, v1, v2};
+  PreparedVertex prepared[3];
+  const PreparedVertex* p[3];
+  for (int k = 0; k < 3; ++k) prepared[k] = prepare_vertex(params, v[k], made_by_clipping[k]), p[k] = &prepared[k];
+  emit_prepared(params, sc, v, p, flat_values, chunk);
+}
+
 void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
                  SetupChunk& chunk) {
   const int n = params.varying_count;
@@ -217,7 +244,6 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
   const Scissor sc = scissor(params);
   float a[kMaxClipVertices][kMaxStride], b[kMaxClipVertices][kMaxStride];
   bool new_a[kMaxClipVertices], new_b[kMaxClipVertices];
-  constexpr bool kOriginal[3] = {false, false, false};
   float flat[kMaxVaryings];
   for (size_t t = first; t < first + count; ++t) {
     const float* v[3];
@@ -227,7 +253,9 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
     if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
     if (!(c0 | c1 | c2)) {
-      emit_triangle(params, sc, v[0], v[1], v[2], kOriginal, provoking, chunk);
+      const PreparedVertex* p[3];
+      for (int k = 0; k < 3; ++k) p[k] = params.prepared + indices[3 * t + k];
+      emit_prepared(params, sc, v, p, provoking, chunk);
       continue;
     }
     std::copy(provoking, provoking + n, flat);

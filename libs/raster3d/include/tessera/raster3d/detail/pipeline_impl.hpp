@@ -50,9 +50,29 @@ struct SetupChunk {
   uint64_t rasterized = 0;
 };
 
+/// A vertex after perspective divide and viewport: window x, y (GL, y up), z in [0, 1], and 1/w.
+struct WindowVertex {
+  float x, y, z, inv_w;
+};
+
+/// A vertex's window position as Gallium (llvmpipe) has it: x, y down from the top row, z.
+struct GalliumVertex {
+  float x, y, z;
+};
+
+/// What triangle setup needs of a vertex, computed once per vertex: both window positions and the snapped
+/// 1/256-pixel position (GL y up). Not valid when w <= 0 (only possible on a degenerate clipped polygon).
+struct PreparedVertex {
+  WindowVertex w;
+  GalliumVertex g;
+  int32_t X, Y;
+  bool valid;
+};
+
 /// Memory reused from draw to draw, owned by the Framebuffer.
 struct RasterScratch {
   std::vector<float> vertices;     // vertex stage output: per vertex, clip position (4 floats) then the varyings
+  std::vector<PreparedVertex> prepared;  // per vertex, for the triangles that need no clipping
   std::vector<uint32_t> order;     // painter's algorithm: the sorted triangle indices
   std::vector<SetupChunk> chunks;  // kPassChunks of them
 };
@@ -60,6 +80,7 @@ struct RasterScratch {
 /// What setup needs to know about a draw.
 struct SetupParams {
   const float* vertices;  // vertex stage output
+  const PreparedVertex* prepared = nullptr;  // per vertex (prepare_vertices)
   int varying_count;      // N
   bool flat, painter;
   int cull;  // 0 none, 1 back, 2 front
@@ -88,12 +109,15 @@ void check_indices(std::span<const uint32_t> indices, uint32_t vertex_count, int
 /// The setup parameters of a draw.
 SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const float* vertices, int varying_count);
 
-/// A vertex after perspective divide and viewport: window x, y (GL, y up), z in [0, 1], and 1/w.
-struct WindowVertex {
-  float x, y, z, inv_w;
-};
 /// The perspective divide and viewport transform of a clip-space position (float32, as OpenGL).
 WindowVertex to_window(const SetupParams& params, const float* clip);
+
+/// The window positions of a vertex (clip position `clip`); `made_by_clipping` selects the clipper's viewport
+/// arithmetic (two roundings) over the vertex stage's (a fused multiply-add), as llvmpipe.
+PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool made_by_clipping);
+
+/// prepare_vertex for the vertex stage's `count` vertices in parallel, into scratch.prepared and params.prepared.
+void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count);
 
 /// The scissor rectangle in GL window pixels: viewport intersected with the framebuffer.
 struct Scissor {
@@ -654,7 +678,8 @@ DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uin
   if (indices.empty()) return stats;
   detail::RasterScratch& scratch = framebuffer.scratch();
   const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
-  const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
+  detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
+  detail::prepare_vertices(scratch, params, vertex_count);
   if (state.painter) indices = detail::painter_order(scratch, vertices, 4 + n, indices);
   const detail::FragmentState fragment = detail::fragment_state(state);
   const size_t triangles = indices.size() / 3;
