@@ -165,21 +165,21 @@ class LevelRefiner {
   template <class T>
   void prefetch_edge(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
     const auto [k0, k1] = t_.edge_corners(e);
-    __builtin_prefetch(&parent[t_.corner_vertex(k0)]);
-    __builtin_prefetch(&parent[t_.corner_vertex(t_.next_corner(k0))]);
+    prefetch_line(&parent[t_.corner_vertex(k0)]);
+    prefetch_line(&parent[t_.corner_vertex(t_.next_corner(k0))]);
     for (uint32_t k : {k0, k1}) {
       if (k == TopologyTables::kNone) continue;
       if constexpr (Rules::kFacePoints)
-        __builtin_prefetch(&child[t_.vertex_count() + t_.corner_face(k)]);
+        prefetch_line(&child[t_.vertex_count() + t_.corner_face(k)]);
       else
-        __builtin_prefetch(&parent[t_.corner_vertex(t_.prev_corner(k))]);
+        prefetch_line(&parent[t_.corner_vertex(t_.prev_corner(k))]);
     }
   }
   template <class T>
   void prefetch_vertex(uint32_t v, std::span<const T> parent, std::span<const T> child) const {
     for (uint32_t k : t_.ring_corners(v)) {
-      __builtin_prefetch(&parent[t_.corner_vertex(t_.next_corner(k))]);
-      if constexpr (Rules::kFacePoints) __builtin_prefetch(&child[t_.vertex_count() + t_.corner_face(k)]);
+      prefetch_line(&parent[t_.corner_vertex(t_.next_corner(k))]);
+      if constexpr (Rules::kFacePoints) prefetch_line(&child[t_.vertex_count() + t_.corner_face(k)]);
     }
   }
 
