@@ -164,12 +164,9 @@ void TopologyTables::build_edges() {
     for (int64_t k = b; k < e; ++k)
       if (owns(uint32_t(k))) {
         corner_edges_[k] = edge;
+        if (twins_[k] != kNone) corner_edges_[twins_[k]] = edge;  // the twin's only writer
         edge_corners_[edge++] = uint32_t(k);
       }
-  });
-  parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
-    for (int64_t c = b; c < e; ++c)
-      if (!owns(uint32_t(c))) corner_edges_[c] = corner_edges_[twins_[c]];
   });
 }
 
