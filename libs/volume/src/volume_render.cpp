@@ -108,20 +108,11 @@ struct PackedVolume {
   PackedVolume(const Volume<float>& v, float lo, float hi, bool with_gradient)
       : dims(v.dims()), stride_y(size_t(dims.x)), stride_z(size_t(dims.x) * size_t(dims.y)) {
     value_scale = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
-    // The largest gradient component (a max, so the same for any thread count) sets the gradient's scale.
-    std::vector<float> slab_max(size_t(dims.z), 0.0f);
-    if (with_gradient)
-      parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
-        std::vector<Vec3f> g(size_t(dims.x));
-        for (int z = int(z0); z < int(z1); ++z)
-          for (int y = 0; y < dims.y; ++y) {
-            gradient_row(v, y, z, g);
-            for (const Vec3f& d : g)
-              slab_max[size_t(z)] = std::max({slab_max[size_t(z)], std::abs(d.x), std::abs(d.y), std::abs(d.z)});
-          }
-      });
-    const float gmax = *std::max_element(slab_max.begin(), slab_max.end());
-    gradient_scale = gmax > 0 ? 32767.0f / gmax : 0.0f;
+    // No gradient component exceeds (hi - lo) / (smallest spacing) (a one-sided difference across the whole range):
+    // that bound sets the gradient's scale, so no pass is spent finding the actual largest one.
+    const Vec3 sp = v.spacing();
+    const float bound = (hi - lo) / float(std::min({sp.x, sp.y, sp.z}));
+    gradient_scale = bound > 0 ? 32767.0f / bound : 0.0f;
     voxels.resize(v.voxel_count());
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
       std::vector<Vec3f> g(size_t(dims.x), Vec3f(0.0f));
@@ -383,11 +374,14 @@ struct Caster {
   const PackedVolume& vol = cast.volume;
   const BlockGrid& blocks = cast.blocks;
   const VolumeRenderOptions& o = cast.options;
-  __m256 first[3], delta[3], light[3], hi[3];
+  __m256 first[3], delta[3], light[3], hi[3], inv_delta[3], forward[3], moving[3];
   __m256i max_cell[3];
   for (int a = 0; a < 3; ++a) {
     first[a] = _mm256_load_ps(f[a]);
     delta[a] = _mm256_load_ps(d[a]);
+    inv_delta[a] = _mm256_div_ps(_mm256_set1_ps(1.0f), delta[a]);
+    forward[a] = _mm256_and_ps(_mm256_cmp_ps(delta[a], _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));  // 1 or 0
+    moving[a] = _mm256_cmp_ps(delta[a], _mm256_setzero_ps(), _CMP_NEQ_OQ);
     light[a] = _mm256_load_ps(l[a]);
     hi[a] = _mm256_set1_ps(float(vol.dims[a] - 1));
     max_cell[a] = _mm256_set1_epi32(std::max(vol.dims[a] - 2, 0));
@@ -414,9 +408,12 @@ struct Caster {
 
   __m256i k = _mm256_setzero_si256();
   __m256 red = zero, green = zero, blue = zero, a_acc = zero;
+  // The sample index of a lane does not wait for its opacity (a lane past termination keeps stepping and adds
+  // nothing), so that the next positions do not depend on the previous sample's gathers and shading: the loop's
+  // critical path is then only the empty-block jump.
   for (;;) {
-    const __m256i active = _mm256_and_si256(_mm256_cmpgt_epi32(n_regular, k),
-                                            _mm256_castps_si256(_mm256_cmp_ps(a_acc, termination, _CMP_LT_OQ)));
+    const __m256i marching = _mm256_cmpgt_epi32(n_regular, k);
+    const __m256i active = _mm256_and_si256(marching, _mm256_castps_si256(_mm256_cmp_ps(a_acc, termination, _CMP_LT_OQ)));
     if (_mm256_testz_si256(active, active)) break;
     const __m256 kf = _mm256_cvtepi32_ps(k);
     __m256i cell[3], block[3];
@@ -433,21 +430,18 @@ struct Caster {
     const __m256i block_index =
         _mm256_add_epi32(block[0], _mm256_mullo_epi32(count_x, _mm256_add_epi32(block[1], _mm256_mullo_epi32(count_y, block[2]))));
     const __m256i is_empty = _mm256_cmpgt_epi32(_mm256_i32gather_epi32(blocks.empty.data(), block_index, 4), _mm256_setzero_si256());
-    const __m256i skip = _mm256_and_si256(is_empty, active);
-    if (!_mm256_testz_si256(skip, skip)) {
-      __m256 exit = infinity;
-      for (int a = 0; a < 3; ++a) {
-        const __m256 b = _mm256_cvtepi32_ps(block[a]);
-        const __m256 upper = _mm256_mul_ps(_mm256_add_ps(b, one), block_size), lower = _mm256_mul_ps(b, block_size);
-        const __m256 forward = _mm256_cmp_ps(delta[a], zero, _CMP_GT_OQ), backward = _mm256_cmp_ps(delta[a], zero, _CMP_LT_OQ);
-        const __m256 s = _mm256_div_ps(_mm256_sub_ps(_mm256_blendv_ps(lower, upper, forward), first[a]), delta[a]);
-        exit = _mm256_min_ps(exit, _mm256_blendv_ps(infinity, s, _mm256_or_ps(forward, backward)));
-      }
-      const __m256i inside = _mm256_castps_si256(_mm256_cmp_ps(exit, nf, _CMP_LT_OQ));
-      // Where the exit is beyond the ray, cvtt would overflow: those lanes take n instead.
-      const __m256i jump = _mm256_max_epi32(k, _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_min_ps(exit, nf)), _mm256_set1_epi32(1)));
-      k = _mm256_blendv_epi8(k, _mm256_blendv_epi8(n_all, jump, inside), skip);
+    // Branchless: whether some lane jumps is a coin toss in noisy data.
+    const __m256i skip = _mm256_and_si256(is_empty, marching);
+    __m256 exit = infinity;
+    for (int a = 0; a < 3; ++a) {
+      const __m256 b = _mm256_cvtepi32_ps(block[a]);
+      const __m256 bound = _mm256_mul_ps(_mm256_add_ps(b, forward[a]), block_size);  // the far side of the block
+      exit = _mm256_min_ps(exit, _mm256_blendv_ps(infinity, _mm256_mul_ps(_mm256_sub_ps(bound, first[a]), inv_delta[a]), moving[a]));
     }
+    const __m256i inside = _mm256_castps_si256(_mm256_cmp_ps(exit, nf, _CMP_LT_OQ));
+    // Where the exit is beyond the ray, cvtt would overflow: those lanes take n instead.
+    const __m256i jump = _mm256_max_epi32(k, _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_min_ps(exit, nf)), _mm256_set1_epi32(1)));
+    k = _mm256_blendv_epi8(k, _mm256_blendv_epi8(n_all, jump, inside), skip);
     const __m256i sample = _mm256_andnot_si256(is_empty, active);
     if (!_mm256_testz_si256(sample, sample)) {
       const __m256i base = _mm256_permutevar8x32_epi32(
@@ -498,7 +492,12 @@ struct Caster {
         const __m256 lit = _mm256_cmp_ps(len2, _mm256_set1_ps(cast.min_gradient2), _CMP_GT_OQ);
         const __m256 dot = _mm256_fmadd_ps(s[1], light[0], _mm256_fmadd_ps(s[2], light[1], _mm256_mul_ps(s[3], light[2])));
         const __m256 abs_dot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dot);
-        const __m256 cosine = _mm256_div_ps(abs_dot, _mm256_sqrt_ps(_mm256_blendv_ps(one, len2, lit)));
+        // 1 / |g| by rsqrt and one Newton step (relative error ~1e-7, shorter latency than sqrt and div).
+        const __m256 len2_or_1 = _mm256_blendv_ps(one, len2, lit);
+        const __m256 r0 = _mm256_rsqrt_ps(len2_or_1);
+        const __m256 r1 = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.5f), r0),
+                                        _mm256_fnmadd_ps(_mm256_mul_ps(len2_or_1, r0), r0, _mm256_set1_ps(3.0f)));
+        const __m256 cosine = _mm256_mul_ps(abs_dot, r1);
         const __m256 clamped = _mm256_min_ps(_mm256_max_ps(cosine, zero), one);
         __m256 pw = one;
         if (cast.power.whole) {
@@ -524,7 +523,7 @@ struct Caster {
       blue = _mm256_fmadd_ps(weight, b, blue);
       a_acc = _mm256_add_ps(a_acc, weight);
     }
-    k = _mm256_sub_epi32(k, active);  // active lanes are all ones (-1): k + 1
+    k = _mm256_sub_epi32(k, marching);  // marching lanes are all ones (-1): k + 1
   }
   alignas(32) float out[4][8];
   alignas(32) int ks[8];
@@ -603,15 +602,19 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
   const bool simd = false;
 #endif
   parallel_tiles(options.width, options.height, 16, [&](const Tile& tile) {
-    for (int j = tile.y0; j < tile.y1; ++j)
-      for (int i0 = tile.x0; i0 < tile.x1; i0 += 8) {
-        const int count = std::min(8, tile.x1 - i0);
+    // Packets of 4 x 2 pixels: their rays stay closer together than a row of 8, so they share more cache lines.
+    for (int j0 = tile.y0; j0 < tile.y1; j0 += 2)
+      for (int i0 = tile.x0; i0 < tile.x1; i0 += 4) {
+        glm::ivec2 pixel[8];
+        int count = 0;
+        for (int j = j0; j < std::min(j0 + 2, tile.y1); ++j)
+          for (int i = i0; i < std::min(i0 + 4, tile.x1); ++i) pixel[count++] = {i, j};
         RaySamples r[8];
         Vec3f color[8];
         float alpha[8];
         int k[8] = {};
         for (int lane = 0; lane < count; ++lane) {
-          r[lane] = setup(i0 + lane, j);
+          r[lane] = setup(pixel[lane].x, pixel[lane].y);
           color[lane] = Vec3f(0.0f);
           alpha[lane] = 0;
         }
@@ -620,7 +623,7 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
 #endif
         for (int lane = 0; lane < count; ++lane) {
           cast.march(r[lane], k[lane], color[lane], alpha[lane]);
-          image(i0 + lane, j) = color[lane] + (1 - alpha[lane]) * options.background;
+          image(pixel[lane].x, pixel[lane].y) = color[lane] + (1 - alpha[lane]) * options.background;
         }
       }
   });
