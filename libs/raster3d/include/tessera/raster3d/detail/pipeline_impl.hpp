@@ -399,12 +399,20 @@ template <DepthFunc F>
   const float* px = planes + 4;
   const float* py = planes + 8;
   const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
-  __m256i step[3];
-  for (int k = 0; k < 3; ++k) step[k] = _mm256_set1_epi32(r.edges[k].a * 256);
+  // Edge functions at the lanes of the first chunk of row y0, and their steps per row and per chunk.
+  __m256i edge_row[3], edge_dy[3], edge_dx8[3];
+  for (int k = 0; k < 3; ++k) {
+    const Edge& e = r.edges[k];
+    const auto e0 = int32_t(int64_t(e.a) * 256 * x0 + int64_t(e.b) * 256 * y0 + e.c);
+    edge_row[k] = _mm256_add_epi32(_mm256_set1_epi32(e0), _mm256_mullo_epi32(lane, _mm256_set1_epi32(e.a * 256)));
+    edge_dy[k] = _mm256_set1_epi32(e.b * 256);
+    edge_dx8[k] = _mm256_set1_epi32(e.a * 256 * 8);
+  }
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
   const __m256 rx = _mm256_set1_ps(r.rx), zdx = _mm256_set1_ps(r.zdx), zdy = _mm256_set1_ps(r.zdy);
   const __m256 za = _mm256_set1_ps(r.za), depth_scale = _mm256_set1_ps(16777215.0f);
   const __m256 c255 = _mm256_set1_ps(255.0f), round_magic = _mm256_set1_ps(12582912.0f);
+  const __m256i alpha = _mm256_set1_epi32(int32_t(0xff000000u));
   __m256 pxv[4];
   for (int k = 0; k < 4; ++k) pxv[k] = _mm256_set1_ps(px[k]);
   for (int j = y0; j < y1; ++j) {
@@ -415,14 +423,13 @@ template <DepthFunc F>
     __m256 base[4];
     for (int k = 0; k < 4; ++k) base[k] = _mm256_set1_ps(pc[k] + py[k] * dy);
     const __m256 rowv = _mm256_set1_ps(float(row));
+    __m256i edge[3] = {edge_row[0], edge_row[1], edge_row[2]};
     for (int x = x0; x < x1; x += 8) {
-      __m256i cover = _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), lane);
-      for (int k = 0; k < 3; ++k) {
-        const Edge& e = r.edges[k];
-        const auto e0 = int32_t(int64_t(e.a) * 256 * x + int64_t(e.b) * 256 * j + e.c);
-        const __m256i ev = _mm256_add_epi32(_mm256_set1_epi32(e0), _mm256_mullo_epi32(lane, step[k]));
-        cover = _mm256_andnot_si256(_mm256_srai_epi32(ev, 31), cover);  // E >= 0
-      }
+      // E >= 0 for the three edges: the sign bits of their OR are clear.
+      const __m256i outside = _mm256_or_si256(_mm256_or_si256(edge[0], edge[1]), edge[2]);
+      const __m256i cover = _mm256_andnot_si256(_mm256_srai_epi32(outside, 31),
+                                                _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), lane));
+      for (int k = 0; k < 3; ++k) edge[k] = _mm256_add_epi32(edge[k], edge_dx8[k]);
       if (_mm256_testz_si256(cover, cover)) continue;
       const __m256 fi = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x), lane));
       __m256 z = _mm256_fmadd_ps(zdy, rowv, _mm256_fmadd_ps(zdx, fi, za));
@@ -433,7 +440,7 @@ template <DepthFunc F>
       if (_mm256_testz_si256(pass, pass)) continue;
       const __m256 dx = _mm256_sub_ps(_mm256_add_ps(fi, half), rx);
       const __m256 w = _mm256_div_ps(one, _mm256_add_ps(base[0], _mm256_mul_ps(pxv[0], dx)));
-      __m256i rgba = _mm256_set1_epi32(int32_t(0xff000000u));
+      __m256i rgba = alpha;
       for (int k = 1; k < 4; ++k) {
         __m256 c = _mm256_mul_ps(_mm256_add_ps(base[k], _mm256_mul_ps(pxv[k], dx)), w);
         c = _mm256_min_ps(_mm256_max_ps(c, zero), one);
@@ -443,9 +450,9 @@ template <DepthFunc F>
       _mm256_maskstore_epi32(crow + x, pass, rgba);
       if (write_depth) _mm256_maskstore_epi32(reinterpret_cast<int*>(drow + x), pass, d);
     }
+    for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
 }
-
 /// Rasterizes the records binned to `tile` of every chunk, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
