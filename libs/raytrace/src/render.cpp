@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -21,15 +22,17 @@ namespace {
 /// The sample dimensions that are stratified across a pixel's samples (deeper bounces use the pixel's Rng).
 enum Dimension : uint32_t { kPixel, kLens, kTime, kLight, kGloss, kDimensions };
 
+/// Samples per block of stratified numbers drawn together.
+constexpr uint32_t kBlock = 16;
+
 /// Stratified numbers of one pixel sample for the first hit; null at deeper bounces.
 struct PrimaryNumbers {
   Vec2f light, gloss;
 };
 
-/// Moves a ray origin off the surface along the geometric normal, relative to the point's magnitude.
-Vec3f offset_point(const Vec3f& p, const Vec3f& n) {
-  const float scale = 1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  return p + (2e-4f * scale) * n;
+/// How far a ray origin moves off the surface at p along the geometric normal: relative to the point's magnitude.
+float offset_scale(const Vec3f& p) {
+  return 2e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
 }
 
 /// True when nothing blocks the segment from p toward the light sample (the notes' visible(P, L)).
@@ -44,22 +47,73 @@ bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t
 
 float max_component(const Vec3f& v) { return std::max({v.x, v.y, v.z}); }
 
-/// The surface color C_r at a hit: the diffuse color or the checkerboard's, times the texture.
-Vec3f surface_color(const Material& m, const SurfaceHit& h) {
+/// The surface color C_r at a hit of `ray`: the diffuse color or the checkerboard's, times the texture.
+Vec3f surface_color(const World& world, const Material& m, const Ray& ray, const SurfaceHit& h) {
   Vec3f c = m.diffuse;
   if (m.checker > 0.0f) {
     const Vec3f cell = glm::floor(h.hit.point / m.checker + 1e-4f);
     if ((int64_t(cell.x) + int64_t(cell.y) + int64_t(cell.z)) & 1) c = m.checker_color;
   }
-  if (m.texture) c *= Vec3f(m.texture->sample(h.uv));
+  if (m.texture) c *= Vec3f(m.texture->sample(world.texture_uv(ray, h)));
   return c;
 }
 
+/// The notes' eye rays (u = (2 (i + dx) / w - 1) aspect, v = 1 - 2 (j + dy) / h, direction -d w + u u + v v) as an
+/// affine function of the image position, set up once in double and evaluated in float, and the thin lens.
+class CameraRays {
+ public:
+  CameraRays(const RayScene& scene, int width, int height) : aperture_(scene.aperture) {
+    Camera camera = scene.camera;
+    camera.aspect = double(width) / double(height);
+    const EyeRays check(camera, width, height);  // validates the size and field of view
+    Vec3 u, v, w;
+    camera.frame(u, v, w);
+    const double d = check.focal_length();
+    origin_ = Vec3f(camera.eye);
+    corner_ = Vec3f(-d * w - camera.aspect * u + v);
+    step_x_ = Vec3f((2.0 * camera.aspect / width) * u);
+    step_y_ = Vec3f((-2.0 / height) * v);
+    lens_u_ = Vec3f(u);
+    lens_v_ = Vec3f(v);
+    forward_ = Vec3f(-w);
+    focus_ = scene.focal_distance > 0.0f ? scene.focal_distance : float(glm::length(camera.center - camera.eye));
+  }
+
+  /// The eye ray through image position (x + offset.x, y + offset.y) at `time`; with an aperture, from the lens point
+  /// `lens` (in [0, 1)^2, mapped onto the aperture disk) toward the pinhole ray's point on the focal plane.
+  Ray ray(int x, int y, const Vec2f& offset, const Vec2f& lens, float time) const {
+    Ray r;
+    r.origin = origin_;
+    r.dir = glm::normalize(corner_ + (float(x) + offset.x) * step_x_ + (float(y) + offset.y) * step_y_);
+    r.time = time;
+    if (aperture_ > 0.0f) {
+      const Vec3f focal_point = r.origin + (focus_ / glm::dot(r.dir, forward_)) * r.dir;
+      const Vec2f l = aperture_ * sample_disk(lens);
+      r.origin += l.x * lens_u_ + l.y * lens_v_;
+      r.dir = glm::normalize(focal_point - r.origin);
+    }
+    return r;
+  }
+
+ private:
+  Vec3f origin_, corner_, step_x_, step_y_, lens_u_, lens_v_, forward_;
+  float aperture_, focus_;
+};
+
 class Tracer {
  public:
-  Tracer(const RayScene& scene, const RenderSettings& settings) : scene_(scene), settings_(settings) {}
+  Tracer(const RayScene& scene, const RenderSettings& settings) : scene_(scene), settings_(settings) {
+    for (size_t li = 0; li < scene.lights.size(); ++li) {
+      const Light& light = scene.lights[li];
+      LightInfo info;
+      info.count = light.is_area() ? std::max(1, light.samples) : 1;
+      if (light.type == LightType::directional) info.direction = -glm::normalize(light.direction);
+      lights_.push_back(info);
+    }
+  }
 
-  /// The color along `ray` at recursion depth `depth` (1 = eye ray); `weight` is the product of the K's so far.
+  /// The color along `ray` (unit direction) at recursion depth `depth` (1 = eye ray); `weight` is the product of the
+  /// K's so far.
   Vec3f radiance(const Ray& ray, int depth, const Vec3f& weight, Rng& rng, const PrimaryNumbers* primary,
                  uint64_t& rays) const {
     ++rays;
@@ -69,19 +123,19 @@ class Tracer {
     const Material& m = scene_.materials[size_t(scene_.world.material(h.object))];
 
     // Face the normals toward the incoming ray; remember which side of the surface the ray came from.
-    const Vec3f d = glm::normalize(ray.dir);
+    const Vec3f d = ray.dir;
     const bool entering = glm::dot(d, h.hit.normal) < 0.0f;
     const Vec3f ng = entering ? h.hit.normal : -h.hit.normal;
     Vec3f n = entering ? h.shading_normal : -h.shading_normal;
     if (glm::dot(n, -d) <= 0.0f) n = ng;  // an interpolated normal facing away from the viewer
     const Vec3f e = -d;
     const Vec3f p = h.hit.point;
-    const Vec3f above = offset_point(p, ng), below = offset_point(p, -ng);
+    const float offset = offset_scale(p);
 
-    const Vec3f cr = surface_color(m, h);
+    const Vec3f cr = surface_color(scene_.world, m, r, h);
     Vec3f c = m.emission + cr * m.ambient * scene_.ambient;
     if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f))
-      c += direct_light(m, cr, above, n, ng, e, rng, primary, depth, rays);
+      c += direct_light(m, cr, p + offset * ng, n, ng, e, rng, primary, depth, rays);
 
     // Split K_trans into reflection and transmission (total internal reflection, optional Fresnel).
     Vec3f k_refl = m.reflection, k_trans = m.transmission;
@@ -96,7 +150,7 @@ class Tracer {
     if (depth >= settings_.max_depth) return c;
     if (k_refl != Vec3f(0.0f) && max_component(weight * k_refl) >= settings_.min_contribution) {
       Ray refl;
-      refl.origin = above;
+      refl.origin = p + offset * ng;
       refl.dir = reflect_dir(e, n);
       refl.time = ray.time;
       if (m.glossiness > 0.0f) {
@@ -110,7 +164,7 @@ class Tracer {
     }
     if (t_dir && k_trans != Vec3f(0.0f) && max_component(weight * k_trans) >= settings_.min_contribution) {
       Ray trans;
-      trans.origin = below;
+      trans.origin = p - offset * ng;
       trans.dir = *t_dir;
       trans.time = ray.time;
       c += k_trans * radiance(trans, depth + 1, weight * k_trans, rng, nullptr, rays);
@@ -119,41 +173,64 @@ class Tracer {
   }
 
  private:
+  /// What the shading of every hit needs of a light, computed once.
+  struct LightInfo {
+    int count = 1;             // shadow rays per shading point
+    Vec3f direction{0.0f};     // directional lights: unit direction toward the light
+  };
+
+  /// Light `li` seen from p with the 2D number u: point and directional lights here (their samples need no call),
+  /// area lights by sample_light.
+  LightSample light_sample(size_t li, const Vec3f& p, const Vec2f& u) const {
+    const Light& light = scene_.lights[li];
+    if (light.type == LightType::directional) return {lights_[li].direction, std::numeric_limits<float>::infinity(), light.color};
+    if (light.type != LightType::point) return sample_light(light, p, u);
+    LightSample s;
+    const Vec3f to = light.position - p;
+    s.distance = glm::length(to);
+    if (!(s.distance > 0.0f)) return s;
+    s.dir = to / s.distance;
+    s.color = light.color;
+    return s;
+  }
+
   /// The sum over lights of C_L (C_r (N . L) + highlight) visible(P, L), area lights averaged over their samples.
   Vec3f direct_light(const Material& m, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng,
                      const Vec3f& e, Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
     Vec3f sum(0.0f);
+    const bool highlights = m.specular != Vec3f(0.0f);
     for (size_t li = 0; li < scene_.lights.size(); ++li) {
       const Light& light = scene_.lights[li];
-      const int count = light.is_area() ? std::max(1, light.samples) : 1;
+      const int count = lights_[li].count;
       // An area light's stratified set for this hit, rotated by the pixel sample's number (Cranley-Patterson) so
       // that the sets of a pixel's samples interleave. Point and directional lights need no numbers.
       Vec2f rotation(0.0f);
       if (light.is_area()) rotation = primary ? primary->light : Vec2f(rng.uniform(), rng.uniform());
-      const uint32_t pattern = count > 1 ? hash_u32(li, uint64_t(depth)) : 0;
+      std::optional<StratifiedPattern> pattern;
+      if (count > 1) pattern.emplace(uint32_t(count), hash_u32(li, uint64_t(depth)));
       Vec3f light_sum(0.0f);
       for (int k = 0; k < count; ++k) {
-        const Vec2f u =
-            count > 1 ? glm::fract(stratified_sample(uint32_t(k), uint32_t(count), pattern) + rotation) : rotation;
-        const LightSample ls = sample_light(light, p, u);
+        const Vec2f u = pattern ? glm::fract(pattern->sample(uint32_t(k)) + rotation) : rotation;
+        const LightSample ls = light_sample(li, p, u);
         const float nl = glm::dot(n, ls.dir);
         if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) continue;
         if (!visible(scene_.world, p, ls, rays)) continue;
         float highlight = 0.0f;
-        if (m.specular != Vec3f(0.0f)) {
+        if (highlights) {
           const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
                                                               : glm::dot(n, glm::normalize(ls.dir + e));
-          highlight = std::pow(std::max(0.0f, cos_h), m.shininess);
+          if (cos_h > 0.0f) highlight = std::pow(cos_h, m.shininess);
         }
         light_sum += ls.color * (cr * nl + m.specular * highlight);
       }
-      sum += light_sum / float(count);
+      sum += count > 1 ? light_sum / float(count) : light_sum;
     }
     return sum;
   }
 
   const RayScene& scene_;
   const RenderSettings& settings_;
+  std::vector<LightInfo> lights_;
 };
 
 void check_settings(const RayScene& scene, const RenderSettings& s) {
@@ -190,21 +267,9 @@ void add_light_surfaces(RayScene& scene) {
   }
 }
 
-Ray eye_ray(const RayScene& scene, const EyeRays& rays, int x, int y, const Vec2f& offset, const Vec2f& lens,
+Ray eye_ray(const RayScene& scene, int width, int height, int x, int y, const Vec2f& offset, const Vec2f& lens,
             float time) {
-  Ray ray = rays.ray(x, y, offset.x, offset.y);
-  ray.time = time;
-  if (scene.aperture > 0.0f) {
-    Vec3 u, v, w;
-    scene.camera.frame(u, v, w);
-    const float focus =
-        scene.focal_distance > 0.0f ? scene.focal_distance : float(glm::length(scene.camera.center - scene.camera.eye));
-    const Vec3f focal_point = ray.origin + (focus / glm::dot(ray.dir, -Vec3f(w))) * ray.dir;
-    const Vec2f l = scene.aperture * sample_disk(lens);
-    ray.origin += l.x * Vec3f(u) + l.y * Vec3f(v);
-    ray.dir = glm::normalize(focal_point - ray.origin);
-  }
-  return ray;
+  return CameraRays(scene, width, height).ray(x, y, offset, lens, time);
 }
 
 float visible_fraction(const RayScene& scene, const Vec3f& p, const Light& light, int n, uint32_t pattern) {
@@ -221,16 +286,16 @@ Vec3f trace_ray(const RayScene& scene, const RenderSettings& settings, const Ray
   check_settings(scene, settings);
   Rng rng(rng_sequence, settings.seed);
   uint64_t rays = 0;
-  return Tracer(scene, settings).radiance(ray, 1, Vec3f(1.0f), rng, nullptr, rays);
+  Ray unit = ray;
+  unit.dir = glm::normalize(ray.dir);
+  return Tracer(scene, settings).radiance(unit, 1, Vec3f(1.0f), rng, nullptr, rays);
 }
 
 ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderStats* stats) {
   check_settings(scene, settings);
   const auto start = std::chrono::steady_clock::now();
   const int w = settings.width, h = settings.height;
-  Camera camera = scene.camera;
-  camera.aspect = double(w) / double(h);
-  const EyeRays eye_rays(camera, w, h);
+  const CameraRays camera(scene, w, h);
   const Tracer tracer(scene, settings);
   ImageRGB image(w, h);
   const auto spp = uint32_t(settings.samples);
@@ -239,32 +304,40 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   std::unique_ptr<Progress> progress;
   if (settings.progress) progress = std::make_unique<Progress>("render", int64_t(tiles_x) * tiles_y);
   std::atomic<uint64_t> total_rays{0};
-  const bool distributed_pixel = spp > 1;
-  const bool uses_time = scene.world.has_motion();
-  const bool uses_light =
-      std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.is_area(); });
-  const bool uses_gloss = std::any_of(scene.materials.begin(), scene.materials.end(),
-                                      [](const Material& m) { return m.glossiness > 0.0f; });
+  bool used[kDimensions];
+  used[kPixel] = spp > 1;
+  used[kTime] = spp > 1 && scene.world.has_motion();
+  used[kLight] = std::any_of(scene.lights.begin(), scene.lights.end(), [](const Light& l) { return l.is_area(); });
+  used[kGloss] = std::any_of(scene.materials.begin(), scene.materials.end(),
+                             [](const Material& m) { return m.glossiness > 0.0f; });
+  used[kLens] = scene.aperture > 0.0f;
   parallel_tiles(w, h, settings.tile_size, [&](const Tile& tile) {
     uint64_t rays = 0;
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
         Rng rng(pixel, settings.seed);
-        uint32_t pattern[kDimensions];
-        for (uint32_t dim = 0; dim < kDimensions; ++dim) pattern[dim] = hash_u32(pixel, dim, settings.seed);
+        // Only the dimensions the scene uses are drawn (each is its own pattern, so skipping one changes no other).
+        // With one sample the eye ray goes through the pixel center at mid-shutter.
+        std::optional<StratifiedPattern> pattern[kDimensions];
+        for (uint32_t dim = 0; dim < kDimensions; ++dim)
+          if (used[dim]) pattern[dim].emplace(spp, hash_u32(pixel, dim, settings.seed));
         Vec3f sum(0.0f);
-        for (uint32_t s = 0; s < spp; ++s) {
-          // Only the dimensions the scene uses are drawn (each is its own pattern, so skipping one changes no other).
-          // With one sample the eye ray goes through the pixel center at mid-shutter.
-          const auto draw = [&](Dimension dim, bool used) {
-            return used ? stratified_sample(s, spp, pattern[dim]) : Vec2f(0.5f);
-          };
-          const Vec2f offset = draw(kPixel, distributed_pixel);
-          const float time = draw(kTime, uses_time && distributed_pixel).x;
-          const PrimaryNumbers primary{draw(kLight, uses_light), draw(kGloss, uses_gloss)};
-          const Ray ray = eye_ray(scene, eye_rays, x, y, offset, draw(kLens, scene.aperture > 0.0f), time);
-          sum += tracer.radiance(ray, 1, Vec3f(1.0f), rng, &primary, rays);
+        // The numbers of a block of samples first (cheaper together), then their rays.
+        Vec2f numbers[kDimensions][kBlock];
+        for (uint32_t first = 0; first < spp; first += kBlock) {
+          const uint32_t count = std::min(kBlock, spp - first);
+          for (uint32_t dim = 0; dim < kDimensions; ++dim) {
+            if (pattern[dim])
+              pattern[dim]->samples(first, std::span(numbers[dim], count));
+            else
+              std::fill_n(numbers[dim], count, Vec2f(0.5f));
+          }
+          for (uint32_t i = 0; i < count; ++i) {
+            const PrimaryNumbers primary{numbers[kLight][i], numbers[kGloss][i]};
+            const Ray ray = camera.ray(x, y, numbers[kPixel][i], numbers[kLens][i], numbers[kTime][i].x);
+            sum += tracer.radiance(ray, 1, Vec3f(1.0f), rng, &primary, rays);
+          }
         }
         image(x, y) = sum / float(spp);
       }

@@ -5,14 +5,18 @@
 
 namespace tessera {
 
-uint32_t permute_index(uint32_t i, uint32_t n, uint32_t p) {
-  if (n <= 1) return 0;
-  uint32_t w = n - 1;
-  w |= w >> 1;
-  w |= w >> 2;
-  w |= w >> 4;
-  w |= w >> 8;
-  w |= w >> 16;
+Permutation::Permutation(uint32_t n, uint32_t pattern)
+    : n_(n), mask_(n > 0 ? n - 1 : 0), pattern_(pattern), offset_(n > 0 ? pattern % n : 0) {
+  mask_ |= mask_ >> 1;
+  mask_ |= mask_ >> 2;
+  mask_ |= mask_ >> 4;
+  mask_ |= mask_ >> 8;
+  mask_ |= mask_ >> 16;
+}
+
+uint32_t Permutation::operator()(uint32_t i) const {
+  if (n_ <= 1) return 0;
+  const uint32_t w = mask_, p = pattern_, n = n_;
   do {  // a bijective hash on [0, w]; cycle-walk until the value lands in [0, n)
     i ^= p;
     i *= 0xe170893d;
@@ -33,8 +37,12 @@ uint32_t permute_index(uint32_t i, uint32_t n, uint32_t p) {
     i &= w;
     i ^= i >> 5;
   } while (i >= n);
-  return (i + p) % n;
+  // The final rotation by p mod n (Kensler's (i + p) % n, which loses the bijection when i + p wraps around 2^32).
+  i += offset_;
+  return i >= n ? i - n : i;
 }
+
+uint32_t permute_index(uint32_t i, uint32_t n, uint32_t p) { return Permutation(n, p)(i); }
 
 namespace {
 float hashed_float(uint32_t i, uint32_t p) {
@@ -61,16 +69,30 @@ uint32_t hash_u32(uint64_t a, uint64_t b, uint64_t c) {
   return uint32_t(h);
 }
 
-Vec2f stratified_sample(uint32_t s, uint32_t n, uint32_t p) {
-  const auto m = uint32_t(std::ceil(std::sqrt(double(n))));  // grid columns
-  const uint32_t rows = (n + m - 1) / m;
-  s = permute_index(s, n, p * 0x51633e2d);
-  const uint32_t sx = permute_index(s % m, m, p * 0x68bc21eb);
-  const uint32_t sy = permute_index(s / m, rows, p * 0x02e5be93);
-  const float jx = hashed_float(s, p * 0x967a889b), jy = hashed_float(s, p * 0x368cc8b7);
-  return {std::min((float(s % m) + (float(sy) + jx) / float(rows)) / float(m), 0x1.fffffep-1f),
-          std::min((float(s / m) + (float(sx) + jy) / float(m)) / float(rows), 0x1.fffffep-1f)};
+StratifiedPattern::StratifiedPattern(uint32_t n, uint32_t p)
+    : m_(uint32_t(std::ceil(std::sqrt(double(n))))),  // grid columns
+      rows_count_((n + m_ - 1) / m_),
+      jitter_x_(p * 0x967a889b),
+      jitter_y_(p * 0x368cc8b7),
+      order_(n, p * 0x51633e2d),
+      columns_(m_, p * 0x68bc21eb),
+      rows_(rows_count_, p * 0x02e5be93) {}
+
+Vec2f StratifiedPattern::sample(uint32_t s) const {
+  const uint32_t m = m_, rows = rows_count_;
+  s = order_(s);
+  const uint32_t col = s % m, row = s / m;
+  const uint32_t sx = columns_(col), sy = rows_(row);
+  const float jx = hashed_float(s, jitter_x_), jy = hashed_float(s, jitter_y_);
+  return {std::min((float(col) + (float(sy) + jx) / float(rows)) / float(m), 0x1.fffffep-1f),
+          std::min((float(row) + (float(sx) + jy) / float(m)) / float(rows), 0x1.fffffep-1f)};
 }
+
+void StratifiedPattern::samples(uint32_t first, std::span<Vec2f> out) const {
+  for (size_t i = 0; i < out.size(); ++i) out[i] = sample(first + uint32_t(i));
+}
+
+Vec2f stratified_sample(uint32_t s, uint32_t n, uint32_t p) { return StratifiedPattern(n, p).sample(s); }
 
 Vec2f sample_disk(const Vec2f& u) {
   const float a = 2.0f * u.x - 1.0f, b = 2.0f * u.y - 1.0f;

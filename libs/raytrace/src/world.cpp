@@ -2,6 +2,8 @@
 #include "tessera/raytrace/world.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "tessera/accel/bvh.hpp"
 #include "tessera/accel/mesh_accel.hpp"
@@ -50,6 +52,32 @@ bool occludes_object(const Object& o, const Ray& ray) {
   if (const auto* shape = std::get_if<Shape>(&o.geometry)) return occludes(*shape, r);
   if (const auto* inst = std::get_if<Instance>(&o.geometry)) return inst->occludes(r);
   return (*std::get_if<2>(&o.geometry))->accel.occluded(r);
+}
+
+bool in_range(const Ray& ray, float t) { return t >= ray.tmin && t <= ray.tmax; }
+
+/// The nearest t in [tmin, tmax] where the ray meets the sphere, or NaN: accel's sphere kernel (the notes' quadratic
+/// in the form of Haines et al., Ray Tracing Gems ch. 7) without the point, normal and uv, inlined into the world's
+/// flat loop, with the ray's 1 / (d . d) computed once per ray.
+inline float sphere_t(const Vec3f& center, float radius, const Ray& ray, float a, float inv_a) {
+  const Vec3f f = ray.origin - center;
+  const float b = glm::dot(f, ray.dir);
+  const float c = glm::dot(f, f) - radius * radius;
+  if (c > 0 && b > 0 && ray.tmin >= 0) return std::numeric_limits<float>::quiet_NaN();  // outside, moving away
+  const Vec3f l = f - (b * inv_a) * ray.dir;
+  const float disc = radius * radius - glm::dot(l, l);
+  if (disc < 0) return std::numeric_limits<float>::quiet_NaN();
+  const float q = -(b + std::copysign(std::sqrt(a * disc), b));
+  float t0 = c / q, t1 = q * inv_a;
+  if (t0 > t1) std::swap(t0, t1);
+  return in_range(ray, t0) ? t0 : t1;
+}
+
+/// The ray's parameter at the plane through p with normal n (NaN when parallel), as accel's plane kernel.
+inline float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
+  const float denom = glm::dot(n, ray.dir);
+  if (denom == 0) return std::numeric_limits<float>::quiet_NaN();
+  return glm::dot(n, p - ray.origin) / denom;
 }
 
 }  // namespace
@@ -104,8 +132,26 @@ void World::build() {
   std::vector<AABB> boxes;
   bvh_objects_.clear();
   planes_.clear();
+  flat_spheres_.clear();
+  flat_planes_.clear();
+  const auto fixed_shape = [&](int i) -> const Shape* {
+    const Object& o = objects_[size_t(i)];
+    return o.motion.moving() ? nullptr : std::get_if<Shape>(&o.geometry);
+  };
+  size_t sphere_count = 0;
+  for (int i = 0; i < size(); ++i)
+    if (const Shape* shape = fixed_shape(i)) sphere_count += std::holds_alternative<Sphere>(*shape) ? 1 : 0;
   for (int i = 0; i < size(); ++i) {
-    if (objects_[size_t(i)].is_plane) {
+    Object& o = objects_[size_t(i)];
+    const Shape* shape = fixed_shape(i);
+    const auto* plane = shape ? std::get_if<Plane>(shape) : nullptr;
+    const auto* sphere = shape && sphere_count <= kMaxFlatSpheres ? std::get_if<Sphere>(shape) : nullptr;
+    o.flat = plane || sphere;
+    if (plane) {
+      flat_planes_.push_back({plane->point, plane->normal, glm::normalize(plane->normal), i, o.casts_shadows});
+    } else if (sphere) {
+      flat_spheres_.push_back({sphere->center, sphere->radius, i, o.casts_shadows});
+    } else if (o.is_plane) {
       planes_.push_back(i);
     } else {
       bvh_objects_.push_back(i);
@@ -150,30 +196,68 @@ bool World::intersect_object(const Object& o, Ray& ray, Hit& hit) const {
 
 void World::finish_hit(const Object& o, SurfaceHit& h) const {
   h.shading_normal = h.hit.normal;
-  h.uv = h.hit.uv;
+  // A mesh that changes placement over the shutter keeps its geometric normal (its vertex normals are time-0's).
+  if (const auto* mesh = std::get_if<std::shared_ptr<const MeshData>>(&o.geometry); mesh && !o.motion.has_end)
+    h.shading_normal = shading_normal((*mesh)->mesh, h.hit);
+}
+
+Vec2f World::texture_uv(const Ray& ray, const SurfaceHit& h) const {
+  const Object& o = objects_[size_t(h.object)];
   if (const auto* mesh = std::get_if<std::shared_ptr<const MeshData>>(&o.geometry)) {
     const TriMesh& m = (*mesh)->mesh;
     const uint32_t* idx = &m.indices[size_t(h.hit.prim) * 3];
     const float b1 = h.hit.uv.x, b2 = h.hit.uv.y, b0 = 1.0f - b1 - b2;
-    // A mesh that changes placement over the shutter keeps its geometric normal (its vertex normals are time-0's).
-    if (!o.motion.has_end) h.shading_normal = shading_normal(m, h.hit);
-    h.uv = m.uvs.empty() ? Vec2f(b1, b2)
+    return m.uvs.empty() ? Vec2f(b1, b2)
                          : b0 * Vec2f(m.uvs[idx[0]]) + b1 * Vec2f(m.uvs[idx[1]]) + b2 * Vec2f(m.uvs[idx[2]]);
   }
+  if (!o.flat) return h.hit.uv;
+  // The flat list found t only: the shape's full kernel gives the uv (the same nearest root, from the same tmin).
+  Ray r = ray;
+  r.tmax = std::numeric_limits<float>::infinity();
+  Hit full;
+  return tessera::intersect(std::get<Shape>(o.geometry), r, full) ? full.uv : Vec2f(0.0f);
 }
 
 bool World::intersect(Ray& ray, SurfaceHit& out) const {
   TESSERA_CHECK(bvh_ != nullptr);
+  // The flat list first, t only.
+  const FlatSphere* sphere = nullptr;
+  const FlatPlane* plane = nullptr;
+  for (const FlatPlane& f : flat_planes_) {
+    const float t = plane_t(f.point, f.normal, ray);
+    if (in_range(ray, t)) {
+      ray.tmax = t;
+      plane = &f;
+    }
+  }
+  const float a = glm::dot(ray.dir, ray.dir), inv_a = 1.0f / a;
+  for (const FlatSphere& f : flat_spheres_) {
+    const float t = sphere_t(f.center, f.radius, ray, a, inv_a);
+    if (in_range(ray, t)) {
+      ray.tmax = t;
+      sphere = &f;
+      plane = nullptr;
+    }
+  }
+  // Then the rest, with full hits, nearer than the flat list's best.
   Hit hit;
   int object = -1;
   for (int i : planes_)
     if (intersect_object(objects_[size_t(i)], ray, hit)) object = i;
-  bvh_->intersect(ray, [&](int prim, Ray& r) {
-    const int i = bvh_objects_[size_t(prim)];
-    if (!intersect_object(objects_[size_t(i)], r, hit)) return false;
-    object = i;
-    return true;
-  });
+  if (!bvh_objects_.empty())
+    bvh_->intersect(ray, [&](int prim, Ray& r) {
+      const int i = bvh_objects_[size_t(prim)];
+      if (!intersect_object(objects_[size_t(i)], r, hit)) return false;
+      object = i;
+      return true;
+    });
+  if (object < 0 && (sphere || plane)) {
+    // The flat winner's point and normal, as the shape kernels compute them.
+    object = sphere ? sphere->object : plane->object;
+    hit.t = ray.tmax;
+    hit.point = ray.at(hit.t);
+    hit.normal = sphere ? glm::normalize(hit.point - sphere->center) : plane->unit_normal;
+  }
   if (object < 0) return false;
   out.hit = hit;
   out.object = object;
@@ -183,8 +267,14 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
 
 bool World::occluded(const Ray& ray) const {
   TESSERA_CHECK(bvh_ != nullptr);
+  for (const FlatPlane& f : flat_planes_)
+    if (f.casts_shadows && in_range(ray, plane_t(f.point, f.normal, ray))) return true;
+  const float a = glm::dot(ray.dir, ray.dir), inv_a = 1.0f / a;
+  for (const FlatSphere& f : flat_spheres_)
+    if (f.casts_shadows && in_range(ray, sphere_t(f.center, f.radius, ray, a, inv_a))) return true;
   for (int i : planes_)
     if (objects_[size_t(i)].casts_shadows && occludes_object(objects_[size_t(i)], ray)) return true;
+  if (bvh_objects_.empty()) return false;
   return bvh_->occluded(ray, [&](int prim, const Ray& r) {
     const Object& o = objects_[size_t(bvh_objects_[size_t(prim)])];
     return o.casts_shadows && occludes_object(o, r);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -241,11 +242,29 @@ TEST(Render, ThinLensRaysMeetOnTheFocalPlane) {
   const Ray pin = rays.ray(20, 7, 0.5, 0.5);
   const Vec3f focus = pin.origin + (3.0f / -pin.dir.z) * pin.dir;  // the focal plane is z = 5 - 3
   for (Vec2f lens : {Vec2f(0.1f, 0.2f), Vec2f(0.9f, 0.5f), Vec2f(0.5f, 0.99f)}) {
-    const Ray r = eye_ray(scene, rays, 20, 7, Vec2f(0.5f), lens, 0.0f);
+    const Ray r = eye_ray(scene, 32, 32, 20, 7, Vec2f(0.5f), lens, 0.0f);
     EXPECT_NEAR(r.origin.z, 5.0f, 1e-6);
     EXPECT_LE(glm::length(r.origin - pin.origin), 0.5f + 1e-6f);
     const Vec3f at = r.origin + ((r.origin.z - 2.0f) / -r.dir.z) * r.dir;
     EXPECT_NEAR(glm::length(at - focus), 0.0f, 1e-5);
+  }
+}
+
+TEST(Render, PinholeEyeRaysAreTheNotesEyeRays) {
+  // The renderer's float eye rays against the math module's double EyeRays (u = (2 (i + dx) / w - 1) aspect, ...).
+  RayScene scene;
+  scene.camera.eye = {0, 1.6, 6.5};
+  scene.camera.center = {0, 0.9, 0};
+  scene.camera.fovy = radians(40.0);
+  Camera cam = scene.camera;
+  cam.aspect = 640.0 / 480.0;
+  const EyeRays rays(cam, 640, 480);
+  for (const auto& [x, y, dx, dy] : {std::tuple{0, 0, 0.0f, 0.0f}, std::tuple{639, 479, 0.99f, 0.99f},
+                                     std::tuple{320, 17, 0.25f, 0.75f}, std::tuple{5, 400, 0.5f, 0.5f}}) {
+    const Ray want = rays.ray(x, y, dx, dy);
+    const Ray got = eye_ray(scene, 640, 480, x, y, {dx, dy}, Vec2f(0.5f), 0.0f);
+    EXPECT_EQ(got.origin, want.origin);
+    EXPECT_NEAR(glm::length(got.dir - want.dir), 0.0f, 1e-6f) << x << " " << y;
   }
 }
 

@@ -53,10 +53,10 @@ struct RenderStats {
 /// and casts no shadow), with one new emissive material each. Call before scene.world.build().
 void add_light_surfaces(RayScene& scene);
 
-/// The eye ray through image position (x + offset.x, y + offset.y) at `time`, through a thin lens when the scene has
-/// an aperture: the notes' eye rays (EyeRays) for the pinhole, then the origin moves to `lens` (a point of [0, 1)^2
-/// mapped onto the aperture disk) and the direction aims at the pinhole ray's point on the focal plane.
-Ray eye_ray(const RayScene& scene, const EyeRays& rays, int x, int y, const Vec2f& offset, const Vec2f& lens,
+/// The eye ray of a width x height image through image position (x + offset.x, y + offset.y) at `time`: the notes' eye
+/// rays (as EyeRays, evaluated in float), then with an aperture the origin moves to `lens` (a point of [0, 1)^2 mapped
+/// onto the aperture disk) and the direction aims at the pinhole ray's point on the focal plane.
+Ray eye_ray(const RayScene& scene, int width, int height, int x, int y, const Vec2f& offset, const Vec2f& lens,
             float time);
 
 /// The notes' 1/n sum visible(P, L_i) over n stratified samples of `light` seen from p (the visible fraction of an

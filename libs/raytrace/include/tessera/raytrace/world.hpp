@@ -26,13 +26,13 @@ struct Motion {
   bool moving() const { return has_end || velocity != Vec3f(0.0f); }
 };
 
-/// A hit on an object: the geometric hit (world space), which object, and the shading normal and texture
-/// coordinates (smooth normals and mesh uvs for meshes with them).
+/// A hit on an object: the geometric hit (world space: t, point, normal), which object, and the shading normal (smooth
+/// normals for meshes with them). Texture coordinates are computed on demand by World::texture_uv (hit.uv is an
+/// intermediate).
 struct SurfaceHit {
   Hit hit;
   int object = -1;
   Vec3f shading_normal{0.0f};  ///< unit, on the same side as hit.normal
-  Vec2f uv{0.0f};
 };
 
 /// The scene's geometry. Add objects, call build(), then query from any number of threads.
@@ -48,14 +48,20 @@ class World {
   /// Adds a triangle mesh placed by `to_world` (its positions and normals are transformed once, here). Vertex normals,
   /// when present, give smooth shading; vertex uvs give texture coordinates. Throws InvalidInput for an empty mesh.
   int add_mesh(const TriMesh& mesh, const Mat4& to_world, int material, const Motion& motion = {});
-  /// Keeps object `index` out of shadow rays (e.g. the visible surface of an area light).
+  /// Keeps object `index` out of shadow rays (e.g. the visible surface of an area light). Call before build().
   void set_casts_shadows(int index, bool casts);
 
-  /// Builds the top-level BVH. Must be called after the last add and before any query.
+  /// Builds the query structures: a flat list of the few fixed spheres and planes placed by the identity (tested in a
+  /// plain loop, cheaper than any tree for a handful) and a top-level BVH over the rest. Must be called after the last
+  /// add or set_casts_shadows and before any query.
   void build();
 
-  /// The nearest hit along the ray within [tmin, tmax] at ray.time; shrinks ray.tmax to it.
+  /// The nearest hit along the ray within [tmin, tmax] at ray.time; shrinks ray.tmax to it. Candidates are tested for
+  /// t only where possible; the point and normals are computed for the winner.
   bool intersect(Ray& ray, SurfaceHit& hit) const;
+  /// The texture coordinates of a hit returned by intersect(ray, hit) (same ray): the shape's uv (see accel's shapes),
+  /// or for meshes the interpolated vertex uvs (the barycentrics when the mesh has none).
+  Vec2f texture_uv(const Ray& ray, const SurfaceHit& hit) const;
   /// True when something that casts shadows lies on the ray within [tmin, tmax] (the notes' !visible(P, L)).
   bool occluded(const Ray& ray) const;
 
@@ -79,15 +85,33 @@ class World {
     Mat4f start{1.0f};
     bool casts_shadows = true;
     bool is_plane = false;
+    bool flat = false;  // in the flat list (set by build)
   };
+
+  // The flat list's entries: a fixed sphere or plane placed by the identity.
+  struct FlatSphere {
+    Vec3f center;
+    float radius;
+    int object;
+    bool casts_shadows;
+  };
+  struct FlatPlane {
+    Vec3f point, normal;  // normal as given (the plane kernel's t uses it unnormalized)
+    Vec3f unit_normal;
+    int object;
+    bool casts_shadows;
+  };
+  static constexpr size_t kMaxFlatSpheres = 8;  // beyond this the spheres go into the BVH
 
   bool intersect_object(const Object& object, Ray& ray, Hit& hit) const;
   AABB object_bounds(const Object& object) const;
   void finish_hit(const Object& object, SurfaceHit& hit) const;
 
   std::vector<Object> objects_;
+  std::vector<FlatSphere> flat_spheres_;
+  std::vector<FlatPlane> flat_planes_;
   std::vector<int> bvh_objects_;  // BVH primitive -> object
-  std::vector<int> planes_;
+  std::vector<int> planes_;       // planes not in the flat list (placed by a transform, or moving)
   std::unique_ptr<Bvh> bvh_;
 };
 
