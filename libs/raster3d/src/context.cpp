@@ -23,17 +23,18 @@ bool same_bits(const T& a, const T& b) {
   return std::memcmp(&a, &b, sizeof(T)) == 0;
 }
 
-// Fibonacci hashing of the words of the attributes; the top bits index the cache.
-template <class... T>
-uint32_t attribute_hash(const T&... values) {
-  uint32_t h = 0;
-  const auto mix = [&](const auto& value) {
-    uint32_t words[sizeof(value) / 4];
-    std::memcpy(words, &value, sizeof words);
-    for (const uint32_t w : words) h = (h ^ w) * 0x9E3779B1u;
-  };
-  (mix(values), ...);
-  return h >> (32 - kVertexCacheBits);
+// Fibonacci hashing of a vertex's position and normal (the attributes that tell vertices of a mesh apart; the cache
+// compares all of them anyway), as two independent multiply chains joined at the end: the top bits index the cache.
+uint32_t attribute_hash(const Vec3f& position, const Vec3f& normal) {
+  uint32_t p[3], n[3];
+  std::memcpy(p, &position, sizeof p);
+  std::memcpy(n, &normal, sizeof n);
+  uint32_t hp = 0, hn = 0x7F4A7C15u;
+  for (int k = 0; k < 3; ++k) {
+    hp = (hp ^ p[k]) * 0x9E3779B1u;
+    hn = (hn ^ n[k]) * 0x85EBCA77u;
+  }
+  return ((hp ^ (hn >> 7) ^ (hn << 25)) * 0xC2B2AE3Du) >> (32 - kVertexCacheBits);
 }
 
 template <class T>
@@ -292,7 +293,7 @@ void Context::vertex(double x, double y, double z) {
 // The batch index of a vertex with these attributes: a recent equal one (bit for bit, so the vertex shader, a pure
 // function of them, gives the same output) or a new one.
 uint32_t Context::batch_vertex(const Vec3f& position) {
-  uint32_t& slot = vertex_cache_[attribute_hash(position, current_normal_, current_color_, current_uv_)];
+  uint32_t& slot = vertex_cache_[attribute_hash(position, current_normal_)];
   if (slot < batch_.positions.size() && same_bits(batch_.positions[slot], position) &&
       same_bits(batch_.normals[slot], current_normal_) && same_bits(batch_.colors[slot], current_color_) &&
       same_bits(batch_.uvs[slot], current_uv_))
