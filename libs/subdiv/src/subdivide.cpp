@@ -70,14 +70,19 @@ class LevelRefiner {
     });
   }
 
+  size_t child_face_count() const { return quads_ ? t_.corner_count() : 4 * t_.face_count(); }
+
   // The child faces: n quads per n-gon (vertex point, edge point, face point, previous edge point), or 4 triangles
-  // per triangle (three corners, then the middle one).
-  void child_faces(PolyMesh& child) const {
-    const size_t faces = quads_ ? t_.corner_count() : 4 * t_.face_count();
-    const uint32_t size = quads_ ? 4 : 3;
-    child.face_offsets.clear();
+  // per triangle (three corners, then the middle one). allocate_child_faces() sizes the arrays, child_faces() fills
+  // them.
+  void allocate_child_faces(PolyMesh& child) const {
+    const size_t faces = child_face_count();
     resize_fresh(child.face_offsets, faces + 1);
-    resize_fresh(child.face_vertices, size * faces);
+    resize_fresh(child.face_vertices, (quads_ ? 4 : 3) * faces);
+  }
+  void child_faces(PolyMesh& child) const {
+    const size_t faces = child_face_count();
+    const uint32_t size = quads_ ? 4 : 3;
     parallel_for(0, int64_t(faces + 1), 16 * kGrain, [&](int64_t b, int64_t e) {
       for (int64_t i = b; i < e; ++i) child.face_offsets[i] = uint32_t(size * i);
     });
@@ -280,16 +285,25 @@ PolyMesh refine_with(const TopologyTables& topology, const detail::LevelSharpnes
                      const PolyMesh& mesh, const SubdivisionOptions& options, bool quads) {
   const LevelRefiner<Rules> refiner(topology, sharpness, rules, options.crease_method, quads);
   PolyMesh child;
-  resize_fresh(child.positions, refiner.child_vertex_count());
-  refiner.template refine<Vec3>(mesh.positions, child.positions);
-  if (!mesh.uvs.empty()) {
-    resize_fresh(child.uvs, refiner.child_vertex_count());
-    refiner.template refine<Vec2>(mesh.uvs, child.uvs);
-  }
-  if (!mesh.colors.empty()) {
-    resize_fresh(child.colors, refiner.child_vertex_count());
-    refiner.template refine<Vec3>(mesh.colors, child.colors);
-  }
+  // resize() zero-fills serially: the face arrays' fill runs beside the (parallel) position passes.
+  parallel_for(0, 2, 1, [&](int64_t b, int64_t e) {
+    for (int64_t job = b; job < e; ++job) {
+      if (job == 1) {
+        refiner.allocate_child_faces(child);
+        continue;
+      }
+      resize_fresh(child.positions, refiner.child_vertex_count());
+      refiner.template refine<Vec3>(mesh.positions, child.positions);
+      if (!mesh.uvs.empty()) {
+        resize_fresh(child.uvs, refiner.child_vertex_count());
+        refiner.template refine<Vec2>(mesh.uvs, child.uvs);
+      }
+      if (!mesh.colors.empty()) {
+        resize_fresh(child.colors, refiner.child_vertex_count());
+        refiner.template refine<Vec3>(mesh.colors, child.colors);
+      }
+    }
+  });
   refiner.child_faces(child);
   refiner.child_tags(child);
   return child;
