@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -104,6 +105,86 @@ TEST(MeshAccel, MatchesBruteForceOnATorus) {
                     hit.uv.y * Vec3f(torus.positions[torus.indices[3 * t + 2]]);
     EXPECT_NEAR(glm::length(p - hit.point), 0.0f, 1e-4f);
   }
+}
+
+TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
+  // The 4-wide (SSE) and 8-wide (AVX2, when the CPU has it) trees, over binned-SAH and bottom-up binary trees with
+  // leaves of 1 to 128 triangles (a larger leaf size is capped at 128), against brute force; both widths give
+  // bit-identical t for the same tree (the same triangle arithmetic).
+  const TriMesh torus = to_tri_mesh(make_torus(1.0, 0.3, 48, 24));
+  const std::vector<Ray> rays = random_rays(torus, 1500, 11);
+  std::vector<float> brute(rays.size(), -1.0f);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    float best_t = rays[i].tmax;
+    for (size_t t = 0; t < torus.triangle_count(); ++t) {
+      const Triangle tri{Vec3f(torus.positions[torus.indices[3 * t]]), Vec3f(torus.positions[torus.indices[3 * t + 1]]),
+                         Vec3f(torus.positions[torus.indices[3 * t + 2]])};
+      Ray rr = rays[i];
+      rr.tmax = best_t;
+      Hit h;
+      if (intersect(tri, rr, h)) best_t = brute[i] = h.t;
+    }
+  }
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  for (const auto build : {BvhSettings::Build::binned_sah, BvhSettings::Build::bottom_up})
+    for (const int leaf : {1, 4, 8, 13, 1000}) {
+      BvhSettings s = MeshAccel::default_settings();
+      s.build = build;
+      s.max_leaf_size = leaf;
+      const MeshAccel narrow(torus, s, 4);
+      EXPECT_EQ(narrow.simd_width(), 4);
+      std::optional<MeshAccel> wide;
+      if (avx2) wide.emplace(torus, s, 8);
+      for (size_t i = 0; i < rays.size(); ++i) {
+        Ray ray = rays[i];
+        Hit hit;
+        TraversalStats stats;
+        const bool h = narrow.intersect(ray, hit, &stats);
+        ASSERT_EQ(h, brute[i] >= 0) << "ray " << i << " leaf " << leaf;
+        ASSERT_EQ(narrow.occluded(rays[i]), h);
+        EXPECT_GE(stats.nodes, 1);
+        if (h) {
+          EXPECT_NEAR(hit.t, brute[i], 1e-5f * brute[i]);
+          EXPECT_GE(stats.prims, 1);
+        }
+        if (!wide) continue;
+        Ray ray8 = rays[i];
+        Hit hit8;
+        ASSERT_EQ(wide->intersect(ray8, hit8), h);
+        ASSERT_EQ(wide->occluded(rays[i]), h);
+        if (h) EXPECT_EQ(hit8.t, hit.t);
+      }
+    }
+  EXPECT_THROW(MeshAccel(torus, MeshAccel::default_settings(), 5), InvalidInput);
+}
+
+TEST(MeshAccel, StatsCountNodesAndTriangles) {
+  // A single triangle is one leaf (no wide node): a hit tests one triangle; a ray beside it tests nothing.
+  TriMesh one;
+  one.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  one.indices = {0, 1, 2};
+  const MeshAccel accel(one);
+  Ray ray;
+  ray.origin = Vec3f(0.25f, 0.25f, 1.0f);
+  Hit hit;
+  TraversalStats stats;
+  ASSERT_TRUE(accel.intersect(ray, hit, &stats));
+  EXPECT_EQ(stats.nodes, 0);
+  EXPECT_EQ(stats.prims, 1);
+  EXPECT_FLOAT_EQ(hit.t, 1.0f);
+  EXPECT_EQ(hit.prim, 0);
+  EXPECT_FLOAT_EQ(hit.uv.x, 0.25f);
+  EXPECT_FLOAT_EQ(hit.uv.y, 0.25f);
+  // A mesh of many triangles: a ray that hits visits the root and at least one more level, and tests a block.
+  const TriMesh sphere = sphere_mesh(64, 32);
+  const MeshAccel many(sphere);
+  Ray r2;
+  r2.origin = Vec3f(0.01f, 0.02f, 5.0f);
+  TraversalStats s2;
+  ASSERT_TRUE(many.intersect(r2, hit, &s2));
+  EXPECT_GE(s2.nodes, 2);
+  EXPECT_GE(s2.prims, 1);
+  EXPECT_LE(s2.prims, int64_t(sphere.triangle_count()) / 10);
 }
 
 TEST(MeshAccel, SmoothNormalsOfASphereMeshPointFromTheCenter) {

@@ -20,7 +20,16 @@ class MeshAccel {
   /// Builds the BVH (parallel, deterministic). Throws InvalidInput for an index out of range or a non-finite vertex.
   /// Leaves hold at most 128 triangles (a larger settings.max_leaf_size is capped). simd_width 4 or 8 forces the wide
   /// tree's width (8 needs AVX2); 0 picks the widest this CPU runs.
-  explicit MeshAccel(const TriMesh& mesh, const BvhSettings& settings = {}, int simd_width = 0);
+  explicit MeshAccel(const TriMesh& mesh, const BvhSettings& settings = default_settings(), int simd_width = 0);
+
+  /// The default build settings for meshes: leaves of up to 8 triangles (two blocks of 4; fewer, fuller wide nodes
+  /// than leaves of 4, measured faster on incoherent rays), the SAH counting blocks (leaf_block 4).
+  static BvhSettings default_settings() {
+    BvhSettings s;
+    s.max_leaf_size = 8;
+    s.leaf_block = 4;
+    return s;
+  }
 
   /// Nearest hit with t in [ray.tmin, ray.tmax]; on a hit shrinks ray.tmax to it and fills hit: t, point, the unit
   /// geometric normal (b - a) x (c - a) of the triangle, prim = triangle index, uv = barycentrics (b1, b2) of
