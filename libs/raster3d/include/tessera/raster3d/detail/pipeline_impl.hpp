@@ -349,15 +349,15 @@ inline bool covers_rectangle(const TriangleRecord& r, int x0, int x1, int y0, in
   return true;
 }
 
-/// Whether the record's edge functions stay within int32 over the rectangle [x0, x1) x [y0, y1) and eight pixels
-/// beyond its right side (the vector loop's lanes), so that they can be stepped in 32-bit lanes.
+/// Whether the record's edge functions stay within int32 over the rectangle [x0, x1) x [y0, y1), eight pixels
+/// beyond its right side and one row above it (the vector loops' lanes), so that they can be stepped in 32-bit lanes.
 inline bool fits_int32_block(const TriangleRecord& r, int x0, int x1, int y0, int y1) {
   constexpr int64_t kLimit = int64_t(1) << 30;
   for (const Edge& e : r.edges) {
     const int64_t ax = int64_t(e.a) * 256, by = int64_t(e.b) * 256;
     if (ax > (1 << 20) || ax < -(1 << 20)) return false;
     for (const int i : {x0, x1 + 8})
-      for (const int j : {y0, y1 - 1}) {
+      for (const int j : {y0, y1}) {
         const int64_t v = ax * i + by * j + e.c;
         if (v > kLimit || v < -kLimit) return false;
       }
@@ -453,6 +453,87 @@ template <DepthFunc F>
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
 }
+/// gouraud_rect_avx2 for AVX-512: sixteen lanes, eight pixels of two rows, with mask registers for the masked
+/// loads and stores. The same operations per pixel, so the same pixels.
+template <DepthFunc F>
+[[gnu::target("avx512f,avx512vl,avx512bw,avx512dq,fma")]] void gouraud_rect_avx512(
+    const TriangleRecord& r, const float* planes, int x0, int x1, int y0, int y1, Image<uint32_t>& depth,
+    ImageRGBA8& color, bool write_depth) {
+  const int height = depth.height();
+  const float* pc = planes;
+  const float* px = planes + 4;
+  const float* py = planes + 8;
+  const __m512i col = _mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 0, 1, 2, 3, 4, 5, 6, 7);
+  const __m512i up = _mm512_setr_epi32(0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 1, 1, 1, 1);  // lanes 8-15: GL row + 1
+  __m512i edge_row[3], edge_dy2[3], edge_dx8[3];
+  for (int k = 0; k < 3; ++k) {
+    const Edge& e = r.edges[k];
+    const auto e0 = int32_t(int64_t(e.a) * 256 * x0 + int64_t(e.b) * 256 * y0 + e.c);
+    const __m512i lanes = _mm512_add_epi32(_mm512_mullo_epi32(col, _mm512_set1_epi32(e.a * 256)),
+                                           _mm512_mullo_epi32(up, _mm512_set1_epi32(e.b * 256)));
+    edge_row[k] = _mm512_add_epi32(_mm512_set1_epi32(e0), lanes);
+    edge_dy2[k] = _mm512_set1_epi32(e.b * 256 * 2);
+    edge_dx8[k] = _mm512_set1_epi32(e.a * 256 * 8);
+  }
+  const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
+  const __m512 rx = _mm512_set1_ps(r.rx), ry = _mm512_set1_ps(r.ry), zdx = _mm512_set1_ps(r.zdx);
+  const __m512 zdy = _mm512_set1_ps(r.zdy), za = _mm512_set1_ps(r.za), depth_scale = _mm512_set1_ps(16777215.0f);
+  const __m512 c255 = _mm512_set1_ps(255.0f), round_magic = _mm512_set1_ps(12582912.0f);
+  __m512 pcv[4], pxv[4], pyv[4];
+  for (int k = 0; k < 4; ++k) pcv[k] = _mm512_set1_ps(pc[k]), pxv[k] = _mm512_set1_ps(px[k]), pyv[k] = _mm512_set1_ps(py[k]);
+  for (int j = y0; j < y1; j += 2) {
+    const bool two = j + 1 < y1;
+    const __mmask16 rows = two ? __mmask16(0xffff) : __mmask16(0x00ff);
+    const int row = height - 1 - j;
+    uint32_t* drow[2] = {depth.row(row), depth.row(two ? row - 1 : row)};
+    int32_t* crow[2] = {reinterpret_cast<int32_t*>(color.row(row)),
+                        reinterpret_cast<int32_t*>(color.row(two ? row - 1 : row))};
+    const __m512i jv = _mm512_add_epi32(_mm512_set1_epi32(j), up);
+    const __m512 dy = _mm512_sub_ps(_mm512_add_ps(_mm512_cvtepi32_ps(jv), half), ry);
+    __m512 base[4];
+    for (int k = 0; k < 4; ++k) base[k] = _mm512_add_ps(pcv[k], _mm512_mul_ps(pyv[k], dy));
+    const __m512 rowv = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_set1_epi32(row), up));
+    __m512i edge[3] = {edge_row[0], edge_row[1], edge_row[2]};
+    for (int x = x0; x < x1; x += 8) {
+      const __m512i outside = _mm512_or_si512(_mm512_or_si512(edge[0], edge[1]), edge[2]);
+      const __mmask16 cover = _mm512_mask_cmpge_epi32_mask(
+          rows & _mm512_cmpgt_epi32_mask(_mm512_set1_epi32(x1 - x), col), outside, _mm512_setzero_si512());
+      for (int k = 0; k < 3; ++k) edge[k] = _mm512_add_epi32(edge[k], edge_dx8[k]);
+      if (!cover) continue;
+      const __m512 fi = _mm512_cvtepi32_ps(_mm512_add_epi32(_mm512_set1_epi32(x), col));
+      __m512 z = _mm512_fmadd_ps(zdy, rowv, _mm512_fmadd_ps(zdx, fi, za));
+      z = _mm512_min_ps(_mm512_max_ps(z, zero), one);
+      const __m512i d = _mm512_cvtps_epi32(_mm512_mul_ps(z, depth_scale));
+      const __m512i stored = _mm512_inserti64x4(
+          _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(__mmask8(cover), drow[0] + x)),
+          _mm256_maskz_loadu_epi32(__mmask8(cover >> 8), drow[1] + x), 1);
+      const __mmask16 pass = cover & _mm512_movepi32_mask(_mm512_inserti64x4(
+                                         _mm512_castsi256_si512(depth_passes8<F>(_mm512_castsi512_si256(d),
+                                                                                 _mm512_castsi512_si256(stored))),
+                                         depth_passes8<F>(_mm512_extracti64x4_epi64(d, 1),
+                                                          _mm512_extracti64x4_epi64(stored, 1)),
+                                         1));
+      if (!pass) continue;
+      const __m512 dx = _mm512_sub_ps(_mm512_add_ps(fi, half), rx);
+      const __m512 w = _mm512_div_ps(one, _mm512_add_ps(base[0], _mm512_mul_ps(pxv[0], dx)));
+      __m512i rgba = _mm512_set1_epi32(int32_t(0xff000000u));
+      for (int k = 1; k < 4; ++k) {
+        __m512 c = _mm512_mul_ps(_mm512_add_ps(base[k], _mm512_mul_ps(pxv[k], dx)), w);
+        c = _mm512_min_ps(_mm512_max_ps(c, zero), one);
+        c = _mm512_sub_ps(_mm512_add_ps(_mm512_mul_ps(c, c255), round_magic), round_magic);
+        rgba = _mm512_or_si512(rgba, _mm512_slli_epi32(_mm512_cvttps_epi32(c), 8 * (k - 1)));
+      }
+      _mm256_mask_storeu_epi32(crow[0] + x, __mmask8(pass), _mm512_castsi512_si256(rgba));
+      _mm256_mask_storeu_epi32(crow[1] + x, __mmask8(pass >> 8), _mm512_extracti64x4_epi64(rgba, 1));
+      if (write_depth) {
+        _mm256_mask_storeu_epi32(drow[0] + x, __mmask8(pass), _mm512_castsi512_si256(d));
+        _mm256_mask_storeu_epi32(drow[1] + x, __mmask8(pass >> 8), _mm512_extracti64x4_epi64(d, 1));
+      }
+    }
+    for (int k = 0; k < 3; ++k) edge_row[k] = _mm512_add_epi32(edge_row[k], edge_dy2[k]);
+  }
+}
+
 /// Rasterizes the records binned to `tile` of every chunk, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
@@ -516,7 +597,10 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
       if constexpr (std::is_same_v<FS, ColorFragmentShader>) {
         // Gouraud with the built-in pass-through fragment shader: eight pixels at a time.
         if (span_isa() >= 1 && fits_int32_block(r, x0, x1, y0, y1)) {
-          gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
+          if (span_isa() == 2)
+            gouraud_rect_avx512<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
+          else
+            gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
           continue;
         }
       }
