@@ -105,7 +105,7 @@ struct PackedVolume {
   float gradient_scale;  ///< quantized = g * gradient_scale
   RawVector<Corner> voxels;
 
-  PackedVolume(const Volume<float>& v, float lo, float hi, bool with_gradient)
+  PackedVolume(const Volume<float>& v, float lo, float hi)
       : dims(v.dims()), stride_y(size_t(dims.x)), stride_z(size_t(dims.x) * size_t(dims.y)) {
     value_scale = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
     // No gradient component exceeds (hi - lo) / (smallest spacing) (a one-sided difference across the whole range):
@@ -115,10 +115,10 @@ struct PackedVolume {
     gradient_scale = bound > 0 ? 32767.0f / bound : 0.0f;
     voxels.resize(v.voxel_count());
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
-      std::vector<Vec3f> g(size_t(dims.x), Vec3f(0.0f));
+      std::vector<Vec3f> g(size_t(dims.x));
       for (int z = int(z0); z < int(z1); ++z)
         for (int y = 0; y < dims.y; ++y) {
-          if (with_gradient) gradient_row(v, y, z, g);
+          gradient_row(v, y, z, g);
           const float* row = &v(0, y, z);
           Corner* out = &voxels[v.index(0, y, z)];
           for (int x = 0; x < dims.x; ++x) {
@@ -542,9 +542,11 @@ struct Caster {
 
 }  // namespace
 
-ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& options) {
-  if (volume.empty()) throw InvalidInput("cannot render an empty volume");
-  if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
+namespace {
+
+/// The ray caster: MIP from the float volume, compositing from the prepared one (`packed`, unused for MIP).
+ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& options, double vlo, double vhi,
+                   const PackedVolume* packed_volume) {
   Camera camera = options.camera;
   camera.aspect = double(options.width) / double(options.height);
   const EyeRays rays(camera, options.width, options.height);
@@ -553,7 +555,6 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
   AABB box;
   box.expand(Vec3f(volume.origin()));
   box.expand(Vec3f(volume.to_world(Vec3(volume.dims() - 1))));
-  const auto [vlo, vhi] = value_range(volume);
   const Vec3f inv_spacing = Vec3f(1.0 / sp);
   const Vec3f origin = Vec3f(volume.origin());
   ImageRGB image(options.width, options.height, options.background);
@@ -572,7 +573,7 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
     });
     return image;
   }
-  const PackedVolume packed(volume, float(vlo), float(vhi), options.shading);
+  const PackedVolume& packed = *packed_volume;
   const TransferTable table(options.transfer, float(vlo), float(vhi), step);
   // Without skipping one block covers the volume: it is "empty" only when every sample would be clear anyway.
   const BlockGrid blocks(packed, options.skip_empty ? std::max(1, options.block) : 1 << 20, table);
@@ -628,6 +629,38 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
       }
   });
   return image;
+}
+
+}  // namespace
+
+ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& options) {
+  if (volume.empty()) throw InvalidInput("cannot render an empty volume");
+  if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
+  if (options.mip) {
+    const auto [lo, hi] = value_range(volume);
+    return cast_rays(volume, options, lo, hi, nullptr);
+  }
+  return VolumeRenderer(volume).render(options);
+}
+
+struct VolumeRenderer::Prepared {
+  double lo, hi;  ///< the value range
+  PackedVolume packed;
+  Prepared(const Volume<float>& v, std::pair<double, double> range)
+      : lo(range.first), hi(range.second), packed(v, float(range.first), float(range.second)) {}
+};
+
+VolumeRenderer::VolumeRenderer(const Volume<float>& volume) : volume_(&volume) {
+  if (volume.empty()) throw InvalidInput("cannot render an empty volume");
+  prepared_ = std::make_unique<Prepared>(volume, value_range(volume));
+}
+VolumeRenderer::~VolumeRenderer() = default;
+VolumeRenderer::VolumeRenderer(VolumeRenderer&&) noexcept = default;
+VolumeRenderer& VolumeRenderer::operator=(VolumeRenderer&&) noexcept = default;
+
+ImageRGB VolumeRenderer::render(const VolumeRenderOptions& options) const {
+  if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
+  return cast_rays(*volume_, options, prepared_->lo, prepared_->hi, &prepared_->packed);
 }
 
 }  // namespace tessera

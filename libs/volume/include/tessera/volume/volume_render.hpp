@@ -3,6 +3,7 @@
 // volume's box, trilinear samples at a fixed step, a transfer function, front-to-back compositing with early ray
 // termination, empty-space skipping over a min/max block grid, maximum-intensity projection, gradient shading.
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,26 @@ struct VolumeRenderOptions {
 };
 
 /// Ray-casts `volume` into an image (parallel tiles; identical for any thread count). Throws InvalidInput for an
-/// empty volume or a non-positive size.
+/// empty volume or a non-positive size. The same as VolumeRenderer(volume).render(options).
 ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& options);
+
+/// A volume prepared for ray casting (its values and central-difference gradients quantized to 16 bits and
+/// interleaved), for rendering it several times, e.g. from several views, without preparing it again; VTK's
+/// ray-cast mappers keep their gradient tables between renders the same way. `volume` must outlive the renderer.
+class VolumeRenderer {
+ public:
+  /// Prepares `volume`. Throws InvalidInput for an empty volume.
+  explicit VolumeRenderer(const Volume<float>& volume);
+  ~VolumeRenderer();
+  VolumeRenderer(VolumeRenderer&&) noexcept;
+  VolumeRenderer& operator=(VolumeRenderer&&) noexcept;
+  /// Ray-casts the volume (see render_volume). Throws InvalidInput for a non-positive size.
+  ImageRGB render(const VolumeRenderOptions& options) const;
+
+ private:
+  struct Prepared;
+  const Volume<float>* volume_;
+  std::unique_ptr<Prepared> prepared_;
+};
 
 }  // namespace tessera
