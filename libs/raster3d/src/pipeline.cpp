@@ -76,21 +76,6 @@ inline int32_t round_to_int(float v) { return int32_t(__builtin_rintf(v)); }
 
 inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) / 256)); }
 
-// A plane f(px, py) = f0 + fx (px - x0) + fy (py - y0) through three window points; false when they are collinear.
-struct PlaneSetup {
-  double x0, y0, d1x, d1y, d2x, d2y, inv_det;
-  bool valid() const { return std::isfinite(inv_det); }
-  void solve(double f0, double f1, double f2, double& fx, double& fy) const {
-    fx = ((f1 - f0) * d2y - (f2 - f0) * d1y) * inv_det;
-    fy = ((f2 - f0) * d1x - (f1 - f0) * d2x) * inv_det;
-  }
-};
-
-PlaneSetup plane_setup(double x0, double y0, double x1, double y1, double x2, double y2) {
-  PlaneSetup s{x0, y0, x1 - x0, y1 - y0, x2 - x0, y2 - y0, 0};
-  s.inv_det = 1.0 / (s.d1x * s.d2y - s.d2x * s.d1y);  // infinite when collinear
-  return s;
-}
 
 // A vertex's window position as Gallium has it: y down for a window-system framebuffer (viewport scale -h/2,
 // translate H - (y + h/2)). The vertex stage's viewport transform (draw_llvm.c) fuses ndc * scale + translate into
@@ -131,38 +116,52 @@ void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t coun
 
 namespace {
 
-// The depth plane of a triangle as llvmpipe sets it up (Mesa 22.3, lp_state_setup.c: float32, in Gallium's window
-// frame with y down, relative to the first vertex moved by half a pixel): za is the depth at the center of image
-// pixel (0, 0), zdx and zdy the steps per pixel. llvmpipe hands the vertices over in their order when they wind
-// counterclockwise on the GL screen, else with the first two swapped (lp_setup_tri.c, triangle_both).
-void depth_plane(const GalliumVertex* g, bool gl_ccw, TriangleRecord& r) {
-  const GalliumVertex& v0 = g[gl_ccw ? 0 : 1];
-  const GalliumVertex& v1 = g[gl_ccw ? 1 : 0];
-  const GalliumVertex& v2 = g[2];
-  const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
-  const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
-  const float dx01o = dx01 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dy20o = dy20 * ooa;
-  const float dz01 = v0.z - v1.z, dz20 = v2.z - v0.z;
-  const float dzdx = dz01 * dy20o - dz20 * dy01o;
-  const float dzdy = dz20 * dx01o - dz01 * dx20o;
-  r.za = v0.z - (dzdx * (v0.x - 0.5f) + dzdy * (v0.y - 0.5f));
+// A triangle's plane setup as llvmpipe's (Mesa 22.3, lp_state_setup.c: float32, in Gallium's window frame with y
+// down). llvmpipe hands the vertices over in their order when they wind counterclockwise on the GL screen, else with
+// the first two swapped (lp_setup_tri.c, triangle_both); `order` is that order.
+struct LpPlaneSetup {
+  int order[3];
+  float x0, y0;                      // the first vertex
+  float dx01o, dy01o, dx20o, dy20o;  // edge vectors over the doubled area
+
+  LpPlaneSetup(const GalliumVertex* g, bool gl_ccw) : order{gl_ccw ? 0 : 1, gl_ccw ? 1 : 0, 2} {
+    const GalliumVertex &v0 = g[order[0]], &v1 = g[order[1]], &v2 = g[order[2]];
+    const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+    const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
+    x0 = v0.x, y0 = v0.y;
+    dx01o = dx01 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dy20o = dy20 * ooa;
+  }
+  // The gradient of an attribute with values f[order[k]] at the vertices, per pixel in x and in y (down); false
+  // when it is not finite (the triangle is collinear in float although not after snapping: a sliver).
+  bool gradient(const float* f, float& dfdx, float& dfdy) const {
+    const float d01 = f[order[0]] - f[order[1]], d20 = f[order[2]] - f[order[0]];
+    dfdx = d01 * dy20o - d20 * dy01o;
+    dfdy = d20 * dx01o - d01 * dx20o;
+    return std::isfinite(dfdx) && std::isfinite(dfdy);
+  }
+};
+
+// The depth plane (lp_state_setup.c), relative to the first vertex moved by half a pixel: za is the depth at the
+// center of image pixel (0, 0), zdx and zdy the steps per pixel (fragment_depth).
+void depth_plane(const LpPlaneSetup& ps, const GalliumVertex* g, TriangleRecord& r) {
+  const float z[3] = {g[0].z, g[1].z, g[2].z};
+  const float z0 = z[ps.order[0]];
+  float dzdx, dzdy;
+  if (!ps.gradient(z, dzdx, dzdy)) dzdx = dzdy = 0;  // a sliver: the first vertex's depth
+  r.za = z0 - (dzdx * (ps.x0 - 0.5f) + dzdy * (ps.y0 - 0.5f));
   r.zdx = dzdx;
   r.zdy = dzdy;
-  if (!std::isfinite(r.za) || !std::isfinite(dzdx) || !std::isfinite(dzdy)) {
-    // Collinear in float although not after snapping (a sliver): the first vertex's depth.
-    r.za = v0.z;
-    r.zdx = r.zdy = 0;
-  }
 }
 
+
 // Sets up one (clipped) triangle and bins it.
-// Sets up one (clipped) triangle of vertices v (clip position and varyings) with their window positions p, and bins it.
-void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* p,
+// Sets up one triangle of vertices v (clip position and varyings) with their window positions pv, and bins it.
+void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* pv,
                    const float* flat_values, SetupChunk& chunk) {
-  if (!(p[0]->valid && p[1]->valid && p[2]->valid)) return;
-  const WindowVertex w[3] = {p[0]->w, p[1]->w, p[2]->w};
-  const GalliumVertex g[3] = {p[0]->g, p[1]->g, p[2]->g};
-  const int32_t X[3] = {p[0]->X, p[1]->X, p[2]->X}, Y[3] = {p[0]->Y, p[1]->Y, p[2]->Y};
+  if (!(pv[0]->valid && pv[1]->valid && pv[2]->valid)) return;
+  const WindowVertex w[3] = {pv[0]->w, pv[1]->w, pv[2]->w};
+  const GalliumVertex g[3] = {pv[0]->g, pv[1]->g, pv[2]->g};
+  const int32_t X[3] = {pv[0]->X, pv[1]->X, pv[2]->X}, Y[3] = {pv[0]->Y, pv[1]->Y, pv[2]->Y};
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
   if ((params.cull == 1 && area < 0) || (params.cull == 2 && area > 0)) return;
@@ -188,13 +187,11 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   r.y1 = std::min(sc.y1, floor_div256(ymax - 128) + 1);
   if (r.x0 >= r.x1 || r.y0 >= r.y1) return;
 
-  // Attribute planes from the unsnapped float window positions (as llvmpipe); the snapped ones when those are
-  // collinear in floating point.
-  PlaneSetup ps = plane_setup(w[0].x, w[0].y, w[1].x, w[1].y, w[2].x, w[2].y);
-  if (!ps.valid()) ps = plane_setup(X[0] / 256.0, Y[0] / 256.0, X[1] / 256.0, Y[1] / 256.0, X[2] / 256.0, Y[2] / 256.0);
-  depth_plane(g, area > 0, r);
-  r.rx = float(ps.x0);
-  r.ry = float(ps.y0);
+  // Depth and varying planes from the unsnapped float window positions, in llvmpipe's arithmetic.
+  const LpPlaneSetup ps(g, area > 0);
+  depth_plane(ps, g, r);
+  r.rx = ps.x0;
+  r.ry = float(params.fb_height) - ps.y0;  // GL y up
   const int n = params.varying_count;
   const float *v0 = v[0], *v1 = v[1], *v2 = v[2];
   r.varyings = uint32_t(chunk.varyings.size());
@@ -209,14 +206,15 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
     float* c = chunk.varyings.data() + r.varyings;
     float* cx = c + (n + 1);
     float* cy = c + 2 * (n + 1);
+    // Planes of 1/w and of each varying times 1/w (perspective-correct), the y slope turned to GL's y up.
     for (int k = 0; k <= n; ++k) {
-      double f[3];
-      for (int i = 0; i < 3; ++i) f[i] = k == 0 ? double(w[i].inv_w) : double(v[i][3 + k]) * double(w[i].inv_w);
-      double fx, fy;
-      ps.solve(f[0], f[1], f[2], fx, fy);
-      c[k] = float(f[0]);
-      cx[k] = float(fx);
-      cy[k] = float(fy);
+      float f[3];
+      for (int i = 0; i < 3; ++i) f[i] = k == 0 ? w[i].inv_w : v[i][3 + k] * w[i].inv_w;
+      float dfdx, dfdy;
+      if (!ps.gradient(f, dfdx, dfdy)) dfdx = dfdy = 0;
+      c[k] = f[ps.order[0]];
+      cx[k] = dfdx;
+      cy[k] = -dfdy;
     }
   }
   const uint32_t index = uint32_t(chunk.records.size());
