@@ -4,17 +4,9 @@
 #include <cmath>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 
 namespace tessera::detail {
-namespace {
-
-// A tag may be given twice: keep each id once, in increasing order (the order the child's tags are made in).
-void sort_unique(std::vector<uint32_t>& ids) {
-  std::sort(ids.begin(), ids.end());
-  ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
-}
-
-}  // namespace
 
 LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& mesh, BoundaryInterpolation boundary)
     : topology_(topology) {
@@ -29,27 +21,38 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     if (e == TopologyTables::kNone)
       throw InvalidInput(fmt::format("crease ({}, {}) names no edge of the mesh", c.v0, c.v1));
     if (c.sharpness > 0.0f && !topology.is_boundary_edge(e)) {
-      if (edges_.empty()) edges_.assign(topology.edge_count(), 0.0f);
+      if (edges_.empty()) {
+        // One entry per edge at every level: zeroed in parallel.
+        edges_.resize(topology.edge_count());
+        parallel_for(0, int64_t(edges_.size()), 1 << 16, [&](int64_t b, int64_t end) {
+          std::fill(edges_.begin() + b, edges_.begin() + end, 0.0f);
+        });
+      }
       edges_[e] = std::min(c.sharpness, kInfiniteSharpness);
       tagged_edge_ids_.push_back(e);
       touch(c.v0);
       touch(c.v1);
     }
   }
-  sort_unique(tagged_edge_ids_);
+  // A tag may be given twice: each edge and vertex once, in increasing order (the order of the child's tags).
+  std::sort(tagged_edge_ids_.begin(), tagged_edge_ids_.end());
+  tagged_edge_ids_.erase(std::unique(tagged_edge_ids_.begin(), tagged_edge_ids_.end()), tagged_edge_ids_.end());
   for (const VertexCorner& c : mesh.corners) {
     if (std::isnan(c.sharpness)) throw InvalidInput(fmt::format("corner {}: sharpness is NaN", c.v));
     if (c.v >= topology.vertex_count())
       throw InvalidInput(fmt::format("corner {} names no vertex (the mesh has {})", c.v, topology.vertex_count()));
     if (c.sharpness > 0.0f) {
-      if (tagged_vertices_.empty()) tagged_vertices_.assign(topology.vertex_count(), 0.0f);
-      tagged_vertices_[c.v] = std::min(c.sharpness, kInfiniteSharpness);
-      tagged_vertex_ids_.push_back(c.v);
+      if (vertices_.empty()) vertices_.assign(topology.vertex_count(), 0.0f);
+      vertices_[c.v] = std::min(c.sharpness, kInfiniteSharpness);
+      corner_tags_.push_back({c.v, 0.0f});
       touch(c.v);
     }
   }
-  sort_unique(tagged_vertex_ids_);
-  vertices_ = tagged_vertices_;
+  std::sort(corner_tags_.begin(), corner_tags_.end(), [](const VertexCorner& a, const VertexCorner& b) { return a.v < b.v; });
+  corner_tags_.erase(std::unique(corner_tags_.begin(), corner_tags_.end(),
+                                 [](const VertexCorner& a, const VertexCorner& b) { return a.v == b.v; }),
+                     corner_tags_.end());
+  for (VertexCorner& c : corner_tags_) c.sharpness = vertices_[c.v];  // the last tag of each vertex
   if (boundary == BoundaryInterpolation::edge_and_corner) {
     for (uint32_t v = 0; v < topology.vertex_count(); ++v) {
       if (topology.is_boundary_vertex(v) && topology.ring_face_count(v) == 1) {

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "tessera/core/memory.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/subdiv/rules.hpp"
 #include "tessera/subdiv/subdivide.hpp"
@@ -32,22 +33,20 @@ class LevelSharpness {
   bool may_be_sharp(uint32_t v) const {
     return topology_.is_boundary_vertex(v) || (!touched_.empty() && touched_[v] != 0);
   }
-  /// The explicit (interior) edge tags, empty when none.
-  std::span<const float> edges() const { return edges_; }
   /// The interior edges with a tag > 0, in increasing order.
   std::span<const uint32_t> tagged_edge_ids() const { return tagged_edge_ids_; }
-  /// The corner tags as given (without boundary corners), empty when none.
-  std::span<const float> tagged_vertices() const { return tagged_vertices_; }
-  /// The vertices with a corner tag > 0, in increasing order.
-  std::span<const uint32_t> tagged_vertex_ids() const { return tagged_vertex_ids_; }
+  /// The corner tags > 0 as given (without boundary corners), in increasing vertex order.
+  std::span<const VertexCorner> corner_tags() const { return corner_tags_; }
 
   /// The rule of vertex v, with the sharpness of its ring edges written to `ring` (ring_edge_count(v) entries).
   VertexRule rule(uint32_t v, std::span<float> ring) const;
 
  private:
   const TopologyTables& topology_;
-  std::vector<float> edges_, vertices_, tagged_vertices_;
-  std::vector<uint32_t> tagged_edge_ids_, tagged_vertex_ids_;
+  RawVector<float> edges_;   // per edge (empty when no edge is tagged)
+  std::vector<float> vertices_;  // per vertex (empty when no vertex is sharp)
+  std::vector<uint32_t> tagged_edge_ids_;
+  std::vector<VertexCorner> corner_tags_;
   std::vector<uint8_t> touched_;  // per vertex: tagged, or an end of a tagged edge (empty when nothing is tagged)
 };
 

@@ -112,7 +112,6 @@ class LevelRefiner {
   // The creases and corners of the child level: the two halves of every tagged edge and every tagged vertex, with
   // their subdivided sharpness (boundaries and boundary corners are implied by the topology at every level).
   void child_tags(PolyMesh& child) const {
-    const std::span<const float> edges = sharp_.edges();
     std::vector<float> around(t_.max_valence());
     auto sharpness_at = [&](uint32_t v, float s) {
       const uint32_t n = t_.ring_edge_count(v);
@@ -121,12 +120,12 @@ class LevelRefiner {
     };
     for (uint32_t e : sharp_.tagged_edge_ids()) {
       const auto [a, b] = t_.edge_vertices(e);
-      if (const float sa = sharpness_at(a, edges[e]); sa > 0.0f) child.creases.push_back({a, edge_point(e), sa});
-      if (const float sb = sharpness_at(b, edges[e]); sb > 0.0f) child.creases.push_back({edge_point(e), b, sb});
+      const float s = sharp_.edge(e);
+      if (const float sa = sharpness_at(a, s); sa > 0.0f) child.creases.push_back({a, edge_point(e), sa});
+      if (const float sb = sharpness_at(b, s); sb > 0.0f) child.creases.push_back({edge_point(e), b, sb});
     }
-    const std::span<const float> corners = sharp_.tagged_vertices();
-    for (uint32_t v : sharp_.tagged_vertex_ids())
-      if (const float s = decrement_sharpness(corners[v]); s > 0.0f) child.corners.push_back({v, s});
+    for (const VertexCorner& c : sharp_.corner_tags())
+      if (const float s = decrement_sharpness(c.sharpness); s > 0.0f) child.corners.push_back({c.v, s});
   }
 
  private:

@@ -155,6 +155,26 @@ TEST(Subdivide, LevelsComposeThroughTheCarriedTags) {
   }
 }
 
+// A tag given twice counts once, with its last sharpness (as a later line of an OBJ file overrides an earlier one).
+TEST(Subdivide, RepeatedTagsCountOnceWithTheLastSharpness) {
+  const PolyMesh once = test::creased_cube(2.0f);
+  PolyMesh twice = once;
+  twice.creases.insert(twice.creases.begin(), {5, 4, 0.5f});
+  twice.corners.insert(twice.corners.begin(), {0, 1.0f});
+  for (int levels : {1, 2}) {
+    const PolyMesh a = catmull_clark_subdivide(once, levels), b = catmull_clark_subdivide(twice, levels);
+    EXPECT_EQ(a.positions, b.positions);
+    ASSERT_EQ(a.creases.size(), b.creases.size());
+    for (size_t i = 0; i < a.creases.size(); ++i) {
+      EXPECT_EQ(a.creases[i].v0, b.creases[i].v0);
+      EXPECT_EQ(a.creases[i].v1, b.creases[i].v1);
+      EXPECT_EQ(a.creases[i].sharpness, b.creases[i].sharpness);
+    }
+    ASSERT_EQ(a.corners.size(), b.corners.size());
+    for (size_t i = 0; i < a.corners.size(); ++i) EXPECT_EQ(a.corners[i].sharpness, b.corners[i].sharpness);
+  }
+}
+
 TEST(Subdivide, IdenticalForAnyThreadCount) {
   const PolyMesh m = test::torus(40, 30);
   PolyMesh serial, parallel;
