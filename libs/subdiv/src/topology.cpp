@@ -9,7 +9,7 @@
 namespace tessera {
 namespace {
 
-constexpr int64_t kGrain = 4096;
+constexpr int64_t kGrain = 3072;  // a multiple of 12: a chunk of child corners holds whole split triangles
 
 // Lowers `slot` to `value` if smaller (the first offending element wins, whatever the thread schedule).
 void atomic_min(std::atomic<uint64_t>& slot, uint64_t value) {
@@ -20,16 +20,29 @@ void atomic_min(std::atomic<uint64_t>& slot, uint64_t value) {
 
 constexpr uint64_t kNoError = ~uint64_t(0);
 
-// The first value of every fixed chunk of kGrain indices of [0, n) in an exclusive prefix sum whose chunk totals
-// are count(begin, end), plus the grand total at the back: the same result for any thread count.
+int64_t chunk_count(int64_t n) { return (n + kGrain - 1) / kGrain; }
+
+// Turns chunk totals (chunk c's at entry c + 1, entry 0 zero) into each chunk's first value, the total at the back.
+void prefix_sum(std::vector<uint32_t>& first) {
+  for (size_t c = 1; c < first.size(); ++c) first[c] += first[c - 1];
+}
+
+// count(begin, end) of every fixed chunk of kGrain indices of [0, n), chunk c's at entry c + 1.
+template <class Count>
+std::vector<uint32_t> chunk_totals(int64_t n, const Count& count) {
+  std::vector<uint32_t> totals(size_t(chunk_count(n)) + 1, 0);
+  parallel_for(0, int64_t(totals.size()) - 1, 1, [&](int64_t b, int64_t e) {
+    for (int64_t c = b; c < e; ++c) totals[size_t(c) + 1] = count(c * kGrain, std::min(n, (c + 1) * kGrain));
+  });
+  return totals;
+}
+
+// The first value of every chunk in the exclusive prefix sum of those totals, the grand total at the back: the
+// same result for any thread count.
 template <class Count>
 std::vector<uint32_t> chunk_starts(int64_t n, const Count& count) {
-  const int64_t chunks = (n + kGrain - 1) / kGrain;
-  std::vector<uint32_t> first(size_t(chunks) + 1, 0);
-  parallel_for(0, chunks, 1, [&](int64_t b, int64_t e) {
-    for (int64_t c = b; c < e; ++c) first[size_t(c) + 1] = count(c * kGrain, std::min(n, (c + 1) * kGrain));
-  });
-  for (size_t c = 0; c < size_t(chunks); ++c) first[c + 1] += first[c];
+  std::vector<uint32_t> first = chunk_totals(n, count);
+  prefix_sum(first);
   return first;
 }
 
@@ -144,25 +157,25 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
                                     face_vertices_[k], face_vertices_[next_corner(k)]));
   }
 
-  build_edges();
+  build_edges(chunk_totals(corners, [&](int64_t b, int64_t e) { return count_edge_owners(b, e); }));
   ring_corners_ = std::move(by_vertex);
   build_rings();
 }
 
-void TopologyTables::build_edges() {
-  // An edge belongs to its first corner in face order; numbering follows that order.
+uint32_t TopologyTables::count_edge_owners(int64_t begin, int64_t end) const {
+  uint32_t n = 0;
+  for (auto k = uint32_t(begin); k < uint32_t(end); ++k) n += owns_edge(k);
+  return n;
+}
+
+void TopologyTables::build_edges(std::vector<uint32_t> owners) {
   const auto corners = int64_t(face_vertices_.size());
   corner_edges_.resize(size_t(corners));
-  auto owns = [&](uint32_t k) { return twins_[k] == kNone || k < twins_[k]; };
-  const std::vector<uint32_t> first = chunk_starts(corners, [&](int64_t b, int64_t e) {
-    uint32_t n = 0;
-    for (int64_t k = b; k < e; ++k) n += owns(uint32_t(k));
-    return n;
-  });
-  edge_corners_.resize(first.back());
-  for_chunks(corners, first, [&](int64_t b, int64_t e, uint32_t edge) {
+  prefix_sum(owners);
+  edge_corners_.resize(owners.back());
+  for_chunks(corners, owners, [&](int64_t b, int64_t e, uint32_t edge) {
     for (int64_t k = b; k < e; ++k)
-      if (owns(uint32_t(k))) {
+      if (owns_edge(uint32_t(k))) {
         corner_edges_[k] = edge;
         if (twins_[k] != kNone) corner_edges_[twins_[k]] = edge;  // the twin's only writer
         edge_corners_[edge++] = uint32_t(k);
@@ -237,24 +250,30 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
   const uint32_t* parent_twins = parent.twins_.data();
 
   // Twins: the halves of a parent edge pair up with the halves in the neighbouring face; the edges inside a parent
-  // face pair up inside it.
+  // face pair up inside it. Chunk c of the child corners comes from parent corners [c, c + 1) * kGrain / 4 (whole
+  // faces for triangles), so its edge owners are counted while its twins are in cache.
   twins_.resize(4 * size_t(corners));
-  parallel_for(0, corners, kGrain, [&](int64_t b, int64_t e) {
-    for (auto k = uint32_t(b); k < uint32_t(e); ++k) {
-      const uint32_t t = parent_twins[k], p = parent.prev_corner(k), n = parent.next_corner(k), tp = parent_twins[p];
-      twins_[at(k, 0)] = t == kNone ? kNone : at(parent.next_corner(t), quads ? 3 : 2);
-      if (quads) {
-        twins_[4 * k + 1] = 4 * n + 2;
-        twins_[4 * k + 2] = 4 * p + 1;
-        twins_[4 * k + 3] = tp == kNone ? kNone : 4 * tp;
-      } else {
-        twins_[at(k, 1)] = middle(p);
-        twins_[at(k, 2)] = tp == kNone ? kNone : at(tp, 0);
-        twins_[middle(k)] = at(n, 1);
+  std::vector<uint32_t> owners(size_t(chunk_count(4 * int64_t(corners))) + 1, 0);
+  parallel_for(0, int64_t(owners.size()) - 1, 1, [&](int64_t first_chunk, int64_t last_chunk) {
+    for (int64_t c = first_chunk; c < last_chunk; ++c) {
+      const auto b = uint32_t(c * kGrain / 4), e = uint32_t(std::min<int64_t>(corners, (c + 1) * kGrain / 4));
+      for (uint32_t k = b; k < e; ++k) {
+        const uint32_t t = parent_twins[k], p = parent.prev_corner(k), n = parent.next_corner(k), tp = parent_twins[p];
+        twins_[at(k, 0)] = t == kNone ? kNone : at(parent.next_corner(t), quads ? 3 : 2);
+        if (quads) {
+          twins_[4 * k + 1] = 4 * n + 2;
+          twins_[4 * k + 2] = 4 * p + 1;
+          twins_[4 * k + 3] = tp == kNone ? kNone : 4 * tp;
+        } else {
+          twins_[at(k, 1)] = middle(p);
+          twins_[at(k, 2)] = tp == kNone ? kNone : at(tp, 0);
+          twins_[middle(k)] = at(n, 1);
+        }
       }
+      owners[size_t(c) + 1] = count_edge_owners(4 * int64_t(b), 4 * int64_t(e));
     }
   });
-  build_edges();
+  build_edges(std::move(owners));
 
   // Rings: a vertex keeps its parent ring (one child corner per parent corner); a face point's ring is its quads
   // in order; an edge point's ring joins the child faces on both sides of its parent edge.

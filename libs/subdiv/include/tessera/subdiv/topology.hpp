@@ -129,7 +129,11 @@ class TopologyTables {
   uint32_t max_valence() const { return max_valence_; }
 
  private:
-  void build_edges();
+  // An edge belongs to its first corner in face order; edges are numbered in that order, from the number of owning
+  // corners in every chunk of corners (chunk c's at entry c + 1, see topology.cpp).
+  bool owns_edge(uint32_t k) const { return twins_[k] == kNone || k < twins_[k]; }
+  uint32_t count_edge_owners(int64_t begin, int64_t end) const;
+  void build_edges(std::vector<uint32_t> owners);
   void build_rings();
 
   std::span<const uint32_t> face_offsets_, face_vertices_;
