@@ -78,15 +78,21 @@ inline int bit(const Word* row, int x) { return int((row[x >> 6] >> (x & 63)) & 
 // vertices and triangles straight into the final arrays. Both passes walk packed inside-flags (one bit per voxel,
 // 64 voxels a word), so that cut edges are XORs and popcounts, and runs of 64 cells that are all inside or all
 // outside are skipped a word at a time.
+//
+// V is the output's vector type: Vec3 (double, for PolyMesh) or Vec3f (IsoSurface, half the bytes to write); the
+// vertices are computed in double either way.
+template <class V>
 class Extractor {
  public:
   Extractor(const Volume<float>& v, const MarchingCubesOptions& o)
       : v_(v), o_(o), d_(v.dims()), data_(v.voxels().data()), plane_(size_t(d_.x) * size_t(d_.y)),
         words_(size_t(d_.x + 63) / 64) {}
 
-  PolyMesh run() {
-    PolyMesh mesh;
-    if (d_.x < 2 || d_.y < 2 || d_.z < 2) return mesh;
+  /// Fills positions, normals (when asked for) and 3 indices per triangle; `fresh(array, n)` sizes an array for
+  /// n elements that are then all written. Returns the triangle count.
+  template <class Positions, class Indices, class Fresh>
+  uint64_t run(Positions& positions, Positions& normals, Indices& triangles, const Fresh& fresh) {
+    if (d_.x < 2 || d_.y < 2 || d_.z < 2) return 0;
     // The valid bits of a row's last word for cells and x-edges (x < nx - 1).
     edge_tail_ = (Word(1) << (d_.x - 1 - 64 * int(words_ - 1))) - 1;
     const int layers = d_.z - 1, per = std::max(1, o_.slab_layers);
@@ -110,23 +116,18 @@ class Extractor {
       throw InvalidInput("marching cubes: the mesh would exceed 2^32 vertices or triangle corners");
     first_ = first;
     const size_t vertices = size_t(total.vertices + total.centers);
-    resize_fresh(mesh.positions, vertices);
-    if (o_.normals) resize_fresh(mesh.normals, vertices);
-    resize_fresh(mesh.face_vertices, 3 * size_t(total.triangles));
-    resize_fresh(mesh.face_offsets, size_t(total.triangles) + 1);
-    positions_ = mesh.positions.data();
-    normals_ = o_.normals ? mesh.normals.data() : nullptr;
-    triangles_ = mesh.face_vertices.data();
+    fresh(positions, vertices);
+    if (o_.normals) fresh(normals, vertices);
+    fresh(triangles, 3 * size_t(total.triangles));
+    positions_ = positions.data();
+    normals_ = o_.normals ? normals.data() : nullptr;
+    triangles_ = triangles.data();
 
     // Pass 2: vertices and triangles, each slab into its own ranges.
     parallel_for(0, slabs, 1, [&](int64_t b, int64_t e) {
       for (int64_t s = b; s < e; ++s) process_slab<true>(int(s));
     });
-    uint32_t* offsets = mesh.face_offsets.data();
-    parallel_for(0, int64_t(total.triangles) + 1, 1 << 16, [&](int64_t b, int64_t e) {
-      for (int64_t f = b; f < e; ++f) offsets[f] = uint32_t(3 * f);
-    });
-    return mesh;
+    return total.triangles;
   }
 
  private:
@@ -214,8 +215,8 @@ class Extractor {
 
   void emit(uint32_t id, int x, int y, int z, int axis) const {
     const auto [p, n] = edge_vertex(x, y, z, axis);
-    positions_[id] = p;
-    if (normals_) normals_[id] = n;
+    positions_[id] = V(p);
+    if (normals_) normals_[id] = V(n);
   }
 
   /// Numbers the cut edges of a plane into ids (x-edge at 2i, y-edge at 2i+1), writing their vertices when `write`.
@@ -343,8 +344,8 @@ class Extractor {
               for (size_t k = 0; k < fc.centers; ++k) {
                 id[size_t(mc::kCenter) + k] = center;
                 const auto [p, n] = center_vertex(x, y, z, fc.center_edges[k]);
-                positions_[center] = p;
-                if (normals_) normals_[center] = n;
+                positions_[center] = V(p);
+                if (normals_) normals_[center] = V(n);
                 ++center;
               }
               for (int t = 0; t < 3 * fc.count; ++t) *tris++ = id[fc.edges[size_t(t)]];
@@ -387,15 +388,40 @@ class Extractor {
   int slabs_ = 0;
   std::vector<int> slab_first_;
   std::vector<Counts> first_;
-  Vec3* positions_ = nullptr;
-  Vec3* normals_ = nullptr;
+  V* positions_ = nullptr;
+  V* normals_ = nullptr;
   uint32_t* triangles_ = nullptr;
 };
 
 }  // namespace
 
 PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options) {
-  return Extractor(volume, options).run();
+  PolyMesh mesh;
+  const auto fresh = [](auto& array, size_t n) { resize_fresh(array, n); };
+  const uint64_t triangles = Extractor<Vec3>(volume, options).run(mesh.positions, mesh.normals, mesh.face_vertices, fresh);
+  resize_fresh(mesh.face_offsets, size_t(triangles) + 1);
+  uint32_t* offsets = mesh.face_offsets.data();
+  parallel_for(0, int64_t(triangles) + 1, 1 << 16, [&](int64_t b, int64_t e) {
+    for (int64_t f = b; f < e; ++f) offsets[f] = uint32_t(3 * f);
+  });
+  return mesh;
+}
+
+IsoSurface extract_iso_surface(const Volume<float>& volume, const MarchingCubesOptions& options) {
+  IsoSurface s;
+  // Uninitialized, on huge pages: pass 2 writes every element, each slab its own ranges, so the pages are first
+  // touched there, in parallel, and never zeroed by the library.
+  const auto fresh = [](auto& array, size_t n) { array.resize(n); };
+  Extractor<Vec3f>(volume, options).run(s.positions, s.normals, s.indices, fresh);
+  return s;
+}
+
+TriMesh IsoSurface::to_tri_mesh() const {
+  TriMesh mesh;
+  mesh.positions.assign(positions.begin(), positions.end());
+  mesh.normals.assign(normals.begin(), normals.end());
+  mesh.indices.assign(indices.begin(), indices.end());
+  return mesh;
 }
 
 }  // namespace tessera

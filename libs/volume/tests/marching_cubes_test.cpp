@@ -202,6 +202,35 @@ TEST(MarchingCubes, IdenticalForAnyThreadCountAndSlabSize) {
   EXPECT_EQ(topo1.face_vertices, topo2.face_vertices);
 }
 
+TEST(MarchingCubes, IsoSurfaceIsTheMeshInFloatForAnyThreadCount) {
+  const auto v = make_noise(37, 3);
+  for (const bool topological : {false, true}) {
+    const PolyMesh mesh = marching_cubes(v, {.iso = 0.05f, .topological = topological});
+    IsoSurface one, two;
+    {
+      ThreadLimit limit(1);
+      one = extract_iso_surface(v, {.iso = 0.05f, .topological = topological, .slab_layers = 3});
+    }
+    {
+      ThreadLimit limit(2);
+      two = extract_iso_surface(v, {.iso = 0.05f, .topological = topological, .slab_layers = 5});
+    }
+    ASSERT_EQ(one.vertex_count(), mesh.positions.size());
+    ASSERT_EQ(one.normals.size(), mesh.normals.size());
+    ASSERT_GT(one.triangle_count(), 100u);
+    EXPECT_TRUE(std::equal(one.indices.begin(), one.indices.end(), mesh.face_vertices.begin(), mesh.face_vertices.end()));
+    for (size_t i = 0; i < mesh.positions.size(); ++i) {
+      ASSERT_EQ(one.positions[i], Vec3f(mesh.positions[i])) << i;
+      ASSERT_EQ(one.normals[i], Vec3f(mesh.normals[i])) << i;
+    }
+    EXPECT_TRUE(one.positions == two.positions);
+    EXPECT_TRUE(one.normals == two.normals);
+    EXPECT_TRUE(one.indices == two.indices);
+    const TriMesh tri = one.to_tri_mesh();
+    EXPECT_EQ(tri.triangle_count(), mesh.face_count());
+  }
+}
+
 TEST(MarchingCubes, SamplesEqualToIsoGiveNoDegenerateTrianglesOrDuplicateVertices) {
   // An integer field where many voxels equal the iso value exactly.
   Volume<float> v(glm::ivec3(12));

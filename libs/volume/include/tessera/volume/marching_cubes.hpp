@@ -6,6 +6,7 @@
 // end is inside. The cut parameter t = (iso - a) / (b - a) is clamped into [kEdgeNudge, 1 - kEdgeNudge], so a vertex
 // never lands exactly on a voxel: vertices on different edges are distinct points, and since no three points in the
 // interiors of distinct cube edges are collinear, no triangle has zero area.
+#include "tessera/core/memory.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/volume/volume.hpp"
 
@@ -29,5 +30,23 @@ struct MarchingCubesOptions {
 /// Parallel over slabs of z layers; the result is identical for any thread count. Volumes under 2 voxels along an
 /// axis give an empty mesh.
 PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options = {});
+
+/// An iso-surface as marching cubes outputs it: float positions and normals (as VTK's and scikit-image's are) and
+/// 3 indices per triangle; half the bytes of a PolyMesh, whose dvec3 arrays and face offsets the extraction spends
+/// most of its time writing.
+struct IsoSurface {
+  RawVector<Vec3f> positions;
+  RawVector<Vec3f> normals;  ///< per vertex, or empty
+  RawVector<uint32_t> indices;
+
+  size_t vertex_count() const { return positions.size(); }
+  size_t triangle_count() const { return indices.size() / 3; }
+  /// The same surface as a TriMesh (double positions and normals).
+  TriMesh to_tri_mesh() const;
+};
+
+/// marching_cubes() into an IsoSurface: the same vertices (rounded to float), normals and triangles, in the same
+/// order; identical for any thread count.
+IsoSurface extract_iso_surface(const Volume<float>& volume, const MarchingCubesOptions& options = {});
 
 }  // namespace tessera
