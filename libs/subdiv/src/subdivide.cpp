@@ -56,7 +56,7 @@ class LevelRefiner {
       std::vector<float> buffer(t_.max_valence());
       for (int64_t edge = b; edge < e; ++edge) {
         if (edge + 2 * kAhead < e) prefetch_edge_topology(uint32_t(edge + 2 * kAhead));
-        if (edge + kAhead < e) prefetch_edge<T>(uint32_t(edge + kAhead), parent, child);
+        if (edge + kAhead < e) prefetch_edge_points<T>(uint32_t(edge + kAhead), parent, child);
         child[edge_point(uint32_t(edge))] = edge_point_value<T>(uint32_t(edge), parent, child, buffer);
       }
     });
@@ -64,7 +64,7 @@ class LevelRefiner {
       std::vector<float> buffer(2 * size_t(t_.max_valence()));
       for (int64_t v = b; v < e; ++v) {
         if (v + 2 * kAhead < e) prefetch_vertex_topology(uint32_t(v + 2 * kAhead));
-        if (v + kAhead < e) prefetch_vertex<T>(uint32_t(v + kAhead), parent, child);
+        if (v + kAhead < e) prefetch_vertex_points<T>(uint32_t(v + kAhead), parent, child);
         child[v] = vertex_point_value<T>(uint32_t(v), parent, child, buffer);
       }
     });
@@ -167,7 +167,7 @@ class LevelRefiner {
     for (uint32_t k : t_.ring_corners(v)) t_.prefetch_corner(t_.next_corner(k));
   }
   template <class T>
-  void prefetch_edge(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
+  void prefetch_edge_points(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
     const auto [k0, k1] = t_.edge_corners(e);
     prefetch_line(&parent[t_.corner_vertex(k0)]);
     prefetch_line(&parent[t_.corner_vertex(t_.next_corner(k0))]);
@@ -180,7 +180,7 @@ class LevelRefiner {
     }
   }
   template <class T>
-  void prefetch_vertex(uint32_t v, std::span<const T> parent, std::span<const T> child) const {
+  void prefetch_vertex_points(uint32_t v, std::span<const T> parent, std::span<const T> child) const {
     for (uint32_t k : t_.ring_corners(v)) {
       prefetch_line(&parent[t_.corner_vertex(t_.next_corner(k))]);
       if constexpr (Rules::kFacePoints) prefetch_line(&child[t_.vertex_count() + t_.corner_face(k)]);
