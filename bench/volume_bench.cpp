@@ -1,7 +1,8 @@
-// Marching cubes (classic and topological) on 256^3 and 512^3 float fields, on 1 and 2 threads, against VTK's
-// vtkFlyingEdges3D and vtkMarchingCubes and scikit-image's marching_cubes(method='lorensen') on the same field in the
-// same run; and direct volume rendering (256^3 at 512 x 512) against VTK's fixed-point ray cast mapper where it can
-// run headless. The peers run in a /usr/bin/python3 subprocess (bench/peers/volume_peers.py) on the field written to
+// Marching cubes (classic and topological, extract_iso_surface: float output as the peers') on 256^3 and 512^3 float
+// fields, on 1 and 2 threads, against VTK's vtkFlyingEdges3D and vtkMarchingCubes and scikit-image's
+// marching_cubes(method='lorensen') on the same field in the same run; and direct volume rendering (256^3 at
+// 512 x 512; render_volume and a prepared VolumeRenderer) against VTK's fixed-point ray cast mapper where it can run
+// (under xvfb-run; TESSERA_DVR_IMAGE_DIR=dir writes both pictures there). The peers run in a /usr/bin/python3 subprocess (bench/peers/volume_peers.py) on the field written to
 // /tmp as raw float32; they report their best wall time of a few runs. A table at the end gives the speedups
 // (peer ms / Tessera ms), the triangle counts and the load average.
 //
