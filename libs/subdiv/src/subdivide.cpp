@@ -63,7 +63,6 @@ class LevelRefiner {
     parallel_for(0, int64_t(n), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(2 * size_t(t_.max_valence()));
       for (int64_t v = b; v < e; ++v) {
-        if (v + 2 * kAhead < e) prefetch_vertex_topology(uint32_t(v + 2 * kAhead));
         if (v + kAhead < e) prefetch_vertex_points<T>(uint32_t(v + kAhead), parent, child);
         child[v] = vertex_point_value<T>(uint32_t(v), parent, child, buffer);
       }
@@ -160,12 +159,9 @@ class LevelRefiner {
     return {.end = s * 0.5 + (1.0 - s) * smooth.end, .face = (1.0 - s) * smooth.face};
   }
 
-  // Asks the caches for the topology that finds the points of edge e's and vertex v's masks (two steps ahead), then
-  // for the points themselves (one step ahead).
+  // Asks the caches for the topology that finds the points of edge e's mask (two steps ahead), then for the points
+  // of edge e's and vertex v's masks (one step ahead).
   void prefetch_edge_topology(uint32_t e) const { t_.prefetch_edge(e); }
-  void prefetch_vertex_topology(uint32_t v) const {
-    for (uint32_t k : t_.ring_corners(v)) t_.prefetch_corner(t_.next_corner(k));
-  }
   template <class T>
   void prefetch_edge_points(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
     const auto [k0, k1] = t_.edge_corners(e);
@@ -181,10 +177,9 @@ class LevelRefiner {
   }
   template <class T>
   void prefetch_vertex_points(uint32_t v, std::span<const T> parent, std::span<const T> child) const {
-    for (uint32_t k : t_.ring_corners(v)) {
-      prefetch_line(&parent[t_.corner_vertex(t_.next_corner(k))]);
-      if constexpr (Rules::kFacePoints) prefetch_line(&child[t_.vertex_count() + t_.corner_face(k)]);
-    }
+    for (uint32_t u : t_.ring_neighbors(v)) prefetch_line(&parent[u]);
+    if constexpr (Rules::kFacePoints)
+      for (uint32_t k : t_.ring_corners(v)) prefetch_line(&child[t_.vertex_count() + t_.corner_face(k)]);
   }
 
   // The smooth mask of an interior edge between the faces of corners k0 and k1 (the same for every edge unless
@@ -257,9 +252,10 @@ class LevelRefiner {
     T value = parent[v] * m.vertex;
     if (m.ring != 0.0 || m.face != 0.0) {
       T ring(0.0), faces(0.0);
-      for (uint32_t k : t_.ring_corners(v)) {
-        ring += parent[t_.corner_vertex(t_.next_corner(k))];
-        if constexpr (Rules::kFacePoints) faces += child[t_.vertex_count() + t_.corner_face(k)];
+      const std::span<const uint32_t> corners = t_.ring_corners(v), neighbors = t_.ring_neighbors(v);
+      for (size_t i = 0; i < corners.size(); ++i) {
+        ring += parent[neighbors[i]];
+        if constexpr (Rules::kFacePoints) faces += child[t_.vertex_count() + t_.corner_face(corners[i])];
       }
       if (t_.is_boundary_vertex(v)) ring += parent[t_.ring_neighbor(v, t_.ring_edge_count(v) - 1)];
       value += ring * m.ring + faces * m.face;

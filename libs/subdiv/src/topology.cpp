@@ -54,12 +54,16 @@ void for_chunks(int64_t n, const std::vector<uint32_t>& first, const Body& body)
   });
 }
 
-// Rotates the ring of an interior child vertex to start at its smallest corner (the corner a build from the child
-// faces starts at) and writes it to `out`.
+// Rotates the ring of an interior child vertex (its corners and their neighbours) to start at its smallest corner
+// (the corner a build from the child faces starts at) and writes it to `corners_out` and `neighbors_out`.
 template <size_t N>
-void write_from_smallest(const std::array<uint32_t, N>& ring, uint32_t* out) {
-  const size_t start = size_t(std::min_element(ring.begin(), ring.end()) - ring.begin());
-  for (size_t i = 0; i < N; ++i) out[i] = ring[(start + i) % N];
+void write_from_smallest(const std::array<uint32_t, N>& corners, const std::array<uint32_t, N>& neighbors,
+                         uint32_t* corners_out, uint32_t* neighbors_out) {
+  const size_t start = size_t(std::min_element(corners.begin(), corners.end()) - corners.begin());
+  for (size_t i = 0; i < N; ++i) {
+    corners_out[i] = corners[(start + i) % N];
+    neighbors_out[i] = neighbors[(start + i) % N];
+  }
 }
 
 }  // namespace
@@ -187,6 +191,7 @@ void TopologyTables::build_rings() {
   // ring_corners_ holds each vertex's corners in corner order; walk them counterclockwise in place of that order.
   const int64_t vertices = int64_t(vertex_count());
   boundary_vertex_.assign(vertex_count(), uint8_t(0));
+  ring_neighbors_.resize(ring_corners_.size());
   std::atomic<uint64_t> bad_vertex{kNoError};
   std::atomic<uint32_t> max_valence{0};
   parallel_for(0, vertices, 1024, [&](int64_t b, int64_t e) {
@@ -217,6 +222,7 @@ void TopologyTables::build_rings() {
         continue;
       }
       std::copy(ring.begin(), ring.end(), ring_corners_.begin() + first);
+      for (uint32_t i = 0; i < n; ++i) ring_neighbors_[first + i] = face_vertices_[next_corner(ring[i])];
       boundary_vertex_[v] = starts == 1;
       local_max = std::max(local_max, n + starts);
     }
@@ -276,16 +282,23 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
   build_edges(std::move(owners));
 
   // Rings: a vertex keeps its parent ring (one child corner per parent corner); a face point's ring is its quads
-  // in order; an edge point's ring joins the child faces on both sides of its parent edge.
+  // in order; an edge point's ring joins the child faces on both sides of its parent edge. The neighbour across
+  // each ring corner (the vertex of the next corner) follows from the parent's corners too.
   const size_t child_vertices = size_t(vertices) + (quads ? faces : 0) + edges;
+  const uint32_t first_edge_point = vertices + (quads ? faces : 0);
+  auto edge_point = [&](uint32_t k) { return first_edge_point + parent.corner_edges_[k]; };
+  auto face_point = [&](uint32_t k) { return vertices + parent.corner_face(k); };
   vertex_offsets_.resize(child_vertices + 1);
   ring_corners_.resize(4 * size_t(corners));
+  ring_neighbors_.resize(4 * size_t(corners));
   boundary_vertex_.resize(child_vertices);
   parallel_for(0, vertices, kGrain, [&](int64_t b, int64_t e) {
     for (int64_t v = b; v < e; ++v) {
       vertex_offsets_[v] = parent.vertex_offsets_[v];
-      for (uint32_t i = parent.vertex_offsets_[v]; i < parent.vertex_offsets_[v + 1]; ++i)
+      for (uint32_t i = parent.vertex_offsets_[v]; i < parent.vertex_offsets_[v + 1]; ++i) {
         ring_corners_[i] = at(parent.ring_corners_[i], 0);
+        ring_neighbors_[i] = edge_point(parent.ring_corners_[i]);
+      }
       boundary_vertex_[v] = parent.boundary_vertex_[v];
     }
   });
@@ -297,14 +310,16 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
       for (int64_t f = b; f < e; ++f) {
         const uint32_t o = parent.face_offset(f), n = parent.face_size(f);
         vertex_offsets_[vertices + f] = corners + o;
-        for (uint32_t i = 0; i < n; ++i) ring_corners_[corners + o + i] = 4 * (o + i) + 2;
+        for (uint32_t i = 0; i < n; ++i) {
+          ring_corners_[corners + o + i] = 4 * (o + i) + 2;
+          ring_neighbors_[corners + o + i] = edge_point(parent.prev_corner(o + i));
+        }
         boundary_vertex_[vertices + f] = 0;
       }
     });
   }
   // Edge point e: 2 (quads) or 3 (triangles) child faces per face of e, after the rings of the older vertices.
-  const uint32_t first_edge_point = vertices + (quads ? faces : 0), first_ring = quads ? 2 * corners : corners,
-                 per_face = quads ? 2 : 3;
+  const uint32_t first_ring = quads ? 2 * corners : corners, per_face = quads ? 2 : 3;
   const std::vector<uint32_t> boundary_before = chunk_starts(edges, [&](int64_t b, int64_t e) {
     uint32_t n = 0;
     for (int64_t edge = b; edge < e; ++edge) n += parent.is_boundary_edge(size_t(edge));
@@ -313,25 +328,37 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
   for_chunks(edges, boundary_before, [&](int64_t b, int64_t e, uint32_t boundary) {
     for (auto edge = uint32_t(b); edge < uint32_t(e); ++edge) {
       const uint32_t offset = first_ring + per_face * (2 * edge - boundary);
-      uint32_t* ring = ring_corners_.data() + offset;
+      uint32_t *ring = ring_corners_.data() + offset, *around = ring_neighbors_.data() + offset;
       const uint32_t k = parent.edge_corners_[edge], t = parent_twins[k], n = parent.next_corner(k);
       vertex_offsets_[first_edge_point + edge] = offset;
       boundary_vertex_[first_edge_point + edge] = t == kNone;
+      // Around the edge point: the parent's end vertices, and the face points (quads) or the edge points of the
+      // other edges of the two triangles.
       if (t == kNone) {
         // Starts at the face whose outgoing edge is the boundary half.
         ring[0] = at(n, quads ? 3 : 2);
+        around[0] = parent.corner_vertex(n);
         if (quads) {
           ring[1] = 4 * k + 1;
+          around[1] = face_point(k);
         } else {
           ring[1] = middle(k);
+          around[1] = edge_point(n);
           ring[2] = at(k, 1);
+          around[2] = edge_point(parent.prev_corner(k));
         }
         ++boundary;
       } else if (quads) {
-        write_from_smallest(std::array{4 * k + 1, 4 * parent.next_corner(t) + 3, 4 * t + 1, 4 * n + 3}, ring);
+        const uint32_t nt = parent.next_corner(t);
+        write_from_smallest(std::array{4 * k + 1, 4 * nt + 3, 4 * t + 1, 4 * n + 3},
+                            std::array{face_point(k), parent.corner_vertex(nt), face_point(t), parent.corner_vertex(n)},
+                            ring, around);
       } else {
-        write_from_smallest(std::array{at(k, 1), at(parent.next_corner(t), 2), middle(t), at(t, 1), at(n, 2), middle(k)},
-                            ring);
+        const uint32_t nt = parent.next_corner(t);
+        write_from_smallest(std::array{at(k, 1), at(nt, 2), middle(t), at(t, 1), at(n, 2), middle(k)},
+                            std::array{edge_point(parent.prev_corner(k)), parent.corner_vertex(nt), edge_point(nt),
+                                       edge_point(parent.prev_corner(t)), parent.corner_vertex(n), edge_point(n)},
+                            ring, around);
       }
     }
   });

@@ -54,6 +54,7 @@ TEST(TopologyTables, RingsAreCounterclockwiseAndConsistent) {
         EXPECT_EQ(t.corner_vertex(k), v);
         // Face i lies between edge i (its outgoing edge at v) and edge i+1 (its incoming edge at v).
         EXPECT_EQ(t.ring_edge(v, i), t.corner_edge(k));
+        EXPECT_EQ(t.ring_neighbors(v)[i], t.corner_vertex(t.next_corner(k)));
         EXPECT_EQ(t.ring_edge(v, (i + 1) % t.ring_edge_count(v)), t.corner_edge(t.prev_corner(k)));
       }
       // Counterclockwise seen from outside: edge 0 x edge 1 points along face 0's (Newell) normal.
@@ -146,6 +147,8 @@ void expect_same_tables(const TopologyTables& a, const TopologyTables& b) {
     ASSERT_EQ(a.is_boundary_vertex(v), b.is_boundary_vertex(v)) << "vertex " << v;
     const auto ra = a.ring_corners(v), rb = b.ring_corners(v);
     ASSERT_EQ(std::vector<uint32_t>(ra.begin(), ra.end()), std::vector<uint32_t>(rb.begin(), rb.end())) << "vertex " << v;
+    const auto na = a.ring_neighbors(v), nb = b.ring_neighbors(v);
+    ASSERT_EQ(std::vector<uint32_t>(na.begin(), na.end()), std::vector<uint32_t>(nb.begin(), nb.end())) << "vertex " << v;
   }
 }
 

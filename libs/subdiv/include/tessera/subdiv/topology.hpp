@@ -113,17 +113,19 @@ class TopologyTables {
   }
   uint32_t ring_neighbor(size_t v, uint32_t i) const {
     const uint32_t n = ring_face_count(v);
-    return i < n ? face_vertices_[next_corner(ring_corners_[vertex_offsets_[v] + i])]
+    return i < n ? ring_neighbors_[vertex_offsets_[v] + i]
                  : face_vertices_[prev_corner(ring_corners_[vertex_offsets_[v] + n - 1])];
   }
-  /// Hints for gathers: asks the caches for the entries that edge_corners(e) and edge_vertices(e) read, and that
-  /// corner_vertex(k) reads.
+  /// The far ends of v's first ring_face_count(v) edges (one per ring corner), in a flat array for gathers.
+  std::span<const uint32_t> ring_neighbors(size_t v) const {
+    return {ring_neighbors_.data() + vertex_offsets_[v], vertex_offsets_[v + 1] - vertex_offsets_[v]};
+  }
+  /// A hint for gathers: asks the caches for the entries that edge_corners(e) and edge_vertices(e) read.
   void prefetch_edge(size_t e) const {
     const uint32_t k = edge_corners_[e];
     prefetch_line(&twins_[k]);
     prefetch_line(&face_vertices_[k]);
   }
-  void prefetch_corner(uint32_t k) const { prefetch_line(&face_vertices_[k]); }
 
   /// The largest number of edges around a vertex.
   uint32_t max_valence() const { return max_valence_; }
@@ -142,6 +144,7 @@ class TopologyTables {
   RawVector<uint32_t> corner_edges_, twins_;
   RawVector<uint32_t> edge_corners_;    // the first corner of every edge
   RawVector<uint32_t> vertex_offsets_, ring_corners_;
+  RawVector<uint32_t> ring_neighbors_;  // corner_vertex(next_corner(k)) of every ring corner k
   RawVector<uint8_t> boundary_vertex_;
   uint32_t max_valence_ = 0;
 };
