@@ -165,8 +165,11 @@ class SahBuilder {
     const int n = end - begin;
     new (slots + self) BvhNode{rb.box.aabb(), begin, uint16_t(0), uint16_t(0)};
     BvhNode& node = slots[self];
-    const Split split = n > 1 ? find_split(begin, n, rb) : Split{};
     const bool fits = n <= s_.max_leaf_size;
+    // A range of one block is a leaf without binning when a traversal step costs at least a test: every split costs
+    // more than C_trav >= C_isect, the cost of the leaf.
+    const bool one_block = fits && n <= s_.leaf_block && s_.traversal_cost >= s_.intersection_cost;
+    const Split split = n > 1 && !one_block ? find_split(begin, n, rb) : Split{};
     if (n == 1 || (fits && s_.intersection_cost * leaf_tests(s_, n) <= split.cost)) {
       node.count = uint16_t(n);
       return {1, 1};
