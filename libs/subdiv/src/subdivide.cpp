@@ -51,11 +51,13 @@ class LevelRefiner {
         }
       });
     }
-    // The gathers are bound by the latency of scattered loads: fetch the points a few elements ahead.
+    // The gathers are bound by the latency of scattered loads: fetch the topology and the points a few elements
+    // ahead.
     parallel_for(0, int64_t(t_.edge_count()), kGrain, [&](int64_t b, int64_t e) {
       std::vector<float> buffer(t_.max_valence());
       for (int64_t edge = b; edge < e; ++edge) {
-        if (edge + 2 * kAhead < e) prefetch_edge_topology(uint32_t(edge + 2 * kAhead));
+        if (edge + 3 * kAhead < e) t_.prefetch_edge(uint32_t(edge + 3 * kAhead));
+        if (edge + 2 * kAhead < e) t_.prefetch_edge_second_face(uint32_t(edge + 2 * kAhead));
         if (edge + kAhead < e) prefetch_edge_points<T>(uint32_t(edge + kAhead), parent, child);
         child[edge_point(uint32_t(edge))] = edge_point_value<T>(uint32_t(edge), parent, child, buffer);
       }
@@ -159,9 +161,7 @@ class LevelRefiner {
     return {.end = s * 0.5 + (1.0 - s) * smooth.end, .face = (1.0 - s) * smooth.face};
   }
 
-  // Asks the caches for the topology that finds the points of edge e's mask (two steps ahead), then for the points
-  // of edge e's and vertex v's masks (one step ahead).
-  void prefetch_edge_topology(uint32_t e) const { t_.prefetch_edge(e); }
+  // Asks the caches for the points of edge e's and vertex v's masks (one step after the topology that finds them).
   template <class T>
   void prefetch_edge_points(uint32_t e, std::span<const T> parent, std::span<const T> child) const {
     const auto [k0, k1] = t_.edge_corners(e);

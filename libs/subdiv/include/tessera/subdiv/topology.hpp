@@ -120,11 +120,15 @@ class TopologyTables {
   std::span<const uint32_t> ring_neighbors(size_t v) const {
     return {ring_neighbors_.data() + vertex_offsets_[v], vertex_offsets_[v + 1] - vertex_offsets_[v]};
   }
-  /// A hint for gathers: asks the caches for the entries that edge_corners(e) and edge_vertices(e) read.
+  /// Hints for gathers, in two steps: the entries that edge_corners(e) and edge_vertices(e) read, then (with those
+  /// in cache) the vertices of e's second face.
   void prefetch_edge(size_t e) const {
     const uint32_t k = edge_corners_[e];
     prefetch_line(&twins_[k]);
     prefetch_line(&face_vertices_[k]);
+  }
+  void prefetch_edge_second_face(size_t e) const {
+    if (const uint32_t k = twins_[edge_corners_[e]]; k != kNone) prefetch_line(&face_vertices_[k]);
   }
 
   /// The largest number of edges around a vertex.
