@@ -325,8 +325,17 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
     for (int64_t edge = b; edge < e; ++edge) n += parent.is_boundary_edge(size_t(edge));
     return n;
   });
+  constexpr uint32_t kAhead = 8;  // edges between a prefetch and its use
   for_chunks(edges, boundary_before, [&](int64_t b, int64_t e, uint32_t boundary) {
     for (auto edge = uint32_t(b); edge < uint32_t(e); ++edge) {
+      // The second face of an edge lies anywhere: ask for its corners two steps ahead.
+      if (edge + 2 * kAhead < e) parent.prefetch_edge(edge + 2 * kAhead);
+      if (edge + kAhead < e) {
+        if (const uint32_t t = parent_twins[parent.edge_corners_[edge + kAhead]]; t != kNone) {
+          prefetch_line(&parent.corner_edges_[t]);
+          prefetch_line(&parent.face_vertices_[t]);
+        }
+      }
       const uint32_t offset = first_ring + per_face * (2 * edge - boundary);
       uint32_t *ring = ring_corners_.data() + offset, *around = ring_neighbors_.data() + offset;
       const uint32_t k = parent.edge_corners_[edge], t = parent_twins[k], n = parent.next_corner(k);
