@@ -188,8 +188,7 @@ namespace mesh_traversal {
 
 bool intersect4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
                 Nearest& nearest, TraversalStats* stats) {
-  return stats ? traverse<4, false, true>(nodes, blocks, root, ray, &nearest, stats)
-               : traverse<4, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+  return nearest_hit<4>(nodes, blocks, root, ray, nearest, stats);
 }
 
 bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {

@@ -5,8 +5,7 @@ namespace tessera::mesh_traversal {
 
 bool intersect8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
                 Nearest& nearest, TraversalStats* stats) {
-  return stats ? traverse<8, false, true>(nodes, blocks, root, ray, &nearest, stats)
-               : traverse<8, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+  return nearest_hit<8>(nodes, blocks, root, ray, nearest, stats);
 }
 
 bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {

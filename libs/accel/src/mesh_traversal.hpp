@@ -225,5 +225,13 @@ bool traverse(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBloc
   }
 }
 
+/// The nearest hit, with or without counting (two instantiations, so the counting costs nothing when off).
+template <int W, class Node>
+bool nearest_hit(const Node* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray, Nearest& nearest,
+                 TraversalStats* stats) {
+  return stats ? traverse<W, false, true>(nodes, blocks, root, ray, &nearest, stats)
+               : traverse<W, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+}
+
 }  // namespace
 }  // namespace tessera::mesh_traversal
