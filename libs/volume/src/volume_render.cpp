@@ -97,7 +97,7 @@ int round_to_int(float x) { return int(x + (x >= 0 ? 0.5f : -0.5f)); }
 /// The volume as the ray caster reads it: per voxel the value and the central-difference gradient (world units),
 /// each quantized to 16 bits and interleaved, so that one 8-byte load per cell corner gives everything a shaded
 /// sample needs (VTK's fixed-point mapper also works on 16-bit values with precomputed gradients). Built once per
-/// render instead of six extra trilinear samples per step.
+/// VolumeRenderer instead of six extra trilinear samples per step.
 struct PackedVolume {
   glm::ivec3 dims;
   size_t stride_y, stride_z;
@@ -291,10 +291,10 @@ struct SpecularPower {
 struct RaySamples {
   Vec3f first{0.0f}, delta{0.0f}, light{0.0f}, last_point{0.0f};
   int n = 0;
-  float last_length = 0;
+  float step = 0, last_length = 0;  ///< world step; length of the last segment (at most a step)
+  bool short_last() const { return last_length < step; }
   /// Samples that are a whole step apart (the SIMD path marches these; the scalar one finishes the ray).
-  int regular() const { return last_length < step_length ? n - 1 : n; }
-  float step_length = 0;
+  int regular() const { return short_last() ? n - 1 : n; }
 };
 
 /// What every ray reads; march() is the scalar ray caster, march8 (AVX2) its eight-ray version.
@@ -310,7 +310,7 @@ struct Caster {
   /// Composites samples k, k + 1, ... of `ray` onto (color, alpha) until the ray ends or is opaque.
   void march(const RaySamples& ray, int k, Vec3f& color, float& alpha) const {
     for (; k < ray.n && alpha < options.termination; ++k) {
-      const bool last = k == ray.n - 1 && ray.last_length < step;
+      const bool last = k == ray.n - 1 && ray.short_last();
       const Vec3f p = last ? ray.last_point : ray.first + float(k) * ray.delta;
       Vec3f offset;
       const glm::ivec3 cell = volume.locate(p, offset);
@@ -587,7 +587,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
     if (!intersect_slabs(box, ray, 1.0f / ray.dir, t0, t1)) return r;
     // Sample k is at the middle of [t0 + k step, min(t1, t0 + (k + 1) step)].
     r.n = int(std::ceil((t1 - t0) / step));
-    r.step_length = step;
+    r.step = step;
     r.last_length = t1 - (t0 + float(r.n - 1) * step);
     r.first = (ray.at(t0 + 0.5f * step) - origin) * inv_spacing;
     r.delta = ray.dir * step * inv_spacing;
