@@ -214,14 +214,16 @@ class Tracer {
         const LightSample ls = light_sample(li, p, u);
         const float nl = glm::dot(n, ls.dir);
         if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) continue;
-        if (!visible(scene_.world, p, ls, rays)) continue;
         float highlight = 0.0f;
         if (highlights) {
           const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
                                                               : glm::dot(n, glm::normalize(ls.dir + e));
           if (cos_h > 0.0f) highlight = std::pow(cos_h, m.shininess);
         }
-        light_sum += ls.color * (cr * nl + m.specular * highlight);
+        // The shadow ray last, and only for a term that adds something (a black surface away from its highlight,
+        // e.g. glass, needs none).
+        const Vec3f term = ls.color * (cr * nl + m.specular * highlight);
+        if (term != Vec3f(0.0f) && visible(scene_.world, p, ls, rays)) light_sum += term;
       }
       sum += count > 1 ? light_sum / float(count) : light_sum;
     }
