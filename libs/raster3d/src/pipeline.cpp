@@ -24,6 +24,8 @@ inline bool finite_position(const float* v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
 }
 
+constexpr unsigned kNotFinite = 1u << 6;  // PreparedVertex::outcode of a NaN or infinite position
+
 inline unsigned outcode(const float* v) {
   unsigned code = 0;
   for (int p = 0; p < 6; ++p)
@@ -95,6 +97,7 @@ GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool 
 
 PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool made_by_clipping) {
   PreparedVertex p{};
+  p.outcode = uint8_t(finite_position(clip) ? outcode(clip) : kNotFinite);
   p.valid = clip[3] > 0;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
   if (!p.valid) return p;
   p.w = to_window(params, clip);
@@ -246,13 +249,13 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
   for (size_t t = first; t < first + count; ++t) {
     const float* v[3];
     for (int k = 0; k < 3; ++k) v[k] = params.vertices + size_t(indices[3 * t + k]) * stride;
-    if (!finite_position(v[0]) || !finite_position(v[1]) || !finite_position(v[2])) continue;  // NaN or inf
-    const unsigned c0 = outcode(v[0]), c1 = outcode(v[1]), c2 = outcode(v[2]);
+    const PreparedVertex* p[3];
+    for (int k = 0; k < 3; ++k) p[k] = params.prepared + indices[3 * t + k];
+    if ((p[0]->outcode | p[1]->outcode | p[2]->outcode) & kNotFinite) continue;  // NaN or inf
+    const unsigned c0 = p[0]->outcode, c1 = p[1]->outcode, c2 = p[2]->outcode;
     if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
     if (!(c0 | c1 | c2)) {
-      const PreparedVertex* p[3];
-      for (int k = 0; k < 3; ++k) p[k] = params.prepared + indices[3 * t + k];
       emit_prepared(params, sc, v, p, provoking, chunk);
       continue;
     }

@@ -60,12 +60,14 @@ struct GalliumVertex {
   float x, y, z;
 };
 
-/// What triangle setup needs of a vertex, computed once per vertex: both window positions and the snapped
-/// 1/256-pixel position (GL y up). Not valid when w <= 0 (only possible on a degenerate clipped polygon).
+/// What triangle setup needs of a vertex, computed once per vertex: the clip planes it is outside of (bit p for
+/// plane p, bit 6 for a NaN or infinite position), both window positions and the snapped 1/256-pixel position (GL
+/// y up). Not valid when w <= 0 (only possible on a degenerate clipped polygon).
 struct PreparedVertex {
   WindowVertex w;
   GalliumVertex g;
   int32_t X, Y;
+  uint8_t outcode;
   bool valid;
 };
 
@@ -453,6 +455,9 @@ template <DepthFunc F>
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
 }
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_*(), which -Wmaybe-uninitialized reports once inlined.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 /// gouraud_rect_avx2 for AVX-512: sixteen lanes, eight pixels of two rows, with mask registers for the masked
 /// loads and stores. The same operations per pixel, so the same pixels.
 template <DepthFunc F>
@@ -533,6 +538,7 @@ template <DepthFunc F>
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm512_add_epi32(edge_row[k], edge_dy2[k]);
   }
 }
+#pragma GCC diagnostic pop
 
 /// Rasterizes the records binned to `tile` of every chunk, in submission order.
 template <int N, class V, class FS, DepthFunc F>
