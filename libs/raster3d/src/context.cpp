@@ -337,8 +337,8 @@ void Context::assemble_shape() {
       for (uint32_t i = 0; i + 1 < n; ++i) line(i, i + 1);
       if (shape_kind_ == Primitive::line_loop && n > 2) line(n - 1, 0);
       break;
-    case Primitive::triangles:
-      for (uint32_t i = 0; i + 2 < n; i += 3) tri(i, i + 1, i + 2);
+    case Primitive::triangles:  // the vertices as they came, whole triangles only
+      tris.insert(tris.end(), v.begin(), v.begin() + std::ptrdiff_t(n - n % 3));
       break;
     case Primitive::triangle_strip:  // every triangle keeps the strip's winding; the provoking vertex is i + 2
       for (uint32_t i = 0; i + 2 < n; ++i) (i % 2 == 0) ? tri(i, i + 1, i + 2) : tri(i + 1, i, i + 2);
