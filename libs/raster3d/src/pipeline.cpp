@@ -100,7 +100,7 @@ PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool
   p.outcode = uint8_t(finite_position(clip) ? outcode(clip) : kNotFinite);
   p.valid = clip[3] > 0;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
   if (!p.valid) return p;
-  p.w = to_window(params, clip);
+  p.inv_w = 1.0f / clip[3];
   p.g = gallium_window(params, clip, made_by_clipping);
   p.X = round_to_int(p.g.x * 256.0f);                            // snap to 1/256 pixel
   p.Y = params.fb_height * 256 - round_to_int(p.g.y * 256.0f);  // mirrored: exactly the GL y-up value
@@ -162,7 +162,7 @@ void depth_plane(const LpPlaneSetup& ps, const GalliumVertex* g, TriangleRecord&
 void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* pv,
                    const float* flat_values, SetupChunk& chunk) {
   if (!(pv[0]->valid && pv[1]->valid && pv[2]->valid)) return;
-  const WindowVertex w[3] = {pv[0]->w, pv[1]->w, pv[2]->w};
+  const float inv_w[3] = {pv[0]->inv_w, pv[1]->inv_w, pv[2]->inv_w};
   const GalliumVertex g[3] = {pv[0]->g, pv[1]->g, pv[2]->g};
   const int32_t X[3] = {pv[0]->X, pv[1]->X, pv[2]->X}, Y[3] = {pv[0]->Y, pv[1]->Y, pv[2]->Y};
   const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
@@ -212,7 +212,7 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
     // Planes of 1/w and of each varying times 1/w (perspective-correct), the y slope turned to GL's y up.
     for (int k = 0; k <= n; ++k) {
       float f[3];
-      for (int i = 0; i < 3; ++i) f[i] = k == 0 ? w[i].inv_w : v[i][3 + k] * w[i].inv_w;
+      for (int i = 0; i < 3; ++i) f[i] = k == 0 ? inv_w[i] : v[i][3 + k] * inv_w[i];
       float dfdx, dfdy;
       if (!ps.gradient(f, dfdx, dfdy)) dfdx = dfdy = 0;
       c[k] = f[ps.order[0]];

@@ -61,11 +61,11 @@ struct GalliumVertex {
 };
 
 /// What triangle setup needs of a vertex, computed once per vertex: the clip planes it is outside of (bit p for
-/// plane p, bit 6 for a NaN or infinite position), both window positions and the snapped 1/256-pixel position (GL
+/// plane p, bit 6 for a NaN or infinite position), the window position, 1/w and the snapped 1/256-pixel position (GL
 /// y up). Not valid when w <= 0 (only possible on a degenerate clipped polygon).
 struct PreparedVertex {
-  WindowVertex w;
   GalliumVertex g;
+  float inv_w;
   int32_t X, Y;
   uint8_t outcode;
   bool valid;
