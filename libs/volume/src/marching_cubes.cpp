@@ -5,6 +5,8 @@
 #include <memory>
 #include <vector>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #if defined(__SSE2__)
 #include <immintrin.h>
 #endif
@@ -275,15 +277,26 @@ class Extractor {
     const int z0 = slab_first_[size_t(s)], z1 = slab_first_[size_t(s) + 1];
     const bool top = s == slabs_ - 1;
     const size_t nx = size_t(d_.x), plane_words = size_t(d_.y) * words_;
-    std::vector<Word> lo(plane_words + 1), hi(plane_words + 1);  // one spare word: bit() may read past a row
-    std::unique_ptr<uint32_t[]> lo_id, hi_id, zid;
+    Scratch& scratch = scratch_.local();
+    if (scratch.lo.empty()) {
+      // One spare word each: bit() may read past a row; nothing writes it, so it stays 0.
+      scratch.lo.assign(plane_words + 1, 0);
+      scratch.hi.assign(plane_words + 1, 0);
+    }
+    std::vector<Word>& lo = scratch.lo;
+    std::vector<Word>& hi = scratch.hi;
+    std::unique_ptr<uint32_t[]>& lo_id = scratch.lo_id;
+    std::unique_ptr<uint32_t[]>& hi_id = scratch.hi_id;
+    std::unique_ptr<uint32_t[]>& zid = scratch.zid;
     Counts counts;
     uint32_t next = 0, center = 0;
     uint32_t* tris = nullptr;
     if constexpr (kWrite) {
-      lo_id.reset(new uint32_t[2 * plane_]);
-      hi_id.reset(new uint32_t[2 * plane_]);
-      zid.reset(new uint32_t[plane_]);
+      if (!zid) {  // only entries written in this slab are read, so stale ones do not matter
+        lo_id.reset(new uint32_t[2 * plane_]);
+        hi_id.reset(new uint32_t[2 * plane_]);
+        zid.reset(new uint32_t[plane_]);
+      }
       next = uint32_t(first_[size_t(s)].vertices);
       center = uint32_t(first_.back().vertices + first_[size_t(s)].centers);
       tris = triangles_ + 3 * first_[size_t(s)].triangles;
@@ -399,6 +412,13 @@ class Extractor {
   int slabs_ = 0;
   std::vector<int> slab_first_;
   std::vector<Counts> first_;
+  /// Each thread's planes of bits and ids, reused from slab to slab (allocated per slab they were megabytes of fresh
+  /// pages each at 512^3, faulted in again for every slab).
+  struct Scratch {
+    std::vector<Word> lo, hi;
+    std::unique_ptr<uint32_t[]> lo_id, hi_id, zid;
+  };
+  mutable tbb::enumerable_thread_specific<Scratch> scratch_;
   V* positions_ = nullptr;
   V* normals_ = nullptr;
   uint32_t* triangles_ = nullptr;
