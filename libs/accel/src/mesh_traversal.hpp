@@ -101,7 +101,7 @@ bool traverse(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBloc
   // 2 gamma(3) (pbrt's conservative rounding), so a ray grazing a box edge is never lost.
   const float inv[3] = {1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
   const int near[3] = {std::signbit(ray.dir.x) ? 3 : 0, std::signbit(ray.dir.y) ? 4 : 1, std::signbit(ray.dir.z) ? 5 : 2};
-  const int far[3] = {near[0] ^ 3, (near[1] + 3) % 6, (near[2] + 3) % 6};
+  const int far[3] = {(near[0] + 3) % 6, (near[1] + 3) % 6, (near[2] + 3) % 6};
   const vf ox = splat(ray.origin.x), oy = splat(ray.origin.y), oz = splat(ray.origin.z);
   const vf ix = splat(inv[0]), iy = splat(inv[1]), iz = splat(inv[2]);
   const vf fx = splat(inv[0] * RayBoxTest::kRobust), fy = splat(inv[1] * RayBoxTest::kRobust),
