@@ -13,6 +13,7 @@
 
 #include "embree_reference.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
 #include "tessera/math/camera.hpp"
 #include "tessera/mesh/convert.hpp"
@@ -156,6 +157,32 @@ TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
       }
     }
   EXPECT_THROW(MeshAccel(torus, MeshAccel::default_settings(), 5), InvalidInput);
+}
+
+TEST(MeshAccel, SameHitsForAnyThreadCount) {
+  // The build is parallel (references, binning, subtrees, triangle blocks); the structure and so every hit and every
+  // traversal count must not depend on the number of threads.
+  const TriMesh mesh = to_tri_mesh(make_torus(1.0, 0.35, 400, 200));  // 160K triangles: parallel binning and tasks
+  std::optional<MeshAccel> one, two;
+  {
+    ThreadLimit limit(1);
+    one.emplace(mesh);
+  }
+  {
+    ThreadLimit limit(2);
+    two.emplace(mesh);
+  }
+  ASSERT_EQ(one->wide_node_count(), two->wide_node_count());
+  for (const Ray& r : random_rays(mesh, 3000, 9)) {
+    Ray a = r, b = r;
+    Hit ha, hb;
+    TraversalStats sa, sb;
+    ASSERT_EQ(one->intersect(a, ha, &sa), two->intersect(b, hb, &sb));
+    EXPECT_EQ(ha.t, hb.t);
+    EXPECT_EQ(ha.prim, hb.prim);
+    EXPECT_EQ(sa.nodes, sb.nodes);
+    EXPECT_EQ(sa.prims, sb.prims);
+  }
 }
 
 TEST(MeshAccel, StatsCountNodesAndTriangles) {
