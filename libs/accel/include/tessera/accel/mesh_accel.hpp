@@ -1,5 +1,5 @@
 #pragma once
-// Ray casting of a triangle mesh: a Bvh over its triangles with the triangle data precomputed and stored in leaf order.
+// Ray casting of a triangle mesh: a Bvh over its triangles collapsed into a wide BVH with SIMD node and triangle tests.
 #include <vector>
 
 #include "tessera/accel/bvh.hpp"
@@ -40,6 +40,7 @@ class MeshAccel {
 
   /// The binary tree the wide one was collapsed from (its boxes, depth and leaf order).
   const Bvh& bvh() const { return bvh_; }
+  /// The mesh's triangle count.
   size_t triangle_count() const { return triangle_count_; }
   /// The wide tree's width (4 or 8; 0 when the mesh is empty) and node count.
   int simd_width() const { return width_; }
