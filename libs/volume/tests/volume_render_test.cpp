@@ -166,6 +166,23 @@ TEST(VolumeRender, SimdAndScalarPathsAgreeAndAPreparedVolumeRendersTheSame) {
   EXPECT_TRUE(std::equal(again.pixels().begin(), again.pixels().end(), twice.pixels().begin()));
 }
 
+TEST(VolumeRender, ThinAndTinyVolumesRenderOnBothPaths) {
+  // Axes of one or two voxels: cells clamp to the grid, corner offsets along a single-voxel axis are 0.
+  for (const glm::ivec3 dims : {glm::ivec3(16, 16, 1), glm::ivec3(1, 9, 9), glm::ivec3(2, 2, 2), glm::ivec3(1, 1, 1)}) {
+    Volume<float> v(dims, 0.0f, Vec3(0.1), Vec3(-0.5));
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y)
+        for (int x = 0; x < dims.x; ++x) v(x, y, z) = float((x * 7 + y * 3 + z * 5) % 11) / 10.0f;
+    auto o = metaball_view();
+    o.transfer = TransferFunction({{0.0f, {1, 1, 1}, 0.0f}, {1.0f, {1, 0.5f, 0.2f}, 0.9f}});
+    for (const bool simd : {true, false}) {
+      o.simd = simd;
+      const ImageRGB img = render_volume(v, o);
+      for (const auto& p : img.pixels()) ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z));
+    }
+  }
+}
+
 TEST(TransferFunction, InterpolatesAndParses) {
   const auto tf = TransferFunction::from_csv("# v,r,g,b,a\n0,0,0,0,0\n10,1,1,1,1\n", "t.csv");
   EXPECT_FLOAT_EQ(tf(5).w, 0.5f);
