@@ -20,6 +20,8 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/parse.hpp"
 
+#include "png_encode.hpp"
+
 namespace tessera {
 namespace {
 
@@ -304,15 +306,19 @@ void write_8bit(const std::filesystem::path& path, Format format, const ImageRGB
                 int jpeg_quality) {
   const int channels = keep_alpha && (format == Format::png || format == Format::tga) ? 4 : 3;
   const int w = image.width(), h = image.height();
-  std::vector<unsigned char> bytes;
-  bytes.reserve(size_t(w) * size_t(h) * size_t(channels));
+  std::vector<unsigned char> bytes(image.pixels().size() * size_t(channels));
+  unsigned char* byte = bytes.data();
   for (const glm::u8vec4& p : image.pixels())
-    for (int c = 0; c < channels; ++c) bytes.push_back(p[c]);
+    for (int c = 0; c < channels; ++c) *byte++ = p[c];
   AtomicFile file(path);
   std::ostream& out = file.stream();
   int ok = 1;
   switch (format) {
-    case Format::png: ok = stbi_write_png_to_func(stb_sink, &out, w, h, channels, bytes.data(), w * channels); break;
+    case Format::png: {
+      const std::string png = detail::encode_png(bytes.data(), w, h, channels);
+      out.write(png.data(), std::streamsize(png.size()));
+      break;
+    }
     case Format::jpg: ok = stbi_write_jpg_to_func(stb_sink, &out, w, h, channels, bytes.data(), jpeg_quality); break;
     case Format::bmp: ok = stbi_write_bmp_to_func(stb_sink, &out, w, h, channels, bytes.data()); break;
     case Format::tga: ok = stbi_write_tga_to_func(stb_sink, &out, w, h, channels, bytes.data()); break;
@@ -414,7 +420,12 @@ DepthImage read_pfm_gray(const std::filesystem::path& path) {
   return image;
 }
 
-ImageRGBA8 to_rgba8(const ImageRGB& image, bool srgb) { return to_rgba8(to_rgba(image), srgb); }
+ImageRGBA8 to_rgba8(const ImageRGB& image, bool srgb) {
+  ImageRGBA8 out(image.width(), image.height());
+  std::transform(image.pixels().begin(), image.pixels().end(), out.pixels().begin(),
+                 [srgb](const glm::vec3& p) { return encode_pixel(glm::vec4(p, 1.f), srgb); });
+  return out;
+}
 
 ImageRGBA8 to_rgba8(const ImageRGBA& image, bool srgb) {
   ImageRGBA8 out(image.width(), image.height());

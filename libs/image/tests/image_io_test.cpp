@@ -14,6 +14,7 @@
 
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/image/metrics.hpp"
 
 namespace tessera {
@@ -110,6 +111,53 @@ TEST_F(ImageIo, PngMatchesAnIndependentDecoder) {
       in >> v;
       ASSERT_EQ(v, p[k]);
     }
+}
+
+// Big enough for several deflate bands (256 KiB each) and for every filter type to win some rows: smooth
+// gradients (Sub, Up, Average, Paeth), flat areas and noise (None).
+ImageRGBA8 banded_test_image(int width, int height) {
+  ImageRGBA8 image = random_rgba8(width, height, 3);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int band = (y / 37) % 4;
+      if (band == 0) image(x, y) = glm::u8vec4(x, y, x + y, 255);
+      if (band == 1) image(x, y) = glm::u8vec4(90, 20, 200, 255);
+      if (band == 2) image(x, y) = glm::u8vec4(x * 3, 255 - y, (x * y) / 7, 128 + (x & 127));
+    }
+  return image;
+}
+
+TEST_F(ImageIo, LargePngsMatchAnIndependentDecoderForAnyThreadCount) {
+  const ImageRGBA8 image = banded_test_image(60, 2500);  // 600 KB of RGBA rows: three bands
+  std::string first_bytes;
+  for (int threads : {1, 2, 3}) {
+    ThreadLimit limit(threads);
+    write_image(path("rgba.png"), image);
+    const std::string bytes = read_file(path("rgba.png"));
+    if (first_bytes.empty()) first_bytes = bytes;
+    EXPECT_EQ(bytes, first_bytes) << threads << " threads";
+  }
+  for (const bool alpha : {true, false}) {
+    const ImageRGBA8 expected = alpha ? image : opaque(image);
+    if (alpha)
+      write_image(path("a.png"), image);
+    else
+      write_image(path("a.png"), to_rgb(to_float(image)));  // the RGB (3-channel) path
+    const auto out = run(kPngReference + " decode " + path("a.png").string());
+    if (!out) GTEST_SKIP() << "python3 is not available";
+    std::istringstream in(*out);
+    int w = 0, h = 0, c = 0;
+    in >> w >> h >> c;
+    ASSERT_EQ(w, image.width());
+    ASSERT_EQ(h, image.height());
+    ASSERT_EQ(c, alpha ? 4 : 3);
+    for (const glm::u8vec4& p : expected.pixels())
+      for (int k = 0; k < c; ++k) {
+        int v = -1;
+        in >> v;
+        ASSERT_EQ(v, p[k]);
+      }
+  }
 }
 
 TEST_F(ImageIo, ReadsPngsFromAnIndependentEncoder) {
