@@ -10,33 +10,6 @@
 namespace tessera::raster3d {
 namespace {
 
-// Immediate-mode batches are drawn once they hold this many vertices (or on any state change): one setup pass of
-// independent triangles, small enough to stay in cache.
-constexpr size_t kBatchVertices = 3 * size_t(detail::kChunkTriangles) * detail::kPassChunks;
-
-// Slots of the direct-mapped cache of recent immediate-mode vertices (a power of two): enough to hold two rows of
-// a finely tessellated grid, small enough to stay in L1/L2.
-constexpr int kVertexCacheBits = 13;
-
-template <class T>
-bool same_bits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
-}
-
-// Fibonacci hashing of a vertex's position and normal (the attributes that tell vertices of a mesh apart; the cache
-// compares all of them anyway), as two independent multiply chains joined at the end: the top bits index the cache.
-uint32_t attribute_hash(const Vec3f& position, const Vec3f& normal) {
-  uint32_t p[3], n[3];
-  std::memcpy(p, &position, sizeof p);
-  std::memcpy(n, &normal, sizeof n);
-  uint32_t hp = 0, hn = 0x7F4A7C15u;
-  for (int k = 0; k < 3; ++k) {
-    hp = (hp ^ p[k]) * 0x9E3779B1u;
-    hn = (hn ^ n[k]) * 0x85EBCA77u;
-  }
-  return ((hp ^ (hn >> 7) ^ (hn << 25)) * 0xC2B2AE3Du) >> (32 - kVertexCacheBits);
-}
-
 template <class T>
 std::vector<T> to_float_array(const auto& values, size_t expected, const char* what) {
   if (!values.empty() && values.size() != expected)
@@ -99,8 +72,11 @@ void Context::initialize(int width, int height) {
   stats_ = DrawStats();
   in_shape_ = false;
   shape_vertices_.clear();
+  shape_target_ = &shape_vertices_;
+  shape_begin_ = 0;
   batch_references_ = 0;
-  vertex_cache_.assign(size_t(1) << kVertexCacheBits, UINT32_MAX);
+  vertex_cache_.assign(size_t(1) << kVertexCacheBits, CachedVertex{});
+  cache_epoch_ = 1;
   batch_ = VertexArrays();
   batch_lines_.clear();
   batch_points_.clear();
@@ -117,7 +93,8 @@ void Context::flush() {
 }
 
 void Context::draw_batch() {
-  batch_references_ = 0;  // the cache's entries become stale: batch_vertex checks them against the batch
+  batch_references_ = 0;
+  new_cache_epoch();  // the cache's entries refer to the batch drawn now
   if (batch_.positions.empty()) return;
   const VertexAttributes attributes = batch_.attributes();
   const auto count = uint32_t(batch_.positions.size());
@@ -260,6 +237,9 @@ void Context::begin(Primitive kind) {
   in_shape_ = true;
   shape_kind_ = kind;
   shape_vertices_.clear();
+  // Independent triangles go straight to the batch's index list; assemble_shape drops an incomplete last one.
+  shape_target_ = kind == Primitive::triangles ? &batch_.indices : &shape_vertices_;
+  shape_begin_ = shape_target_->size();
 }
 
 // Vertices per primitive of the kinds whose long shapes can be cut between primitives, else 0.
@@ -278,32 +258,34 @@ static uint32_t independent_primitive_size(Primitive kind) {
   }
 }
 
-void Context::vertex(double x, double y, double z) {
+void Context::vertex_slow_path(double x, double y, double z) {
   if (!in_shape_) throw InvalidInput("vertex outside begin/end");
   const uint32_t cut = independent_primitive_size(shape_kind_);
-  if (cut && batch_references_ >= kBatchVertices && shape_vertices_.size() % cut == 0) {
+  if (cut && batch_references_ >= kBatchVertices && (shape_target_->size() - shape_begin_) % cut == 0) {
     // A long shape of independent primitives: draw what is complete, so the batch stays cache-sized.
     assemble_shape();
     draw_batch();
+    shape_begin_ = 0;  // both targets are empty now
   }
-  shape_vertices_.push_back(batch_vertex(Vec3f(x, y, z)));
+  shape_target_->push_back(batch_vertex(Vec3f(x, y, z)));
   ++batch_references_;
 }
 
-// The batch index of a vertex with these attributes: a recent equal one (bit for bit, so the vertex shader, a pure
-// function of them, gives the same output) or a new one.
-uint32_t Context::batch_vertex(const Vec3f& position) {
-  uint32_t& slot = vertex_cache_[attribute_hash(position, current_normal_)];
-  if (slot < batch_.positions.size() && same_bits(batch_.positions[slot], position) &&
-      same_bits(batch_.normals[slot], current_normal_) && same_bits(batch_.colors[slot], current_color_) &&
-      same_bits(batch_.uvs[slot], current_uv_))
-    return slot;
-  slot = uint32_t(batch_.positions.size());
+void Context::new_cache_epoch() {
+  if (++cache_epoch_ == 0) {  // wrapped: forget every entry rather than let an old epoch match again
+    vertex_cache_.assign(vertex_cache_.size(), CachedVertex{});
+    cache_epoch_ = 1;
+  }
+}
+
+uint32_t Context::add_batch_vertex(const Vec3f& position, uint32_t slot) {
+  const auto index = uint32_t(batch_.positions.size());
   batch_.positions.push_back(position);
   batch_.normals.push_back(current_normal_);
   batch_.colors.push_back(current_color_);
   batch_.uvs.push_back(current_uv_);
-  return slot;
+  vertex_cache_[slot] = CachedVertex{position, current_normal_, index, cache_epoch_};
+  return index;
 }
 
 void Context::end() {
@@ -313,6 +295,11 @@ void Context::end() {
 }
 
 void Context::assemble_shape() {
+  if (shape_kind_ == Primitive::triangles) {  // the vertices are in place: whole triangles only
+    const size_t n = batch_.indices.size() - shape_begin_;
+    batch_.indices.resize(batch_.indices.size() - n % 3);
+    return;
+  }
   const std::vector<uint32_t>& v = shape_vertices_;
   const auto n = uint32_t(v.size());
   auto& tris = batch_.indices;
@@ -337,8 +324,7 @@ void Context::assemble_shape() {
       for (uint32_t i = 0; i + 1 < n; ++i) line(i, i + 1);
       if (shape_kind_ == Primitive::line_loop && n > 2) line(n - 1, 0);
       break;
-    case Primitive::triangles:  // the vertices as they came, whole triangles only
-      tris.insert(tris.end(), v.begin(), v.begin() + std::ptrdiff_t(n - n % 3));
+    case Primitive::triangles:  // handled above
       break;
     case Primitive::triangle_strip:  // every triangle keeps the strip's winding; the provoking vertex is i + 2
       for (uint32_t i = 0; i + 2 < n; ++i) (i % 2 == 0) ? tri(i, i + 1, i + 2) : tri(i + 1, i, i + 2);

@@ -1,16 +1,11 @@
 #include "tessera/raster3d/gt.hpp"
 
 namespace tessera::gt {
-namespace {
-thread_local raster3d::Context* current = nullptr;
-}  // namespace
-
-void gtMakeCurrent(raster3d::Context* context) { current = context; }
-
-raster3d::Context& gtCurrent() {
-  if (!current) throw InvalidInput("gt call without a current context (call gtMakeCurrent first)");
-  return *current;
+void detail::throw_no_current_context() {
+  throw InvalidInput("gt call without a current context (call gtMakeCurrent first)");
 }
+
+void gtMakeCurrent(raster3d::Context* context) { detail::current_context = context; }
 
 namespace {
 // The model-view stack: every gt matrix call but gtOrtho/gtPerspective acts on it.
@@ -41,8 +36,6 @@ void gtOrtho(double left, double right, double bottom, double top, double near, 
 void gtPerspective(double fovy, double near, double far) { gtCurrent().perspective(fovy, near, far); }
 
 void gtBeginShape(GtShape kind) { gtCurrent().begin(raster3d::Primitive(int(kind))); }
-void gtVertex(double x, double y, double z) { gtCurrent().vertex(x, y, z); }
-void gtNormal(double x, double y, double z) { gtCurrent().normal(Vec3f(x, y, z)); }
 void gtColor(float r, float g, float b) { gtCurrent().color(Vec3f(r, g, b)); }
 void gtTexCoord(double u, double v) { gtCurrent().texcoord(Vec2f(u, v)); }
 void gtEndShape() { gtCurrent().end(); }

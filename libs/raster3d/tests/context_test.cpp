@@ -85,37 +85,42 @@ TEST(Context, ImmediateModeKeepsVerticesThatDifferOnlyInNormalOrColor) {
   // Immediate mode stores a repeated vertex once per batch: the sphere's corners sent with per-face normals and
   // colors (each position with several different attribute sets, signed zeros included) must still equal the
   // batched draw of fully separate vertices.
+  // A second pass shares the normal too, so that only the color (two different ones, alternating from triangle to
+  // triangle, and back) tells the corners apart.
   const TriMesh mesh = to_tri_mesh(make_uv_sphere(24, 12));
-  VertexArrays separate;
-  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
-    const Vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
-               c = mesh.positions[mesh.indices[t + 2]];
-    const Vec3f face(glm::normalize(glm::cross(b - a, c - a)));
-    const Vec3f color(0.8f, 0.5f, t % 2 ? -0.0f : 0.0f);  // equal colors but for the sign of a zero
-    for (const Vec3& p : {a, b, c}) {
-      separate.indices.push_back(uint32_t(separate.positions.size()));
-      separate.positions.emplace_back(p);
-      separate.normals.push_back(face);
-      separate.colors.push_back(color);
-    }
-  }
-  for (ShadingModel shading : {ShadingModel::flat, ShadingModel::gouraud}) {
-    const auto setup = [&](Context& ctx) { ctx.color_material(true); };
-    const Framebuffer batched = render_sphere(shading, [&](Context& ctx) {
-      setup(ctx);
-      ctx.draw(separate);
-    });
-    const Framebuffer immediate = render_sphere(shading, [&](Context& ctx) {
-      setup(ctx);
-      ctx.begin(Primitive::triangles);
-      for (size_t i = 0; i < separate.positions.size(); ++i) {
-        ctx.normal(separate.normals[i]);
-        ctx.color(separate.colors[i]);
-        ctx.vertex(separate.positions[i].x, separate.positions[i].y, separate.positions[i].z);
+  for (const bool face_normals : {true, false}) {
+    VertexArrays separate;
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+      const Vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]],
+                 c = mesh.positions[mesh.indices[t + 2]];
+      const Vec3f face = face_normals ? Vec3f(glm::normalize(glm::cross(b - a, c - a))) : Vec3f(0.6f, 0.0f, 0.8f);
+      const Vec3f color = face_normals ? Vec3f(0.8f, 0.5f, t % 2 ? -0.0f : 0.0f)  // equal but for the sign of a zero
+                                       : (t % 2 ? Vec3f(0.8f, 0.5f, 0.0f) : Vec3f(0.1f, 0.4f, 0.9f));
+      for (const Vec3& p : {a, b, c}) {
+        separate.indices.push_back(uint32_t(separate.positions.size()));
+        separate.positions.emplace_back(p);
+        separate.normals.push_back(face);
+        separate.colors.push_back(color);
       }
-      ctx.end();
-    });
-    EXPECT_TRUE(same_pixels(batched, immediate)) << int(shading);
+    }
+    for (ShadingModel shading : {ShadingModel::flat, ShadingModel::gouraud}) {
+      const auto setup = [&](Context& ctx) { ctx.color_material(true); };
+      const Framebuffer batched = render_sphere(shading, [&](Context& ctx) {
+        setup(ctx);
+        ctx.draw(separate);
+      });
+      const Framebuffer immediate = render_sphere(shading, [&](Context& ctx) {
+        setup(ctx);
+        ctx.begin(Primitive::triangles);
+        for (size_t i = 0; i < separate.positions.size(); ++i) {
+          ctx.normal(separate.normals[i]);
+          ctx.color(separate.colors[i]);
+          ctx.vertex(separate.positions[i].x, separate.positions[i].y, separate.positions[i].z);
+        }
+        ctx.end();
+      });
+      EXPECT_TRUE(same_pixels(batched, immediate)) << int(shading) << " face normals " << face_normals;
+    }
   }
 }
 

@@ -7,6 +7,7 @@
 // The gt layer (gt.hpp) is a thin set of the notes' functions over the current Context.
 #include <array>
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <vector>
 
@@ -94,9 +95,15 @@ class Context {
   const Mat4& model_view() const { return model_view_.top(); }
 
   // ---- Current attributes (glColor, glNormal, glTexCoord): given to the vertices that follow ----
-  void color(const Vec3f& c) { current_color_ = c; }
+  void color(const Vec3f& c) {
+    if (std::memcmp(&c, &current_color_, sizeof c) != 0) new_cache_epoch();
+    current_color_ = c;
+  }
   void normal(const Vec3f& n) { current_normal_ = n; }
-  void texcoord(const Vec2f& uv) { current_uv_ = uv; }
+  void texcoord(const Vec2f& uv) {
+    if (std::memcmp(&uv, &current_uv_, sizeof uv) != 0) new_cache_epoch();
+    current_uv_ = uv;
+  }
 
   // ---- State ----
   /// glViewport, in window coordinates (origin bottom-left); a zero size is the whole framebuffer.
@@ -126,7 +133,15 @@ class Context {
   /// glBegin. Throws InvalidInput when a primitive is already open.
   void begin(Primitive kind);
   /// glVertex: a vertex with the current normal, color and texcoord. Throws InvalidInput outside begin/end.
-  void vertex(double x, double y, double z);
+  /// Inline: the common case appends to the open shape; a full batch or misuse takes the out-of-line path.
+  void vertex(double x, double y, double z) {
+    if (!in_shape_ || batch_references_ >= kBatchVertices) [[unlikely]] {
+      vertex_slow_path(x, y, z);
+      return;
+    }
+    shape_target_->push_back(batch_vertex(Vec3f(x, y, z)));
+    ++batch_references_;
+  }
   /// glEnd: assembles the primitive (an incomplete last triangle/line is dropped). Throws InvalidInput without begin.
   void end();
 
@@ -152,7 +167,49 @@ class Context {
   MatrixStack3& current_stack();
   void assemble_shape();
   void draw_batch();
-  uint32_t batch_vertex(const Vec3f& position);
+  void vertex_slow_path(double x, double y, double z);
+  void new_cache_epoch();
+  uint32_t add_batch_vertex(const Vec3f& position, uint32_t slot);
+
+  // Immediate-mode batches are drawn once they hold this many vertex references (or on any state change): one
+  // setup pass of independent triangles, small enough to stay in cache.
+  static constexpr size_t kBatchVertices = 3 * size_t(detail::kChunkTriangles) * detail::kPassChunks;
+  // Slots of the direct-mapped cache of recent immediate-mode vertices (a power of two): enough to hold two rows of
+  // a finely tessellated grid, small enough to stay in L2.
+  static constexpr int kVertexCacheBits = 13;
+
+  // A cached vertex: its position and normal bits (the key, compared without touching the batch arrays), its batch
+  // index, and the epoch it was stored in. Within an epoch the batch is not drawn and the current color and
+  // texcoord do not change, so equal keys of the same epoch mean bit-identical attributes.
+  struct CachedVertex {
+    Vec3f position, normal;
+    uint32_t index = 0, epoch = 0;
+  };
+
+  // Fibonacci hashing of a vertex's position and normal (the attributes that tell vertices of a mesh apart), as two
+  // independent multiply chains joined at the end: the top bits index the cache.
+  static uint32_t attribute_hash(const Vec3f& position, const Vec3f& normal) {
+    uint32_t p[3], n[3];
+    std::memcpy(p, &position, sizeof p);
+    std::memcpy(n, &normal, sizeof n);
+    uint32_t hp = 0, hn = 0x7F4A7C15u;
+    for (int k = 0; k < 3; ++k) {
+      hp = (hp ^ p[k]) * 0x9E3779B1u;
+      hn = (hn ^ n[k]) * 0x85EBCA77u;
+    }
+    return ((hp ^ (hn >> 7) ^ (hn << 25)) * 0xC2B2AE3Du) >> (32 - kVertexCacheBits);
+  }
+
+  // The batch index of a vertex with these attributes: a recent equal one (bit for bit, so the vertex shader, a pure
+  // function of them, gives the same output) or a new one.
+  uint32_t batch_vertex(const Vec3f& position) {
+    const uint32_t slot = attribute_hash(position, current_normal_);
+    const CachedVertex& c = vertex_cache_[slot];
+    if (c.epoch == cache_epoch_ && std::memcmp(&c.position, &position, sizeof position) == 0 &&
+        std::memcmp(&c.normal, &current_normal_, sizeof current_normal_) == 0)
+      return c.index;
+    return add_batch_vertex(position, slot);
+  }
 
   Framebuffer framebuffer_;
   MatrixStack3 projection_, model_view_;
@@ -170,13 +227,18 @@ class Context {
   // Immediate mode: the open shape's vertices, and the batch of assembled primitives waiting to be drawn.
   bool in_shape_ = false;
   Primitive shape_kind_ = Primitive::triangles;
-  std::vector<uint32_t> shape_vertices_;  // the open shape's vertices: indices into batch_
-  size_t batch_references_ = 0;           // vertex() calls since the batch was last drawn
+  // The open shape's vertices, as indices into batch_, are appended to *shape_target_ from shape_begin_ on:
+  // shape_vertices_, or for GT_TRIANGLES directly the batch's triangle indices.
+  std::vector<uint32_t> shape_vertices_;
+  std::vector<uint32_t>* shape_target_ = &shape_vertices_;
+  size_t shape_begin_ = 0;
+  size_t batch_references_ = 0;  // vertex() calls since the batch was last drawn
   VertexArrays batch_;
   std::vector<uint32_t> batch_lines_, batch_points_;
-  // Batch indices of recent vertices by hash of their attributes: a repeated vertex (a mesh sent as independent
-  // triangles) is stored and shaded once per batch.
-  std::vector<uint32_t> vertex_cache_;
+  // Recent vertices by hash of their attributes: a repeated vertex (a mesh sent as independent triangles) is stored
+  // and shaded once per batch. Entries of an older epoch are stale.
+  std::vector<CachedVertex> vertex_cache_;
+  uint32_t cache_epoch_ = 1;
 };
 
 }  // namespace tessera::raster3d

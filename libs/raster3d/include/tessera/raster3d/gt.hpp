@@ -24,10 +24,20 @@ enum GtShape {
   GT_POLYGON,
 };
 
+namespace detail {
+// The current context of this thread (constinit: read without a TLS wrapper call from the inline functions below).
+inline constinit thread_local raster3d::Context* current_context = nullptr;
+[[noreturn]] void throw_no_current_context();
+}  // namespace detail
+
 /// Makes `context` current for the gt* functions on this thread (null to release). The caller keeps it alive.
 void gtMakeCurrent(raster3d::Context* context);
 /// The current context. Throws InvalidInput when there is none.
-raster3d::Context& gtCurrent();
+inline raster3d::Context& gtCurrent() {
+  if (!detail::current_context) [[unlikely]]
+    detail::throw_no_current_context();
+  return *detail::current_context;
+}
 
 /// gtInitialize(width, height): resizes the current context and resets its state (Context::initialize).
 void gtInitialize(int width, int height);
@@ -49,10 +59,10 @@ void gtLookAt(double ex, double ey, double ez, double cx, double cy, double cz, 
 void gtOrtho(double left, double right, double bottom, double top, double near, double far);
 /// Projection = perspective(fovy radians, the viewport's aspect, near, far).
 void gtPerspective(double fovy, double near, double far);
-/// Immediate mode.
+/// Immediate mode. gtVertex and gtNormal are inline: they are called once per vertex.
 void gtBeginShape(GtShape kind);
-void gtVertex(double x, double y, double z);
-void gtNormal(double x, double y, double z);
+inline void gtVertex(double x, double y, double z) { gtCurrent().vertex(x, y, z); }
+inline void gtNormal(double x, double y, double z) { gtCurrent().normal(Vec3f(x, y, z)); }
 void gtColor(float r, float g, float b);
 void gtTexCoord(double u, double v);
 void gtEndShape();
