@@ -47,6 +47,18 @@ bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t
 
 float max_component(const Vec3f& v) { return std::max({v.x, v.y, v.z}); }
 
+/// x^p for the highlight: by repeated squaring when p is a whole number up to 1024 (the usual shininess; a few
+/// multiplications instead of powf, equal to it within float rounding), else std::pow.
+float highlight_power(float x, float p) {
+  if (!(p >= 0.0f && p <= 1024.0f) || p != std::floor(p)) return std::pow(x, p);
+  float result = 1.0f;
+  for (auto k = uint32_t(p); k != 0; k >>= 1) {
+    if (k & 1) result *= x;
+    x *= x;
+  }
+  return result;
+}
+
 /// The surface color C_r at a hit of `ray`: the diffuse color or the checkerboard's, times the texture.
 Vec3f surface_color(const World& world, const Material& m, const Ray& ray, const SurfaceHit& h) {
   Vec3f c = m.diffuse;
@@ -218,7 +230,7 @@ class Tracer {
         if (highlights) {
           const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
                                                               : glm::dot(n, glm::normalize(ls.dir + e));
-          if (cos_h > 0.0f) highlight = std::pow(cos_h, m.shininess);
+          if (cos_h > 0.0f) highlight = highlight_power(cos_h, m.shininess);
         }
         // The shadow ray last, and only for a term that adds something (a black surface away from its highlight,
         // e.g. glass, needs none).

@@ -73,6 +73,23 @@ inline float sphere_t(const Vec3f& center, float radius, const Ray& ray, float a
   return in_range(ray, t0) ? t0 : t1;
 }
 
+/// Whether the segment [tmin, tmax] of the ray meets the sphere (shadow rays). From outside the sphere no root is
+/// needed: the ray must approach the center and its line pass within the radius, and then the segment enters the
+/// sphere when it reaches the line's closest point to the center or ends inside; otherwise as sphere_t.
+inline bool sphere_blocks(const Vec3f& center, float radius, const Ray& ray, float a, float inv_a) {
+  const Vec3f f = ray.origin - center;
+  const float b = glm::dot(f, ray.dir);
+  const float r2 = radius * radius;
+  if (glm::dot(f, f) <= r2 || ray.tmin < 0) return in_range(ray, sphere_t(center, radius, ray, a, inv_a));
+  if (b >= 0) return false;  // outside, moving away
+  const float closest = -b * inv_a;
+  const Vec3f l = f + closest * ray.dir;
+  if (glm::dot(l, l) > r2) return false;
+  if (closest <= ray.tmax) return true;
+  const Vec3f end = f + ray.tmax * ray.dir;
+  return glm::dot(end, end) <= r2;
+}
+
 /// The ray's parameter at the plane through p with normal n (NaN when parallel), as accel's plane kernel.
 inline float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
   const float denom = glm::dot(n, ray.dir);
@@ -267,11 +284,17 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
 
 bool World::occluded(const Ray& ray) const {
   TESSERA_CHECK(bvh_ != nullptr);
-  for (const FlatPlane& f : flat_planes_)
-    if (f.casts_shadows && in_range(ray, plane_t(f.point, f.normal, ray))) return true;
+  for (const FlatPlane& f : flat_planes_) {
+    // The segment's ends on the same side of the plane (the usual light and point above a floor): no division.
+    const float start = glm::dot(f.normal, ray.origin - f.point);
+    if (f.casts_shadows && !(ray.tmin >= 0 && std::isfinite(ray.tmax) &&
+                             start * glm::dot(f.normal, ray.at(ray.tmax) - f.point) > 0.0f) &&
+        in_range(ray, plane_t(f.point, f.normal, ray)))
+      return true;
+  }
   const float a = glm::dot(ray.dir, ray.dir), inv_a = 1.0f / a;
   for (const FlatSphere& f : flat_spheres_)
-    if (f.casts_shadows && in_range(ray, sphere_t(f.center, f.radius, ray, a, inv_a))) return true;
+    if (f.casts_shadows && sphere_blocks(f.center, f.radius, ray, a, inv_a)) return true;
   for (int i : planes_)
     if (objects_[size_t(i)].casts_shadows && occludes_object(objects_[size_t(i)], ray)) return true;
   if (bvh_objects_.empty()) return false;
