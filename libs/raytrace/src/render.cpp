@@ -84,12 +84,14 @@ bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t
 
 float max_component(const Vec3f& v) { return std::max({v.x, v.y, v.z}); }
 
-/// x^p for the highlight: by repeated squaring when p is a whole number up to 1024 (the usual shininess; a few
-/// multiplications instead of powf, equal to it within float rounding), else std::pow.
+/// x^p for the highlight, x in [0, 1]: by repeated squaring when p is a whole number up to 1024 (the usual shininess;
+/// a few multiplications instead of powf, equal to it within float rounding), else std::pow. A power below 2^-32 is
+/// returned as 0 (squaring on into subnormals costs a hundred cycles a step, and such a highlight adds nothing).
 float highlight_power(float x, float p) {
   if (!(p >= 0.0f && p <= 1024.0f) || p != std::floor(p)) return std::pow(x, p);
   float result = 1.0f;
   for (auto k = uint32_t(p); k != 0; k >>= 1) {
+    if (x < 0x1p-32f) return 0.0f;  // the rest of the product, result x^k, is below 2^-32
     if (k & 1) result *= x;
     x *= x;
   }
