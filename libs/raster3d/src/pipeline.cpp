@@ -78,7 +78,6 @@ inline int32_t round_to_int(float v) { return int32_t(__builtin_rintf(v)); }
 
 inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) / 256)); }
 
-
 // A vertex's window position as Gallium has it: y down for a window-system framebuffer (viewport scale -h/2,
 // translate H - (y + h/2)). The vertex stage's viewport transform (draw_llvm.c) fuses ndc * scale + translate into
 // one multiply-add; the clipper's (draw_pipe_clip.c, plain C) rounds twice for the vertices it makes.
@@ -102,7 +101,7 @@ PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool
   if (!p.valid) return p;
   p.inv_w = 1.0f / clip[3];
   p.g = gallium_window(params, clip, made_by_clipping);
-  p.X = round_to_int(p.g.x * 256.0f);                            // snap to 1/256 pixel
+  p.X = round_to_int(p.g.x * 256.0f);                           // snap to 1/256 pixel
   p.Y = params.fb_height * 256 - round_to_int(p.g.y * 256.0f);  // mirrored: exactly the GL y-up value
   return p;
 }
@@ -156,7 +155,6 @@ void depth_plane(const LpPlaneSetup& ps, const GalliumVertex* g, TriangleRecord&
   r.zdy = dzdy;
 }
 
-
 // Sets up one (clipped) triangle and bins it.
 // Sets up one triangle of vertices v (clip position and varyings) with their window positions pv, and bins it.
 void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* pv,
@@ -170,7 +168,18 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   if ((params.cull == 1 && area < 0) || (params.cull == 2 && area > 0)) return;
   // Counterclockwise in GL window coordinates, so the interior is on the left of every edge.
   const int order[3] = {0, area > 0 ? 1 : 2, area > 0 ? 2 : 1};
-  TriangleRecord r;
+  const int32_t xmin = std::min({X[0], X[1], X[2]}), xmax = std::max({X[0], X[1], X[2]});
+  const int32_t ymin = std::min({Y[0], Y[1], Y[2]}), ymax = std::max({Y[0], Y[1], Y[2]});
+  // Pixels whose centers 256 i + 128 lie in [min, max].
+  const int32_t x0 = std::max(sc.x0, floor_div256(xmin - 128 + 255)),
+                x1 = std::min(sc.x1, floor_div256(xmax - 128) + 1);
+  const int32_t y0 = std::max(sc.y0, floor_div256(ymin - 128 + 255)),
+                y1 = std::min(sc.y1, floor_div256(ymax - 128) + 1);
+  if (x0 >= x1 || y0 >= y1) return;
+  // The record is written in place: a copy from the stack would reload it before its narrow stores are done.
+  const uint32_t index = uint32_t(chunk.records.size());
+  TriangleRecord& r = chunk.records.emplace_back();
+  r.x0 = x0, r.x1 = x1, r.y0 = y0, r.y1 = y1;
   for (int k = 0; k < 3; ++k) {
     const int p = order[k], q = order[(k + 1) % 3];
     Edge& e = r.edges[k];
@@ -181,14 +190,6 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
     const bool inclusive = e.a > 0 || (e.a == 0 && e.b > 0);
     e.c = int64_t(e.a) * (128 - X[p]) + int64_t(e.b) * (128 - Y[p]) - (inclusive ? 0 : 1);
   }
-  const int32_t xmin = std::min({X[0], X[1], X[2]}), xmax = std::max({X[0], X[1], X[2]});
-  const int32_t ymin = std::min({Y[0], Y[1], Y[2]}), ymax = std::max({Y[0], Y[1], Y[2]});
-  // Pixels whose centers 256 i + 128 lie in [min, max].
-  r.x0 = std::max(sc.x0, floor_div256(xmin - 128 + 255));
-  r.x1 = std::min(sc.x1, floor_div256(xmax - 128) + 1);
-  r.y0 = std::max(sc.y0, floor_div256(ymin - 128 + 255));
-  r.y1 = std::min(sc.y1, floor_div256(ymax - 128) + 1);
-  if (r.x0 >= r.x1 || r.y0 >= r.y1) return;
 
   // Depth and varying planes from the unsnapped float window positions, in llvmpipe's arithmetic.
   const LpPlaneSetup ps(g, area > 0);
@@ -220,8 +221,6 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
       cy[k] = -dfdy;
     }
   }
-  const uint32_t index = uint32_t(chunk.records.size());
-  chunk.records.push_back(r);
   ++chunk.rasterized;
   for (int ty = r.y0 / kTileSize; ty <= (r.y1 - 1) / kTileSize; ++ty)
     for (int tx = r.x0 / kTileSize; tx <= (r.x1 - 1) / kTileSize; ++tx)
