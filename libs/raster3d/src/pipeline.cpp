@@ -178,7 +178,7 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   if (x0 >= x1 || y0 >= y1) return;
   // The record is written in place: a copy from the stack would reload it before its narrow stores are done.
   const uint32_t index = uint32_t(chunk.records.size());
-  TriangleRecord& r = chunk.records.emplace_back();
+  TriangleRecord& r = chunk.records.emplace_back(TriangleRecord::Uninitialized{});
   r.x0 = x0, r.x1 = x1, r.y0 = y0, r.y1 = y1;
   for (int k = 0; k < 3; ++k) {
     const int p = order[k], q = order[(k + 1) % 3];

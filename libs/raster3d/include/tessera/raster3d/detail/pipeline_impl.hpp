@@ -32,6 +32,11 @@ struct Edge {
 
 /// A triangle after clipping, viewport, snapping and setup: what the tiles rasterize.
 struct TriangleRecord {
+  struct Uninitialized {};
+  TriangleRecord() = default;  // TriangleRecord{} is zeroed
+  /// Setup fills every member: no zeroing first (a 96-byte `rep stos` per triangle).
+  explicit TriangleRecord(Uninitialized) {}
+
   Edge edges[3];
   int32_t x0, y0, x1, y1;  // covered GL pixels lie in [x0, x1) x [y0, y1) (scissored)
   float za, zdx, zdy;      // the depth plane as llvmpipe evaluates it: window z at image pixel (i, row r) is
