@@ -167,7 +167,7 @@ void World::build() {
     if (plane) {
       flat_planes_.push_back({plane->point, plane->normal, glm::normalize(plane->normal), i, o.casts_shadows});
     } else if (sphere) {
-      flat_spheres_.push_back({sphere->center, sphere->radius, i, o.casts_shadows});
+      flat_spheres_.push_back({sphere->center, sphere->radius, 1.0f / sphere->radius, i, o.casts_shadows});
     } else if (o.is_plane) {
       planes_.push_back(i);
     } else {
@@ -241,7 +241,11 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
   const FlatSphere* sphere = nullptr;
   const FlatPlane* plane = nullptr;
   for (const FlatPlane& f : flat_planes_) {
-    const float t = plane_t(f.point, f.normal, ray);
+    // The plane kernel's t = (n . (p - o)) / (n . d), divided only when it is positive (tmin >= 0: a negative t, e.g.
+    // a ray above a floor going up, is out of range anyway).
+    const float num = glm::dot(f.normal, f.point - ray.origin), denom = glm::dot(f.normal, ray.dir);
+    if (ray.tmin >= 0 && num * denom < 0.0f) continue;
+    const float t = denom == 0 ? std::numeric_limits<float>::quiet_NaN() : num / denom;
     if (in_range(ray, t)) {
       ray.tmax = t;
       plane = &f;
@@ -268,15 +272,19 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
       object = i;
       return true;
     });
-  if (object < 0 && (sphere || plane)) {
-    // The flat winner's point and normal, as the shape kernels compute them.
+  if (object >= 0) {
+    out.hit = hit;
+  } else if (sphere || plane) {
+    // The flat winner's point and normal (the sphere's as (p - c) / r: unit within float rounding).
     object = sphere ? sphere->object : plane->object;
-    hit.t = ray.tmax;
-    hit.point = ray.at(hit.t);
-    hit.normal = sphere ? glm::normalize(hit.point - sphere->center) : plane->unit_normal;
+    out.hit.t = ray.tmax;
+    out.hit.point = ray.at(ray.tmax);
+    out.hit.normal = sphere ? (out.hit.point - sphere->center) * sphere->inv_radius : plane->unit_normal;
+    out.hit.uv = Vec2f(0.0f);
+    out.hit.prim = -1;
+  } else {
+    return false;
   }
-  if (object < 0) return false;
-  out.hit = hit;
   out.object = object;
   finish_hit(objects_[size_t(object)], out);
   return true;

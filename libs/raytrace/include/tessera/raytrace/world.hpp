@@ -91,7 +91,7 @@ class World {
   // The flat list's entries: a fixed sphere or plane placed by the identity.
   struct FlatSphere {
     Vec3f center;
-    float radius;
+    float radius, inv_radius;
     int object;
     bool casts_shadows;
   };
