@@ -207,18 +207,6 @@ class Extractor {
     return {(c[1] - c[-1]) / twice_spacing_.x, (c[dy] - c[-dy]) / twice_spacing_.y, (c[dz] - c[-dz]) / twice_spacing_.z};
   }
 
-  /// Prefetches row y of planes z - 1 .. z + 2, which the normals of a z-edge layer's vertices read: those vertices
-  /// are sparse, so the hardware prefetcher does not follow them, and the planes below and above the layer's two
-  /// missed the cache on most vertices (a quarter of pass 2's time in the profile).
-  void prefetch_gradient_rows(int y, int z) const {
-    if (!o_.normals || y >= d_.y) return;
-    const size_t bytes = sizeof(float) * size_t(d_.x);
-    for (int k = std::max(z - 1, 0); k <= std::min(z + 2, d_.z - 1); ++k) {
-      const char* row = reinterpret_cast<const char*>(data_ + at(0, y, k));
-      for (size_t b = 0; b < bytes; b += 64) __builtin_prefetch(row + b);
-    }
-  }
-
   /// The vertex on the edge from voxel (x, y, z) along `axis`: position and outward normal.
   std::pair<Vec3, Vec3> edge_vertex(int x, int y, int z, int axis) const {
     glm::ivec3 p(x, y, z), q(x, y, z);
@@ -320,7 +308,6 @@ class Extractor {
     for (int z = z0; z < z1; ++z) {
       classify(z + 1, hi.data());
       for (int y = 0; y < d_.y; ++y) {
-        if constexpr (kWrite) prefetch_gradient_rows(y + 2, z);
         const Word* a = lo.data() + size_t(y) * words_;
         const Word* c = hi.data() + size_t(y) * words_;
         for (size_t w = 0; w < words_; ++w) {
