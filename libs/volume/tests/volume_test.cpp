@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
+#include "tessera/core/parallel.hpp"
+#include "tessera/core/rng.hpp"
+
 #include "tessera/volume/procedural.hpp"
 
 namespace tessera {
@@ -40,6 +46,36 @@ TEST(Volume, RangeHistogramAndSlices) {
   EXPECT_EQ(y(0, 1), 0);
   EXPECT_THROW(slice(v, Axis::Z, 2), InvalidInput);
   EXPECT_THROW(parse_axis("w"), InvalidInput);
+}
+
+TEST(Volume, FloatRangeMatchesMinmaxElementForAnySizeAndThreadCount) {
+  // Sizes around the blocks and lanes of the parallel float path; extremes placed in the scalar tail, in a lane,
+  // in a later block; infinities; and NaNs, where minmax_element's own answer must come back.
+  for (const int nx : {1, 7, 16, 17, 67}) {
+    Volume<float> v(glm::ivec3(nx, 50, 41));
+    const size_t n = v.voxel_count();
+    Rng rng{static_cast<uint64_t>(nx)};
+    for (auto& x : v.voxels()) x = float(rng.uniform() * 200 - 100);
+    auto expect_same = [&] {
+      const auto [lo, hi] = std::minmax_element(v.voxels().begin(), v.voxels().end());
+      for (const int threads : {1, 2}) {
+        ThreadLimit limit(threads);
+        const auto [rlo, rhi] = value_range(v);
+        EXPECT_TRUE(rlo == double(*lo) || (std::isnan(rlo) && std::isnan(*lo))) << nx << " " << rlo;
+        EXPECT_TRUE(rhi == double(*hi) || (std::isnan(rhi) && std::isnan(*hi))) << nx << " " << rhi;
+      }
+    };
+    expect_same();
+    v.voxels()[n - 1] = -500;
+    v.voxels()[n / 2 + 5] = 700;
+    expect_same();
+    v.voxels()[70000 % n] = INFINITY;
+    expect_same();
+    v.voxels()[n / 3] = NAN;
+    expect_same();
+    v.voxels()[0] = NAN;
+    expect_same();
+  }
 }
 
 TEST(Volume, ProceduralFieldsAreInsideAtTheirCenters) {
