@@ -32,9 +32,15 @@ constexpr uint32_t kBlock = 16;
 /// noise pattern.
 class SmallPattern {
  public:
-  explicit SmallPattern(uint32_t n)
-      : n_(n), m_(uint32_t(std::ceil(std::sqrt(double(n))))), rows_((n + m_ - 1) / m_) {
+  explicit SmallPattern(uint32_t n) : n_(n) {
     TESSERA_CHECK(n >= 1 && n <= kBlock);
+    m_ = uint32_t(std::ceil(std::sqrt(double(n))));
+    rows_ = (n + m_ - 1) / m_;
+    for (uint32_t s = 0; s < n; ++s) {
+      column_of_[s] = s % m_;
+      row_of_[s] = s / m_;
+    }
+    inv_cells_ = 1.0f / float(m_ * rows_);
   }
 
   /// The n numbers of one pixel, in [0, 1)^2.
@@ -43,12 +49,13 @@ class SmallPattern {
     shuffle(rng, order, n_);
     shuffle(rng, columns, m_);
     shuffle(rng, rows, rows_);
-    const float m = float(m_), r = float(rows_);
     for (uint32_t i = 0; i < n_; ++i) {
-      const uint32_t s = order[i], col = s % m_, row = s / m_;
+      // Cell (col, row) of the m x rows grid, and within it sub-cell rows[row] of rows across, columns[col] of m down:
+      // x = (col + (rows[row] + jx) / rows) / m, y = (row + (columns[col] + jy) / m) / rows.
+      const uint32_t s = order[i], col = column_of_[s], row = row_of_[s];
       const float jx = rng.uniform(), jy = rng.uniform();
-      out[i] = {std::min((float(col) + (float(rows[row]) + jx) / r) / m, 0x1.fffffep-1f),
-                std::min((float(row) + (float(columns[col]) + jy) / m) / r, 0x1.fffffep-1f)};
+      out[i] = {std::min((float(col * rows_ + rows[row]) + jx) * inv_cells_, 0x1.fffffep-1f),
+                std::min((float(row * m_ + columns[col]) + jy) * inv_cells_, 0x1.fffffep-1f)};
     }
   }
 
@@ -59,7 +66,9 @@ class SmallPattern {
     for (uint32_t i = k; i > 1; --i) std::swap(a[i - 1], a[rng.below(i)]);
   }
 
-  uint32_t n_, m_, rows_;
+  uint32_t n_, m_ = 1, rows_ = 1;
+  uint32_t column_of_[kBlock] = {}, row_of_[kBlock] = {};  // sample s's grid cell: s % m, s / m
+  float inv_cells_ = 1.0f;                                  // 1 / (m rows)
 };
 
 /// Stratified numbers of one pixel sample for the first hit; null at deeper bounces.
@@ -102,7 +111,7 @@ float highlight_power(float x, float p) {
 Vec3f surface_color(const World& world, const Material& m, const Ray& ray, const SurfaceHit& h) {
   Vec3f c = m.diffuse;
   if (m.checker > 0.0f) {
-    const Vec3f cell = glm::floor(h.hit.point / m.checker + 1e-4f);
+    const Vec3f cell = glm::floor(h.hit.point * (1.0f / m.checker) + 1e-4f);
     if ((int64_t(cell.x) + int64_t(cell.y) + int64_t(cell.z)) & 1) c = m.checker_color;
   }
   if (m.texture) c *= Vec3f(m.texture->sample(world.texture_uv(ray, h)));

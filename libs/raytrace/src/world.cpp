@@ -73,21 +73,19 @@ inline float sphere_t(const Vec3f& center, float radius, const Ray& ray, float a
   return in_range(ray, t0) ? t0 : t1;
 }
 
-/// Whether the segment [tmin, tmax] of the ray meets the sphere (shadow rays). From outside the sphere no root is
-/// needed: the ray must approach the center and its line pass within the radius, and then the segment enters the
-/// sphere when it reaches the line's closest point to the center or ends inside; otherwise as sphere_t.
-inline bool sphere_blocks(const Vec3f& center, float radius, const Ray& ray, float a, float inv_a) {
+/// Whether the segment [tmin, tmax] of the ray meets the sphere (shadow rays). From outside the sphere neither root
+/// nor division is needed: the ray must approach the center (b = f . d < 0) with its line within the radius
+/// (b^2 >= a c), and then the segment enters the sphere when it reaches the line's closest point to the center
+/// (t = -b / a <= tmax) or ends inside; otherwise as sphere_t.
+inline bool sphere_blocks(const Vec3f& center, float radius, const Ray& ray, float a) {
   const Vec3f f = ray.origin - center;
   const float b = glm::dot(f, ray.dir);
-  const float r2 = radius * radius;
-  if (glm::dot(f, f) <= r2 || ray.tmin < 0) return in_range(ray, sphere_t(center, radius, ray, a, inv_a));
-  if (b >= 0) return false;  // outside, moving away
-  const float closest = -b * inv_a;
-  const Vec3f l = f + closest * ray.dir;
-  if (glm::dot(l, l) > r2) return false;
-  if (closest <= ray.tmax) return true;
+  const float c = glm::dot(f, f) - radius * radius;
+  if (c <= 0 || ray.tmin < 0) return in_range(ray, sphere_t(center, radius, ray, a, 1.0f / a));
+  if (b >= 0 || b * b < a * c) return false;  // moving away, or the line misses
+  if (-b <= ray.tmax * a) return true;
   const Vec3f end = f + ray.tmax * ray.dir;
-  return glm::dot(end, end) <= r2;
+  return glm::dot(end, end) <= radius * radius;
 }
 
 /// The ray's parameter at the plane through p with normal n (NaN when parallel), as accel's plane kernel.
@@ -300,9 +298,9 @@ bool World::occluded(const Ray& ray) const {
         in_range(ray, plane_t(f.point, f.normal, ray)))
       return true;
   }
-  const float a = glm::dot(ray.dir, ray.dir), inv_a = 1.0f / a;
+  const float a = glm::dot(ray.dir, ray.dir);
   for (const FlatSphere& f : flat_spheres_)
-    if (f.casts_shadows && sphere_blocks(f.center, f.radius, ray, a, inv_a)) return true;
+    if (f.casts_shadows && sphere_blocks(f.center, f.radius, ray, a)) return true;
   for (int i : planes_)
     if (objects_[size_t(i)].casts_shadows && occludes_object(objects_[size_t(i)], ray)) return true;
   if (bvh_objects_.empty()) return false;
