@@ -187,7 +187,6 @@ VolumeRenderOptions dvr_options() {
   o.camera.up = {0, 1, 0};
   o.camera.fovy = radians(40.0);
   o.width = o.height = kDvrImage;
-  if (getenv("HVB")) o.block = atoi(getenv("HVB"));
   o.transfer = TransferFunction(
       {{0.0f, {0.9f, 0.6f, 0.4f}, 0.0f}, {0.2f, {0.9f, 0.6f, 0.4f}, 0.5f}, {0.6f, {1.0f, 1.0f, 0.9f}, 1.0f}});
   return o;

@@ -114,26 +114,17 @@ struct PackedVolume {
     const float bound = (hi - lo) / float(std::min({sp.x, sp.y, sp.z}));
     gradient_scale = bound > 0 ? 32767.0f / bound : 0.0f;
     voxels.resize(v.voxel_count());
+    const Vec3f sp_f(sp);
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
-      std::vector<Vec3f> g(size_t(dims.x));
       for (int z = int(z0); z < int(z1); ++z)
-        for (int y = 0; y < dims.y; ++y) {
-          gradient_row(v, y, z, g);
-          const float* row = &v(0, y, z);
-          Corner* out = &voxels[v.index(0, y, z)];
-          for (int x = 0; x < dims.x; ++x) {
-            const Vec3f q = g[size_t(x)] * gradient_scale;
-            out[x] = {int16_t(round_to_int((row[x] - lo) * value_scale) - 32768), int16_t(round_to_int(q.x)),
-                      int16_t(round_to_int(q.y)), int16_t(round_to_int(q.z))};
-          }
-        }
+        for (int y = 0; y < dims.y; ++y) pack_row(v, y, z, sp_f, lo, &voxels[v.index(0, y, z)]);
     });
   }
 
-  /// Volume::gradient for a whole row (central differences, one-sided on the border), without its per-voxel clamps.
-  static void gradient_row(const Volume<float>& v, int y, int z, std::vector<Vec3f>& g) {
+  /// Packs row (y, z): value and Volume::gradient (central differences, one-sided on the border) quantized, in one
+  /// pass without Volume::gradient's per-voxel clamps (only the row's two ends are border voxels along x).
+  void pack_row(const Volume<float>& v, int y, int z, const Vec3f& sp, float lo, Corner* out) const {
     const glm::ivec3 d = v.dims();
-    const Vec3f sp(v.spacing());
     const float* row = &v(0, y, z);
     const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, d.y - 1), z0 = std::max(z - 1, 0), z1 = std::min(z + 1, d.z - 1);
     const float* ylo = &v(0, y0, z);
@@ -141,11 +132,19 @@ struct PackedVolume {
     const float* zlo = &v(0, y, z0);
     const float* zhi = &v(0, y, z1);
     const float sy = y1 > y0 ? 1.0f / (float(y1 - y0) * sp.y) : 0.0f, sz = z1 > z0 ? 1.0f / (float(z1 - z0) * sp.z) : 0.0f;
-    for (int x = 0; x < d.x; ++x) {
+    const auto pack = [&](int x, int x0, int x1, float sx) {
+      const Vec3f q = Vec3f((row[x1] - row[x0]) * sx, (yhi[x] - ylo[x]) * sy, (zhi[x] - zlo[x]) * sz) * gradient_scale;
+      out[x] = {int16_t(round_to_int((row[x] - lo) * value_scale) - 32768), int16_t(round_to_int(q.x)),
+                int16_t(round_to_int(q.y)), int16_t(round_to_int(q.z))};
+    };
+    const auto border = [&](int x) {
       const int x0 = std::max(x - 1, 0), x1 = std::min(x + 1, d.x - 1);
-      const float sx = x1 > x0 ? 1.0f / (float(x1 - x0) * sp.x) : 0.0f;
-      g[size_t(x)] = {(row[x1] - row[x0]) * sx, (yhi[x] - ylo[x]) * sy, (zhi[x] - zlo[x]) * sz};
-    }
+      pack(x, x0, x1, x1 > x0 ? 1.0f / (float(x1 - x0) * sp.x) : 0.0f);
+    };
+    border(0);
+    const float sx = 1.0f / (2.0f * sp.x);
+    for (int x = 1; x + 1 < d.x; ++x) pack(x, x - 1, x + 1, sx);
+    if (d.x > 1) border(d.x - 1);
   }
 
   /// The cell holding voxel coordinates p (clamped to the grid; its lower corner) and p's offset in it.
