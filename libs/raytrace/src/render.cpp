@@ -249,7 +249,7 @@ class Tracer {
     const Vec3f to = light.position - p;
     s.distance = glm::length(to);
     if (!(s.distance > 0.0f)) return s;
-    s.dir = to / s.distance;
+    s.dir = to * (1.0f / s.distance);
     s.color = light.color;
     return s;
   }
@@ -377,6 +377,9 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   if (spp <= kBlock) small.emplace(spp);
   parallel_tiles(w, h, settings.tile_size, [&](const Tile& tile) {
     uint64_t rays = 0;
+    // The hashed patterns beyond kBlock samples, set per pixel; declared per tile so that pixels with few samples
+    // don't pay for clearing them.
+    std::optional<StratifiedPattern> pattern[kDimensions];
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
@@ -384,7 +387,6 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
         // Only the dimensions the scene uses are drawn (each is its own pattern, so skipping one changes no other).
         // With one sample the eye ray goes through the pixel center at mid-shutter. Up to kBlock samples the
         // numbers come from the pixel's Rng (before any bounce uses it), beyond from per-dimension hashed patterns.
-        std::optional<StratifiedPattern> pattern[kDimensions];
         if (!small)
           for (uint32_t dim = 0; dim < kDimensions; ++dim)
             if (used[dim]) pattern[dim].emplace(spp, hash_u32(pixel, dim, settings.seed));
