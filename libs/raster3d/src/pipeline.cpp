@@ -98,11 +98,14 @@ PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool
   PreparedVertex p{};
   p.outcode = uint8_t(finite_position(clip) ? outcode(clip) : kNotFinite);
   p.valid = clip[3] > 0;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
-  if (!p.valid) return p;
+  if (!p.valid || (p.outcode & kNotFinite)) return p;
   p.inv_w = 1.0f / clip[3];
   p.g = gallium_window(params, clip, made_by_clipping);
-  p.X = round_to_int(p.g.x * 256.0f);                           // snap to 1/256 pixel
-  p.Y = params.fb_height * 256 - round_to_int(p.g.y * 256.0f);  // mirrored: exactly the GL y-up value
+  // Snap to 1/256 pixel. A vertex far outside the viewport is replaced by the clipper before anyone reads its snapped
+  // position; the clamp only keeps its conversion to int defined.
+  const auto snap = [](float v) { return round_to_int(std::clamp(v * 256.0f, -0x1p30f, 0x1p30f)); };
+  p.X = snap(p.g.x);
+  p.Y = params.fb_height * 256 - snap(p.g.y);  // mirrored: exactly the GL y-up value
   return p;
 }
 
