@@ -12,8 +12,6 @@
 namespace tessera::detail {
 namespace {
 
-// Deflate with run-length matches only (distance 1, zlib's Z_RLE): after PNG's row filters most redundancy is in
-// runs, so this is 4-5x faster than the default strategy for files 5-10% larger (and smaller than stb's encoder).
 // Raw bytes per deflated band: large enough that restarting the dictionary costs under 1% of the size, small
 // enough that an image of a few hundred rows still splits across threads.
 constexpr size_t kBandBytes = 256 * 1024;
@@ -67,8 +65,9 @@ Band deflate_band(const uint8_t* pixels, int first, int last, size_t row_bytes, 
                size_t(bpp), scratch.data(), &filtered[size_t(y - first) * (row_bytes + 1)]);
   Band band;
   band.raw_bytes = filtered.size();
-  band.adler = adler32(0L, nullptr, 0);
-  band.adler = adler32_z(band.adler, filtered.data(), filtered.size());
+  band.adler = adler32_z(adler32(0L, nullptr, 0), filtered.data(), filtered.size());
+  // Run-length matches only (distance 1, zlib's Z_RLE): after PNG's row filters most redundancy is in runs, so this
+  // is 4-5x faster than the default strategy for files 5-10% larger (and still smaller than stb's encoder).
   z_stream z{};
   if (deflateInit2(&z, Z_DEFAULT_COMPRESSION, Z_DEFLATED, -15, 8, Z_RLE) != Z_OK)
     throw InternalError("zlib deflateInit2 failed");
