@@ -18,6 +18,18 @@ namespace tessera {
 /// first touched. A hint (Linux madvise); does nothing elsewhere or for blocks smaller than one huge page.
 void advise_huge_pages(void* p, size_t bytes);
 
+/// A hint that asks the caches for the line at p (a no-op elsewhere than GCC/Clang). Inline assembly on x86-64,
+/// because GCC 12 drops some __builtin_prefetch calls from inlined loops.
+inline void prefetch_line(const void* p) {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
+#elif defined(__GNUC__) || defined(__clang__)
+  __builtin_prefetch(p);
+#else
+  (void)p;
+#endif
+}
+
 /// An allocator whose resize() leaves new elements uninitialized (for arrays that are written in full afterwards);
 /// blocks of 4 MiB or more are aligned to 2 MiB and rounded up to whole 2 MiB pages advised to use huge pages.
 template <class T>

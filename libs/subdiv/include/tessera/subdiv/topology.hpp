@@ -16,18 +16,6 @@
 
 namespace tessera {
 
-/// A hint that asks the caches for the line at p (a no-op elsewhere than GCC/Clang). Inline assembly on x86-64,
-/// because GCC 12 drops some __builtin_prefetch calls from inlined loops.
-inline void prefetch_line(const void* p) {
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-  asm volatile("prefetcht0 %0" : : "m"(*static_cast<const char*>(p)));
-#elif defined(__GNUC__) || defined(__clang__)
-  __builtin_prefetch(p);
-#else
-  (void)p;
-#endif
-}
-
 class TopologyTables {
  public:
   /// The "no such corner/edge" sentinel (the missing second face of a boundary edge).
