@@ -27,7 +27,7 @@ class TransferFunction {
   explicit TransferFunction(std::vector<Point> points);
   /// Color and opacity at v (clamped to the first and last points).
   Vec4f operator()(float v) const;
-  /// The largest opacity over [lo, hi] (for empty-space skipping).
+  /// The largest opacity over [lo, hi].
   float max_opacity(float lo, float hi) const;
   const std::vector<Point>& points() const { return points_; }
 
