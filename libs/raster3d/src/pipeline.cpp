@@ -158,7 +158,6 @@ void depth_plane(const LpPlaneSetup& ps, const GalliumVertex* g, TriangleRecord&
   r.zdy = dzdy;
 }
 
-// Sets up one (clipped) triangle and bins it.
 // Sets up one triangle of vertices v (clip position and varyings) with their window positions pv, and bins it.
 void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* pv,
                    const float* flat_values, SetupChunk& chunk) {

@@ -167,7 +167,7 @@ using AliasedU32 = uint32_t __attribute__((may_alias));
 [[gnu::always_inline]] inline uint32_t depth24(float z) {
   z = z > 0.0f ? z : 0.0f;
   z = z < 1.0f ? z : 1.0f;
-  return uint32_t(int32_t(__builtin_rintf(z * 16777215.0f)));
+  return uint32_t(int32_t(__builtin_rintf(z * float(kDepthMax))));
 }
 
 /// Whether a fragment of depth d passes against the stored depth s.
@@ -417,7 +417,7 @@ template <DepthFunc F>
   }
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), half = _mm256_set1_ps(0.5f);
   const __m256 rx = _mm256_set1_ps(r.rx), zdx = _mm256_set1_ps(r.zdx), zdy = _mm256_set1_ps(r.zdy);
-  const __m256 za = _mm256_set1_ps(r.za), depth_scale = _mm256_set1_ps(16777215.0f);
+  const __m256 za = _mm256_set1_ps(r.za), depth_scale = _mm256_set1_ps(float(kDepthMax));
   const __m256 c255 = _mm256_set1_ps(255.0f), round_magic = _mm256_set1_ps(12582912.0f);
   const __m256i alpha = _mm256_set1_epi32(int32_t(0xff000000u));
   __m256 pxv[4];
@@ -487,7 +487,7 @@ template <DepthFunc F>
   }
   const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f), half = _mm512_set1_ps(0.5f);
   const __m512 rx = _mm512_set1_ps(r.rx), ry = _mm512_set1_ps(r.ry), zdx = _mm512_set1_ps(r.zdx);
-  const __m512 zdy = _mm512_set1_ps(r.zdy), za = _mm512_set1_ps(r.za), depth_scale = _mm512_set1_ps(16777215.0f);
+  const __m512 zdy = _mm512_set1_ps(r.zdy), za = _mm512_set1_ps(r.za), depth_scale = _mm512_set1_ps(float(kDepthMax));
   const __m512 c255 = _mm512_set1_ps(255.0f), round_magic = _mm512_set1_ps(12582912.0f);
   __m512 pcv[4], pxv[4], pyv[4];
   for (int k = 0; k < 4; ++k) pcv[k] = _mm512_set1_ps(pc[k]), pxv[k] = _mm512_set1_ps(px[k]), pyv[k] = _mm512_set1_ps(py[k]);
