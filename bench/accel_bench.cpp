@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -61,10 +60,10 @@ std::map<std::string, Rates> g_results;
 template <class F>
 std::pair<double, double> timed(F&& f) {
   const auto start = std::chrono::steady_clock::now();
-  const std::clock_t cpu_start = std::clock();
+  const double cpu_start = bench::process_cpu_seconds();
   f();
   return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-          double(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+          bench::process_cpu_seconds() - cpu_start};
 }
 
 double median(std::vector<double> v) {
