@@ -337,8 +337,9 @@ Ray eye_ray(const RayScene& scene, int width, int height, int x, int y, const Ve
 float visible_fraction(const RayScene& scene, const Vec3f& p, const Light& light, int n, uint32_t pattern) {
   uint64_t rays = 0;
   int seen = 0;
+  const StratifiedPattern samples(uint32_t(n), pattern);
   for (int k = 0; k < n; ++k) {
-    const LightSample ls = sample_light(light, p, stratified_sample(uint32_t(k), uint32_t(n), pattern));
+    const LightSample ls = sample_light(light, p, samples.sample(uint32_t(k)));
     seen += visible(scene.world, p, ls, rays) ? 1 : 0;
   }
   return float(seen) / float(n);
