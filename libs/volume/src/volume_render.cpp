@@ -286,12 +286,12 @@ struct SpecularPower {
 };
 
 /// One ray's samples in voxel space: sample k < n is at first + k * delta, except that when the last segment is
-/// shorter than a step (last_length < step) the last sample is at the middle of that segment, `last_point`.
+/// shorter than a step (last_fraction < 1) the last sample is at the middle of that segment, `last_point`.
 struct RaySamples {
   Vec3f first{0.0f}, delta{0.0f}, light{0.0f}, last_point{0.0f};
   int n = 0;
-  float step = 0, last_length = 0;  ///< world step; length of the last segment (at most a step)
-  bool short_last() const { return last_length < step; }
+  float last_fraction = 0;  ///< the last segment's length in steps (at most 1)
+  bool short_last() const { return last_fraction < 1; }
   /// Samples that are a whole step apart (the SIMD path marches these; the scalar one finishes the ray).
   int regular() const { return short_last() ? n - 1 : n; }
 };
@@ -324,7 +324,7 @@ struct Caster {
       // No branch on a clear sample (alpha 0 adds nothing): in noisy data its outcome is a coin toss.
       const Vec4f s = volume.interpolate(cell, offset);
       Vec4f c = table(s.x);
-      if (last) c.w = 1.0f - std::pow(1.0f - c.w, ray.last_length / step);
+      if (last) c.w = 1.0f - std::pow(1.0f - c.w, ray.last_fraction);
       Vec3f rgb(c);
       if (options.shading) {
         const Vec3f g(s.y, s.z, s.w);
@@ -586,11 +586,11 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
     if (!intersect_slabs(box, ray, 1.0f / ray.dir, t0, t1)) return r;
     // Sample k is at the middle of [t0 + k step, min(t1, t0 + (k + 1) step)].
     r.n = int(std::ceil((t1 - t0) / step));
-    r.step = step;
-    r.last_length = t1 - (t0 + float(r.n - 1) * step);
+    const float last_length = t1 - (t0 + float(r.n - 1) * step);
+    r.last_fraction = last_length / step;
     r.first = (ray.at(t0 + 0.5f * step) - origin) * inv_spacing;
     r.delta = ray.dir * step * inv_spacing;
-    r.last_point = (ray.at(t1 - 0.5f * r.last_length) - origin) * inv_spacing;
+    r.last_point = (ray.at(t1 - 0.5f * last_length) - origin) * inv_spacing;
     r.light = -ray.dir;  // headlight: light and viewer at the eye
     return r;
   };
