@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "tessera/math/transform.hpp"
 
@@ -81,14 +82,27 @@ void Context::initialize(int width, int height) {
   batch_points_.clear();
 }
 
+// What a draw's raster jobs read after the draw has returned: the uniforms as they were at the draw, and the fragment
+// shaders that refer to them. The jobs hold it until they are done.
+struct Context::DrawShaders {
+  FixedFunctionUniforms uniforms;
+  PhongFragmentShader phong{&uniforms};
+  ColorFragmentShader color;
+};
+
 Framebuffer& Context::framebuffer() {
-  flush();
+  finish();
   return framebuffer_;
 }
 
 void Context::flush() {
   if (in_shape_) throw InvalidInput("state change or flush between begin and end (missing end)");
   draw_batch();
+}
+
+void Context::finish() {
+  flush();
+  detail::finish_raster(framebuffer_.scratch());
 }
 
 void Context::draw_batch() {
@@ -110,12 +124,12 @@ void Context::draw_batch() {
 }
 
 void Context::swap_buffers() {
-  flush();
+  finish();
   framebuffer_.swap();
 }
 
 void Context::clear(const Vec3f& color) {
-  flush();
+  finish();
   framebuffer_.clear(color);
 }
 
@@ -402,14 +416,18 @@ static void add_stats(DrawStats& total, const DrawStats& d) {
 void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
                                    std::span<const uint32_t> indices) {
   if (indices.empty()) return;
-  const FixedFunctionUniforms u = uniforms();
+  // The vertex stage reads `attributes` before the call returns; the rasterization of the last pass goes on on the
+  // framebuffer's raster thread with the shaders kept alive in `shaders`.
+  const auto shaders = std::make_shared<DrawShaders>();
+  shaders->uniforms = uniforms();
+  const FixedFunctionUniforms* u = &shaders->uniforms;
   const RasterState s = raster_state();
   if (shading_ == ShadingModel::phong) {
-    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices, PhongVertexShader{attributes, &u},
-                                     PhongFragmentShader{&u}));
+    add_stats(stats_, detail::draw_triangles_async(framebuffer_, s, vertex_count, indices,
+                                                   PhongVertexShader{attributes, u}, shaders->phong, shaders));
   } else {
-    add_stats(stats_, draw_triangles(framebuffer_, s, vertex_count, indices, FixedFunctionVertexShader{attributes, &u},
-                                     ColorFragmentShader{}));
+    add_stats(stats_, detail::draw_triangles_async(framebuffer_, s, vertex_count, indices,
+                                                   FixedFunctionVertexShader{attributes, u}, shaders->color, shaders));
   }
 }
 

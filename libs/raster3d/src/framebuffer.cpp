@@ -13,15 +13,46 @@ Framebuffer::Framebuffer(int width, int height) : scratch_(std::make_unique<deta
   depth_ = Image<uint32_t>(width, height, kDepthMax);
 }
 
-Framebuffer::~Framebuffer() = default;
-Framebuffer::Framebuffer(Framebuffer&&) noexcept = default;
-Framebuffer& Framebuffer::operator=(Framebuffer&&) noexcept = default;
+// A raster job in flight writes the buffers through this object: everything that moves, frees or writes them from
+// the caller's side waits for it first.
+void Framebuffer::wait_for_raster() noexcept {
+  if (scratch_) detail::wait_raster(*scratch_);
+}
 
-void Framebuffer::clear_color(const Vec3f& color) { color_.fill(to_color8(color)); }
+Framebuffer::~Framebuffer() { wait_for_raster(); }
 
-void Framebuffer::clear_depth(double depth) { depth_.fill(depth_to_unorm24(depth)); }
+Framebuffer::Framebuffer(Framebuffer&& other) noexcept {
+  other.wait_for_raster();
+  color_ = std::move(other.color_);
+  front_ = std::move(other.front_);
+  depth_ = std::move(other.depth_);
+  scratch_ = std::move(other.scratch_);
+}
 
-void Framebuffer::swap() { std::swap(color_, front_); }
+Framebuffer& Framebuffer::operator=(Framebuffer&& other) noexcept {
+  wait_for_raster();
+  other.wait_for_raster();
+  color_ = std::move(other.color_);
+  front_ = std::move(other.front_);
+  depth_ = std::move(other.depth_);
+  scratch_ = std::move(other.scratch_);
+  return *this;
+}
+
+void Framebuffer::clear_color(const Vec3f& color) {
+  wait_for_raster();
+  color_.fill(to_color8(color));
+}
+
+void Framebuffer::clear_depth(double depth) {
+  wait_for_raster();
+  depth_.fill(depth_to_unorm24(depth));
+}
+
+void Framebuffer::swap() {
+  wait_for_raster();
+  std::swap(color_, front_);
+}
 
 ImageRGB Framebuffer::color_rgb() const {
   ImageRGB out(width(), height());

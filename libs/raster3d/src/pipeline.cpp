@@ -5,7 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
 #include <limits>
+#include <mutex>
+#include <thread>
+#include <utility>
 
 namespace tessera::raster3d::detail {
 namespace {
@@ -309,11 +314,11 @@ FragmentState fragment_state(const RasterState& state) {
   return {depth_on ? state.depth_func : DepthFunc::always, depth_on && state.depth_write};
 }
 
-void setup_pass(RasterScratch& scratch, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
                 size_t triangle_count) {
   const size_t tiles = size_t(params.tiles_x) * params.tiles_y;
-  scratch.chunks.resize(kPassChunks);
-  for (SetupChunk& chunk : scratch.chunks) {
+  pass.resize(kPassChunks);
+  for (SetupChunk& chunk : pass) {
     chunk.records.clear();
     chunk.varyings.clear();
     chunk.rasterized = 0;
@@ -325,9 +330,87 @@ void setup_pass(RasterScratch& scratch, const SetupParams& params, std::span<con
     for (int64_t c = begin; c < end; ++c) {
       const size_t start = first + size_t(c) * kChunkTriangles;
       const size_t count = std::min<size_t>(kChunkTriangles, first + triangle_count - start);
-      setup_chunk(params, indices, start, count, scratch.chunks[size_t(c)]);
+      setup_chunk(params, indices, start, count, pass[size_t(c)]);
     }
   });
+}
+
+// One thread that runs raster jobs one at a time, in order: a one-job slot, filled by submit once the job before is
+// done (llvmpipe's rasterizer thread beside the application's).
+class RasterThread {
+ public:
+  RasterThread() : thread_([this] { run(); }) {}
+  ~RasterThread() {
+    {
+      const std::lock_guard lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_one();
+    thread_.join();  // after the job in the slot, if any
+  }
+
+  void submit(std::function<void()> job) {
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [&] { return !job_; });
+    job_ = std::move(job);
+    lock.unlock();
+    wake_.notify_one();
+  }
+
+  void wait() {
+    std::unique_lock lock(mutex_);
+    done_.wait(lock, [&] { return !job_; });
+  }
+
+  std::exception_ptr take_error() {
+    const std::lock_guard lock(mutex_);
+    return std::exchange(error_, nullptr);
+  }
+
+ private:
+  void run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+      wake_.wait(lock, [&] { return job_ || stop_; });
+      if (!job_) return;
+      lock.unlock();  // submit only replaces an empty slot: the job is not touched while it runs
+      std::exception_ptr error;
+      try {
+        job_();
+      } catch (...) {
+        error = std::current_exception();
+      }
+      lock.lock();
+      if (error && !error_) error_ = error;
+      job_ = nullptr;  // its captures (e.g. what keeps the shaders alive) go here, on this thread
+      done_.notify_all();
+    }
+  }
+
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  std::function<void()> job_;  // the slot: the job running or about to run
+  std::exception_ptr error_;   // the first exception a job ended with, until finish_raster takes it
+  bool stop_ = false;
+  std::thread thread_;  // last: it starts once the members above exist
+};
+
+RasterScratch::RasterScratch() = default;
+RasterScratch::~RasterScratch() = default;
+
+void submit_raster(RasterScratch& scratch, std::function<void()> job) {
+  if (!scratch.raster_thread) scratch.raster_thread = std::make_unique<RasterThread>();
+  scratch.raster_thread->submit(std::move(job));
+}
+
+void finish_raster(RasterScratch& scratch) {
+  if (!scratch.raster_thread) return;
+  scratch.raster_thread->wait();
+  if (std::exception_ptr error = scratch.raster_thread->take_error()) std::rethrow_exception(error);
+}
+
+void wait_raster(RasterScratch& scratch) noexcept {
+  if (scratch.raster_thread) scratch.raster_thread->wait();
 }
 
 std::span<const uint32_t> painter_order(RasterScratch& scratch, const float* vertices, int stride,

@@ -4,6 +4,12 @@
 // state, the hidden-surface method, and the Framebuffer. Immediate mode (begin/vertex/end) buffers vertices into a
 // batch that is drawn through the same path as draw(mesh) when the state changes or the frame is read.
 //
+// Drawing is pipelined as llvmpipe's: the calling thread runs the vertex stage, clipping, setup and binning of a
+// batch (or of a draw's pass of triangles) and hands its tile rasterization to the framebuffer's raster thread, then
+// returns to collect the next batch while the tiles are drawn. Batches are rasterized one at a time in submission
+// order, each with the state it was specified under, so the pixels are those of drawing synchronously. Reading the
+// framebuffer, clearing and swapping wait for the raster thread (finish()).
+//
 // The gt layer (gt.hpp) is a thin set of the notes' functions over the current Context.
 #include <array>
 #include <cstdint>
@@ -46,6 +52,8 @@ struct VertexArrays {
 
 /// An OpenGL 1.x-style rendering context with its own framebuffer.
 class Context {
+  struct DrawShaders;
+
  public:
   /// A context drawing into a width x height framebuffer (cleared black, depth 1), identity matrices, GL defaults:
   /// depth test on with `less`, no culling, Gouraud shading with lighting off (unlit), GL_LIGHT0 on.
@@ -56,13 +64,17 @@ class Context {
   /// Resizes (a new cleared framebuffer) and resets all state to the defaults.
   void initialize(int width, int height);
 
-  /// The framebuffer, after drawing everything pending (flush()).
+  /// The framebuffer, after drawing everything pending (finish()). Read it before the next drawing call: later
+  /// drawing goes on on the raster thread.
   Framebuffer& framebuffer();
-  /// Draws the pending immediate-mode batch (glFlush); every state change calls it first.
+  /// Hands the pending immediate-mode batch to the pipeline (glFlush); every state change calls it first. The batch's
+  /// tile rasterization may still be running on the raster thread when it returns.
   void flush();
-  /// flush(), then presents the back buffer (Framebuffer::swap).
+  /// flush(), then waits until everything is drawn (glFinish).
+  void finish();
+  /// finish(), then presents the back buffer (Framebuffer::swap).
   void swap_buffers();
-  /// Clears the color buffer to `color` and the depth buffer to 1.0.
+  /// Clears the color buffer to `color` and the depth buffer to 1.0 (after finish()).
   void clear(const Vec3f& color);
 
   // ---- Matrices (CTM = CTM * T: the call written last acts first) ----

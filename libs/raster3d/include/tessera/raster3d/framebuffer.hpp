@@ -79,10 +79,12 @@ class Framebuffer {
   /// The depth buffer as window z in [0, 1] (value / (2^24 - 1)), for --depth-out PFM files.
   DepthImage depth_image() const;
 
-  /// Internal: the pipeline's reusable binning memory.
+  /// Internal: the pipeline's reusable binning memory and raster thread.
   detail::RasterScratch& scratch() { return *scratch_; }
 
  private:
+  void wait_for_raster() noexcept;
+
   ImageRGBA8 color_, front_;
   Image<uint32_t> depth_;
   std::unique_ptr<detail::RasterScratch> scratch_;

@@ -99,15 +99,20 @@ class PreparedLighting {
 
 // ---- The fixed-function pipeline as a shader pair ------------------------------------------------------------------
 
-/// An object position (w = 1) through a float32 matrix the way OpenGL on Mesa does it (the fixed-function vertex
-/// program's MUL and MADs): m[0] x + m[1] y + m[2] z + m[3], summed left to right. glm's operator* adds the terms in
-/// pairs, which rounds differently and moves depth by a unit of 2^-24 on many pixels.
-inline Vec4f gl_transform(const Mat4f& m, const Vec3f& p) { return ((m[0] * p.x + m[1] * p.y) + m[2] * p.z) + m[3]; }
+/// m v through a float32 matrix the way OpenGL on Mesa does it (the fixed-function vertex program's MUL and MADs):
+/// m[0] x + m[1] y + m[2] z + m[3] w, summed left to right. glm's operator* adds the terms in pairs, which rounds
+/// differently and moves depth by a unit of 2^-24 on many pixels.
+inline Vec4f gl_transform(const Mat4f& m, const Vec4f& v) {
+  return ((m[0] * v.x + m[1] * v.y) + m[2] * v.z) + m[3] * v.w;
+}
 
-/// The float32 product a b as Mesa forms P * MV (m_matrix.c): each entry's four products summed left to right.
+/// An object position (w = 1) through m: the same sum (m[3] * 1 is exact).
+inline Vec4f gl_transform(const Mat4f& m, const Vec3f& p) { return gl_transform(m, Vec4f(p, 1.0f)); }
+
+/// The float32 product a b as Mesa forms P * MV (m_matrix.c): each column of b through a.
 inline Mat4f gl_matrix_product(const Mat4f& a, const Mat4f& b) {
   Mat4f p;
-  for (int j = 0; j < 4; ++j) p[j] = ((a[0] * b[j].x + a[1] * b[j].y) + a[2] * b[j].z) + a[3] * b[j].w;
+  for (int j = 0; j < 4; ++j) p[j] = gl_transform(a, b[j]);
   return p;
 }
 

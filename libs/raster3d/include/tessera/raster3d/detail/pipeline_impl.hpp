@@ -5,9 +5,11 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <type_traits>
+#include <functional>
 #include <immintrin.h>
+#include <memory>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "tessera/core/error.hpp"
@@ -76,13 +78,36 @@ struct PreparedVertex {
   bool valid;
 };
 
-/// Memory reused from draw to draw, owned by the Framebuffer.
+/// The kPassChunks chunks of one setup pass: what one raster job reads.
+using SetupPass = std::vector<SetupChunk>;
+
+class RasterThread;  // the framebuffer's raster thread (pipeline.cpp)
+
+/// Memory reused from draw to draw, and the raster thread, owned by the Framebuffer.
 struct RasterScratch {
+  RasterScratch();
+  ~RasterScratch();  // waits for the raster thread's job and ends the thread
+
   std::vector<float> vertices;     // vertex stage output: per vertex, clip position (4 floats) then the varyings
   std::vector<PreparedVertex> prepared;  // per vertex, for the triangles that need no clipping
   std::vector<uint32_t> order;     // painter's algorithm: the sorted triangle indices
-  std::vector<SetupChunk> chunks;  // kPassChunks of them
+  // Double buffered: setup fills passes[next_pass] while the raster thread reads the other one.
+  std::array<SetupPass, 2> passes;
+  int next_pass = 0;
+  std::unique_ptr<RasterThread> raster_thread;  // started by the first submit_raster
 };
+
+/// Runs `job` on the scratch's raster thread (started on first use), after every job submitted before it: waits for
+/// the previous job to finish, then hands this one over and returns. So at most one job runs at a time, in
+/// submission order, and on return only this job may still be running.
+void submit_raster(RasterScratch& scratch, std::function<void()> job);
+
+/// Waits until the submitted raster jobs are done; rethrows the exception a job ended with, if any.
+void finish_raster(RasterScratch& scratch);
+
+/// Waits until the submitted raster jobs are done, keeping a job's exception for finish_raster (for destructors
+/// and moves).
+void wait_raster(RasterScratch& scratch) noexcept;
 
 /// What setup needs to know about a draw.
 struct SetupParams {
@@ -97,8 +122,8 @@ struct SetupParams {
 };
 
 /// Clips, culls, snaps and sets up `triangle_count` triangles of `indices` starting at triangle `first`, into
-/// scratch.chunks (one chunk per kChunkTriangles, in parallel), binning each record to the tiles it touches.
-void setup_pass(RasterScratch& scratch, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+/// `pass` (one chunk per kChunkTriangles, in parallel), binning each record to the tiles it touches.
+void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
                 size_t triangle_count);
 
 /// The triangle indices reordered far to near by the window depth of each triangle's centroid (stable), into
@@ -545,10 +570,10 @@ template <DepthFunc F>
 }
 #pragma GCC diagnostic pop
 
-/// Rasterizes the records binned to `tile` of every chunk, in submission order.
+/// Rasterizes the records binned to `tile` of every chunk of the pass, in submission order.
 template <int N, class V, class FS, DepthFunc F>
-void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, int tile, const FS& fs) {
-  RasterScratch& scratch = fb.scratch();
+void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& params, bool depth_write, int tile,
+                 const FS& fs) {
   const int height = fb.height();
   const int tx = tile % params.tiles_x, ty = tile / params.tiles_x;
   const Scissor sc = scissor(params);
@@ -560,7 +585,7 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
   // Small triangles land anywhere in the tile: fetch its depth and color rows at once rather than miss on each.
   // The same for the tile's first records (each spans two cache lines), scattered over the chunks.
   size_t records = 0;
-  for (const SetupChunk& chunk : scratch.chunks)
+  for (const SetupChunk& chunk : binned)
     for (size_t b = 0; b < chunk.bins[tile].size() && records < 128; ++b, ++records) {
       const char* record = reinterpret_cast<const char*>(&chunk.records[chunk.bins[tile][b]]);
       __builtin_prefetch(record);
@@ -572,7 +597,7 @@ void raster_tile(Framebuffer& fb, const SetupParams& params, bool depth_write, i
       __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
       __builtin_prefetch(color.row(height - 1 - j) + i, 1);
     }
-  for (const SetupChunk& chunk : scratch.chunks) {
+  for (const SetupChunk& chunk : binned) {
     const std::vector<uint32_t>& bin = chunk.bins[tile];
     for (size_t b = 0; b < bin.size(); ++b) {
       const TriangleRecord& r = chunk.records[bin[b]];
@@ -720,6 +745,7 @@ DrawStats draw_lines(Framebuffer& framebuffer, const RasterState& state, uint32_
   stats.primitives = indices.size() / 2;
   if (indices.empty()) return stats;
   detail::RasterScratch& scratch = framebuffer.scratch();
+  detail::finish_raster(scratch);  // drawn on this thread, after the triangles before them
   const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
   const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
   const detail::FragmentState fragment = detail::fragment_state(state);
@@ -749,6 +775,7 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
   stats.primitives = indices.size();
   if (indices.empty()) return stats;
   detail::RasterScratch& scratch = framebuffer.scratch();
+  detail::finish_raster(scratch);  // drawn on this thread, after the triangles before them
   const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
   const detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
   const detail::Scissor sc = detail::scissor(params);
@@ -769,34 +796,56 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
   return stats;
 }
 
-template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
-DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
-                         std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
+namespace detail {
+
+/// draw_triangles, except that it returns before the tile rasterization of its last pass is done (the raster thread
+/// goes on with it; finish_raster waits): the caller may collect and set up the next draw meanwhile. `fs`, and what
+/// it refers to, must live until then: the raster jobs hold `keep_alive` until they are done.
+template <class VS, class FS>
+DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                               std::span<const uint32_t> indices, const VS& vs, const FS& fs,
+                               const std::shared_ptr<const void>& keep_alive = nullptr) {
   using V = VaryingsOf<VS>;
   constexpr int n = varying_count<V>;
-  detail::check_indices(indices, vertex_count, 3, "triangle");
+  check_indices(indices, vertex_count, 3, "triangle");
   DrawStats stats;
   stats.primitives = indices.size() / 3;
   if (indices.empty()) return stats;
-  detail::RasterScratch& scratch = framebuffer.scratch();
-  const float* vertices = detail::run_vertex_stage(scratch, vertex_count, vs);
-  detail::SetupParams params = detail::setup_params(framebuffer, state, vertices, n);
-  detail::prepare_vertices(scratch, params, vertex_count);
-  if (state.painter) indices = detail::painter_order(scratch, vertices, 4 + n, indices);
-  const detail::FragmentState fragment = detail::fragment_state(state);
+  RasterScratch& scratch = framebuffer.scratch();
+  // The raster thread only reads the setup passes, so the vertex stage and setup below may overlap its last job.
+  const float* vertices = run_vertex_stage(scratch, vertex_count, vs);
+  SetupParams params = setup_params(framebuffer, state, vertices, n);
+  prepare_vertices(scratch, params, vertex_count);
+  if (state.painter) indices = painter_order(scratch, vertices, 4 + n, indices);
+  const FragmentState fragment = fragment_state(state);
   const size_t triangles = indices.size() / 3;
-  const size_t per_pass = size_t(detail::kChunkTriangles) * detail::kPassChunks;
+  const size_t per_pass = size_t(kChunkTriangles) * kPassChunks;
   const int tiles = params.tiles_x * params.tiles_y;
   for (size_t first = 0; first < triangles; first += per_pass) {
-    detail::setup_pass(scratch, params, indices, first, std::min(per_pass, triangles - first));
-    for (const auto& chunk : scratch.chunks) stats.rasterized += chunk.rasterized;
-    detail::dispatch_depth_func(fragment.func, [&](auto f) {
-      parallel_for(0, tiles, 1, [&](int64_t begin, int64_t end) {
-        for (int64_t t = begin; t < end; ++t)
-          detail::raster_tile<n, V, FS, decltype(f)::value>(framebuffer, params, fragment.depth_write, int(t), fs);
+    // The other pass's job, if any, is the only one that may be running (submit_raster): this one is free.
+    SetupPass& pass = scratch.passes[size_t(scratch.next_pass)];
+    scratch.next_pass ^= 1;
+    setup_pass(pass, params, indices, first, std::min(per_pass, triangles - first));
+    for (const auto& chunk : pass) stats.rasterized += chunk.rasterized;
+    submit_raster(scratch, [&framebuffer, &pass, params, fragment, &fs, tiles, keep_alive] {
+      dispatch_depth_func(fragment.func, [&](auto f) {
+        parallel_for(0, tiles, 1, [&](int64_t begin, int64_t end) {
+          for (int64_t t = begin; t < end; ++t)
+            raster_tile<n, V, FS, decltype(f)::value>(framebuffer, pass, params, fragment.depth_write, int(t), fs);
+        });
       });
     });
   }
+  return stats;
+}
+
+}  // namespace detail
+
+template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
+DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                         std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
+  const DrawStats stats = detail::draw_triangles_async(framebuffer, state, vertex_count, indices, vs, fs);
+  detail::finish_raster(framebuffer.scratch());
   return stats;
 }
 
