@@ -86,8 +86,7 @@ inline int floor_div256(int64_t v) { return int(v >= 0 ? v / 256 : -((-v + 255) 
 // A vertex's window position as Gallium has it: y down for a window-system framebuffer (viewport scale -h/2,
 // translate H - (y + h/2)). The vertex stage's viewport transform (draw_llvm.c) fuses ndc * scale + translate into
 // one multiply-add; the clipper's (draw_pipe_clip.c, plain C) rounds twice for the vertices it makes.
-GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool made_by_clipping) {
-  const float inv_w = 1.0f / clip[3];
+GalliumVertex gallium_window(const SetupParams& params, const float* clip, float inv_w, bool made_by_clipping) {
   const float half_w = float(params.vw) * 0.5f, half_h = float(params.vh) * 0.5f;
   const float translate_x = float(params.vx) + half_w;
   const float translate_y = float(params.fb_height) - (float(params.vy) + half_h);
@@ -97,15 +96,15 @@ GalliumVertex gallium_window(const SetupParams& params, const float* clip, bool 
   return {__builtin_fmaf(x, half_w, translate_x), __builtin_fmaf(y, -half_h, translate_y), z};
 }
 
-}  // namespace
-
+// The window positions of a vertex (clip position `clip`); `made_by_clipping` selects the clipper's viewport
+// arithmetic (two roundings) over the vertex stage's (a fused multiply-add), as llvmpipe.
 PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool made_by_clipping) {
   PreparedVertex p{};
   p.outcode = uint8_t(finite_position(clip) ? outcode(clip) : kNotFinite);
   p.valid = clip[3] > 0;  // only a degenerate polygon on w = 0 survives clipping with w <= 0
   if (!p.valid || (p.outcode & kNotFinite)) return p;
   p.inv_w = 1.0f / clip[3];
-  p.g = gallium_window(params, clip, made_by_clipping);
+  p.g = gallium_window(params, clip, p.inv_w, made_by_clipping);
   // Snap to 1/256 pixel. A vertex far outside the viewport is replaced by the clipper before anyone reads its snapped
   // position; the clamp only keeps its conversion to int defined.
   const auto snap = [](float v) { return round_to_int(std::clamp(v * 256.0f, -0x1p30f, 0x1p30f)); };
@@ -113,6 +112,8 @@ PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool
   p.Y = params.fb_height * 256 - snap(p.g.y);  // mirrored: exactly the GL y-up value
   return p;
 }
+
+}  // namespace
 
 void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count) {
   scratch.prepared.resize(count);

@@ -4,9 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <optional>
+#include <set>
 #include <thread>
 
+#include "tessera/core/parallel.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -267,6 +270,91 @@ TEST(Context, ContextsOnTwoThreadsAtOnce) {
   tb.join();
   EXPECT_TRUE(same_pixels(*a, a_alone));
   EXPECT_TRUE(same_pixels(*b, b_alone));
+}
+
+// A frame that changes some state before nearly every shape, with immediate-mode batches of every size (one
+// triangle to several full batches of ~8-pixel triangles), batched draws, lines, points and a clear in between.
+// With `synchronous` every call is followed by finish(), so nothing is collected or set up while tiles are drawn.
+Framebuffer render_state_churn(bool synchronous) {
+  Context ctx(200, 136);  // 4 x 3 tiles, the last column and row partial
+  const auto step = [&] {
+    if (synchronous) ctx.finish();
+  };
+  const TriMesh sphere = to_tri_mesh(make_uv_sphere(20, 10));
+  ctx.perspective(radians(50), 0.5, 20);
+  ctx.look_at({0, 0.5, 4}, {0, 0, 0}, {0, 1, 0});
+  ctx.light(0, Light{{1, 2, 3, 0}});
+  ctx.clear({0.1f, 0.2f, 0.3f});
+  for (int k = 0; k < 24; ++k) {
+    if (k == 12) ctx.clear({0.3f, 0.1f, 0.1f});  // waits for what is in flight, then wipes it
+    ctx.shading(ShadingModel(k % 4));
+    ctx.material(Material::plastic({0.2f + 0.03f * float(k), 0.5f, 0.9f - 0.03f * float(k)}, 10.0f + float(k)));
+    ctx.depth_func(k % 5 == 4 ? DepthFunc::lequal : DepthFunc::less);
+    ctx.cull(k % 3 == 0 ? CullMode::back : CullMode::none);
+    ctx.push_matrix();
+    ctx.rotate_y(0.3 * k);
+    ctx.translate(0.9 * std::cos(0.5 * k), 0.6 * std::sin(0.7 * k), 0.1 * (k % 7));
+    ctx.scale(0.5, 0.5, 0.5);
+    step();
+    if (k % 6 == 5) {
+      ctx.draw(sphere);
+    } else {
+      ctx.begin(Primitive::triangles);
+      const size_t triangles = k % 6 == 4 ? 1 : sphere.indices.size() / 3;
+      for (size_t i = 0; i < 3 * triangles; ++i) {
+        const uint32_t v = sphere.indices[i];
+        if (i % 7 == 0) ctx.color(Vec3f(float(i % 5) / 4, 0.5f, float(k) / 24));
+        ctx.normal(Vec3f(sphere.normals[v]));
+        ctx.vertex(sphere.positions[v].x, sphere.positions[v].y, sphere.positions[v].z);
+      }
+      ctx.end();
+    }
+    ctx.pop_matrix();
+    step();
+  }
+  // A fine grid over the view: 2 x 140 x 100 triangles of ~1 pixel, several immediate-mode batches in one shape.
+  ctx.shading(ShadingModel::gouraud);
+  ctx.depth_func(DepthFunc::less);
+  ctx.begin(Primitive::triangles);
+  for (int j = 0; j < 100; ++j)
+    for (int i = 0; i < 140; ++i) {
+      const auto corner = [&](int di, int dj) {
+        const double x = -2 + 4.0 * (i + di) / 140, y = -1.5 + 3.0 * (j + dj) / 100;
+        ctx.normal(Vec3f(float(0.3 * std::sin(3 * x)), float(0.3 * std::cos(2 * y)), 1.0f));
+        ctx.vertex(x, y, -0.5 + 0.2 * std::sin(x * y));
+      };
+      corner(0, 0), corner(1, 0), corner(1, 1), corner(0, 0), corner(1, 1), corner(0, 1);
+    }
+  ctx.end();
+  step();
+  ctx.shading(ShadingModel::unlit);
+  ctx.color(Vec3f(1, 1, 0));
+  ctx.begin(Primitive::line_loop);
+  for (int i = 0; i < 12; ++i) ctx.vertex(1.5 * std::cos(0.5 * i), 1.2 * std::sin(0.5 * i), 0.5);
+  ctx.end();
+  ctx.begin(Primitive::points);
+  for (int i = 0; i < 40; ++i) ctx.vertex(-1.8 + 0.09 * i, -1.0, 0.6);
+  ctx.end();
+  return std::move(ctx.framebuffer());
+}
+
+TEST(Context, PipelinedDrawingEqualsDrawingOneCallAtATime) {
+  // The raster thread draws a batch while the caller changes state and collects the next one: every batch must still
+  // be drawn with the state it was specified under, in order, on 1 and 2 threads alike.
+  const Framebuffer synchronous = render_state_churn(true);
+  for (int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    for (int run = 0; run < 3; ++run) EXPECT_TRUE(same_pixels(render_state_churn(false), synchronous)) << threads;
+  }
+  // Not a blank frame: several colors, and the grid covers most of the view.
+  std::set<uint32_t> colors;
+  int background = 0;
+  for (const auto c : synchronous.color().pixels()) {
+    colors.insert(uint32_t(c.x) | uint32_t(c.y) << 8 | uint32_t(c.z) << 16);
+    background += c == glm::u8vec4(77, 26, 26, 255);  // the second clear color
+  }
+  EXPECT_GT(colors.size(), 1000u);
+  EXPECT_LT(background, synchronous.width() * synchronous.height() / 4);
 }
 
 TEST(Context, DoubleBufferingPresentsOnSwap) {

@@ -425,6 +425,19 @@ TEST(Raster, BadIndicesThrow) {
                InvalidInput);
 }
 
+TEST(Raster, FragmentShaderExceptionReachesTheCaller) {
+  // Tiles are rasterized on the framebuffer's raster thread: an exception there is rethrown by the draw, once, and
+  // the next draw works.
+  Framebuffer fb(8, 8);
+  const std::vector<WindowVertexIn> v = {{{0, 0, 0.5f}}, {{8, 0, 0.5f}}, {{0, 8, 0.5f}}};
+  const std::vector<uint32_t> indices = {0, 1, 2};
+  const testing::WindowShader shader{&v, 8, 8};
+  const auto throwing = [](const ColorVaryings&, Vec3f&) -> bool { throw IoError("fragment shader failed"); };
+  EXPECT_THROW(draw_triangles(fb, RasterState{}, 3, indices, shader, throwing), IoError);
+  EXPECT_EQ(draw_triangles(fb, RasterState{}, 3, indices, shader, ColorFragmentShader{}).rasterized, 1u);
+  EXPECT_TRUE(covered_gl(fb, 1, 1));
+}
+
 TEST(Raster, FillSpanGivesTheSamePixelsInEveryInstructionSet) {
   // The constant-color span loop runs as AVX-512, AVX2 or SSE2 depending on the CPU: the same depths and colors on
   // random spans, depth planes and stored depths (the loop's clamps included) in each set the CPU has.

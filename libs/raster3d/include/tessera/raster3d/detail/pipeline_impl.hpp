@@ -144,11 +144,8 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
 /// The perspective divide and viewport transform of a clip-space position (float32, as OpenGL).
 WindowVertex to_window(const SetupParams& params, const float* clip);
 
-/// The window positions of a vertex (clip position `clip`); `made_by_clipping` selects the clipper's viewport
-/// arithmetic (two roundings) over the vertex stage's (a fused multiply-add), as llvmpipe.
-PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool made_by_clipping);
-
-/// prepare_vertex for the vertex stage's `count` vertices in parallel, into scratch.prepared and params.prepared.
+/// The window positions of the vertex stage's `count` vertices (PreparedVertex), in parallel, into scratch.prepared
+/// and params.prepared.
 void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count);
 
 /// The scissor rectangle in GL window pixels: viewport intersected with the framebuffer.
