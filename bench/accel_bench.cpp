@@ -1,8 +1,10 @@
-// Ray casting of triangle meshes: Tessera's MeshAccel (wide BVH collapsed from a binned-SAH tree) against Embree 3's rtcIntersect1 on the same
-// mesh and rays in the same run. Incoherent rays (origins uniform in the mesh box scaled 1.1x, directions uniform on
-// the sphere) and coherent primary rays (1024 x 1024 eye rays), on 1 thread, 2 threads and all threads; BVH build in
-// Mprims/s against Embree's default (medium-quality) build. A table at the end gives the ratios Tessera / Embree from
-// the median wall and process CPU times of the iterations, and Tessera's 2-thread scaling (wall).
+// Ray casting of triangle meshes: Tessera's MeshAccel (wide BVH collapsed from a binned-SAH tree) against Embree 3's
+// rtcIntersect1 on the same mesh and rays in the same run. Incoherent rays (origins uniform in the mesh box scaled
+// 1.1x, directions uniform on the sphere) and coherent primary rays (1024 x 1024 eye rays), on 1 thread, 2 threads and
+// all threads; the incoherent rays also as streams (MeshAccel's span intersect against Embree's rtcIntersect1M, 1024
+// rays a call); BVH build in Mprims/s against Embree's default (medium-quality) build. A table at the end gives the
+// ratios Tessera / Embree from the median wall and process CPU times of the iterations, and both 2-thread scalings
+// (wall).
 //
 //   cmake -S . -B build/h-accel -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON
 //   ninja -C build/h-accel bench_accel && build/h-accel/bench/bench_accel
@@ -19,6 +21,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -107,16 +110,42 @@ std::string key(const std::string& mesh, const char* what, const char* who, int 
   return mesh + "/" + what + "/" + who + "/" + std::to_string(threads);
 }
 
+constexpr int64_t kChunk = 1024;  // rays per parallel task (and per stream call)
+
 /// Casts every ray in parallel chunks; returns the number of hits (kept so nothing is optimized away).
 template <class Cast>
 long cast_all(const std::vector<Ray>& rays, Cast&& cast) {
   std::atomic<long> hits{0};
-  parallel_for(0, int64_t(rays.size()), 1024, [&](int64_t begin, int64_t end) {
+  parallel_for(0, int64_t(rays.size()), kChunk, [&](int64_t begin, int64_t end) {
     long local = 0;
     for (int64_t i = begin; i < end; ++i) local += cast(rays[size_t(i)]);
     hits += local;
   });
   return hits;
+}
+
+/// Casts the rays as streams of up to kChunk rays (cast(rays) returns the hits of the span), in parallel.
+template <class Cast>
+long cast_streams(const std::vector<Ray>& rays, Cast&& cast) {
+  std::atomic<long> hits{0};
+  parallel_for(0, int64_t(rays.size()), kChunk, [&](int64_t begin, int64_t end) {
+    for (int64_t b = begin; b < end; b += kChunk)
+      hits += cast(std::span<const Ray>(rays).subspan(size_t(b), size_t(std::min(kChunk, end - b))));
+  });
+  return hits;
+}
+
+long cast_stream_tessera(const MeshAccel& accel, std::span<const Ray> rays) {
+  Hit hits[kChunk];
+  accel.intersect(rays, std::span<Hit>(hits, rays.size()));
+  return std::count_if(hits, hits + rays.size(), [](const Hit& h) { return h.prim >= 0; });
+}
+
+long cast_stream_embree(const reference::EmbreeMesh& embree, std::span<const Ray> rays) {
+  int prims[kChunk];
+  float t[kChunk];
+  embree.intersect(rays, std::span<int>(prims, rays.size()), std::span<float>(t, rays.size()));
+  return std::count_if(prims, prims + rays.size(), [](int p) { return p >= 0; });
 }
 
 bool cast_tessera(const MeshAccel& accel, const Ray& r) {
@@ -130,34 +159,39 @@ bool cast_embree(const reference::EmbreeMesh& embree, const Ray& r) {
   return embree.intersect(r, t) >= 0;
 }
 
-/// Rays per second of one configuration: range(0) 0 = incoherent, 1 = primary; range(1) 0 = Tessera, 1 = Embree;
-/// range(2) threads (0 = all). The best rate over the iterations goes to the summary.
+/// Rays per second of one configuration: range(0) 0 = incoherent, 1 = primary; range(1) 0 = Tessera, 1 = Embree,
+/// 2 = Tessera streams, 3 = Embree streams; range(2) threads (0 = all). The rates from the median times go to the
+/// summary.
 void BM_Rays(benchmark::State& state, const std::string& mesh) {
   if (!have_mesh(mesh)) {
     state.SkipWithError("mesh not available (TESSERA_SHARED_DATA)");
     return;
   }
   Workload& w = workload(mesh);
-  const bool primary = state.range(0) == 1, embree = state.range(1) == 1;
+  const bool primary = state.range(0) == 1, embree = state.range(1) % 2 == 1, stream = state.range(1) >= 2;
   const int threads = int(state.range(2));
   const ThreadLimit limit(threads);
   const std::vector<Ray>& rays = primary ? w.primary : w.random;
   long hits = 0;
   std::vector<double> wall, cpu;
   for (auto _ : state) {
-    const auto [s, c] = timed([&] {
-      hits = embree ? cast_all(rays, [&](const Ray& r) { return cast_embree(*w.embree, r); })
-                    : cast_all(rays, [&](const Ray& r) { return cast_tessera(*w.accel, r); });
+    const auto [seconds, cpu_seconds] = timed([&] {
+      if (stream)
+        hits = embree ? cast_streams(rays, [&](std::span<const Ray> s) { return cast_stream_embree(*w.embree, s); })
+                      : cast_streams(rays, [&](std::span<const Ray> s) { return cast_stream_tessera(*w.accel, s); });
+      else
+        hits = embree ? cast_all(rays, [&](const Ray& r) { return cast_embree(*w.embree, r); })
+                      : cast_all(rays, [&](const Ray& r) { return cast_tessera(*w.accel, r); });
     });
-    wall.push_back(s);
-    cpu.push_back(c);
+    wall.push_back(seconds);
+    cpu.push_back(cpu_seconds);
     benchmark::DoNotOptimize(hits);
   }
   state.counters["rays_per_s"] =
       benchmark::Counter(double(rays.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["hit_fraction"] = double(hits) / double(rays.size());
-  g_results[key(mesh, primary ? "primary" : "random", embree ? "embree" : "tessera", threads)] =
-      rates(double(rays.size()), wall, cpu);
+  const char* what = primary ? "primary" : stream ? "stream" : "random";
+  g_results[key(mesh, what, embree ? "embree" : "tessera", threads)] = rates(double(rays.size()), wall, cpu);
 }
 
 /// BVH build in Mprims/s: range(0) 0 = Tessera, 1 = Embree; range(1) threads (0 = all).
@@ -200,7 +234,8 @@ void register_all() {
     rays->Unit(benchmark::kMillisecond);
     for (int primary : {0, 1})
       for (int threads : {1, 2, 0})
-        for (int embree : {0, 1}) rays->Args({primary, embree, threads});
+        for (int who : {0, 1, 2, 3})
+          if (!primary || who < 2) rays->Args({primary, who, threads});
     auto* build = benchmark::RegisterBenchmark(("build/" + mesh).c_str(), BM_Build, mesh);
     build->ArgNames({"embree", "threads"})->UseRealTime()->MeasureProcessCPUTime();
     build->Unit(benchmark::kMillisecond);
@@ -210,23 +245,27 @@ void register_all() {
 }
 
 void print_summary() {
-  std::printf("\n%-8s %-8s %-7s %12s %12s %8s %12s %12s %8s %10s\n", "mesh", "what", "threads", "tessera/s",
-              "embree/s", "ratio", "tessera/cpu", "embree/cpu", "cpu-ratio", "2T-scaling");
+  std::printf("\n%-8s %-8s %-7s %12s %12s %8s %12s %12s %8s %10s %10s\n", "mesh", "what", "threads", "tessera/s",
+              "embree/s", "ratio", "tessera/cpu", "embree/cpu", "cpu-ratio", "2T-tessera", "2T-embree");
   for (const std::string mesh : {"bunny", "torus1M"})
-    for (const char* what : {"random", "primary", "build"})
+    for (const char* what : {"random", "stream", "primary", "build"})
       for (int threads : {1, 2, 0}) {
         const auto t = g_results.find(key(mesh, what, "tessera", threads));
         const auto e = g_results.find(key(mesh, what, "embree", threads));
         if (t == g_results.end() || e == g_results.end()) continue;
-        const auto one = g_results.find(key(mesh, what, "tessera", 1));
-        const double scaling = threads == 2 && one != g_results.end() ? t->second.wall / one->second.wall : 0;
-        std::printf("%-8s %-8s %-7s %12.4g %12.4g %8.3f %12.4g %12.4g %8.3f %10s\n", mesh.c_str(), what,
+        // The 2-thread row's wall rate over the 1-thread row's, of each.
+        const auto scaling = [&](const char* who, double rate) {
+          const auto one = g_results.find(key(mesh, what, who, 1));
+          return threads == 2 && one != g_results.end() ? std::to_string(rate / one->second.wall).substr(0, 5) : "";
+        };
+        std::printf("%-8s %-8s %-7s %12.4g %12.4g %8.3f %12.4g %12.4g %8.3f %10s %10s\n", mesh.c_str(), what,
                     threads == 0 ? "all" : std::to_string(threads).c_str(), t->second.wall, e->second.wall,
                     t->second.wall / e->second.wall, t->second.cpu, e->second.cpu, t->second.cpu / e->second.cpu,
-                    scaling > 0 ? std::to_string(scaling).substr(0, 5).c_str() : "");
+                    scaling("tessera", t->second.wall).c_str(), scaling("embree", e->second.wall).c_str());
       }
   std::printf("(rates from median times: rays/s, or primitives/s for build, per wall second and per CPU second of the\n"
-              " whole process; %d hardware threads; load average %.2f)\n",
+              " whole process; stream = the random rays 1024 a call, MeshAccel's span intersect vs rtcIntersect1M;\n"
+              " %d hardware threads; load average %.2f)\n",
               tessera::thread_count(), bench::load_average());
 }
 

@@ -1,6 +1,7 @@
 // Embree 3 as the reference ray caster of the accel tests and benchmark.
 #include "embree_reference.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -35,9 +36,9 @@ EmbreeMesh::~EmbreeMesh() {
   rtcReleaseDevice(impl_->device);
 }
 
-int EmbreeMesh::intersect(const Ray& ray, float& t) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+namespace {
+
+RTCRayHit to_embree(const Ray& ray) {
   RTCRayHit rh{};
   rh.ray.org_x = ray.origin.x;
   rh.ray.org_y = ray.origin.y;
@@ -49,9 +50,34 @@ int EmbreeMesh::intersect(const Ray& ray, float& t) const {
   rh.ray.tfar = ray.tmax;
   rh.ray.mask = ~0u;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+}  // namespace
+
+int EmbreeMesh::intersect(const Ray& ray, float& t) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh = to_embree(ray);
   rtcIntersect1(impl_->scene, &context, &rh);
   t = rh.ray.tfar;
   return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : int(rh.hit.primID);
+}
+
+void EmbreeMesh::intersect(std::span<const Ray> rays, std::span<int> prims, std::span<float> t) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);  // flags: incoherent
+  constexpr size_t kChunk = 256;
+  RTCRayHit rh[kChunk];
+  for (size_t begin = 0; begin < rays.size(); begin += kChunk) {
+    const size_t n = std::min(kChunk, rays.size() - begin);
+    for (size_t i = 0; i < n; ++i) rh[i] = to_embree(rays[begin + i]);
+    rtcIntersect1M(impl_->scene, &context, rh, unsigned(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      t[begin + i] = rh[i].ray.tfar;
+      prims[begin + i] = rh[i].hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1 : int(rh[i].hit.primID);
+    }
+  }
 }
 
 }  // namespace tessera::reference

@@ -15,8 +15,8 @@ namespace tessera {
 
 namespace {
 
-/// Collapses the binary tree into a wide one (Wald et al. 2008, "Getting rid of packets"): a node takes its two children,
-/// then repeatedly replaces the interior child of largest area by that child's two children, until it has W.
+/// Collapses the binary tree into a wide one (Wald et al. 2008, "Getting rid of packets"): a node takes its two
+/// children, then repeatedly replaces the interior child of largest area by that child's two children, until it has W.
 template <int W>
 class Collapser {
  public:
@@ -112,14 +112,12 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
   }
   // Blocks of 4 triangles, leaf after leaf (leaves come in depth-first order, which is the order of prim_indices).
   std::vector<int32_t> leaf_refs(nodes.size(), 0);
-  std::vector<int32_t> leaf_first_block(nodes.size(), 0);
   int64_t block_count = 0;
   for (size_t i = 0; i < nodes.size(); ++i) {
     if (nodes[i].count == 0) continue;
     const int blocks = (nodes[i].count + 3) / 4;
     if (block_count + blocks > (int64_t(1) << 26))
       throw InvalidInput("MeshAccel: " + std::to_string(nt) + " triangles, more than supported");
-    leaf_first_block[i] = int32_t(block_count);
     leaf_refs[i] = leaf_ref(int(block_count), blocks);
     block_count += blocks;
   }
@@ -129,8 +127,9 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     for (int64_t i = begin; i < end; ++i) {
       const BvhNode& n = nodes[size_t(i)];
       if (n.count == 0) continue;
+      const int first_block = leaf_first_block(leaf_refs[size_t(i)]);
       for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
-        TriangleBlock& b = blocks_[size_t(leaf_first_block[size_t(i)] + k / 4)];
+        TriangleBlock& b = blocks_[size_t(first_block + k / 4)];
         const int lane = k % 4;
         Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
         int index = -1;
@@ -161,38 +160,44 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
   if (width_ == 0) return false;
-  mesh_traversal::Nearest nearest;
-  const bool found =
-      width_ == 8 ? mesh_traversal::intersect8(nodes8_.data(), blocks_.data(), root_, ray, nearest, stats)
-                  : mesh_traversal::intersect4(nodes4_.data(), blocks_.data(), root_, ray, nearest, stats);
-  if (!found) return false;
-  const TriangleBlock& b = blocks_[size_t(nearest.block)];
-  const int l = nearest.lane;
-  const Vec3f e1(b.e1[0][l], b.e1[1][l], b.e1[2][l]), e2(b.e2[0][l], b.e2[1][l], b.e2[2][l]);
-  hit.t = ray.tmax;
-  hit.point = ray.at(ray.tmax);
-  hit.normal = glm::normalize(glm::cross(e1, e2));
-  hit.uv = Vec2f(nearest.b1, nearest.b2);
-  hit.prim = b.index[l];
-  return true;
+  return width_ == 8 ? mesh_traversal::intersect8(nodes8_.data(), blocks_.data(), root_, ray, hit, stats)
+                     : mesh_traversal::intersect4(nodes4_.data(), blocks_.data(), root_, ray, hit, stats);
+}
+
+void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const {
+  if (hits.size() != rays.size())
+    throw InvalidInput("MeshAccel::intersect: " + std::to_string(rays.size()) + " rays but " +
+                       std::to_string(hits.size()) + " hits");
+  if (width_ == 0) {
+    std::fill(hits.begin(), hits.end(), Hit{});
+  } else if (width_ == 8) {
+    mesh_traversal::intersect_stream8(nodes8_.data(), blocks_.data(), root_, rays, hits);
+  } else {
+    mesh_traversal::intersect_stream4(nodes4_.data(), blocks_.data(), root_, rays, hits);
+  }
 }
 
 bool MeshAccel::occluded(const Ray& ray) const {
   if (width_ == 0) return false;
-  Ray r = ray;
-  return width_ == 8 ? mesh_traversal::occluded8(nodes8_.data(), blocks_.data(), root_, r)
-                     : mesh_traversal::occluded4(nodes4_.data(), blocks_.data(), root_, r);
+  return width_ == 8 ? mesh_traversal::occluded8(nodes8_.data(), blocks_.data(), root_, ray)
+                     : mesh_traversal::occluded4(nodes4_.data(), blocks_.data(), root_, ray);
 }
 
 namespace mesh_traversal {
 
 bool intersect4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-                Nearest& nearest, TraversalStats* stats) {
-  return nearest_hit<4>(nodes, blocks, root, ray, nearest, stats);
+                Hit& hit, TraversalStats* stats) {
+  return nearest_hit<4>(nodes, blocks, root, ray, hit, stats);
 }
 
-bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {
-  return traverse<4, true, false>(nodes, blocks, root, ray, nullptr, nullptr);
+void intersect_stream4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+                       std::span<const Ray> rays, std::span<Hit> hits) {
+  nearest_hits<4>(nodes, blocks, root, rays, hits);
+}
+
+bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+               const Ray& ray) {
+  return any_hit<4>(nodes, blocks, root, ray);
 }
 
 }  // namespace mesh_traversal

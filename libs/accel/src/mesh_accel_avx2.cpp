@@ -4,12 +4,18 @@
 namespace tessera::mesh_traversal {
 
 bool intersect8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-                Nearest& nearest, TraversalStats* stats) {
-  return nearest_hit<8>(nodes, blocks, root, ray, nearest, stats);
+                Hit& hit, TraversalStats* stats) {
+  return nearest_hit<8>(nodes, blocks, root, ray, hit, stats);
 }
 
-bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray) {
-  return traverse<8, true, false>(nodes, blocks, root, ray, nullptr, nullptr);
+void intersect_stream8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+                       std::span<const Ray> rays, std::span<Hit> hits) {
+  nearest_hits<8>(nodes, blocks, root, rays, hits);
+}
+
+bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+               const Ray& ray) {
+  return any_hit<8>(nodes, blocks, root, ray);
 }
 
 }  // namespace tessera::mesh_traversal

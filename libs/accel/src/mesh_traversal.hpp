@@ -6,68 +6,34 @@
 
 #include <cmath>
 #include <cstdint>
+#include <new>
+#include <span>
+#include <utility>
 
 #include "tessera/accel/mesh_accel.hpp"
 
 namespace tessera::mesh_traversal {
 
-/// The result of a nearest-hit traversal: the block and lane of the nearest triangle and its barycentrics.
-struct Nearest {
-  int block = -1, lane = 0;
-  float b1 = 0, b2 = 0;
-};
-
-/// The entry points: 4 wide with SSE (mesh_accel.cpp), 8 wide with AVX2 (mesh_accel_avx2.cpp).
+/// The entry points: 4 wide with SSE (mesh_accel.cpp), 8 wide with AVX2 (mesh_accel_avx2.cpp). intersect fills hit as
+/// MeshAccel::intersect documents; intersect_stream fills hits[i] for rays[i] the same way (Hit{} for a miss).
 bool intersect4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-                Nearest& nearest, TraversalStats* stats);
-bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray);
+                Hit& hit, TraversalStats* stats);
+void intersect_stream4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+                       std::span<const Ray> rays, std::span<Hit> hits);
+bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+               const Ray& ray);
 bool intersect8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-                Nearest& nearest, TraversalStats* stats);
-bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray);
+                Hit& hit, TraversalStats* stats);
+void intersect_stream8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+                       std::span<const Ray> rays, std::span<Hit> hits);
+bool occluded8(const MeshAccel::WideNode<8>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+               const Ray& ray);
 
 // Everything below is compiled once per including file (an unnamed namespace), so the AVX2 file's copies never replace
 // the baseline file's at link time.
 namespace {
 
-typedef float v4f __attribute__((vector_size(16)));
-typedef int32_t v4i __attribute__((vector_size(16)));
-
-inline v4f splat4(float x) { return v4f{x, x, x, x}; }
-inline int mask_of(v4i m) { return _mm_movemask_ps(reinterpret_cast<__m128>(m)); }
-
-/// A ray's origin and direction, splatted.
-struct RayLanes {
-  v4f ox, oy, oz, dx, dy, dz;
-  explicit RayLanes(const Ray& r)
-      : ox(splat4(r.origin.x)), oy(splat4(r.origin.y)), oz(splat4(r.origin.z)), dx(splat4(r.dir.x)),
-        dy(splat4(r.dir.y)), dz(splat4(r.dir.z)) {}
-};
-
-/// Four triangles against one ray (Moller-Trumbore, operation by operation as a scalar float Moller-Trumbore with glm
-/// cross and dot: the same rounding). Returns the mask of lanes that hit with t in [tmin, tmax] and their t, b1, b2.
-inline int hit_block(const MeshAccel::TriangleBlock& b, const RayLanes& r, float tmin, float tmax, v4f& t, v4f& b1,
-                     v4f& b2) {
-  const auto row = [](const float (&v)[4]) { return *reinterpret_cast<const v4f*>(v); };
-  const v4f e1x = row(b.e1[0]), e1y = row(b.e1[1]), e1z = row(b.e1[2]);
-  const v4f e2x = row(b.e2[0]), e2y = row(b.e2[1]), e2z = row(b.e2[2]);
-  // p = dir x e2, det = e1 . p
-  const v4f px = r.dy * e2z - e2y * r.dz, py = r.dz * e2x - e2z * r.dx, pz = r.dx * e2y - e2x * r.dy;
-  const v4f det = e1x * px + e1y * py + e1z * pz;
-  const v4f inv = splat4(1.0f) / det;
-  const v4f tvx = r.ox - row(b.v0[0]), tvy = r.oy - row(b.v0[1]), tvz = r.oz - row(b.v0[2]);
-  b1 = (tvx * px + tvy * py + tvz * pz) * inv;
-  // q = tv x e1
-  const v4f qx = tvy * e1z - e1y * tvz, qy = tvz * e1x - e1z * tvx, qz = tvx * e1y - e1x * tvy;
-  b2 = (r.dx * qx + r.dy * qy + r.dz * qz) * inv;
-  t = (e2x * qx + e2y * qy + e2z * qz) * inv;
-  const v4f zero = splat4(0.0f), one = splat4(1.0f);
-  // The scalar kernel's rejections, negated literally (a NaN passes a rejection just as it does there).
-  const v4i ok = (det != zero) & ~(b1 < zero) & ~(b1 > one) & ~(b2 < zero) & ~(b1 + b2 > one) & (t >= splat4(tmin)) &
-                 (t <= splat4(tmax));
-  return mask_of(ok);
-}
-
-/// The SIMD types of one node width.
+/// The SIMD types of one node width (4 is also the triangle blocks' width).
 template <int W>
 struct Lanes;
 template <>
@@ -85,152 +51,337 @@ struct Lanes<8> {
 #endif
 };
 
-/// The traversal: nodes' children tested at once, the hit ones visited nearest entry first (the rest on a stack with
-/// their entry distances, skipped when popped beyond the current nearest hit). Nearest hit (AnyHit false: fills
-/// nearest, shrinks ray.tmax) or any hit (AnyHit true: returns at the first); Stats counts into stats.
-template <int W, bool AnyHit, bool Stats>
-bool traverse(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-              Nearest* nearest, TraversalStats* stats) {
-  using vf = typename Lanes<W>::vf;
-  const auto splat = [](float x) {
-    vf v;
-    for (int i = 0; i < W; ++i) v[i] = x;
-    return v;
-  };
-  // Near planes by the direction's sign bit (so -0 counts as negative, as 1 / -0 = -inf); far distances enlarged by
-  // 2 gamma(3) (pbrt's conservative rounding), so a ray grazing a box edge is never lost.
-  const float inv[3] = {1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
-  const int near[3] = {std::signbit(ray.dir.x) ? 3 : 0, std::signbit(ray.dir.y) ? 4 : 1, std::signbit(ray.dir.z) ? 5 : 2};
-  const int far[3] = {(near[0] + 3) % 6, (near[1] + 3) % 6, (near[2] + 3) % 6};
-  const vf ox = splat(ray.origin.x), oy = splat(ray.origin.y), oz = splat(ray.origin.z);
-  const vf ix = splat(inv[0]), iy = splat(inv[1]), iz = splat(inv[2]);
-  const vf fx = splat(inv[0] * RayBoxTest::kRobust), fy = splat(inv[1] * RayBoxTest::kRobust),
-           fz = splat(inv[2] * RayBoxTest::kRobust);
-  const vf tmin = splat(ray.tmin);
-  const RayLanes lanes(ray);
+using v4f = Lanes<4>::vf;
+using v4i = Lanes<4>::vi;
 
-  // Children that go on the stack are fetched at once (as Embree does): most are popped later, and their misses then
-  // overlap the work on the nearer subtree instead of following it (about 10% more incoherent rays on a 1M mesh).
-  const auto prefetch = [&](int32_t ref) {
-    const char* p = ref >= 0 ? reinterpret_cast<const char*>(nodes + ref)
-                             : reinterpret_cast<const char*>(blocks + (~uint32_t(ref) >> 5));
-    const int bytes = ref >= 0 ? int(sizeof(MeshAccel::WideNode<W>)) : int(sizeof(MeshAccel::TriangleBlock));
-    for (int line = 0; line < bytes; line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
-  };
+/// x in every lane.
+template <int W>
+typename Lanes<W>::vf splat(float x) {
+  typename Lanes<W>::vf v;
+  for (int i = 0; i < W; ++i) v[i] = x;
+  return v;
+}
+
+/// A ray's origin and direction, splatted.
+struct RayLanes {
+  v4f ox, oy, oz, dx, dy, dz;
+  explicit RayLanes(const Ray& r)
+      : ox(splat<4>(r.origin.x)), oy(splat<4>(r.origin.y)), oz(splat<4>(r.origin.z)), dx(splat<4>(r.dir.x)),
+        dy(splat<4>(r.dir.y)), dz(splat<4>(r.dir.z)) {}
+};
+
+/// Four triangles against one ray (Moller-Trumbore, operation by operation as a scalar float Moller-Trumbore with glm
+/// cross and dot: the same rounding). Returns the mask of lanes that hit with t in [tmin, tmax] and their t, b1, b2.
+inline int hit_block(const MeshAccel::TriangleBlock& b, const RayLanes& r, float tmin, float tmax, v4f& t, v4f& b1,
+                     v4f& b2) {
+  const auto row = [](const float (&v)[4]) { return *reinterpret_cast<const v4f*>(v); };
+  const v4f e1x = row(b.e1[0]), e1y = row(b.e1[1]), e1z = row(b.e1[2]);
+  const v4f e2x = row(b.e2[0]), e2y = row(b.e2[1]), e2z = row(b.e2[2]);
+  // p = dir x e2, det = e1 . p
+  const v4f px = r.dy * e2z - e2y * r.dz, py = r.dz * e2x - e2z * r.dx, pz = r.dx * e2y - e2x * r.dy;
+  const v4f det = e1x * px + e1y * py + e1z * pz;
+  const v4f inv = splat<4>(1.0f) / det;
+  const v4f tvx = r.ox - row(b.v0[0]), tvy = r.oy - row(b.v0[1]), tvz = r.oz - row(b.v0[2]);
+  b1 = (tvx * px + tvy * py + tvz * pz) * inv;
+  // q = tv x e1
+  const v4f qx = tvy * e1z - e1y * tvz, qy = tvz * e1x - e1z * tvx, qz = tvx * e1y - e1x * tvy;
+  b2 = (r.dx * qx + r.dy * qy + r.dz * qz) * inv;
+  t = (e2x * qx + e2y * qy + e2z * qz) * inv;
+  const v4f zero = splat<4>(0.0f), one = splat<4>(1.0f);
+  // The scalar kernel's rejections, negated literally (a NaN passes a rejection just as it does there).
+  const v4i ok = (det != zero) & ~(b1 < zero) & ~(b1 > one) & ~(b2 < zero) & ~(b1 + b2 > one) &
+                 (t >= splat<4>(tmin)) & (t <= splat<4>(tmax));
+  return Lanes<4>::mask(ok);
+}
+
+/// The nearest triangle found so far: its block and lane, and its barycentrics.
+struct Nearest {
+  int block = -1, lane = 0;
+  float b1 = 0, b2 = 0;
+};
+
+/// One ray's walk through the wide tree, a node at a time: an interior node's children tested at once, the hit ones
+/// visited nearest entry first (the rest on a stack with their entry distances, skipped when popped beyond the current
+/// nearest hit). Nearest hit (AnyHit false: keeps the nearest, shrinks ray().tmax) or any hit (AnyHit true: stops at
+/// the first); Stats counts into stats. A one-ray cast steps it to the end; a stream interleaves the steps of several
+/// (the same operations in the same order per ray, so both give bit-identical hits).
+template <int W, bool AnyHit, bool Stats>
+class Traversal {
+  using vf = typename Lanes<W>::vf;
+
+ public:
+  Traversal(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+            TraversalStats* stats = nullptr)
+      : nodes_(nodes), blocks_(blocks), root_(root), stats_(stats) {}
+
+  /// Begins the walk of `ray` at the root.
+  void start(const Ray& ray) {
+    ray_ = ray;
+    lanes_ = RayLanes(ray);
+    // Near planes by the direction's sign bit (so -0 counts as negative, as 1 / -0 = -inf); far distances enlarged
+    // by 2 gamma(3) (pbrt's conservative rounding), so a ray grazing a box edge is never lost.
+    const float inv[3] = {1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z};
+    for (int a = 0; a < 3; ++a) {
+      near_[a] = std::signbit(ray.dir[a]) ? 3 + a : a;
+      far_[a] = (near_[a] + 3) % 6;
+      origin_[a] = splat<W>(ray.origin[a]);
+      inv_[a] = splat<W>(inv[a]);
+      inv_far_[a] = splat<W>(inv[a] * RayBoxTest::kRobust);
+    }
+    tmin_ = splat<W>(ray.tmin);
+    sp_ = 0;
+    cur_ = root_;
+    hit_ = false;
+  }
+
+  /// Visits the current node (an interior node's child boxes, or a leaf's triangles) and moves on to the next; false
+  /// when the walk is over (the stack is empty, or AnyHit and a hit was found).
+  // Inlined into each loop: the one-ray loop then keeps the walk in registers (an out-of-line step cost it 7%).
+  [[gnu::always_inline]] bool step() {
+    if (cur_ >= 0) {
+      if (descend()) return true;
+    } else if (test_leaf()) {
+      return false;
+    }
+    // Pop the nearest pending subtree that may still hold a nearer hit.
+    do {
+      if (sp_ == 0) return false;
+      --sp_;
+    } while (stack_[sp_].dist > ray_.tmax);
+    cur_ = stack_[sp_].ref;
+    return true;
+  }
+
+  /// Asks the caches for the node or leaf that the next step visits.
+  void prefetch_current() const {
+    if (cur_ >= 0) {
+      prefetch(cur_);
+    } else {
+      const char* p = reinterpret_cast<const char*>(blocks_ + MeshAccel::leaf_first_block(cur_));
+      const int bytes = MeshAccel::leaf_block_count(cur_) * int(sizeof(MeshAccel::TriangleBlock));
+      for (int line = 0; line < bytes; line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
+    }
+  }
+
+  /// The ray, its tmax shrunk to the nearest hit so far.
+  const Ray& ray() const { return ray_; }
+  /// Whether a hit was found, and (nearest hit) which.
+  bool hit() const { return hit_; }
+  const Nearest& nearest() const { return nearest_; }
+
+ private:
   struct Entry {
     int32_t ref;
     float dist;
   };
-  Entry stack[Bvh::kMaxDepth * W];
-  int sp = 0;
-  int32_t cur = root;
-  bool hit = false;
-  for (;;) {
-    // Descend through interior nodes until a leaf is reached or no child is hit.
-    bool leaf = true;
-    while (cur >= 0) {
-      const MeshAccel::WideNode<W>& n = nodes[cur];
-      // The children's line is needed only once the box test is done: fetch it with the boxes, not after them.
-      _mm_prefetch(reinterpret_cast<const char*>(n.child), _MM_HINT_T0);
-      if constexpr (Stats) ++stats->nodes;
-      const auto row = [&n](int r) { return *reinterpret_cast<const vf*>(n.box[r]); };
-      // max(a, b) as a > b ? a : b: a NaN (0 * inf, origin on a slab plane of a parallel ray) leaves b.
-      vf t0 = (row(near[0]) - ox) * ix, tn = t0 > tmin ? t0 : tmin;
-      t0 = (row(near[1]) - oy) * iy, tn = t0 > tn ? t0 : tn;
-      t0 = (row(near[2]) - oz) * iz, tn = t0 > tn ? t0 : tn;
-      const vf tmax = splat(ray.tmax);
-      vf t1 = (row(far[0]) - ox) * fx, tf = t1 < tmax ? t1 : tmax;
-      t1 = (row(far[1]) - oy) * fy, tf = t1 < tf ? t1 : tf;
-      t1 = (row(far[2]) - oz) * fz, tf = t1 < tf ? t1 : tf;
-      unsigned mask = unsigned(Lanes<W>::mask(tn <= tf));
-      if (mask == 0) {
-        leaf = false;
-        break;
-      }
-      const int a = __builtin_ctz(mask);
-      mask &= mask - 1;
-      if (mask == 0) {
-        cur = n.child[a];
-        continue;
-      }
-      const int b = __builtin_ctz(mask);
-      mask &= mask - 1;
-      if (mask == 0) {
-        // Two: the nearer now, the other on the stack.
-        prefetch(n.child[a]);
-        prefetch(n.child[b]);
-        if (tn[a] <= tn[b]) {
-          stack[sp++] = Entry{n.child[b], tn[b]};
-          cur = n.child[a];
-        } else {
-          stack[sp++] = Entry{n.child[a], tn[a]};
-          cur = n.child[b];
-        }
-        continue;
-      }
-      // Three or more: push all, sorted so that the nearest is on top (insertion sort; ties keep lane order).
-      const int base = sp;
-      stack[sp++] = Entry{n.child[a], tn[a]};
-      stack[sp++] = Entry{n.child[b], tn[b]};
-      do {
-        const int c = __builtin_ctz(mask);
-        mask &= mask - 1;
-        stack[sp++] = Entry{n.child[c], tn[c]};
-      } while (mask);
-      for (int i = base; i < sp; ++i) prefetch(stack[i].ref);
-      for (int i = base + 1; i < sp; ++i) {
-        const Entry e = stack[i];
-        int j = i;
-        for (; j > base && stack[j - 1].dist < e.dist; --j) stack[j] = stack[j - 1];
-        stack[j] = e;
-      }
-      cur = stack[--sp].ref;
-    }
-    if (leaf) {
-      const uint32_t code = ~uint32_t(cur);
-      const int first = int(code >> 5), count = int(code & 31) + 1;
-      for (int k = first; k < first + count; ++k) {
-        v4f t, b1, b2;
-        int m = hit_block(blocks[k], lanes, ray.tmin, ray.tmax, t, b1, b2);
-        if constexpr (Stats) {
-          const v4i used = *reinterpret_cast<const v4i*>(blocks[k].index) >= v4i{0, 0, 0, 0};
-          stats->prims += __builtin_popcount(unsigned(mask_of(used)));
-        }
-        if (m == 0) continue;
-        if constexpr (AnyHit) {
-          return true;
-        } else {
-          // The nearest lane; among equal t the last, as the scalar loop that accepts t <= tmax would keep.
-          float best = ray.tmax;
-          int lane = 0;
-          for (; m; m &= m - 1) {
-            const int l = __builtin_ctz(unsigned(m));
-            if (t[l] <= best) {
-              best = t[l];
-              lane = l;
-            }
-          }
-          ray.tmax = best;
-          *nearest = Nearest{k, lane, b1[lane], b2[lane]};
-          hit = true;
-        }
-      }
-    }
-    // Pop the nearest pending subtree that may still hold a nearer hit.
-    do {
-      if (sp == 0) return hit;
-      --sp;
-    } while (stack[sp].dist > ray.tmax);
-    cur = stack[sp].ref;
+
+  /// Fetches a node, or a leaf's first block, into the caches.
+  void prefetch(int32_t ref) const {
+    const char* p = ref >= 0 ? reinterpret_cast<const char*>(nodes_ + ref)
+                             : reinterpret_cast<const char*>(blocks_ + MeshAccel::leaf_first_block(ref));
+    const int bytes = ref >= 0 ? int(sizeof(MeshAccel::WideNode<W>)) : int(sizeof(MeshAccel::TriangleBlock));
+    for (int line = 0; line < bytes; line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
   }
+
+  /// Tests the children of interior node cur_ and moves to the nearest hit one (the others on the stack); false when
+  /// none is hit.
+  [[gnu::always_inline]] bool descend() {
+    const MeshAccel::WideNode<W>& n = nodes_[cur_];
+    // The children's line is needed only once the box test is done: fetch it with the boxes, not after them.
+    _mm_prefetch(reinterpret_cast<const char*>(n.child), _MM_HINT_T0);
+    if constexpr (Stats) ++stats_->nodes;
+    const auto row = [&n](int r) { return *reinterpret_cast<const vf*>(n.box[r]); };
+    // max(a, b) as a > b ? a : b: a NaN (0 * inf, origin on a slab plane of a parallel ray) leaves b.
+    vf t0 = (row(near_[0]) - origin_[0]) * inv_[0], tn = t0 > tmin_ ? t0 : tmin_;
+    t0 = (row(near_[1]) - origin_[1]) * inv_[1], tn = t0 > tn ? t0 : tn;
+    t0 = (row(near_[2]) - origin_[2]) * inv_[2], tn = t0 > tn ? t0 : tn;
+    const vf tmax = splat<W>(ray_.tmax);
+    vf t1 = (row(far_[0]) - origin_[0]) * inv_far_[0], tf = t1 < tmax ? t1 : tmax;
+    t1 = (row(far_[1]) - origin_[1]) * inv_far_[1], tf = t1 < tf ? t1 : tf;
+    t1 = (row(far_[2]) - origin_[2]) * inv_far_[2], tf = t1 < tf ? t1 : tf;
+    unsigned mask = unsigned(Lanes<W>::mask(tn <= tf));
+    if (mask == 0) return false;
+    const int a = __builtin_ctz(mask);
+    mask &= mask - 1;
+    if (mask == 0) {
+      cur_ = n.child[a];
+      return true;
+    }
+    // Children that go on the stack are fetched at once (as Embree does): most are popped later, and their misses
+    // then overlap the work on the nearer subtree instead of following it (10% more incoherent rays on a 1M mesh).
+    const int b = __builtin_ctz(mask);
+    mask &= mask - 1;
+    if (mask == 0) {
+      // Two: the nearer now, the other on the stack.
+      prefetch(n.child[a]);
+      prefetch(n.child[b]);
+      if (tn[a] <= tn[b]) {
+        stack_[sp_++] = Entry{n.child[b], tn[b]};
+        cur_ = n.child[a];
+      } else {
+        stack_[sp_++] = Entry{n.child[a], tn[a]};
+        cur_ = n.child[b];
+      }
+      return true;
+    }
+    // Three or more: push all, sorted so that the nearest is on top (insertion sort; ties keep lane order).
+    int sp = sp_;
+    const int base = sp;
+    stack_[sp++] = Entry{n.child[a], tn[a]};
+    stack_[sp++] = Entry{n.child[b], tn[b]};
+    do {
+      const int c = __builtin_ctz(mask);
+      mask &= mask - 1;
+      stack_[sp++] = Entry{n.child[c], tn[c]};
+    } while (mask);
+    for (int i = base; i < sp; ++i) prefetch(stack_[i].ref);
+    for (int i = base + 1; i < sp; ++i) {
+      const Entry e = stack_[i];
+      int j = i;
+      for (; j > base && stack_[j - 1].dist < e.dist; --j) stack_[j] = stack_[j - 1];
+      stack_[j] = e;
+    }
+    cur_ = stack_[--sp].ref;
+    sp_ = sp;
+    return true;
+  }
+
+  /// Tests the triangles of leaf cur_: true when AnyHit and one is hit; else keeps the nearest hit.
+  [[gnu::always_inline]] bool test_leaf() {
+    const int first = MeshAccel::leaf_first_block(cur_), count = MeshAccel::leaf_block_count(cur_);
+    for (int k = first; k < first + count; ++k) {
+      v4f t, b1, b2;
+      int m = hit_block(blocks_[k], lanes_, ray_.tmin, ray_.tmax, t, b1, b2);
+      if constexpr (Stats) {
+        const v4i used = *reinterpret_cast<const v4i*>(blocks_[k].index) >= v4i{0, 0, 0, 0};
+        stats_->prims += __builtin_popcount(unsigned(Lanes<4>::mask(used)));
+      }
+      if (m == 0) continue;
+      if constexpr (AnyHit) {
+        hit_ = true;
+        return true;
+      } else {
+        // The nearest lane; among equal t the last, as the scalar loop that accepts t <= tmax would keep.
+        float best = ray_.tmax;
+        int lane = 0;
+        for (; m; m &= m - 1) {
+          const int l = __builtin_ctz(unsigned(m));
+          if (t[l] <= best) {
+            best = t[l];
+            lane = l;
+          }
+        }
+        ray_.tmax = best;
+        nearest_ = Nearest{k, lane, b1[lane], b2[lane]};
+        hit_ = true;
+      }
+    }
+    return false;
+  }
+
+  const MeshAccel::WideNode<W>* nodes_;
+  const MeshAccel::TriangleBlock* blocks_;
+  int32_t root_;
+  TraversalStats* stats_;
+  Ray ray_;
+  RayLanes lanes_{Ray{}};
+  vf origin_[3], inv_[3], inv_far_[3], tmin_;
+  int near_[3], far_[3];
+  Entry stack_[Bvh::kMaxDepth * W];
+  int sp_ = 0;
+  int32_t cur_ = 0;
+  bool hit_ = false;
+  Nearest nearest_;
+};
+
+/// Fills hit from a finished nearest-hit walk (see MeshAccel::intersect); false (hit untouched) for a miss.
+template <int W, bool Stats>
+bool fill_hit(const Traversal<W, false, Stats>& walk, const MeshAccel::TriangleBlock* blocks, Hit& hit) {
+  if (!walk.hit()) return false;
+  const Nearest& nearest = walk.nearest();
+  const MeshAccel::TriangleBlock& b = blocks[nearest.block];
+  const int l = nearest.lane;
+  const Vec3f e1(b.e1[0][l], b.e1[1][l], b.e1[2][l]), e2(b.e2[0][l], b.e2[1][l], b.e2[2][l]);
+  const Ray& ray = walk.ray();
+  hit.t = ray.tmax;
+  hit.point = ray.at(ray.tmax);
+  hit.normal = glm::normalize(glm::cross(e1, e2));
+  hit.uv = Vec2f(nearest.b1, nearest.b2);
+  hit.prim = b.index[l];
+  return true;
 }
 
-/// The nearest hit, with or without counting (two instantiations, so the counting costs nothing when off).
-template <int W, class Node>
-bool nearest_hit(const Node* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray, Nearest& nearest,
-                 TraversalStats* stats) {
-  return stats ? traverse<W, false, true>(nodes, blocks, root, ray, &nearest, stats)
-               : traverse<W, false, false>(nodes, blocks, root, ray, &nearest, nullptr);
+/// The nearest hit of one ray (see MeshAccel::intersect), with or without counting (two instantiations, so the
+/// counting costs nothing when off).
+template <int W, bool Stats>
+bool nearest_hit(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
+                 Hit& hit, TraversalStats* stats) {
+  Traversal<W, false, Stats> walk(nodes, blocks, root, stats);
+  walk.start(ray);
+  while (walk.step()) {
+  }
+  ray.tmax = walk.ray().tmax;
+  return fill_hit(walk, blocks, hit);
+}
+
+template <int W>
+bool nearest_hit(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
+                 Hit& hit, TraversalStats* stats) {
+  return stats ? nearest_hit<W, true>(nodes, blocks, root, ray, hit, stats)
+               : nearest_hit<W, false>(nodes, blocks, root, ray, hit, nullptr);
+}
+
+/// Whether any triangle is hit with t in [ray.tmin, ray.tmax].
+template <int W>
+bool any_hit(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+             const Ray& ray) {
+  Traversal<W, true, false> walk(nodes, blocks, root);
+  walk.start(ray);
+  while (walk.step()) {
+  }
+  return walk.hit();
+}
+
+/// The nearest hits of a stream of rays: kInFlight walks interleaved a node at a time, each asking the caches for its
+/// next node before the others take their turns, so that several misses are pending at once instead of one per ray.
+template <int W>
+void nearest_hits(const MeshAccel::WideNode<W>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
+                  std::span<const Ray> rays, std::span<Hit> hits) {
+  constexpr int kInFlight = 12;
+  using Walk = Traversal<W, false, false>;
+  alignas(Walk) unsigned char storage[kInFlight][sizeof(Walk)];
+  Walk* walks[kInFlight];
+  size_t index[kInFlight];
+  size_t next = 0;
+  int active = 0;
+  for (; active < kInFlight && next < rays.size(); ++active, ++next) {
+    walks[active] = new (storage[active]) Walk(nodes, blocks, root);
+    walks[active]->start(rays[next]);
+    index[active] = next;
+  }
+  // Round robin over the active walks; a finished walk's slot takes the next ray, or is closed by the last active one.
+  for (int k = 0; active > 0;) {
+    Walk& walk = *walks[k];
+    if (walk.step()) {
+      walk.prefetch_current();
+    } else {
+      Hit& hit = hits[index[k]];
+      hit = Hit{};
+      fill_hit(walk, blocks, hit);
+      if (next < rays.size()) {
+        walk.start(rays[next]);
+        walk.prefetch_current();
+        index[k] = next++;
+      } else {
+        --active;
+        std::swap(walks[k], walks[active]);
+        std::swap(index[k], index[active]);
+        if (k >= active) k = 0;
+        continue;
+      }
+    }
+    if (++k == active) k = 0;
+  }
 }
 
 }  // namespace

@@ -4,9 +4,12 @@
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/accel/ray_workloads.hpp"
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -46,32 +49,46 @@ std::vector<Ray> primary_rays(const TriMesh& mesh, int w, int h) {
   return primary_rays(cam, w, h);
 }
 
-/// Hit/miss agreement and t agreement with Embree, for 200x200 primary rays and 50000 random rays.
+/// Hit/miss agreement and t agreement with Embree, for 200x200 primary rays and 50000 random rays; the same for both
+/// stream APIs (MeshAccel's span intersect, Embree's rtcIntersect1M), as the benchmark compares those too.
 void expect_agrees_with_embree(const TriMesh& mesh, const std::string& name, uint64_t seed) {
   const MeshAccel accel(mesh);
   const reference::EmbreeMesh embree(mesh);
   for (const bool primary : {true, false}) {
     const std::vector<Ray> rays = primary ? primary_rays(mesh, 200, 200) : random_rays(mesh, 50000, seed);
-    const std::string what = name + (primary ? " primary" : " random");
-    long disagree = 0, t_off = 0, hits = 0;
-    for (const Ray& r : rays) {
-      Ray ray = r;
-      Hit hit;
-      const bool ours = accel.intersect(ray, hit);
-      float t;
-      const int prim = embree.intersect(r, t);
-      if (ours != (prim >= 0)) {
-        ++disagree;
-        continue;
+    std::vector<Hit> stream_hits(rays.size());
+    accel.intersect(rays, stream_hits);
+    std::vector<int> stream_prims(rays.size());
+    std::vector<float> stream_t(rays.size());
+    embree.intersect(rays, stream_prims, stream_t);
+    for (const bool stream : {false, true}) {
+      const std::string what = name + (primary ? " primary" : " random") + (stream ? " streams" : "");
+      long disagree = 0, t_off = 0, hits = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        Ray ray = rays[i];
+        Hit hit;
+        bool ours = accel.intersect(ray, hit);
+        float t;
+        int prim = embree.intersect(rays[i], t);
+        if (stream) {
+          ours = stream_hits[i].prim >= 0;
+          hit = stream_hits[i];
+          prim = stream_prims[i];
+          t = stream_t[i];
+        }
+        if (ours != (prim >= 0)) {
+          ++disagree;
+          continue;
+        }
+        if (!ours) continue;
+        ++hits;
+        if (std::abs(hit.t - t) > 1e-4f * std::max(t, 1e-3f)) ++t_off;
       }
-      if (!ours) continue;
-      ++hits;
-      if (std::abs(hit.t - t) > 1e-4f * std::max(t, 1e-3f)) ++t_off;
+      const double n = double(rays.size());
+      EXPECT_LE(double(disagree) / n, 1e-4) << what << ": " << disagree << " of " << rays.size() << " rays disagree";
+      EXPECT_LE(double(t_off) / n, 1e-4) << what << ": " << t_off << " hits with t off by more than 1e-4 relative";
+      EXPECT_GT(hits, long(rays.size()) / 20) << what;
     }
-    const double n = double(rays.size());
-    EXPECT_LE(double(disagree) / n, 1e-4) << what << ": " << disagree << " of " << rays.size() << " rays disagree";
-    EXPECT_LE(double(t_off) / n, 1e-4) << what << ": " << t_off << " hits with t off by more than 1e-4 relative";
-    EXPECT_GT(hits, long(rays.size()) / 20) << what;
   }
 }
 
@@ -153,10 +170,68 @@ TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
         Hit hit8;
         ASSERT_EQ(wide->intersect(ray8, hit8), h);
         ASSERT_EQ(wide->occluded(rays[i]), h);
-        if (h) EXPECT_EQ(hit8.t, hit.t);
+        if (h) {
+          EXPECT_EQ(hit8.t, hit.t);
+        }
       }
     }
   EXPECT_THROW(MeshAccel(torus, MeshAccel::default_settings(), 5), InvalidInput);
+}
+
+/// Whether two hits are the same bit for bit (t, point, normal, uv, prim).
+bool same_bits(const Hit& a, const Hit& b) {
+  const auto bits = [](const Hit& h) {
+    return std::array<uint32_t, 10>{std::bit_cast<uint32_t>(h.t),        std::bit_cast<uint32_t>(h.point.x),
+                                    std::bit_cast<uint32_t>(h.point.y),  std::bit_cast<uint32_t>(h.point.z),
+                                    std::bit_cast<uint32_t>(h.normal.x), std::bit_cast<uint32_t>(h.normal.y),
+                                    std::bit_cast<uint32_t>(h.normal.z), std::bit_cast<uint32_t>(h.uv.x),
+                                    std::bit_cast<uint32_t>(h.uv.y),     uint32_t(h.prim)};
+  };
+  return bits(a) == bits(b);
+}
+
+TEST(MeshAccel, StreamsGiveTheOneRayHitsBitForBit) {
+  // The span intersect walks several rays interleaved; each ray's walk must be the one-ray walk (same hit, same bits),
+  // for both widths, small and large leaves, random rays (a third with a finite tmax, a sixth with tmin > 0), primary
+  // rays, and streams shorter than the number of walks in flight.
+  const TriMesh torus = to_tri_mesh(make_torus(1.0, 0.3, 64, 32));
+  std::vector<Ray> rays = random_rays(torus, 4000, 21);
+  Rng rng(5, 21);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    if (i % 3 == 0) rays[i].tmax = 2.0f * rng.uniform();
+    if (i % 6 == 1) rays[i].tmin = 0.5f * rng.uniform();
+  }
+  const std::vector<Ray> primary = primary_rays(torus, 64, 48);
+  rays.insert(rays.end(), primary.begin(), primary.end());
+  std::vector<int> widths{4};
+  if (__builtin_cpu_supports("avx2")) widths.push_back(8);
+  for (const int width : widths)
+    for (const int leaf : {1, 8, 1000}) {
+      BvhSettings s = MeshAccel::default_settings();
+      s.max_leaf_size = leaf;
+      const MeshAccel accel(torus, s, width);
+      std::vector<Hit> one(rays.size());
+      long hits = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        Ray ray = rays[i];
+        hits += accel.intersect(ray, one[i]);
+      }
+      EXPECT_GT(hits, long(rays.size()) / 10);
+      for (const size_t count : {size_t(0), size_t(1), size_t(5), rays.size()}) {
+        std::vector<Hit> streamed(count);
+        // Stale contents must be overwritten, misses included.
+        for (Hit& h : streamed) h.prim = 12345;
+        accel.intersect(std::span<const Ray>(rays).first(count), streamed);
+        for (size_t i = 0; i < count; ++i)
+          ASSERT_TRUE(same_bits(streamed[i], one[i])) << "width " << width << " leaf " << leaf << " ray " << i;
+      }
+    }
+  std::vector<Hit> too_few(3);
+  EXPECT_THROW(MeshAccel(torus).intersect(std::span<const Ray>(rays).first(4), too_few), InvalidInput);
+  std::vector<Hit> from_empty(2);
+  from_empty[0].prim = 7;
+  MeshAccel(TriMesh{}).intersect(std::span<const Ray>(rays).first(2), from_empty);
+  EXPECT_EQ(from_empty[0].prim, -1);
 }
 
 TEST(MeshAccel, SameHitsForAnyThreadCount) {

@@ -1,5 +1,6 @@
 #pragma once
 // Ray casting of a triangle mesh: a Bvh over its triangles collapsed into a wide BVH with SIMD node and triangle tests.
+#include <span>
 #include <vector>
 
 #include "tessera/accel/bvh.hpp"
@@ -35,6 +36,10 @@ class MeshAccel {
   /// geometric normal (b - a) x (c - a) of the triangle, prim = triangle index, uv = barycentrics (b1, b2) of
   /// vertices 1 and 2 of the triangle. stats (optional) counts wide nodes visited and triangles tested.
   bool intersect(Ray& ray, Hit& hit, TraversalStats* stats = nullptr) const;
+  /// The nearest hits of many rays: hits[i] as intersect(rays[i], hits[i]) fills it (bit for bit), Hit{} (prim -1)
+  /// for a miss. Faster on incoherent rays: several rays are walked at once, interleaved node by node, so that their
+  /// cache misses overlap. Throws InvalidInput when the spans' sizes differ.
+  void intersect(std::span<const Ray> rays, std::span<Hit> hits) const;
   /// Any hit with t in [ray.tmin, ray.tmax] (shadow rays).
   bool occluded(const Ray& ray) const;
 
@@ -62,6 +67,9 @@ class MeshAccel {
   static constexpr int kMaxLeafBlocks = 32;  ///< blocks of 4 triangles per leaf (128 triangles)
   /// A leaf's child reference: its first block and block count packed into a negative number.
   static int32_t leaf_ref(int first_block, int blocks) { return ~((first_block << 5) | (blocks - 1)); }
+  /// The first block and the block count of a leaf reference.
+  static int leaf_first_block(int32_t ref) { return int(~uint32_t(ref) >> 5); }
+  static int leaf_block_count(int32_t ref) { return int(~uint32_t(ref) & 31) + 1; }
 
  private:
   Bvh bvh_;
