@@ -336,10 +336,19 @@ void set_tessera_state(raster3d::Context& ctx, Case c) {
   ctx.load_matrix(Mat4(gl.modelview));
 }
 
-// The immediate-mode frame through the notes' gt layer: one gtNormal + gtVertex per triangle corner.
-void draw_immediate(const raster3d::VertexArrays& arrays) {
+// The immediate-mode frame through the notes' gt layer: one gtNormal + gtVertex per triangle corner. `unpipelined`
+// ends the shape and waits for the drawing (Context::finish) after every immediate-mode batch's worth of triangles:
+// the same batches drawn without overlapping the collection of the next one (the schedule before session 4).
+void draw_immediate(const raster3d::VertexArrays& arrays, bool unpipelined) {
+  constexpr size_t kBatchCorners = 3 * size_t(raster3d::detail::kChunkTriangles) * raster3d::detail::kPassChunks;
   gt::gtBeginShape(gt::GT_TRIANGLES);
-  for (const uint32_t i : arrays.indices) {
+  for (size_t k = 0; k < arrays.indices.size(); ++k) {
+    if (unpipelined && k > 0 && k % kBatchCorners == 0) {
+      gt::gtEndShape();
+      gt::gtCurrent().finish();
+      gt::gtBeginShape(gt::GT_TRIANGLES);
+    }
+    const uint32_t i = arrays.indices[k];
     const Vec3f& n = arrays.normals[i];
     const Vec3f& p = arrays.positions[i];
     gt::gtNormal(n.x, n.y, n.z);
@@ -348,7 +357,9 @@ void draw_immediate(const raster3d::VertexArrays& arrays) {
   gt::gtEndShape();
 }
 
-void BM_Tessera(benchmark::State& state, Case c, int threads) {
+std::map<int, Rates> g_unpipelined;  // immediate mode drawn batch by batch, by thread count (tessera fields only)
+
+void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) {
   const Workload& w = workload(c);
   const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(w.mesh);
   raster3d::Context ctx(w.width, w.height);
@@ -359,7 +370,7 @@ void BM_Tessera(benchmark::State& state, Case c, int threads) {
   const auto frame = [&] {
     ctx.clear(background);
     if (c == Case::Immediate)
-      draw_immediate(arrays);
+      draw_immediate(arrays, unpipelined);
     else
       ctx.draw(arrays);
     benchmark::DoNotOptimize(ctx.framebuffer().color().pixels().data());  // framebuffer() draws what is pending
@@ -375,6 +386,14 @@ void BM_Tessera(benchmark::State& state, Case c, int threads) {
     state.SetIterationTime(best.wall);
   }
   gt::gtMakeCurrent(nullptr);
+  if (unpipelined) {
+    state.counters["tris_per_s"] = rate_of(c, best.wall);
+    state.counters["cpu_ms"] = 1e3 * best.cpu;
+    Rates& u = g_unpipelined[threads];
+    u.tessera = std::max(u.tessera, rate_of(c, best.wall));
+    u.tessera_cpu = std::max(u.tessera_cpu, rate_of(c, best.cpu));
+    return;
+  }
   const Rates& r = record(state, c, threads, best, false);
   if (r.llvmpipe > 0) state.counters["x_llvmpipe"] = rate_of(c, best.wall) / r.llvmpipe;
   if (r.llvmpipe_cpu > 0) state.counters["x_llvmpipe_cpu"] = r.tessera_cpu / r.llvmpipe_cpu;
@@ -403,14 +422,23 @@ int main(int argc, char** argv) {
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
   for (Case c : {Case::Immediate, Case::Batched, Case::Fill})
-    for (int threads : {1, 2})
-      for (const bool peer : {true, false})  // the peer first, so that the Tessera run can report the ratio
+    for (int threads : {1, 2}) {
+      // The peer first, so that the Tessera run can report the ratio.
+      benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe,
+                                   c, threads)
+          ->UseManualTime()
+          ->Iterations(1)
+          ->Unit(benchmark::kMillisecond);
+      for (const bool unpipelined : {false, true}) {
+        if (unpipelined && c != Case::Immediate) continue;
         benchmark::RegisterBenchmark(
-            fmt::format("{}/{}/threads:{}", case_name(c), peer ? "llvmpipe" : "tessera", threads).c_str(),
-            peer ? BM_Llvmpipe : BM_Tessera, c, threads)
+            fmt::format("{}/tessera{}/threads:{}", case_name(c), unpipelined ? "_unpipelined" : "", threads).c_str(),
+            BM_Tessera, c, threads, unpipelined)
             ->UseManualTime()
             ->Iterations(1)
             ->Unit(benchmark::kMillisecond);
+      }
+    }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   const double load_before = load_average();
@@ -428,6 +456,13 @@ int main(int argc, char** argv) {
                 r.llvmpipe > 0 ? r.tessera / r.llvmpipe : 0.0, r.llvmpipe_cpu, r.tessera_cpu,
                 r.llvmpipe_cpu > 0 ? r.tessera_cpu / r.llvmpipe_cpu : 0.0,
                 fill && bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / bandwidth).c_str() : "");
+  }
+  for (const auto& [threads, u] : g_unpipelined) {
+    const Rates& r = g_rates[key(Case::Immediate, threads)];
+    std::printf("immediate/%d unpipelined (finish after every batch): %.4g tris/s, %.4g per cpu-s; pipelining gains "
+                "%.2fx wall, %.2fx per cpu-s\n",
+                threads, u.tessera, u.tessera_cpu, u.tessera > 0 ? r.tessera / u.tessera : 0.0,
+                u.tessera_cpu > 0 ? r.tessera_cpu / u.tessera_cpu : 0.0);
   }
   benchmark::Shutdown();
   return 0;
