@@ -129,8 +129,7 @@ template <class Cast>
 long cast_streams(const std::vector<Ray>& rays, Cast&& cast) {
   std::atomic<long> hits{0};
   parallel_for(0, int64_t(rays.size()), kChunk, [&](int64_t begin, int64_t end) {
-    for (int64_t b = begin; b < end; b += kChunk)
-      hits += cast(std::span<const Ray>(rays).subspan(size_t(b), size_t(std::min(kChunk, end - b))));
+    hits += cast(std::span<const Ray>(rays).subspan(size_t(begin), size_t(end - begin)));
   });
   return hits;
 }

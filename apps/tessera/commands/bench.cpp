@@ -2,6 +2,8 @@
 #include <atomic>
 #include <chrono>
 #include <memory>
+#include <span>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -28,18 +30,20 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Casts every ray (parallel, fixed chunks); returns the number of hits. `record(i, hit or nullptr)` sees each result.
+/// Casts every ray (parallel, fixed chunks, each one stream: MeshAccel's span intersect, several rays interleaved);
+/// returns the number of hits. `record(i, hit or nullptr)` sees each result.
 template <class Record>
 int64_t cast_all(const MeshAccel& accel, const std::vector<Ray>& rays, Record&& record) {
+  constexpr int64_t kChunk = 1024;
   std::atomic<int64_t> hits{0};
-  parallel_for(0, int64_t(rays.size()), 1024, [&](int64_t begin, int64_t end) {
+  parallel_for(0, int64_t(rays.size()), kChunk, [&](int64_t begin, int64_t end) {
+    std::vector<Hit> found(size_t(end - begin));
+    accel.intersect(std::span<const Ray>(rays).subspan(size_t(begin), found.size()), found);
     int64_t local = 0;
     for (int64_t i = begin; i < end; ++i) {
-      Ray ray = rays[size_t(i)];
-      Hit hit;
-      const bool h = accel.intersect(ray, hit);
-      local += h;
-      record(i, h ? &hit : nullptr);
+      const Hit& hit = found[size_t(i - begin)];
+      local += hit.prim >= 0;
+      record(i, hit.prim >= 0 ? &hit : nullptr);
     }
     hits += local;
   });
