@@ -77,11 +77,8 @@ LightSample sample_light(const Light& light, const Vec3f& p, const Vec2f& u) {
       break;
     }
   }
-  const Vec3f d = q - p;
-  s.distance = glm::length(d);
-  if (!(s.distance > 0.0f)) return s;
-  s.dir = d / s.distance;
-  s.color = facing == Vec3f(0.0f) || glm::dot(facing, -s.dir) > 0.0f ? light.color : Vec3f(0.0f);
+  s = light_toward(q, p, light.color);
+  if (facing != Vec3f(0.0f) && !(glm::dot(facing, -s.dir) > 0.0f)) s.color = Vec3f(0.0f);
   return s;
 }
 

@@ -68,7 +68,7 @@ class SmallPattern {
 
   uint32_t n_, m_ = 1, rows_ = 1;
   uint32_t column_of_[kBlock] = {}, row_of_[kBlock] = {};  // sample s's grid cell: s % m, s / m
-  float inv_cells_ = 1.0f;                                  // 1 / (m rows)
+  float inv_cells_ = 1.0f;                                 // 1 / (m rows)
 };
 
 /// Stratified numbers of one pixel sample for the first hit; null at deeper bounces.
@@ -77,9 +77,7 @@ struct PrimaryNumbers {
 };
 
 /// How far a ray origin moves off the surface at p along the geometric normal: relative to the point's magnitude.
-float offset_scale(const Vec3f& p) {
-  return 2e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
-}
+float offset_scale(const Vec3f& p) { return 2e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})); }
 
 /// True when nothing blocks the segment from p toward the light sample (the notes' visible(P, L)).
 bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t& rays) {
@@ -168,31 +166,38 @@ class Tracer {
       LightInfo info;
       info.count = light.is_area() ? std::max(1, light.samples) : 1;
       if (light.type == LightType::directional) info.direction = -glm::normalize(light.direction);
-      lights_.push_back(info);
+      if (info.count > 1)
+        for (int depth = 1; depth <= settings.max_depth; ++depth)
+          info.patterns.emplace_back(uint32_t(info.count), hash_u32(li, uint64_t(depth)));
+      lights_.push_back(std::move(info));
     }
   }
 
-  /// The color along `ray` (unit direction) at recursion depth `depth` (1 = eye ray); `weight` is the product of the
-  /// K's so far.
-  Vec3f radiance(const Ray& ray, int depth, const Vec3f& weight, Rng& rng, const PrimaryNumbers* primary,
-                 uint64_t& rays) const {
+  /// The color along the ray from `origin` in unit direction `dir` at `time`, at recursion depth `depth` (1 = eye
+  /// ray); `weight` is the product of the K's so far. The ray comes in registers (two vectors and the time): passed as
+  /// a Ray in memory, its copy here read back 16 bytes the caller had just stored piecewise, and stalled on store
+  /// forwarding.
+  Vec3f radiance(Vec3f origin, Vec3f dir, float time, int depth, const Vec3f& weight, Rng& rng,
+                 const PrimaryNumbers* primary, uint64_t& rays) const {
     ++rays;
-    Ray r = ray;
+    Ray ray;
+    ray.origin = origin;
+    ray.dir = dir;
+    ray.time = time;
     SurfaceHit h;
-    if (!scene_.world.intersect(r, h)) return scene_.background;
+    if (!scene_.world.intersect(ray, h)) return scene_.background;
     const Material& m = scene_.materials[size_t(scene_.world.material(h.object))];
 
     // Face the normals toward the incoming ray; remember which side of the surface the ray came from.
-    const Vec3f d = ray.dir;
-    const bool entering = glm::dot(d, h.hit.normal) < 0.0f;
+    const bool entering = glm::dot(dir, h.hit.normal) < 0.0f;
     const Vec3f ng = entering ? h.hit.normal : -h.hit.normal;
     Vec3f n = entering ? h.shading_normal : -h.shading_normal;
-    if (glm::dot(n, -d) <= 0.0f) n = ng;  // an interpolated normal facing away from the viewer
-    const Vec3f e = -d;
+    if (glm::dot(n, -dir) <= 0.0f) n = ng;  // an interpolated normal facing away from the viewer
+    const Vec3f e = -dir;
     const Vec3f p = h.hit.point;
     const float offset = offset_scale(p);
 
-    const Vec3f cr = surface_color(scene_.world, m, r, h);
+    const Vec3f cr = surface_color(scene_.world, m, ray, h);
     Vec3f c = m.emission + cr * m.ambient * scene_.ambient;
     if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f))
       c += direct_light(m, cr, p + offset * ng, n, ng, e, rng, primary, depth, rays);
@@ -202,90 +207,79 @@ class Tracer {
     std::optional<Vec3f> t_dir;
     if (k_trans != Vec3f(0.0f)) {
       const float n1 = entering ? ior::kVacuum : m.ior, n2 = entering ? m.ior : ior::kVacuum;
-      t_dir = refract_dir(d, n, n1 / n2);
+      t_dir = refract_dir(dir, n, n1 / n2);
       const float f = !t_dir ? 1.0f : m.fresnel ? schlick_fresnel(glm::dot(n, e), n1, n2) : 0.0f;
       k_refl += f * k_trans;
       k_trans *= 1.0f - f;
     }
     if (depth >= settings_.max_depth) return c;
     if (k_refl != Vec3f(0.0f) && max_component(weight * k_refl) >= settings_.min_contribution) {
-      Ray refl;
-      refl.origin = p + offset * ng;
-      refl.dir = reflect_dir(e, n);
-      refl.time = ray.time;
+      Vec3f refl = reflect_dir(e, n);
       if (m.glossiness > 0.0f) {
         // The notes' glossy reflection: the mirror direction spread in a Phong lobe (1/n sum K_refl C_Ri over the
         // pixel's samples); a direction below the surface falls back to the mirror direction.
-        const Vec3f g = Frame::from_normal(refl.dir).to_world(sample_phong_lobe(
+        const Vec3f g = Frame::from_normal(refl).to_world(sample_phong_lobe(
             primary ? primary->gloss : Vec2f(rng.uniform(), rng.uniform()), glossy_exponent(m.glossiness)));
-        if (glm::dot(g, ng) > 0.0f) refl.dir = g;
+        if (glm::dot(g, ng) > 0.0f) refl = g;
       }
-      c += k_refl * radiance(refl, depth + 1, weight * k_refl, rng, nullptr, rays);
+      c += k_refl * radiance(p + offset * ng, refl, time, depth + 1, weight * k_refl, rng, nullptr, rays);
     }
-    if (t_dir && k_trans != Vec3f(0.0f) && max_component(weight * k_trans) >= settings_.min_contribution) {
-      Ray trans;
-      trans.origin = p - offset * ng;
-      trans.dir = *t_dir;
-      trans.time = ray.time;
-      c += k_trans * radiance(trans, depth + 1, weight * k_trans, rng, nullptr, rays);
-    }
+    if (t_dir && k_trans != Vec3f(0.0f) && max_component(weight * k_trans) >= settings_.min_contribution)
+      c += k_trans * radiance(p - offset * ng, *t_dir, time, depth + 1, weight * k_trans, rng, nullptr, rays);
     return c;
   }
 
  private:
-  /// What the shading of every hit needs of a light, computed once.
+  /// What the shading of every hit needs of a light, computed once per render.
   struct LightInfo {
-    int count = 1;             // shadow rays per shading point
-    Vec3f direction{0.0f};     // directional lights: unit direction toward the light
+    int count = 1;                            // shadow rays per shading point
+    Vec3f direction{0.0f};                    // directional lights: unit direction toward the light
+    std::vector<StratifiedPattern> patterns;  // several shadow rays: the stratified set of each depth 1, 2, ...
   };
 
-  /// Light `li` seen from p with the 2D number u: point and directional lights here (their samples need no call),
-  /// area lights by sample_light.
-  LightSample light_sample(size_t li, const Vec3f& p, const Vec2f& u) const {
-    const Light& light = scene_.lights[li];
-    if (light.type == LightType::directional) return {lights_[li].direction, std::numeric_limits<float>::infinity(), light.color};
-    if (light.type != LightType::point) return sample_light(light, p, u);
-    LightSample s;
-    const Vec3f to = light.position - p;
-    s.distance = glm::length(to);
-    if (!(s.distance > 0.0f)) return s;
-    s.dir = to * (1.0f / s.distance);
-    s.color = light.color;
-    return s;
+  /// C_L (C_r (N . L) + highlight) visible(P, L) for one sample of a light. The shadow ray last, and only for a term
+  /// that adds something (a black surface away from its highlight, e.g. glass, needs none).
+  Vec3f sample_term(const Material& m, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng, const Vec3f& e,
+                    const LightSample& ls, uint64_t& rays) const {
+    const float nl = glm::dot(n, ls.dir);
+    if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) return Vec3f(0.0f);
+    float highlight = 0.0f;
+    if (m.specular != Vec3f(0.0f)) {
+      const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
+                                                          : glm::dot(n, glm::normalize(ls.dir + e));
+      if (cos_h > 0.0f) highlight = highlight_power(cos_h, m.shininess);
+    }
+    const Vec3f term = ls.color * (cr * nl + m.specular * highlight);
+    return term != Vec3f(0.0f) && visible(scene_.world, p, ls, rays) ? term : Vec3f(0.0f);
   }
 
   /// The sum over lights of C_L (C_r (N . L) + highlight) visible(P, L), area lights averaged over their samples.
   Vec3f direct_light(const Material& m, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng,
                      const Vec3f& e, Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
     Vec3f sum(0.0f);
-    const bool highlights = m.specular != Vec3f(0.0f);
-    for (size_t li = 0; li < scene_.lights.size(); ++li) {
+    for (size_t li = 0; li < lights_.size(); ++li) {
       const Light& light = scene_.lights[li];
-      const int count = lights_[li].count;
-      // An area light's stratified set for this hit, rotated by the pixel sample's number (Cranley-Patterson) so
-      // that the sets of a pixel's samples interleave. Point and directional lights need no numbers.
-      Vec2f rotation(0.0f);
-      if (light.is_area()) rotation = primary ? primary->light : Vec2f(rng.uniform(), rng.uniform());
-      std::optional<StratifiedPattern> pattern;
-      if (count > 1) pattern.emplace(uint32_t(count), hash_u32(li, uint64_t(depth)));
-      Vec3f light_sum(0.0f);
-      for (int k = 0; k < count; ++k) {
-        const Vec2f u = pattern ? glm::fract(pattern->sample(uint32_t(k)) + rotation) : rotation;
-        const LightSample ls = light_sample(li, p, u);
-        const float nl = glm::dot(n, ls.dir);
-        if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) continue;
-        float highlight = 0.0f;
-        if (highlights) {
-          const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
-                                                              : glm::dot(n, glm::normalize(ls.dir + e));
-          if (cos_h > 0.0f) highlight = highlight_power(cos_h, m.shininess);
+      const LightInfo& info = lights_[li];
+      if (light.type == LightType::point) {
+        // A light behind the surface is culled before the square root (N . (q - p) has the sign of N . L).
+        const Vec3f to = light.position - p;
+        if (glm::dot(n, to) > 0.0f && glm::dot(ng, to) > 0.0f)
+          sum += sample_term(m, cr, p, n, ng, e, light_toward(light.position, p, light.color), rays);
+      } else if (light.type == LightType::directional) {
+        const LightSample ls{info.direction, std::numeric_limits<float>::infinity(), light.color};
+        sum += sample_term(m, cr, p, n, ng, e, ls, rays);
+      } else {
+        // The area light's stratified set of this depth, rotated by the pixel sample's number (Cranley-Patterson) so
+        // that the sets of a pixel's samples interleave.
+        const Vec2f rotation = primary ? primary->light : Vec2f(rng.uniform(), rng.uniform());
+        Vec3f light_sum(0.0f);
+        for (int k = 0; k < info.count; ++k) {
+          const Vec2f u =
+              info.count > 1 ? glm::fract(info.patterns[size_t(depth - 1)].sample(uint32_t(k)) + rotation) : rotation;
+          light_sum += sample_term(m, cr, p, n, ng, e, sample_light(light, p, u), rays);
         }
-        // The shadow ray last, and only for a term that adds something (a black surface away from its highlight,
-        // e.g. glass, needs none).
-        const Vec3f term = ls.color * (cr * nl + m.specular * highlight);
-        if (term != Vec3f(0.0f) && visible(scene_.world, p, ls, rays)) light_sum += term;
+        sum += info.count > 1 ? light_sum / float(info.count) : light_sum;
       }
-      sum += count > 1 ? light_sum / float(count) : light_sum;
     }
     return sum;
   }
@@ -349,9 +343,8 @@ Vec3f trace_ray(const RayScene& scene, const RenderSettings& settings, const Ray
   check_settings(scene, settings);
   Rng rng(rng_sequence, settings.seed);
   uint64_t rays = 0;
-  Ray unit = ray;
-  unit.dir = glm::normalize(ray.dir);
-  return Tracer(scene, settings).radiance(unit, 1, Vec3f(1.0f), rng, nullptr, rays);
+  return Tracer(scene, settings)
+      .radiance(ray.origin, glm::normalize(ray.dir), ray.time, 1, Vec3f(1.0f), rng, nullptr, rays);
 }
 
 ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderStats* stats) {
@@ -407,7 +400,7 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
           for (uint32_t i = 0; i < count; ++i) {
             const PrimaryNumbers primary{numbers[kLight][i], numbers[kGloss][i]};
             const Ray ray = camera.ray(x, y, numbers[kPixel][i], numbers[kLens][i], numbers[kTime][i].x);
-            sum += tracer.radiance(ray, 1, Vec3f(1.0f), rng, &primary, rays);
+            sum += tracer.radiance(ray.origin, ray.dir, ray.time, 1, Vec3f(1.0f), rng, &primary, rays);
           }
         }
         image(x, y) = sum / float(spp);

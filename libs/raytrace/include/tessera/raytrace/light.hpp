@@ -32,6 +32,18 @@ struct LightSample {
   Vec3f color{0.0f};
 };
 
+/// The sample of a light at point q seen from p: unit direction toward q (by one reciprocal), distance and `color`; no
+/// direction and no color when p is at q. The point light's sample and the tail of every area light's.
+inline LightSample light_toward(const Vec3f& q, const Vec3f& p, const Vec3f& color) {
+  LightSample s;
+  const Vec3f d = q - p;
+  s.distance = glm::length(d);
+  if (!(s.distance > 0.0f)) return s;
+  s.dir = d * (1.0f / s.distance);
+  s.color = color;
+  return s;
+}
+
 /// Samples `light` from point `p` with a 2D number u in [0, 1)^2: a uniform point on the rectangle or disk, a uniform
 /// direction in the cone the sphere subtends (so the point lies on the side facing p); u is ignored for point and
 /// directional lights.
