@@ -136,17 +136,13 @@ struct LpPlaneSetup {
   float dx01o, dy01o, dx20o, dy20o;  // edge vectors over the doubled area
 
   // The vertices are read in place through g (a copy of them on the stack, stored in 8- and 4-byte pieces, stalled
-  // the loads below on store forwarding). `ooa` is inverse_area(g, gl_ccw).
-  LpPlaneSetup(const GalliumVertex* const* g, bool gl_ccw, float ooa) : order{gl_ccw ? 0 : 1, gl_ccw ? 1 : 0, 2} {
+  // the loads below on store forwarding).
+  LpPlaneSetup(const GalliumVertex* const* g, bool gl_ccw) : order{gl_ccw ? 0 : 1, gl_ccw ? 1 : 0, 2} {
     const GalliumVertex &v0 = *g[order[0]], &v1 = *g[order[1]], &v2 = *g[order[2]];
     const float dx01 = v0.x - v1.x, dy01 = v0.y - v1.y, dx20 = v2.x - v0.x, dy20 = v2.y - v0.y;
+    const float ooa = 1.0f / (dx01 * dy20 - dy01 * dx20);
     x0 = v0.x, y0 = v0.y;
     dx01o = dx01 * ooa, dy01o = dy01 * ooa, dx20o = dx20 * ooa, dy20o = dy20 * ooa;
-  }
-  // One over the doubled area of the vertices in setup's order (infinite for a zero area).
-  static float inverse_area(const GalliumVertex* const* g, bool gl_ccw) {
-    const GalliumVertex &v0 = *g[gl_ccw ? 0 : 1], &v1 = *g[gl_ccw ? 1 : 0], &v2 = *g[2];
-    return 1.0f / ((v0.x - v1.x) * (v2.y - v0.y) - (v0.y - v1.y) * (v2.x - v0.x));
   }
   // The gradient of an attribute with values f[order[k]] at the vertices, per pixel in x and in y (down); false
   // when it is not finite (the triangle is collinear in float although not after snapping: a sliver).
@@ -170,26 +166,14 @@ void depth_plane(const LpPlaneSetup& ps, const GalliumVertex* const* g, Triangle
   r.zdy = dzdy;
 }
 
-// Twice the signed area of the snapped triangle (positive: counterclockwise in GL window coordinates).
-int64_t snapped_area(const PreparedVertex* const* pv) {
-  return int64_t(pv[1]->X - pv[0]->X) * (pv[2]->Y - pv[0]->Y) - int64_t(pv[2]->X - pv[0]->X) * (pv[1]->Y - pv[0]->Y);
-}
-
-// LpPlaneSetup's 1 / area for the triangle pv (any value when a vertex is invalid or the area is zero: unused then).
-float inverse_area(const PreparedVertex* const* pv) {
-  const GalliumVertex* g[3] = {&pv[0]->g, &pv[1]->g, &pv[2]->g};
-  return LpPlaneSetup::inverse_area(g, snapped_area(pv) > 0);
-}
-
-// Sets up one triangle of vertices v (clip position and varyings) with their window positions pv and
-// ooa = inverse_area(pv), and bins it.
+// Sets up one triangle of vertices v (clip position and varyings) with their window positions pv, and bins it.
 void emit_prepared(const SetupParams& params, const Scissor& sc, const float* const* v, const PreparedVertex* const* pv,
-                   float ooa, const float* flat_values, SetupChunk& chunk) {
+                   const float* flat_values, SetupChunk& chunk) {
   if (!(pv[0]->valid && pv[1]->valid && pv[2]->valid)) return;
   const float inv_w[3] = {pv[0]->inv_w, pv[1]->inv_w, pv[2]->inv_w};
   const GalliumVertex* g[3] = {&pv[0]->g, &pv[1]->g, &pv[2]->g};
   const int32_t X[3] = {pv[0]->X, pv[1]->X, pv[2]->X}, Y[3] = {pv[0]->Y, pv[1]->Y, pv[2]->Y};
-  const int64_t area = snapped_area(pv);
+  const int64_t area = int64_t(X[1] - X[0]) * (Y[2] - Y[0]) - int64_t(X[2] - X[0]) * (Y[1] - Y[0]);
   if (area == 0) return;
   if ((params.cull == 1 && area < 0) || (params.cull == 2 && area > 0)) return;
   // Counterclockwise in GL window coordinates, so the interior is on the left of every edge.
@@ -218,7 +202,7 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   }
 
   // Depth and varying planes from the unsnapped float window positions, in llvmpipe's arithmetic.
-  const LpPlaneSetup ps(g, area > 0, ooa);
+  const LpPlaneSetup ps(g, area > 0);
   depth_plane(ps, g, r);
   r.rx = ps.x0;
   r.ry = float(params.fb_height) - ps.y0;  // GL y up
@@ -260,7 +244,7 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   PreparedVertex prepared[3];
   const PreparedVertex* p[3];
   for (int k = 0; k < 3; ++k) prepared[k] = prepare_vertex(params, v[k], made_by_clipping[k]), p[k] = &prepared[k];
-  emit_prepared(params, sc, v, p, inverse_area(p), flat_values, chunk);
+  emit_prepared(params, sc, v, p, flat_values, chunk);
 }
 
 void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
@@ -271,14 +255,6 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
   float a[kMaxClipVertices][kMaxStride], b[kMaxClipVertices][kMaxStride];
   bool new_a[kMaxClipVertices], new_b[kMaxClipVertices];
   float flat[kMaxVaryings];
-  // The plane setup's division first, for every triangle: in the setup loop each one stalls it (a division fed by
-  // a chain of dependent loads); here the chains of consecutive triangles overlap.
-  float ooa[kChunkTriangles];
-  for (size_t t = 0; t < count; ++t) {
-    const PreparedVertex* p[3];
-    for (int k = 0; k < 3; ++k) p[k] = params.prepared + indices[3 * (first + t) + k];
-    ooa[t] = inverse_area(p);
-  }
   for (size_t t = first; t < first + count; ++t) {
     const float* v[3];
     for (int k = 0; k < 3; ++k) v[k] = params.vertices + size_t(indices[3 * t + k]) * stride;
@@ -289,7 +265,7 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
     if (c0 & c1 & c2) continue;         // entirely outside one plane
     const float* provoking = v[2] + 4;  // flat shading: the last vertex, before clipping moves it
     if (!(c0 | c1 | c2)) {
-      emit_prepared(params, sc, v, p, ooa[t - first], provoking, chunk);
+      emit_prepared(params, sc, v, p, provoking, chunk);
       continue;
     }
     std::copy(provoking, provoking + n, flat);
