@@ -287,11 +287,11 @@ class Traversal {
   RayLanes lanes_{Ray{}};
   vf origin_[3], inv_[3], inv_far_[3], tmin_;
   int near_[3], far_[3];
-  Entry stack_[Bvh::kMaxDepth * W];
   int sp_ = 0;
   int32_t cur_ = 0;
   bool hit_ = false;
   Nearest nearest_;
+  Entry stack_[Bvh::kMaxDepth * W];  // last: a stream's walks then touch their state and stack top in few lines
 };
 
 /// Fills hit from a finished nearest-hit walk (see MeshAccel::intersect); false (hit untouched) for a miss.

@@ -37,8 +37,9 @@ class MeshAccel {
   /// vertices 1 and 2 of the triangle. stats (optional) counts wide nodes visited and triangles tested.
   bool intersect(Ray& ray, Hit& hit, TraversalStats* stats = nullptr) const;
   /// The nearest hits of many rays: hits[i] as intersect(rays[i], hits[i]) fills it (bit for bit), Hit{} (prim -1)
-  /// for a miss. Faster on incoherent rays: several rays are walked at once, interleaved node by node, so that their
-  /// cache misses overlap. Throws InvalidInput when the spans' sizes differ.
+  /// for a miss. Several rays are walked at once, interleaved node by node, so that their cache misses overlap: faster
+  /// on incoherent rays over large meshes, slower on coherent rays (their nodes are in cache; the switching costs).
+  /// Throws InvalidInput when the spans' sizes differ.
   void intersect(std::span<const Ray> rays, std::span<Hit> hits) const;
   /// Any hit with t in [ray.tmin, ray.tmax] (shadow rays).
   bool occluded(const Ray& ray) const;
