@@ -14,8 +14,7 @@ std::optional<Vec3f> refract_dir(const Vec3f& d, const Vec3f& n, float eta) {
   const float cos_i = -glm::dot(d, n);
   const float sin2_t = eta * eta * std::max(0.0f, 1.0f - cos_i * cos_i);
   if (sin2_t >= 1.0f) return std::nullopt;  // total internal reflection
-  const float cos_t = std::sqrt(1.0f - sin2_t);
-  return glm::normalize(eta * d + (eta * cos_i - cos_t) * n);
+  return eta * d + (eta * cos_i - std::sqrt(1.0f - sin2_t)) * n;
 }
 
 double critical_angle(double n1, double n2) { return std::asin(n2 / n1); }

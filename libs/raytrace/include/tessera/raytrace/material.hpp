@@ -52,8 +52,9 @@ float glossy_exponent(float glossiness);
 inline Vec3f reflect_dir(const Vec3f& e, const Vec3f& n) { return 2.0f * glm::dot(n, e) * n - e; }
 
 /// Snell's law sin t1 / sin t2 = n2 / n1 for the unit incoming direction d and the unit normal n on d's side
-/// (dot(d, n) <= 0), with eta = n1 / n2. Returns the unit refracted direction, or nothing for total internal
-/// reflection (sin t2 >= 1).
+/// (dot(d, n) <= 0), with eta = n1 / n2. Returns the refracted direction, or nothing for total internal reflection
+/// (sin t2 >= 1). It is unit within float rounding without normalizing: |eta d + (eta cos t1 - cos t2) n|^2 =
+/// eta^2 sin^2 t1 + cos^2 t2 = 1.
 std::optional<Vec3f> refract_dir(const Vec3f& d, const Vec3f& n, float eta);
 
 /// The critical angle asin(n2 / n1) beyond which light going from index n1 into n2 < n1 is totally reflected.
