@@ -92,18 +92,21 @@ bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t
 float max_component(const Vec3f& v) { return std::max({v.x, v.y, v.z}); }
 
 /// x^p for the highlight, x in [0, 1]: by repeated squaring when p is a whole number up to 1024 (the usual shininess;
-/// a few multiplications instead of powf, equal to it within float rounding), else std::pow. A power below 2^-32 is
-/// returned as 0 (squaring on into subnormals costs a hundred cycles a step, and such a highlight adds nothing).
+/// a few multiplications instead of powf, equal to it within float rounding), else std::pow. The tracer calls it only
+/// above highlight_floor(p), where x^p >= 2^-32, so no squaring step goes subnormal (a hundred cycles each).
 float highlight_power(float x, float p) {
   if (!(p >= 0.0f && p <= 1024.0f) || p != std::floor(p)) return std::pow(x, p);
   float result = 1.0f;
   for (auto k = uint32_t(p); k != 0; k >>= 1) {
-    if (x < 0x1p-32f) return 0.0f;  // the rest of the product, result x^k, is below 2^-32
     if (k & 1) result *= x;
     x *= x;
   }
   return result;
 }
+
+/// The cosine 2^(-32 / p) below which a highlight cos^p is under 2^-32 and adds nothing: most shading points of a
+/// shiny surface lie below it and skip the power (and, when nothing else lights them, the shadow ray).
+float highlight_floor(float p) { return p > 0.0f ? std::exp2(-32.0f / p) : 0.0f; }
 
 /// The surface color C_r at a hit of `ray`: the diffuse color or the checkerboard's, times the texture.
 Vec3f surface_color(const World& world, const Material& m, const Ray& ray, const SurfaceHit& h) {
@@ -171,6 +174,7 @@ class Tracer {
           info.patterns.emplace_back(uint32_t(info.count), hash_u32(li, uint64_t(depth)));
       lights_.push_back(std::move(info));
     }
+    for (const Material& m : scene.materials) highlight_floors_.push_back(highlight_floor(m.shininess));
   }
 
   /// The color along the ray from `origin` in unit direction `dir` at `time`, at recursion depth `depth` (1 = eye
@@ -186,7 +190,8 @@ class Tracer {
     ray.time = time;
     SurfaceHit h;
     if (!scene_.world.intersect(ray, h)) return scene_.background;
-    const Material& m = scene_.materials[size_t(scene_.world.material(h.object))];
+    const auto material = size_t(scene_.world.material(h.object));
+    const Material& m = scene_.materials[material];
 
     // Face the normals toward the incoming ray; remember which side of the surface the ray came from.
     const bool entering = glm::dot(dir, h.hit.normal) < 0.0f;
@@ -200,7 +205,7 @@ class Tracer {
     const Vec3f cr = surface_color(scene_.world, m, ray, h);
     Vec3f c = m.emission + cr * m.ambient * scene_.ambient;
     if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f))
-      c += direct_light(m, cr, p + offset * ng, n, ng, e, rng, primary, depth, rays);
+      c += direct_light(material, cr, p + offset * ng, n, ng, e, rng, primary, depth, rays);
 
     // Split K_trans into reflection and transmission (total internal reflection, optional Fresnel).
     Vec3f k_refl = m.reflection, k_trans = m.transmission;
@@ -237,25 +242,28 @@ class Tracer {
     std::vector<StratifiedPattern> patterns;  // several shadow rays: the stratified set of each depth 1, 2, ...
   };
 
-  /// C_L (C_r (N . L) + highlight) visible(P, L) for one sample of a light. The shadow ray last, and only for a term
-  /// that adds something (a black surface away from its highlight, e.g. glass, needs none).
-  Vec3f sample_term(const Material& m, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng, const Vec3f& e,
-                    const LightSample& ls, uint64_t& rays) const {
+  /// C_L (C_r (N . L) + highlight) visible(P, L) for one sample of a light, the highlight only above the material's
+  /// `cutoff` cosine (highlight_floor). The shadow ray last, and only for a term that adds something (a black surface
+  /// away from its highlight, e.g. glass, needs none).
+  Vec3f sample_term(const Material& m, float cutoff, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng,
+                    const Vec3f& e, const LightSample& ls, uint64_t& rays) const {
     const float nl = glm::dot(n, ls.dir);
     if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) return Vec3f(0.0f);
     float highlight = 0.0f;
     if (m.specular != Vec3f(0.0f)) {
       const float cos_h = m.model == SpecularModel::phong ? glm::dot(e, reflect_dir(ls.dir, n))
                                                           : glm::dot(n, glm::normalize(ls.dir + e));
-      if (cos_h > 0.0f) highlight = highlight_power(cos_h, m.shininess);
+      if (cos_h > cutoff) highlight = highlight_power(cos_h, m.shininess);
     }
     const Vec3f term = ls.color * (cr * nl + m.specular * highlight);
     return term != Vec3f(0.0f) && visible(scene_.world, p, ls, rays) ? term : Vec3f(0.0f);
   }
 
   /// The sum over lights of C_L (C_r (N . L) + highlight) visible(P, L), area lights averaged over their samples.
-  Vec3f direct_light(const Material& m, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng,
-                     const Vec3f& e, Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
+  Vec3f direct_light(size_t material, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng, const Vec3f& e,
+                     Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
+    const Material& m = scene_.materials[material];
+    const float cutoff = highlight_floors_[material];
     Vec3f sum(0.0f);
     for (size_t li = 0; li < lights_.size(); ++li) {
       const Light& light = scene_.lights[li];
@@ -264,10 +272,10 @@ class Tracer {
         // A light behind the surface is culled before the square root (N . (q - p) has the sign of N . L).
         const Vec3f to = light.position - p;
         if (glm::dot(n, to) > 0.0f && glm::dot(ng, to) > 0.0f)
-          sum += sample_term(m, cr, p, n, ng, e, light_toward(light.position, p, light.color), rays);
+          sum += sample_term(m, cutoff, cr, p, n, ng, e, light_toward(light.position, p, light.color), rays);
       } else if (light.type == LightType::directional) {
         const LightSample ls{info.direction, std::numeric_limits<float>::infinity(), light.color};
-        sum += sample_term(m, cr, p, n, ng, e, ls, rays);
+        sum += sample_term(m, cutoff, cr, p, n, ng, e, ls, rays);
       } else {
         // The area light's stratified set of this depth, rotated by the pixel sample's number (Cranley-Patterson) so
         // that the sets of a pixel's samples interleave.
@@ -276,7 +284,7 @@ class Tracer {
         for (int k = 0; k < info.count; ++k) {
           const Vec2f u =
               info.count > 1 ? glm::fract(info.patterns[size_t(depth - 1)].sample(uint32_t(k)) + rotation) : rotation;
-          light_sum += sample_term(m, cr, p, n, ng, e, sample_light(light, p, u), rays);
+          light_sum += sample_term(m, cutoff, cr, p, n, ng, e, sample_light(light, p, u), rays);
         }
         sum += info.count > 1 ? light_sum / float(info.count) : light_sum;
       }
@@ -287,6 +295,7 @@ class Tracer {
   const RayScene& scene_;
   const RenderSettings& settings_;
   std::vector<LightInfo> lights_;
+  std::vector<float> highlight_floors_;  // per material: highlight_floor(shininess)
 };
 
 void check_settings(const RayScene& scene, const RenderSettings& s) {
