@@ -21,13 +21,7 @@ void Framebuffer::wait_for_raster() noexcept {
 
 Framebuffer::~Framebuffer() { wait_for_raster(); }
 
-Framebuffer::Framebuffer(Framebuffer&& other) noexcept {
-  other.wait_for_raster();
-  color_ = std::move(other.color_);
-  front_ = std::move(other.front_);
-  depth_ = std::move(other.depth_);
-  scratch_ = std::move(other.scratch_);
-}
+Framebuffer::Framebuffer(Framebuffer&& other) noexcept { *this = std::move(other); }
 
 Framebuffer& Framebuffer::operator=(Framebuffer&& other) noexcept {
   wait_for_raster();

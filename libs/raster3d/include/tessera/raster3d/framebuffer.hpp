@@ -41,6 +41,8 @@ struct RasterScratch;  // binning memory reused from draw to draw (pipeline.cpp)
 }  // namespace detail
 
 /// Color + depth buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
+/// The pipeline's raster thread may still be writing the buffers after a Context call returns: read them through
+/// Context::framebuffer(), which waits; clear_*, swap, moves and the destructor wait too.
 class Framebuffer {
  public:
   /// A width x height framebuffer, color black, depth cleared to the far plane. Throws InvalidInput for sizes < 1.
