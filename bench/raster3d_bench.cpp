@@ -344,7 +344,7 @@ void set_tessera_state(raster3d::Context& ctx, Case c) {
 }
 
 // The immediate-mode frame through the notes' gt layer: one gtNormal + gtVertex per triangle corner. `unpipelined`
-// ends the shape and waits for the drawing (Context::finish) after every immediate-mode batch's worth of triangles:
+// ends the shape and waits for the drawing (Context::flush) after every immediate-mode batch's worth of triangles:
 // the same batches drawn without overlapping the collection of the next one (the schedule before session 4).
 void draw_immediate(const raster3d::VertexArrays& arrays, bool unpipelined) {
   constexpr size_t kBatchCorners = 3 * size_t(raster3d::detail::kChunkTriangles) * raster3d::detail::kPassChunks;
@@ -352,7 +352,7 @@ void draw_immediate(const raster3d::VertexArrays& arrays, bool unpipelined) {
   for (size_t k = 0; k < arrays.indices.size(); ++k) {
     if (unpipelined && k > 0 && k % kBatchCorners == 0) {
       gt::gtEndShape();
-      gt::gtCurrent().finish();
+      gt::gtCurrent().flush();
       gt::gtBeginShape(gt::GT_TRIANGLES);
     }
     const uint32_t i = arrays.indices[k];
@@ -466,7 +466,7 @@ int main(int argc, char** argv) {
   }
   for (const auto& [threads, u] : g_unpipelined) {
     const Rates& r = g_rates[key(Case::Immediate, threads)];
-    std::printf("immediate/%d unpipelined (finish after every batch): %.4g tris/s, %.4g per cpu-s; pipelining gains "
+    std::printf("immediate/%d unpipelined (flush after every batch): %.4g tris/s, %.4g per cpu-s; pipelining gains "
                 "%.2fx wall, %.2fx per cpu-s\n",
                 threads, u.tessera, u.tessera_cpu, u.tessera > 0 ? r.tessera / u.tessera : 0.0,
                 u.tessera_cpu > 0 ? r.tessera_cpu / u.tessera_cpu : 0.0);

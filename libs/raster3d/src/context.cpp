@@ -91,17 +91,17 @@ struct Context::DrawShaders {
 };
 
 Framebuffer& Context::framebuffer() {
-  finish();
+  flush();
   return framebuffer_;
 }
 
-void Context::flush() {
+void Context::submit_batch() {
   if (in_shape_) throw InvalidInput("state change or flush between begin and end (missing end)");
   draw_batch();
 }
 
-void Context::finish() {
-  flush();
+void Context::flush() {
+  submit_batch();
   detail::finish_raster(framebuffer_.scratch());
 }
 
@@ -124,19 +124,19 @@ void Context::draw_batch() {
 }
 
 void Context::swap_buffers() {
-  finish();
+  flush();
   framebuffer_.swap();
 }
 
 void Context::clear(const Vec3f& color) {
-  finish();
+  flush();
   framebuffer_.clear(color);
 }
 
 // ---- Matrices ----
 
 MatrixStack3& Context::current_stack() {
-  flush();  // the pending batch was specified under the old matrices
+  submit_batch();  // the pending batch was specified under the old matrices
   return matrix_mode_ == MatrixMode::projection ? projection_ : model_view_;
 }
 
@@ -154,17 +154,17 @@ void Context::rotate_z(double angle) { mult_matrix(tessera::rotate_z(angle)); }
 void Context::rotate(double angle, const Vec3& axis) { mult_matrix(tessera::rotate(angle, axis)); }
 
 void Context::look_at(const Vec3& eye, const Vec3& center, const Vec3& up) {
-  flush();
+  submit_batch();
   model_view_.multiply(tessera::look_at(eye, center, up));
 }
 
 void Context::ortho(double l, double r, double b, double t, double n, double f) {
-  flush();
+  submit_batch();
   projection_.load(tessera::ortho(l, r, b, t, n, f));
 }
 
 void Context::perspective(double fovy, double n, double f, double aspect) {
-  flush();
+  submit_batch();
   if (aspect <= 0) {
     const bool whole = state_.viewport.width <= 0 || state_.viewport.height <= 0;
     aspect = whole ? double(framebuffer_.width()) / framebuffer_.height()
@@ -176,47 +176,47 @@ void Context::perspective(double fovy, double n, double f, double aspect) {
 // ---- State ----
 
 void Context::viewport(int x, int y, int width, int height) {
-  flush();
+  submit_batch();
   state_.viewport = {x, y, width, height};
 }
 void Context::depth_test(bool on) {
-  flush();
+  submit_batch();
   state_.depth_test = on;
 }
 void Context::depth_func(DepthFunc func) {
-  flush();
+  submit_batch();
   state_.depth_func = func;
 }
 void Context::depth_write(bool on) {
-  flush();
+  submit_batch();
   state_.depth_write = on;
 }
 void Context::cull(CullMode mode) {
-  flush();
+  submit_batch();
   state_.cull = mode;
 }
 void Context::shading(ShadingModel model) {
-  flush();
+  submit_batch();
   shading_ = model;
 }
 void Context::hidden_surface(HiddenSurface method) {
-  flush();
+  submit_batch();
   hidden_surface_ = method;
 }
 void Context::material(const Material& m) {
-  flush();
+  submit_batch();
   lighting_.material = m;
 }
 void Context::specular_model(SpecularModel model) {
-  flush();
+  submit_batch();
   lighting_.specular_model = model;
 }
 void Context::light_model_ambient(const Vec3f& ambient) {
-  flush();
+  submit_batch();
   lighting_.model_ambient = ambient;
 }
 void Context::color_material(bool on) {
-  flush();
+  submit_batch();
   lighting_.color_material = on;
 }
 
@@ -226,7 +226,7 @@ static void check_light_index(int i) {
 
 void Context::light(int i, const Light& light) {
   check_light_index(i);
-  flush();
+  submit_batch();
   Light eye = light;
   eye.position = Vec4f(model_view() * Vec4(light.position));  // glLight stores the position in eye space
   lights_[size_t(i)] = eye;
@@ -234,7 +234,7 @@ void Context::light(int i, const Light& light) {
 
 void Context::enable_light(int i, bool on) {
   check_light_index(i);
-  flush();
+  submit_batch();
   light_on_[size_t(i)] = on;
 }
 
@@ -246,7 +246,7 @@ void Context::begin(Primitive kind) {
   const bool pending_other = (!batch_.indices.empty() && primitive_class(kind) != PrimitiveClass::triangles) ||
                              (!batch_lines_.empty() && primitive_class(kind) != PrimitiveClass::lines) ||
                              (!batch_points_.empty() && primitive_class(kind) != PrimitiveClass::points);
-  if (pending_other || batch_references_ >= kBatchVertices) flush();
+  if (pending_other || batch_references_ >= kBatchVertices) submit_batch();
   in_shape_ = true;
   shape_kind_ = kind;
   shape_vertices_.clear();
@@ -363,12 +363,12 @@ void Context::assemble_shape() {
 void Context::draw(const TriMesh& mesh) { draw(VertexArrays::from_mesh(mesh)); }
 
 void Context::draw(const VertexArrays& arrays) {
-  flush();
+  submit_batch();
   draw_triangle_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), arrays.indices);
 }
 
 void Context::draw_wireframe(const TriMesh& mesh) {
-  flush();
+  submit_batch();
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(mesh.indices.size());
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)

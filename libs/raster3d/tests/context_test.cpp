@@ -274,11 +274,11 @@ TEST(Context, ContextsOnTwoThreadsAtOnce) {
 
 // A frame that changes some state before nearly every shape, with immediate-mode batches of every size (one
 // triangle to several full batches of ~8-pixel triangles), batched draws, lines, points and a clear in between.
-// With `synchronous` every call is followed by finish(), so nothing is collected or set up while tiles are drawn.
+// With `synchronous` every call is followed by flush(), so nothing is collected or set up while tiles are drawn.
 Framebuffer render_state_churn(bool synchronous) {
   Context ctx(200, 136);  // 4 x 3 tiles, the last column and row partial
   const auto step = [&] {
-    if (synchronous) ctx.finish();
+    if (synchronous) ctx.flush();
   };
   const TriMesh sphere = to_tri_mesh(make_uv_sphere(20, 10));
   ctx.perspective(radians(50), 0.5, 20);

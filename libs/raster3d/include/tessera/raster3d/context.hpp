@@ -8,7 +8,7 @@
 // batch (or of a draw's pass of triangles) and hands its tile rasterization to the framebuffer's raster thread, then
 // returns to collect the next batch while the tiles are drawn. Batches are rasterized one at a time in submission
 // order, each with the state it was specified under, so the pixels are those of drawing synchronously. Reading the
-// framebuffer, clearing and swapping wait for the raster thread (finish()).
+// framebuffer, clearing and swapping wait for the raster thread (flush()).
 //
 // The gt layer (gt.hpp) is a thin set of the notes' functions over the current Context.
 #include <array>
@@ -64,17 +64,15 @@ class Context {
   /// Resizes (a new cleared framebuffer) and resets all state to the defaults.
   void initialize(int width, int height);
 
-  /// The framebuffer, after drawing everything pending (finish()). Read it before the next drawing call: later
+  /// The framebuffer, after drawing everything pending (flush()). Read it before the next drawing call: later
   /// drawing goes on on the raster thread.
   Framebuffer& framebuffer();
-  /// Hands the pending immediate-mode batch to the pipeline (glFlush); every state change calls it first. The batch's
-  /// tile rasterization may still be running on the raster thread when it returns.
+  /// Draws everything pending and waits until it is in the framebuffer (glFinish): the immediate-mode batch, and the
+  /// rasterization still running on the raster thread. (State changes hand the batch over without waiting.)
   void flush();
-  /// flush(), then waits until everything is drawn (glFinish).
-  void finish();
-  /// finish(), then presents the back buffer (Framebuffer::swap).
+  /// flush(), then presents the back buffer (Framebuffer::swap).
   void swap_buffers();
-  /// Clears the color buffer to `color` and the depth buffer to 1.0 (after finish()).
+  /// Clears the color buffer to `color` and the depth buffer to 1.0 (after flush()).
   void clear(const Vec3f& color);
 
   // ---- Matrices (CTM = CTM * T: the call written last acts first) ----
@@ -178,6 +176,7 @@ class Context {
   RasterState raster_state() const;
   MatrixStack3& current_stack();
   void assemble_shape();
+  void submit_batch();
   void draw_batch();
   void vertex_slow_path(double x, double y, double z);
   void new_cache_epoch();
