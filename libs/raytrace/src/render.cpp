@@ -79,12 +79,14 @@ struct PrimaryNumbers {
 /// How far a ray origin moves off the surface at p along the geometric normal: relative to the point's magnitude.
 float offset_scale(const Vec3f& p) { return 2e-4f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)})); }
 
-/// True when nothing blocks the segment from p toward the light sample (the notes' visible(P, L)).
-bool visible(const World& world, const Vec3f& p, const LightSample& ls, uint64_t& rays) {
+/// True when nothing blocks the segment from p toward the light sample at `time` (the notes' visible(P, L); moving
+/// objects cast their shadows where they are at the time of the path's eye ray).
+bool visible(const World& world, const Vec3f& p, const LightSample& ls, float time, uint64_t& rays) {
   ++rays;
   Ray shadow;
   shadow.origin = p;
   shadow.dir = ls.dir;
+  shadow.time = time;
   shadow.tmax = std::isinf(ls.distance) ? ls.distance : ls.distance * (1.0f - 1e-4f);
   return !world.occluded(shadow);
 }
@@ -205,7 +207,7 @@ class Tracer {
     const Vec3f cr = surface_color(scene_.world, m, ray, h);
     Vec3f c = m.emission + cr * m.ambient * scene_.ambient;
     if (cr != Vec3f(0.0f) || m.specular != Vec3f(0.0f))
-      c += direct_light(material, cr, p + offset * ng, n, ng, e, rng, primary, depth, rays);
+      c += direct_light(material, cr, p + offset * ng, n, ng, e, time, rng, primary, depth, rays);
 
     // Split K_trans into reflection and transmission (total internal reflection, optional Fresnel).
     Vec3f k_refl = m.reflection, k_trans = m.transmission;
@@ -246,7 +248,7 @@ class Tracer {
   /// `cutoff` cosine (highlight_floor). The shadow ray last, and only for a term that adds something (a black surface
   /// away from its highlight, e.g. glass, needs none).
   Vec3f sample_term(const Material& m, float cutoff, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng,
-                    const Vec3f& e, const LightSample& ls, uint64_t& rays) const {
+                    const Vec3f& e, const LightSample& ls, float time, uint64_t& rays) const {
     const float nl = glm::dot(n, ls.dir);
     if (nl <= 0.0f || glm::dot(ng, ls.dir) <= 0.0f || ls.color == Vec3f(0.0f)) return Vec3f(0.0f);
     float highlight = 0.0f;
@@ -256,12 +258,13 @@ class Tracer {
       if (cos_h > cutoff) highlight = highlight_power(cos_h, m.shininess);
     }
     const Vec3f term = ls.color * (cr * nl + m.specular * highlight);
-    return term != Vec3f(0.0f) && visible(scene_.world, p, ls, rays) ? term : Vec3f(0.0f);
+    return term != Vec3f(0.0f) && visible(scene_.world, p, ls, time, rays) ? term : Vec3f(0.0f);
   }
 
-  /// The sum over lights of C_L (C_r (N . L) + highlight) visible(P, L), area lights averaged over their samples.
+  /// The sum over lights of C_L (C_r (N . L) + highlight) visible(P, L), area lights averaged over their samples; the
+  /// shadow rays at the path's `time`.
   Vec3f direct_light(size_t material, const Vec3f& cr, const Vec3f& p, const Vec3f& n, const Vec3f& ng, const Vec3f& e,
-                     Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
+                     float time, Rng& rng, const PrimaryNumbers* primary, int depth, uint64_t& rays) const {
     const Material& m = scene_.materials[material];
     const float cutoff = highlight_floors_[material];
     Vec3f sum(0.0f);
@@ -272,10 +275,10 @@ class Tracer {
         // A light behind the surface is culled before the square root (N . (q - p) has the sign of N . L).
         const Vec3f to = light.position - p;
         if (glm::dot(n, to) > 0.0f && glm::dot(ng, to) > 0.0f)
-          sum += sample_term(m, cutoff, cr, p, n, ng, e, light_toward(light.position, p, light.color), rays);
+          sum += sample_term(m, cutoff, cr, p, n, ng, e, light_toward(light.position, p, light.color), time, rays);
       } else if (light.type == LightType::directional) {
         const LightSample ls{info.direction, std::numeric_limits<float>::infinity(), light.color};
-        sum += sample_term(m, cutoff, cr, p, n, ng, e, ls, rays);
+        sum += sample_term(m, cutoff, cr, p, n, ng, e, ls, time, rays);
       } else {
         // The area light's stratified set of this depth, rotated by the pixel sample's number (Cranley-Patterson) so
         // that the sets of a pixel's samples interleave.
@@ -284,7 +287,7 @@ class Tracer {
         for (int k = 0; k < info.count; ++k) {
           const Vec2f u =
               info.count > 1 ? glm::fract(info.patterns[size_t(depth - 1)].sample(uint32_t(k)) + rotation) : rotation;
-          light_sum += sample_term(m, cutoff, cr, p, n, ng, e, sample_light(light, p, u), rays);
+          light_sum += sample_term(m, cutoff, cr, p, n, ng, e, sample_light(light, p, u), time, rays);
         }
         sum += info.count > 1 ? light_sum / float(info.count) : light_sum;
       }
@@ -343,7 +346,7 @@ float visible_fraction(const RayScene& scene, const Vec3f& p, const Light& light
   const StratifiedPattern samples(uint32_t(n), pattern);
   for (int k = 0; k < n; ++k) {
     const LightSample ls = sample_light(light, p, samples.sample(uint32_t(k)));
-    seen += visible(scene.world, p, ls, rays) ? 1 : 0;
+    seen += visible(scene.world, p, ls, 0.0f, rays) ? 1 : 0;
   }
   return float(seen) / float(n);
 }

@@ -172,6 +172,20 @@ TEST(Render, ShadedPointFollowsTheNotesSum) {
   scene.world.build();
   const Vec3f shadowed = trace_ray(scene, s, ray);
   EXPECT_NEAR(shadowed.x, m.diffuse.x * 0.1f, 1e-5);
+
+  // A blocker that moves across the light casts its shadow where it is at the ray's time: between the point and the
+  // light at mid-shutter only.
+  RayScene moving = std::move(scene);
+  moving.world = World();
+  moving.world.add_shape(Plane{{0, 0, 0}, {0, 1, 0}}, Mat4(1.0), 0);
+  Motion sweep;
+  sweep.velocity = {8, 0, 0};
+  moving.world.add_shape(Sphere{{-4, 4, 0}, 0.5f}, Mat4(1.0), 0, sweep);
+  moving.world.build();
+  for (const float time : {0.0f, 0.5f, 0.9f}) {
+    ray.time = time;
+    EXPECT_NEAR(trace_ray(moving, s, ray).x, time == 0.5f ? m.diffuse.x * 0.1f : expected.x, 1e-5) << time;
+  }
 }
 
 TEST(Render, MirrorSeesWhatReflectsAndDepthStopsIt) {
