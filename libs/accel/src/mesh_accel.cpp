@@ -129,12 +129,12 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
       if (n.count == 0) continue;
       const int first_block = leaf_first_block(leaf_refs[size_t(i)]);
       for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
-        TriangleBlock& b = blocks_[size_t(first_block + k / 4)];
+        TriangleBlock& b = blocks_[size_t(first_block) + size_t(k / 4)];
         const int lane = k % 4;
         Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
         int index = -1;
         if (k < n.count) {
-          const size_t t = size_t(order[size_t(n.first + k)]);
+          const size_t t = size_t(order[size_t(n.first) + size_t(k)]);
           v0 = p[mesh.indices[3 * t]];
           e1 = p[mesh.indices[3 * t + 1]] - v0;
           e2 = p[mesh.indices[3 * t + 2]] - v0;
