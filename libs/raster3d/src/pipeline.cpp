@@ -2,6 +2,7 @@
 #include "tessera/raster3d/pipeline.hpp"
 
 #include <fmt/format.h>
+#include <immintrin.h>
 
 #include <algorithm>
 #include <cmath>
@@ -152,6 +153,19 @@ struct LpPlaneSetup {
     dfdy = d20 * dx01o - d01 * dx20o;
     return std::isfinite(dfdx) && std::isfinite(dfdy);
   }
+  // gradient() of four attributes at once (f[k]: their values at vertex k), each lane's gradient zero where it is
+  // not finite: the same IEEE operations per lane (SSE2, part of the baseline), a quarter of the instructions.
+  void gradient4(const __m128* f, __m128& dfdx, __m128& dfdy) const {
+    const __m128 d01 = _mm_sub_ps(f[order[0]], f[order[1]]), d20 = _mm_sub_ps(f[order[2]], f[order[0]]);
+    dfdx = _mm_sub_ps(_mm_mul_ps(d01, _mm_set1_ps(dy20o)), _mm_mul_ps(d20, _mm_set1_ps(dy01o)));
+    dfdy = _mm_sub_ps(_mm_mul_ps(d20, _mm_set1_ps(dx01o)), _mm_mul_ps(d01, _mm_set1_ps(dx20o)));
+    const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+    const __m128 finite = _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(dfdx, abs_mask), inf),
+                                     _mm_cmplt_ps(_mm_and_ps(dfdy, abs_mask), inf));
+    dfdx = _mm_and_ps(dfdx, finite);
+    dfdy = _mm_and_ps(dfdy, finite);
+  }
 };
 
 // The depth plane (lp_state_setup.c), relative to the first vertex moved by half a pixel: za is the depth at the
@@ -208,20 +222,33 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   r.ry = float(params.fb_height) - ps.y0;  // GL y up
   const int n = params.varying_count;
   const float *v0 = v[0], *v1 = v[1], *v2 = v[2];
-  r.varyings = uint32_t(chunk.varyings.size());
+  r.varyings = uint32_t(chunk.varyings_used);
   // Equal varyings at the three vertices interpolate to themselves: no planes needed (uniformly colored meshes).
   r.constant =
       params.flat || n == 0 || (std::equal(v0 + 4, v0 + 4 + n, v1 + 4) && std::equal(v0 + 4, v0 + 4 + n, v2 + 4));
   if (r.constant) {
     const float* values = params.flat ? flat_values : v0 + 4;
-    chunk.varyings.insert(chunk.varyings.end(), values, values + n);
+    std::copy(values, values + n, chunk.append_varyings(size_t(n)));
   } else {
-    chunk.varyings.resize(chunk.varyings.size() + 3 * size_t(n + 1));
-    float* c = chunk.varyings.data() + r.varyings;
+    float* c = chunk.append_varyings(3 * size_t(n + 1));
     float* cx = c + (n + 1);
     float* cy = c + 2 * (n + 1);
-    // Planes of 1/w and of each varying times 1/w (perspective-correct), the y slope turned to GL's y up.
-    for (int k = 0; k <= n; ++k) {
+    // Planes of 1/w and of each varying times 1/w (perspective-correct), the y slope turned to GL's y up: four at
+    // a time (Gouraud's 1/w, r, g, b in one), the rest one by one.
+    int k = 0;
+    for (; k + 4 <= n + 1; k += 4) {
+      __m128 f[3];
+      for (int i = 0; i < 3; ++i) {
+        const __m128 values = _mm_loadu_ps(v[i] + 3 + k);  // lane 0 of the first group is w: 1/w's plane is of 1
+        f[i] = _mm_mul_ps(k == 0 ? _mm_move_ss(values, _mm_set_ss(1.0f)) : values, _mm_set1_ps(inv_w[i]));
+      }
+      __m128 dfdx, dfdy;
+      ps.gradient4(f, dfdx, dfdy);
+      _mm_storeu_ps(c + k, f[ps.order[0]]);
+      _mm_storeu_ps(cx + k, dfdx);
+      _mm_storeu_ps(cy + k, _mm_xor_ps(dfdy, _mm_set1_ps(-0.0f)));
+    }
+    for (; k <= n; ++k) {
       float f[3];
       for (int i = 0; i < 3; ++i) f[i] = k == 0 ? inv_w[i] : v[i][3 + k] * inv_w[i];
       float dfdx, dfdy;
@@ -323,7 +350,7 @@ void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint
   pass.resize(kPassChunks);
   for (SetupChunk& chunk : pass) {
     chunk.records.clear();
-    chunk.varyings.clear();
+    chunk.varyings_used = 0;
     chunk.rasterized = 0;
     chunk.bins.resize(tiles);
     for (auto& bin : chunk.bins) bin.clear();

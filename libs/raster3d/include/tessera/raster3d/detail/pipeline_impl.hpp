@@ -52,9 +52,19 @@ struct TriangleRecord {
 /// The triangles one setup task produced, and their per-tile lists (record indices in submission order).
 struct SetupChunk {
   std::vector<TriangleRecord> records;
-  std::vector<float> varyings;
+  std::vector<float> varyings;  // [0, varyings_used) hold this pass's values; the rest is kept from pass to pass
+  size_t varyings_used = 0;
   std::vector<std::vector<uint32_t>> bins;
   uint64_t rasterized = 0;
+
+  /// Room for `count` more varying values, not initialized (setup writes them in place: no zeroing, no copy).
+  float* append_varyings(size_t count) {
+    if (varyings_used + count > varyings.size()) [[unlikely]]
+      varyings.resize(std::max(2 * varyings.size(), varyings_used + count));
+    float* out = varyings.data() + varyings_used;
+    varyings_used += count;
+    return out;
+  }
 };
 
 /// A vertex after perspective divide and viewport: window x, y (GL, y up), z in [0, 1], and 1/w.
@@ -482,6 +492,28 @@ template <DepthFunc F>
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
 }
+/// depth_passes8 for sixteen lanes as a mask register, within `lanes`: one compare instead of two halves.
+template <DepthFunc F>
+[[gnu::target("avx512f,avx512vl,avx512bw,avx512dq,fma"), gnu::always_inline]] inline __mmask16 depth_passes16(
+    __mmask16 lanes, __m512i d, __m512i s) {
+  if constexpr (F == DepthFunc::never)
+    return 0;
+  else if constexpr (F == DepthFunc::less)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_LT);
+  else if constexpr (F == DepthFunc::equal)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_EQ);
+  else if constexpr (F == DepthFunc::lequal)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_LE);
+  else if constexpr (F == DepthFunc::greater)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_GT);
+  else if constexpr (F == DepthFunc::notequal)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_NE);
+  else if constexpr (F == DepthFunc::gequal)
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_GE);
+  else
+    return lanes;
+}
+
 // GCC 12's AVX-512 intrinsics start from _mm512_undefined_*(), which -Wmaybe-uninitialized reports once inlined.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
@@ -539,12 +571,7 @@ template <DepthFunc F>
       const __m512i stored = _mm512_inserti64x4(
           _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(__mmask8(cover), drow[0] + x)),
           _mm256_maskz_loadu_epi32(__mmask8(cover >> 8), drow[1] + x), 1);
-      const __mmask16 pass = cover & _mm512_movepi32_mask(_mm512_inserti64x4(
-                                         _mm512_castsi256_si512(depth_passes8<F>(_mm512_castsi512_si256(d),
-                                                                                 _mm512_castsi512_si256(stored))),
-                                         depth_passes8<F>(_mm512_extracti64x4_epi64(d, 1),
-                                                          _mm512_extracti64x4_epi64(stored, 1)),
-                                         1));
+      const __mmask16 pass = depth_passes16<F>(cover, d, stored);
       if (!pass) continue;
       const __m512 dx = _mm512_sub_ps(_mm512_add_ps(fi, half), rx);
       const __m512 w = _mm512_div_ps(one, _mm512_add_ps(base[0], _mm512_mul_ps(pxv[0], dx)));
