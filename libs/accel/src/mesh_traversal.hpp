@@ -54,12 +54,15 @@ struct Lanes<8> {
 using v4f = Lanes<4>::vf;
 using v4i = Lanes<4>::vi;
 
-/// x in every lane.
+/// x in every lane (one broadcast; GCC builds the vector lane by lane from a loop, and the traversal splats the
+/// shrinking tmax at every node).
 template <int W>
 typename Lanes<W>::vf splat(float x) {
-  typename Lanes<W>::vf v;
-  for (int i = 0; i < W; ++i) v[i] = x;
-  return v;
+  if constexpr (W == 4) {
+    return reinterpret_cast<typename Lanes<4>::vf>(_mm_set1_ps(x));
+  } else {
+    return reinterpret_cast<typename Lanes<8>::vf>(_mm256_set1_ps(x));
+  }
 }
 
 /// A ray's origin and direction, splatted.
