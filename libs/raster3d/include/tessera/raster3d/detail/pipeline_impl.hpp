@@ -428,11 +428,12 @@ template <DepthFunc F>
 /// Rasterizes a Gouraud record (three color varyings, ColorFragmentShader) over the rectangle [x0, x1) x [y0, y1)
 /// (GL pixels) eight pixels at a time: coverage from the edge functions in 32-bit lanes, depth as fragment_depth and
 /// depth24, the early depth test, then the color planes with one division per eight pixels and to_color8's rounding.
-/// The same IEEE operations in the same order as raster_tile's scalar loop, so the same pixels.
+/// The same IEEE operations in the same order as raster_tile's scalar loop, so the same pixels. The task owns the
+/// pixels left of x_owned in these rows (its tile's): eight of them are rewritten whole, uncovered lanes unchanged.
 template <DepthFunc F>
 [[gnu::target("avx2,fma")]] void gouraud_rect_avx2(const TriangleRecord& r, const float* planes, int x0, int x1,
-                                                     int y0, int y1, Image<uint32_t>& depth, ImageRGBA8& color,
-                                                     bool write_depth) {
+                                                     int y0, int y1, int x_owned, Image<uint32_t>& depth,
+                                                     ImageRGBA8& color, bool write_depth) {
   const int height = depth.height();
   const float* pc = planes;
   const float* px = planes + 4;
@@ -474,7 +475,11 @@ template <DepthFunc F>
       __m256 z = _mm256_fmadd_ps(zdy, rowv, _mm256_fmadd_ps(zdx, fi, za));
       z = _mm256_min_ps(_mm256_max_ps(z, zero), one);
       const __m256i d = _mm256_cvtps_epi32(_mm256_mul_ps(z, depth_scale));
-      const __m256i stored = _mm256_maskload_epi32(reinterpret_cast<const int*>(drow + x), cover);
+      // Eight pixels this task owns: whole loads and a blended whole store, which the next triangle's load of the
+      // same pixels can take from the store buffer (a masked store does not forward: the load waited for it).
+      const bool whole = write_depth && x + 8 <= x_owned;
+      const __m256i stored = whole ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(drow + x))
+                                   : _mm256_maskload_epi32(reinterpret_cast<const int*>(drow + x), cover);
       const __m256i pass = _mm256_and_si256(cover, depth_passes8<F>(d, stored));
       if (_mm256_testz_si256(pass, pass)) continue;
       const __m256 dx = _mm256_sub_ps(_mm256_add_ps(fi, half), rx);
@@ -487,7 +492,10 @@ template <DepthFunc F>
         rgba = _mm256_or_si256(rgba, _mm256_slli_epi32(_mm256_cvttps_epi32(c), 8 * (k - 1)));
       }
       _mm256_maskstore_epi32(crow + x, pass, rgba);
-      if (write_depth) _mm256_maskstore_epi32(reinterpret_cast<int*>(drow + x), pass, d);
+      if (whole)
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(drow + x), _mm256_blendv_epi8(stored, d, pass));
+      else if (write_depth)
+        _mm256_maskstore_epi32(reinterpret_cast<int*>(drow + x), pass, d);
     }
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
@@ -521,7 +529,7 @@ template <DepthFunc F>
 /// loads and stores. The same operations per pixel, so the same pixels.
 template <DepthFunc F>
 [[gnu::target("avx512f,avx512vl,avx512bw,avx512dq,fma")]] void gouraud_rect_avx512(
-    const TriangleRecord& r, const float* planes, int x0, int x1, int y0, int y1, Image<uint32_t>& depth,
+    const TriangleRecord& r, const float* planes, int x0, int x1, int y0, int y1, int x_owned, Image<uint32_t>& depth,
     ImageRGBA8& color, bool write_depth) {
   const int height = depth.height();
   const float* pc = planes;
@@ -568,9 +576,14 @@ template <DepthFunc F>
       __m512 z = _mm512_fmadd_ps(zdy, rowv, _mm512_fmadd_ps(zdx, fi, za));
       z = _mm512_min_ps(_mm512_max_ps(z, zero), one);
       const __m512i d = _mm512_cvtps_epi32(_mm512_mul_ps(z, depth_scale));
-      const __m512i stored = _mm512_inserti64x4(
-          _mm512_castsi256_si512(_mm256_maskz_loadu_epi32(__mmask8(cover), drow[0] + x)),
-          _mm256_maskz_loadu_epi32(__mmask8(cover >> 8), drow[1] + x), 1);
+      // As in gouraud_rect_avx2: whole loads and stores of the pixels this task owns (the second row's only when
+      // there is one: drow[1] is drow[0] otherwise).
+      const bool whole = write_depth && x + 8 <= x_owned;
+      const __m256i stored0 = whole ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(drow[0] + x))
+                                    : _mm256_maskz_loadu_epi32(__mmask8(cover), drow[0] + x);
+      const __m256i stored1 = whole && two ? _mm256_loadu_si256(reinterpret_cast<const __m256i*>(drow[1] + x))
+                                           : _mm256_maskz_loadu_epi32(__mmask8(cover >> 8), drow[1] + x);
+      const __m512i stored = _mm512_inserti64x4(_mm512_castsi256_si512(stored0), stored1, 1);
       const __mmask16 pass = depth_passes16<F>(cover, d, stored);
       if (!pass) continue;
       const __m512 dx = _mm512_sub_ps(_mm512_add_ps(fi, half), rx);
@@ -584,7 +597,11 @@ template <DepthFunc F>
       }
       _mm256_mask_storeu_epi32(crow[0] + x, __mmask8(pass), _mm512_castsi512_si256(rgba));
       _mm256_mask_storeu_epi32(crow[1] + x, __mmask8(pass >> 8), _mm512_extracti64x4_epi64(rgba, 1));
-      if (write_depth) {
+      if (whole) {
+        const __m512i blended = _mm512_mask_blend_epi32(pass, stored, d);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(drow[0] + x), _mm512_castsi512_si256(blended));
+        if (two) _mm256_storeu_si256(reinterpret_cast<__m256i*>(drow[1] + x), _mm512_extracti64x4_epi64(blended, 1));
+      } else if (write_depth) {
         _mm256_mask_storeu_epi32(drow[0] + x, __mmask8(pass), _mm512_castsi512_si256(d));
         _mm256_mask_storeu_epi32(drow[1] + x, __mmask8(pass >> 8), _mm512_extracti64x4_epi64(d, 1));
       }
@@ -658,9 +675,9 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
         // Gouraud with the built-in pass-through fragment shader: eight pixels at a time.
         if (span_isa() >= 1 && fits_int32_block(r, x0, x1, y0, y1)) {
           if (span_isa() == 2)
-            gouraud_rect_avx512<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
+            gouraud_rect_avx512<F>(r, data, x0, x1, y0, y1, tile_x1, depth, color, write_depth);
           else
-            gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, depth, color, write_depth);
+            gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, tile_x1, depth, color, write_depth);
           continue;
         }
       }
