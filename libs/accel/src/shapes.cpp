@@ -22,8 +22,6 @@ inline bool accept(const Ray& ray, float t, const Vec3f& normal, const Vec2f& uv
   return true;
 }
 
-bool in_range(const Ray& ray, float t) { return t >= ray.tmin && t <= ray.tmax; }
-
 /// The real roots t0 <= t1 of a t^2 + b t + c = 0 by the cancellation-free form q = -(b + sign(b) sqrt(disc)) / 2,
 /// roots q / a and c / q (Numerical Recipes 5.6). Double precision: cylinders and cones square their coordinates.
 /// A vanishing a (a ray parallel to a cone's side) leaves the one root of the linear equation in both.
@@ -58,19 +56,12 @@ void tangent_frame(const Vec3f& n, Vec3f& t1, Vec3f& t2) {
   t2 = Vec3f(b, sign + n.y * n.y * a, -n.y);
 }
 
-/// The ray's parameter at the plane n . (P - p) = 0, or NaN when the ray is parallel to it.
-float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
-  const float denom = glm::dot(n, ray.dir);
-  if (denom == 0) return std::numeric_limits<float>::quiet_NaN();
-  return glm::dot(n, p - ray.origin) / denom;
-}
-
 /// A disk-shaped cap of the y axis at height y (radius r, outward normal ny = +1 or -1).
 template <bool Full>
 bool cap_hit(float y, float r, float ny, const Ray& ray, float& t_best, Hit& hit) {
   if (ray.dir.y == 0) return false;
   const float t = (y - ray.origin.y) / ray.dir.y;
-  if (!in_range(ray, t) || t >= t_best) return false;
+  if (!ray.in_range(t) || t >= t_best) return false;
   const Vec3f p = ray.at(t);
   if (p.x * p.x + p.z * p.z > r * r) return false;
   t_best = t;
@@ -135,8 +126,8 @@ bool kernel(const Sphere& s, const Ray& ray, Hit& hit) {
   const float q = -(b + std::copysign(std::sqrt(a * disc), b));
   float t0 = c / q, t1 = q / a;
   if (t0 > t1) std::swap(t0, t1);
-  const float t = in_range(ray, t0) ? t0 : t1;
-  if (!in_range(ray, t)) return false;
+  const float t = ray.in_range(t0) ? t0 : t1;
+  if (!ray.in_range(t)) return false;
   if constexpr (!Full) {
     hit.t = t;
     return true;
@@ -148,7 +139,7 @@ bool kernel(const Sphere& s, const Ray& ray, Hit& hit) {
 template <bool Full>
 bool kernel(const Plane& s, const Ray& ray, Hit& hit) {
   const float t = plane_t(s.point, s.normal, ray);
-  if (!in_range(ray, t)) return false;  // false for NaN too
+  if (!ray.in_range(t)) return false;  // false for NaN too
   if constexpr (!Full) {
     hit.t = t;
     return true;
@@ -175,7 +166,7 @@ bool kernel(const Triangle& s, const Ray& ray, Hit& hit) {
   const float b2 = glm::dot(ray.dir, q) * inv;
   if (b2 < 0 || b1 + b2 > 1) return false;
   const float t = glm::dot(e2, q) * inv;
-  if (!in_range(ray, t)) return false;
+  if (!ray.in_range(t)) return false;
   if constexpr (!Full) {
     hit.t = t;
     return true;
@@ -244,7 +235,7 @@ bool kernel(const Polygon& s, const Ray& ray, Hit& hit) {
   if (s.vertices.size() < 3) return false;
   const Vec3f n = newell_normal(s.vertices);
   const float t = plane_t(s.vertices[0], n, ray);
-  if (!in_range(ray, t)) return false;
+  if (!ray.in_range(t)) return false;
   int a0, a1;
   kept_axes(n, a0, a1);
   const Vec3f p = ray.at(t);
@@ -281,7 +272,7 @@ bool kernel(const Box& s, const Ray& ray, Hit& hit) {
     tf = std::min(tf, std::max(x0, x1));
   }
   const float t = tn >= ray.tmin ? tn : tf;
-  if (!in_range(ray, t)) return false;
+  if (!ray.in_range(t)) return false;
   if constexpr (!Full) {
     hit.t = t;
     return true;
@@ -307,7 +298,7 @@ bool kernel(const Cylinder& s, const Ray& ray, Hit& hit) {
                       double(o.x) * o.x + double(o.z) * o.z - double(s.radius) * s.radius, t0, t1)) {
     for (const double td : {t0, t1}) {
       const float t = float(td);
-      if (!in_range(ray, t)) continue;
+      if (!ray.in_range(t)) continue;
       const Vec3f p = ray.at(t);
       if (p.y < s.y0 || p.y > s.y1) continue;
       if constexpr (!Full) {
@@ -346,7 +337,7 @@ bool kernel(const Cone& s, const Ray& ray, Hit& hit) {
   if (solve_quadratic(a, b, c, t0, t1)) {
     for (const double td : {t0, t1}) {
       const float t = float(td);
-      if (!in_range(ray, t)) continue;
+      if (!ray.in_range(t)) continue;
       const Vec3f p = ray.at(t);
       const float y = p.y - s.apex.y;
       if (y < 0 || y > s.height) continue;  // the other nappe, or beyond the base
@@ -369,7 +360,7 @@ bool kernel(const Cone& s, const Ray& ray, Hit& hit) {
   if (s.capped && ray.dir.y != 0) {
     // The base cap: the plane y = yb + h, a hit when its distance to the base center is below the radius; N = +y.
     const float t = (s.apex.y + s.height - ray.origin.y) / ray.dir.y;
-    if (in_range(ray, t) && t < t_best) {
+    if (ray.in_range(t) && t < t_best) {
       const Vec3f p = ray.at(t);
       const float dx = p.x - s.apex.x, dz = p.z - s.apex.z;
       if (dx * dx + dz * dz <= s.radius * s.radius) {
@@ -388,7 +379,7 @@ bool kernel(const Cone& s, const Ray& ray, Hit& hit) {
 template <bool Full>
 bool kernel(const Disk& s, const Ray& ray, Hit& hit) {
   const float t = plane_t(s.center, s.normal, ray);
-  if (!in_range(ray, t)) return false;
+  if (!ray.in_range(t)) return false;
   const Vec3f d = ray.at(t) - s.center;
   const float r2 = glm::dot(d, d);
   if (r2 > s.radius * s.radius) return false;

@@ -54,8 +54,6 @@ bool occludes_object(const Object& o, const Ray& ray) {
   return (*std::get_if<2>(&o.geometry))->accel.occluded(r);
 }
 
-bool in_range(const Ray& ray, float t) { return t >= ray.tmin && t <= ray.tmax; }
-
 /// The nearest t in [tmin, tmax] where the ray meets the sphere, or NaN: accel's sphere kernel (the notes' quadratic
 /// in the form of Haines et al., Ray Tracing Gems ch. 7) without the point, normal and uv, inlined into the world's
 /// flat loop, with the ray's 1 / (d . d) computed once per ray.
@@ -70,7 +68,7 @@ inline float sphere_t(const Vec3f& center, float radius, const Ray& ray, float a
   const float q = -(b + std::copysign(std::sqrt(a * disc), b));
   float t0 = c / q, t1 = q * inv_a;
   if (t0 > t1) std::swap(t0, t1);
-  return in_range(ray, t0) ? t0 : t1;
+  return ray.in_range(t0) ? t0 : t1;
 }
 
 /// Whether the segment [tmin, tmax] of the ray meets the sphere (shadow rays). From outside the sphere neither root
@@ -81,18 +79,11 @@ inline bool sphere_blocks(const Vec3f& center, float radius, const Ray& ray, flo
   const Vec3f f = ray.origin - center;
   const float b = glm::dot(f, ray.dir);
   const float c = glm::dot(f, f) - radius * radius;
-  if (c <= 0 || ray.tmin < 0) return in_range(ray, sphere_t(center, radius, ray, a, 1.0f / a));
+  if (c <= 0 || ray.tmin < 0) return ray.in_range(sphere_t(center, radius, ray, a, 1.0f / a));
   if (b >= 0 || b * b < a * c) return false;  // moving away, or the line misses
   if (-b <= ray.tmax * a) return true;
   const Vec3f end = f + ray.tmax * ray.dir;
   return glm::dot(end, end) <= radius * radius;
-}
-
-/// The ray's parameter at the plane through p with normal n (NaN when parallel), as accel's plane kernel.
-inline float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
-  const float denom = glm::dot(n, ray.dir);
-  if (denom == 0) return std::numeric_limits<float>::quiet_NaN();
-  return glm::dot(n, p - ray.origin) / denom;
 }
 
 }  // namespace
@@ -244,7 +235,7 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
     const float num = glm::dot(f.normal, f.point - ray.origin), denom = glm::dot(f.normal, ray.dir);
     if (ray.tmin >= 0 && num * denom < 0.0f) continue;
     const float t = denom == 0 ? std::numeric_limits<float>::quiet_NaN() : num / denom;
-    if (in_range(ray, t)) {
+    if (ray.in_range(t)) {
       ray.tmax = t;
       plane = &f;
     }
@@ -252,7 +243,7 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
   const float a = glm::dot(ray.dir, ray.dir), inv_a = 1.0f / a;
   for (const FlatSphere& f : flat_spheres_) {
     const float t = sphere_t(f.center, f.radius, ray, a, inv_a);
-    if (in_range(ray, t)) {
+    if (ray.in_range(t)) {
       ray.tmax = t;
       sphere = &f;
       plane = nullptr;
@@ -295,7 +286,7 @@ bool World::occluded(const Ray& ray) const {
     const float start = glm::dot(f.normal, ray.origin - f.point);
     if (f.casts_shadows && !(ray.tmin >= 0 && std::isfinite(ray.tmax) &&
                              start * glm::dot(f.normal, ray.at(ray.tmax) - f.point) > 0.0f) &&
-        in_range(ray, plane_t(f.point, f.normal, ray)))
+        ray.in_range(plane_t(f.point, f.normal, ray)))
       return true;
   }
   const float a = glm::dot(ray.dir, ray.dir);

@@ -17,7 +17,16 @@ struct Ray {
 
   /// The point at parameter t.
   Vec3f at(float t) const { return origin + t * dir; }
+  /// Whether t lies in [tmin, tmax] (false for NaN, so a kernel's "no root" NaN is rejected here).
+  bool in_range(float t) const { return t >= tmin && t <= tmax; }
 };
+
+/// The ray's parameter at the plane n . (P - p) = 0, or NaN when the ray is parallel to it.
+inline float plane_t(const Vec3f& p, const Vec3f& n, const Ray& ray) {
+  const float denom = glm::dot(n, ray.dir);
+  if (denom == 0) return std::numeric_limits<float>::quiet_NaN();
+  return glm::dot(n, p - ray.origin) / denom;
+}
 
 /// An axis-aligned bounding box; the default box is empty (lo = +inf, hi = -inf) and absorbs anything.
 struct AABB {
