@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <immintrin.h>
@@ -390,16 +391,15 @@ inline bool covers_rectangle(const TriangleRecord& r, int x0, int x1, int y0, in
 
 /// Whether the record's edge functions stay within int32 over the rectangle [x0, x1) x [y0, y1), eight pixels
 /// beyond its right side and one row above it (the vector loops' lanes), so that they can be stepped in 32-bit lanes.
+/// A bound rather than the four corners (a third of the work per record): |E| is at most its value at (x0, y0)
+/// plus its steps across the rectangle.
 inline bool fits_int32_block(const TriangleRecord& r, int x0, int x1, int y0, int y1) {
   constexpr int64_t kLimit = int64_t(1) << 30;
   for (const Edge& e : r.edges) {
     const int64_t ax = int64_t(e.a) * 256, by = int64_t(e.b) * 256;
     if (ax > (1 << 20) || ax < -(1 << 20)) return false;
-    for (const int i : {x0, x1 + 8})
-      for (const int j : {y0, y1}) {
-        const int64_t v = ax * i + by * j + e.c;
-        if (v > kLimit || v < -kLimit) return false;
-      }
+    const int64_t corner = ax * x0 + by * y0 + e.c;
+    if (std::abs(corner) + std::abs(ax) * (x1 + 8 - x0) + std::abs(by) * (y1 - y0) > kLimit) return false;
   }
   return true;
 }
@@ -633,6 +633,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
       __builtin_prefetch(record + 64);
     }
   if (records == 0) return;
+  const int isa = span_isa();
   for (int j = tile_y0; j < tile_y1; ++j)
     for (int i = tile_x0; i < tile_x1; i += 16) {
       __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
@@ -673,8 +674,8 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
       }
       if constexpr (std::is_same_v<FS, ColorFragmentShader>) {
         // Gouraud with the built-in pass-through fragment shader: eight pixels at a time.
-        if (span_isa() >= 1 && fits_int32_block(r, x0, x1, y0, y1)) {
-          if (span_isa() == 2)
+        if (isa >= 1 && fits_int32_block(r, x0, x1, y0, y1)) {
+          if (isa == 2)
             gouraud_rect_avx512<F>(r, data, x0, x1, y0, y1, tile_x1, depth, color, write_depth);
           else
             gouraud_rect_avx2<F>(r, data, x0, x1, y0, y1, tile_x1, depth, color, write_depth);
