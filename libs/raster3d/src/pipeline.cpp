@@ -117,8 +117,9 @@ PreparedVertex prepare_vertex(const SetupParams& params, const float* clip, bool
 }  // namespace
 
 void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count) {
-  scratch.prepared.resize(count);
-  PreparedVertex* out = scratch.prepared.data();
+  std::vector<PreparedVertex>& prepared = scratch.inputs[size_t(scratch.input)].prepared;
+  prepared.resize(count);
+  PreparedVertex* out = prepared.data();
   const int stride = 4 + params.varying_count;
   parallel_for(0, count, 4096, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) out[i] = prepare_vertex(params, params.vertices + i * stride, false);
@@ -344,8 +345,7 @@ FragmentState fragment_state(const RasterState& state) {
   return {depth_on ? state.depth_func : DepthFunc::always, depth_on && state.depth_write};
 }
 
-void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
-                size_t triangle_count) {
+void reset_pass(SetupPass& pass, const SetupParams& params) {
   const size_t tiles = size_t(params.tiles_x) * params.tiles_y;
   pass.resize(kPassChunks);
   for (SetupChunk& chunk : pass) {
@@ -355,14 +355,20 @@ void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint
     chunk.bins.resize(tiles);
     for (auto& bin : chunk.bins) bin.clear();
   }
-  const int64_t chunks = int64_t((triangle_count + kChunkTriangles - 1) / kChunkTriangles);
-  parallel_for(0, chunks, 1, [&](int64_t begin, int64_t end) {
+}
+
+uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+                      size_t triangle_count, int64_t chunk_begin, int64_t chunk_end) {
+  parallel_for(chunk_begin, chunk_end, 1, [&](int64_t begin, int64_t end) {
     for (int64_t c = begin; c < end; ++c) {
       const size_t start = first + size_t(c) * kChunkTriangles;
       const size_t count = std::min<size_t>(kChunkTriangles, first + triangle_count - start);
       setup_chunk(params, indices, start, count, pass[size_t(c)]);
     }
   });
+  uint64_t rasterized = 0;
+  for (int64_t c = chunk_begin; c < chunk_end; ++c) rasterized += pass[size_t(c)].rasterized;
+  return rasterized;
 }
 
 // One thread that runs raster jobs one at a time, in order: a one-job slot, filled by submit once the job before is

@@ -357,6 +357,27 @@ TEST(Context, PipelinedDrawingEqualsDrawingOneCallAtATime) {
   EXPECT_LT(background, synchronous.width() * synchronous.height() / 4);
 }
 
+TEST(Context, StatsCountTheTrianglesTheRasterJobsSetUp) {
+  // The raster thread sets up the last chunks of every pass: once flush() returns, their triangles are counted too.
+  // 40000 small triangles, none culled or clipped: more than two passes of the immediate-mode batch.
+  for (int threads : {1, 2}) {
+    const ThreadLimit limit(threads);
+    Context ctx(200, 200);
+    ctx.ortho(0, 200, 0, 200, -1, 1);
+    ctx.begin(Primitive::triangles);
+    for (int t = 0; t < 40000; ++t) {
+      const double x = 1 + t % 190, y = 1 + (t / 190) % 190;
+      ctx.vertex(x, y, 0.5);
+      ctx.vertex(x + 3, y, 0.5);
+      ctx.vertex(x, y + 3, 0.5);
+    }
+    ctx.end();
+    ctx.flush();
+    EXPECT_EQ(ctx.stats().primitives, 40000u) << threads;
+    EXPECT_EQ(ctx.stats().rasterized, 40000u) << threads;
+  }
+}
+
 TEST(Context, DoubleBufferingPresentsOnSwap) {
   Context ctx(8, 8);
   ctx.clear({0, 0, 1});

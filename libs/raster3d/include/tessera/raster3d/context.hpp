@@ -164,7 +164,7 @@ class Context {
   /// Draws the edges of the mesh's triangles as lines (each shared edge once).
   void draw_wireframe(const TriMesh& mesh);
 
-  /// Totals since the last initialize().
+  /// Totals since the last initialize(); `rasterized` is complete once flush() or framebuffer() has returned.
   const DrawStats& stats() const { return stats_; }
 
  private:

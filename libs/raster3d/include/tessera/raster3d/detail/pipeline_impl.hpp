@@ -3,6 +3,7 @@
 // inline; clipping, triangle setup and binning do not depend on the shaders and live in src/pipeline.cpp.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -24,6 +25,7 @@ inline constexpr int kTileSize = 64;          // pixels per side of a binning ti
 inline constexpr int kMaxVaryings = 32;       // floats of varyings a shader may pass
 inline constexpr int kChunkTriangles = 1024;  // input triangles set up and binned by one task
 inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (a pass stays in cache)
+inline constexpr int kJobChunks = 4;          // of them, the last ones, set up by the raster job (balances the threads)
 
 /// An edge function in 1/256-pixel fixed point: at the center of GL pixel (i, j) it is
 /// E = 256 (a i + b j) + c, with the tie rule folded into c (a center on an exclusive edge gives -1). The pixel is
@@ -99,9 +101,17 @@ struct RasterScratch {
   RasterScratch();
   ~RasterScratch();  // waits for the raster thread's job and ends the thread
 
-  std::vector<float> vertices;     // vertex stage output: per vertex, clip position (4 floats) then the varyings
-  std::vector<PreparedVertex> prepared;  // per vertex, for the triangles that need no clipping
+  // What setup reads of a draw, double buffered by draw: a raster job sets up the last chunks of its pass, so it reads
+  // them while the caller runs the next draw's vertex stage into the other set.
+  struct DrawInput {
+    std::vector<float> vertices;  // vertex stage output: per vertex, clip position (4 floats) then the varyings
+    std::vector<PreparedVertex> prepared;  // per vertex, for the triangles that need no clipping
+    std::vector<uint32_t> indices;         // the triangles' indices, in drawing order
+  };
+  std::array<DrawInput, 2> inputs;
+  int input = 0;                   // the current draw's set
   std::vector<uint32_t> order;     // painter's algorithm: the sorted triangle indices
+  std::atomic<uint64_t> job_rasterized{0};  // triangles set up by raster jobs, until the caller collects them
   // Double buffered: setup fills passes[next_pass] while the raster thread reads the other one.
   std::array<SetupPass, 2> passes;
   int next_pass = 0;
@@ -132,10 +142,14 @@ struct SetupParams {
   int tiles_x, tiles_y;
 };
 
-/// Clips, culls, snaps and sets up `triangle_count` triangles of `indices` starting at triangle `first`, into
-/// `pass` (one chunk per kChunkTriangles, in parallel), binning each record to the tiles it touches.
-void setup_pass(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
-                size_t triangle_count);
+/// Empties the kPassChunks chunks of `pass` for a new pass.
+void reset_pass(SetupPass& pass, const SetupParams& params);
+
+/// Clips, culls, snaps and sets up chunks [chunk_begin, chunk_end) of the pass of `triangle_count` triangles of
+/// `indices` starting at triangle `first`, into `pass` (chunk c: kChunkTriangles from first + c kChunkTriangles, in
+/// parallel), binning each record to the tiles it touches. Returns how many triangles they hold.
+uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+                      size_t triangle_count, int64_t chunk_begin, int64_t chunk_end);
 
 /// The triangle indices reordered far to near by the window depth of each triangle's centroid (stable), into
 /// scratch.order.
@@ -155,8 +169,8 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
 /// The perspective divide and viewport transform of a clip-space position (float32, as OpenGL).
 WindowVertex to_window(const SetupParams& params, const float* clip);
 
-/// The window positions of the vertex stage's `count` vertices (PreparedVertex), in parallel, into scratch.prepared
-/// and params.prepared.
+/// The window positions of the vertex stage's `count` vertices (PreparedVertex), in parallel, into the current draw
+/// input's prepared vertices and params.prepared.
 void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t count);
 
 /// The scissor rectangle in GL window pixels: viewport intersected with the framebuffer.
@@ -165,15 +179,16 @@ struct Scissor {
 };
 Scissor scissor(const SetupParams& params);
 
-/// Runs the vertex shader on vertices [0, count) in parallel into scratch.vertices.
+/// Runs the vertex shader on vertices [0, count) in parallel into the current draw input's vertices.
 template <class VS>
 const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& vs) {
   using V = VaryingsOf<VS>;
   constexpr int n = varying_count<V>;
   static_assert(n <= kMaxVaryings, "too many varyings");
   constexpr int stride = 4 + n;
-  scratch.vertices.resize(size_t(count) * stride);
-  float* out = scratch.vertices.data();
+  std::vector<float>& vertices = scratch.inputs[size_t(scratch.input)].vertices;
+  vertices.resize(size_t(count) * stride);
+  float* out = vertices.data();
   parallel_for(0, count, 1024, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       const auto v = vs(uint32_t(i));
@@ -854,11 +869,16 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
   stats.primitives = indices.size() / 3;
   if (indices.empty()) return stats;
   RasterScratch& scratch = framebuffer.scratch();
-  // The raster thread only reads the setup passes, so the vertex stage and setup below may overlap its last job.
+  // The previous draw's last job may still read its input set: this draw fills the other one (the draw before that
+  // is done: this draw's first submit_raster waits for the previous draw's last job, which waited for its own).
+  scratch.input ^= 1;
+  RasterScratch::DrawInput& input = scratch.inputs[size_t(scratch.input)];
   const float* vertices = run_vertex_stage(scratch, vertex_count, vs);
   SetupParams params = setup_params(framebuffer, state, vertices, n);
   prepare_vertices(scratch, params, vertex_count);
   if (state.painter) indices = painter_order(scratch, vertices, 4 + n, indices);
+  input.indices.assign(indices.begin(), indices.end());  // the caller's array may change once this returns
+  indices = input.indices;
   const FragmentState fragment = fragment_state(state);
   const size_t triangles = indices.size() / 3;
   const size_t per_pass = size_t(kChunkTriangles) * kPassChunks;
@@ -867,9 +887,14 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
     // The other pass's job, if any, is the only one that may be running (submit_raster): this one is free.
     SetupPass& pass = scratch.passes[size_t(scratch.next_pass)];
     scratch.next_pass ^= 1;
-    setup_pass(pass, params, indices, first, std::min(per_pass, triangles - first));
-    for (const auto& chunk : pass) stats.rasterized += chunk.rasterized;
-    submit_raster(scratch, [&framebuffer, &pass, params, fragment, &fs, tiles, keep_alive] {
+    const size_t count = std::min(per_pass, triangles - first);
+    const auto chunks = int64_t((count + kChunkTriangles - 1) / kChunkTriangles);
+    const int64_t split = std::max<int64_t>(0, chunks - kJobChunks);
+    reset_pass(pass, params);
+    stats.rasterized += setup_chunks(pass, params, indices, first, count, 0, split);
+    submit_raster(scratch, [&framebuffer, &scratch, &pass, params, indices, first, count, split, chunks, fragment, &fs,
+                            tiles, keep_alive] {
+      scratch.job_rasterized += setup_chunks(pass, params, indices, first, count, split, chunks);
       dispatch_depth_func(fragment.func, [&](auto f) {
         parallel_for(0, tiles, 1, [&](int64_t begin, int64_t end) {
           for (int64_t t = begin; t < end; ++t)
@@ -886,8 +911,11 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
 template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
 DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
                          std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
-  const DrawStats stats = detail::draw_triangles_async(framebuffer, state, vertex_count, indices, vs, fs);
-  detail::finish_raster(framebuffer.scratch());
+  DrawStats stats = detail::draw_triangles_async(framebuffer, state, vertex_count, indices, vs, fs);
+  detail::RasterScratch& scratch = framebuffer.scratch();
+  detail::wait_raster(scratch);
+  stats.rasterized += scratch.job_rasterized.exchange(0);  // taken before a job's exception leaves
+  detail::finish_raster(scratch);
   return stats;
 }
 
