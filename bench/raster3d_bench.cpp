@@ -11,8 +11,9 @@
 // Threads: with LP_NUM_THREADS = N llvmpipe rasterizes on N threads beside the application's thread, which transforms,
 // sets up and bins. Tessera has the same structure: under ThreadLimit(N) the calling thread collects, runs the vertex
 // stage and sets up and bins most of the batch (its loops on up to N threads), and the framebuffer's raster thread
-// sets up the rest (the last chunks of each pass, to balance the two) and rasterizes the previous batch's tiles (its loop on up to N threads, sharing oneTBB's workers). So both "1 thread" figures may use
-// two cores, and the per-CPU-second ratio is reported next to the wall-time one. immediate/tessera_unpipelined draws
+// sets up the rest (the last chunks of each pass, to balance the two) and rasterizes the previous batch's tiles (its
+// loop on up to N threads, sharing oneTBB's workers). So both "1 thread" figures may use two cores, and the
+// per-CPU-second ratio is reported next to the wall-time one. immediate/tessera_unpipelined draws
 // the same batches waiting for each before collecting the next (the schedule before session 4): the gain of the
 // overlap in the same run.
 // Each measurement is the best frame of a few (a frame = clear + draw + glFinish / return), in wall time and in
