@@ -299,7 +299,7 @@ uint32_t Context::add_batch_vertex(const Vec3f& position, uint32_t slot) {
   batch_.normals.push_back(current_normal_);
   batch_.colors.push_back(current_color_);
   batch_.uvs.push_back(current_uv_);
-  vertex_cache_[slot] = CachedVertex{index, cache_epoch_};
+  if (index <= 0xFFFF) vertex_cache_[slot] = CachedVertex{uint16_t(index), cache_epoch_};
   return index;
 }
 

@@ -189,13 +189,15 @@ class Context {
   // a finely tessellated grid, small enough to stay in L2.
   static constexpr int kVertexCacheBits = 13;
 
-  // A cached vertex: its batch index and the epoch it was stored in (8 bytes, so the table stays in L1/L2: at 32
-  // bytes with the key inline, its lookups missed the cache). The key, the position and normal bits, is compared
+  // A cached vertex: its batch index and the epoch it was stored in (4 bytes, so the 8192-slot table fits in L1: at
+  // 8 bytes its lookup was a sixth of the per-vertex samples). The key, the position and normal bits, is compared
   // in the batch arrays, where a recent vertex is still in cache. Within an epoch the batch is not drawn and the
   // current color and texcoord do not change, so equal keys of the same epoch mean bit-identical attributes.
+  // Vertices past index 65535 (a long strip or fan, the only shapes a batch does not cut) are not cached.
   struct CachedVertex {
-    uint32_t index = 0, epoch = 0;
+    uint16_t index = 0, epoch = 0;
   };
+  static_assert(kBatchVertices <= 0x10000, "a batch of independent primitives is indexed by CachedVertex::index");
 
   // Fibonacci hashing of a vertex's position and normal (the attributes that tell vertices of a mesh apart), as two
   // independent multiply chains joined at the end: the top bits index the cache.
@@ -249,7 +251,7 @@ class Context {
   // Recent vertices by hash of their attributes: a repeated vertex (a mesh sent as independent triangles) is stored
   // and shaded once per batch. Entries of an older epoch are stale.
   std::vector<CachedVertex> vertex_cache_;
-  uint32_t cache_epoch_ = 1;
+  uint16_t cache_epoch_ = 1;
 };
 
 }  // namespace tessera::raster3d

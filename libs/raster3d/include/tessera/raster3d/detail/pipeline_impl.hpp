@@ -25,7 +25,7 @@ inline constexpr int kTileSize = 64;          // pixels per side of a binning ti
 inline constexpr int kMaxVaryings = 32;       // floats of varyings a shader may pass
 inline constexpr int kChunkTriangles = 1024;  // input triangles set up and binned by one task
 inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (a pass stays in cache)
-inline constexpr int kJobChunks = 6;          // of them, the last ones, set up by the raster job (balances the threads)
+inline constexpr int kJobChunks = 7;          // of them, the last ones, set up by the raster job (balances the threads)
 
 /// An edge function in 1/256-pixel fixed point: at the center of GL pixel (i, j) it is
 /// E = 256 (a i + b j) + c, with the tie rule folded into c (a center on an exclusive edge gives -1). The pixel is
