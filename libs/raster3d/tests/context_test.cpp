@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -125,6 +126,39 @@ TEST(Context, ImmediateModeKeepsVerticesThatDifferOnlyInNormalOrColor) {
       EXPECT_TRUE(same_pixels(batched, immediate)) << int(shading) << " face normals " << face_normals;
     }
   }
+}
+
+TEST(Context, ImmediateModeStripPastTheVertexCacheIndexRange) {
+  // A triangle strip is not cut into batches, so its batch can hold more vertices than a cache entry indexes
+  // (65536): 70000 distinct vertices on a spiral, sent twice, must equal the batched draw of the same triangles.
+  constexpr uint32_t kDistinct = 70000;
+  VertexArrays strip;
+  for (uint32_t lap = 0; lap < 2; ++lap)
+    for (uint32_t i = 0; i < kDistinct; ++i) {
+      const double a = 0.05 * (i / 2), r = (i % 2 ? 1.0 : 0.8) - 1e-6 * i;
+      strip.positions.emplace_back(Vec3(r * std::cos(a), r * std::sin(a), 0.1 * std::sin(3 * a)));
+      strip.normals.emplace_back(glm::normalize(Vec3(std::cos(a), std::sin(a), 2.0)));
+    }
+  const auto n = uint32_t(strip.positions.size());
+  for (uint32_t i = 0; i + 2 < n; ++i)  // the strip's winding, as assembled in immediate mode
+    for (uint32_t k : i % 2 == 0 ? std::array{i, i + 1, i + 2} : std::array{i + 1, i, i + 2}) strip.indices.push_back(k);
+  const Framebuffer batched = render_sphere(ShadingModel::gouraud, [&](Context& ctx) {
+    ctx.cull(CullMode::none);
+    ctx.draw(strip);
+  });
+  const Framebuffer immediate = render_sphere(ShadingModel::gouraud, [&](Context& ctx) {
+    ctx.cull(CullMode::none);
+    ctx.begin(Primitive::triangle_strip);
+    for (uint32_t i = 0; i < n; ++i) {
+      ctx.normal(strip.normals[i]);
+      ctx.vertex(strip.positions[i].x, strip.positions[i].y, strip.positions[i].z);
+    }
+    ctx.end();
+  });
+  EXPECT_TRUE(same_pixels(batched, immediate));
+  int lit = 0;
+  for (auto c : batched.color().pixels()) lit += c.x > 0;
+  EXPECT_GT(lit, 500);  // the ring covers about 1000 of the 96 x 80 pixels
 }
 
 TEST(Context, UniformNormalGivesTheShadingEquationEverywhere) {
