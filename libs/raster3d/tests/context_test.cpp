@@ -141,7 +141,8 @@ TEST(Context, ImmediateModeStripPastTheVertexCacheIndexRange) {
     }
   const auto n = uint32_t(strip.positions.size());
   for (uint32_t i = 0; i + 2 < n; ++i)  // the strip's winding, as assembled in immediate mode
-    for (uint32_t k : i % 2 == 0 ? std::array{i, i + 1, i + 2} : std::array{i + 1, i, i + 2}) strip.indices.push_back(k);
+    for (uint32_t k : i % 2 == 0 ? std::array{i, i + 1, i + 2} : std::array{i + 1, i, i + 2})
+      strip.indices.push_back(k);
   const Framebuffer batched = render_sphere(ShadingModel::gouraud, [&](Context& ctx) {
     ctx.cull(CullMode::none);
     ctx.draw(strip);
