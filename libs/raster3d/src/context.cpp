@@ -102,9 +102,7 @@ void Context::submit_batch() {
 
 void Context::flush() {
   submit_batch();
-  detail::wait_raster(framebuffer_.scratch());
-  stats_.rasterized += framebuffer_.scratch().job_rasterized.exchange(0);  // the raster jobs' share of the setup
-  detail::finish_raster(framebuffer_.scratch());
+  stats_.rasterized += detail::collect_raster(framebuffer_.scratch());  // the raster jobs' share of the setup
 }
 
 void Context::draw_batch() {

@@ -465,6 +465,13 @@ void finish_raster(RasterScratch& scratch) {
   if (std::exception_ptr error = scratch.raster_thread->take_error()) std::rethrow_exception(error);
 }
 
+uint64_t collect_raster(RasterScratch& scratch) {
+  wait_raster(scratch);
+  const uint64_t rasterized = scratch.job_rasterized.exchange(0);
+  finish_raster(scratch);
+  return rasterized;
+}
+
 void wait_raster(RasterScratch& scratch) noexcept {
   if (scratch.raster_thread) scratch.raster_thread->wait();
 }

@@ -126,6 +126,10 @@ void submit_raster(RasterScratch& scratch, std::function<void()> job);
 /// Waits until the submitted raster jobs are done; rethrows the exception a job ended with, if any.
 void finish_raster(RasterScratch& scratch);
 
+/// finish_raster, returning how many triangles the finished jobs set up since the last collect_raster (counted
+/// before a job's exception leaves, so the stats stay whole).
+uint64_t collect_raster(RasterScratch& scratch);
+
 /// Waits until the submitted raster jobs are done, keeping a job's exception for finish_raster (for destructors
 /// and moves).
 void wait_raster(RasterScratch& scratch) noexcept;
@@ -515,26 +519,25 @@ template <DepthFunc F>
     for (int k = 0; k < 3; ++k) edge_row[k] = _mm256_add_epi32(edge_row[k], edge_dy[k]);
   }
 }
+/// The AVX-512 integer compare of a depth function that compares (not never or always).
+template <DepthFunc F>
+inline constexpr int kDepthCmpInt = F == DepthFunc::less       ? _MM_CMPINT_LT
+                                    : F == DepthFunc::equal    ? _MM_CMPINT_EQ
+                                    : F == DepthFunc::lequal   ? _MM_CMPINT_LE
+                                    : F == DepthFunc::greater  ? _MM_CMPINT_GT
+                                    : F == DepthFunc::notequal ? _MM_CMPINT_NE
+                                                               : _MM_CMPINT_GE;
+
 /// depth_passes8 for sixteen lanes as a mask register, within `lanes`: one compare instead of two halves.
 template <DepthFunc F>
 [[gnu::target("avx512f,avx512vl,avx512bw,avx512dq,fma"), gnu::always_inline]] inline __mmask16 depth_passes16(
     __mmask16 lanes, __m512i d, __m512i s) {
   if constexpr (F == DepthFunc::never)
     return 0;
-  else if constexpr (F == DepthFunc::less)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_LT);
-  else if constexpr (F == DepthFunc::equal)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_EQ);
-  else if constexpr (F == DepthFunc::lequal)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_LE);
-  else if constexpr (F == DepthFunc::greater)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_GT);
-  else if constexpr (F == DepthFunc::notequal)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_NE);
-  else if constexpr (F == DepthFunc::gequal)
-    return _mm512_mask_cmp_epi32_mask(lanes, d, s, _MM_CMPINT_GE);
-  else
+  else if constexpr (F == DepthFunc::always)
     return lanes;
+  else
+    return _mm512_mask_cmp_epi32_mask(lanes, d, s, kDepthCmpInt<F>);
 }
 
 // GCC 12's AVX-512 intrinsics start from _mm512_undefined_*(), which -Wmaybe-uninitialized reports once inlined.
@@ -912,10 +915,7 @@ template <VertexShader VS, FragmentShader<VaryingsOf<VS>> FS>
 DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
                          std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
   DrawStats stats = detail::draw_triangles_async(framebuffer, state, vertex_count, indices, vs, fs);
-  detail::RasterScratch& scratch = framebuffer.scratch();
-  detail::wait_raster(scratch);
-  stats.rasterized += scratch.job_rasterized.exchange(0);  // taken before a job's exception leaves
-  detail::finish_raster(scratch);
+  stats.rasterized += detail::collect_raster(framebuffer.scratch());
   return stats;
 }
 
