@@ -391,6 +391,27 @@ uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<cons
   return rasterized;
 }
 
+uint64_t setup_chunks_while_raster_busy(SetupPass& pass, const RasterScratch& scratch, const SetupParams& params,
+                                        std::span<const uint32_t> indices, size_t first, size_t triangle_count,
+                                        int64_t chunks, int64_t& taken) {
+  // Chunks are claimed in order, so those set up here are [0, taken) and the job's [taken, chunks).
+  std::atomic<int64_t> next{0};
+  parallel_for(0, chunks, 1, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      if (raster_idle(scratch)) return;
+      const int64_t c = next.fetch_add(1, std::memory_order_relaxed);
+      if (c >= chunks) return;
+      const size_t start = first + size_t(c) * kChunkTriangles;
+      setup_chunk(params, indices, start, std::min<size_t>(kChunkTriangles, first + triangle_count - start),
+                  pass[size_t(c)]);
+    }
+  });
+  taken = std::min(next.load(), chunks);
+  uint64_t rasterized = 0;
+  for (int64_t c = 0; c < taken; ++c) rasterized += pass[size_t(c)].rasterized;
+  return rasterized;
+}
+
 // One thread that runs raster jobs one at a time, in order: a one-job slot, filled by submit once the job before is
 // done (llvmpipe's rasterizer thread beside the application's).
 class RasterThread {
@@ -409,6 +430,7 @@ class RasterThread {
     std::unique_lock lock(mutex_);
     done_.wait(lock, [&] { return !job_; });
     job_ = std::move(job);
+    busy_.store(true, std::memory_order_relaxed);
     lock.unlock();
     wake_.notify_one();
   }
@@ -417,6 +439,8 @@ class RasterThread {
     std::unique_lock lock(mutex_);
     done_.wait(lock, [&] { return !job_; });
   }
+
+  bool idle() const noexcept { return !busy_.load(std::memory_order_relaxed); }
 
   std::exception_ptr take_error() {
     const std::lock_guard lock(mutex_);
@@ -439,6 +463,7 @@ class RasterThread {
       lock.lock();
       if (error && !error_) error_ = error;
       job_ = nullptr;  // its captures (e.g. what keeps the shaders alive) go here, on this thread
+      busy_.store(false, std::memory_order_relaxed);
       done_.notify_all();
     }
   }
@@ -446,6 +471,7 @@ class RasterThread {
   std::mutex mutex_;
   std::condition_variable wake_, done_;
   std::function<void()> job_;  // the slot: the job running or about to run
+  std::atomic<bool> busy_{false};  // job_ is set: read by the caller without the lock, as a hint
   std::exception_ptr error_;   // the first exception a job ended with, until finish_raster takes it
   bool stop_ = false;
   std::thread thread_;  // last: it starts once the members above exist
@@ -470,6 +496,10 @@ uint64_t collect_raster(RasterScratch& scratch) {
   const uint64_t rasterized = scratch.job_rasterized.exchange(0);
   finish_raster(scratch);
   return rasterized;
+}
+
+bool raster_idle(const RasterScratch& scratch) noexcept {
+  return !scratch.raster_thread || scratch.raster_thread->idle();
 }
 
 void wait_raster(RasterScratch& scratch) noexcept {

@@ -25,7 +25,6 @@ inline constexpr int kTileSize = 64;          // pixels per side of a binning ti
 inline constexpr int kMaxVaryings = 32;       // floats of varyings a shader may pass
 inline constexpr int kChunkTriangles = 1024;  // input triangles set up and binned by one task
 inline constexpr int kPassChunks = 16;        // chunks set up before the tiles are rasterized (a pass stays in cache)
-inline constexpr int kJobChunks = 7;          // of them, the last ones, set up by the raster job (balances the threads)
 
 /// An edge function in 1/256-pixel fixed point: at the center of GL pixel (i, j) it is
 /// E = 256 (a i + b j) + c, with the tie rule folded into c (a center on an exclusive edge gives -1). The pixel is
@@ -134,6 +133,9 @@ uint64_t collect_raster(RasterScratch& scratch);
 /// and moves).
 void wait_raster(RasterScratch& scratch) noexcept;
 
+/// Whether the raster thread has no job (a hint, read without waiting: a job may end just after it answers false).
+bool raster_idle(const RasterScratch& scratch) noexcept;
+
 /// What setup needs to know about a draw.
 struct SetupParams {
   const float* vertices;  // vertex stage output
@@ -154,6 +156,14 @@ void reset_pass(SetupPass& pass, const SetupParams& params);
 /// parallel), binning each record to the tiles it touches. Returns how many triangles they hold.
 uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
                       size_t triangle_count, int64_t chunk_begin, int64_t chunk_end);
+
+/// setup_chunks from chunk 0 on (in parallel) until the raster thread has no job: the chunks are set up on this
+/// thread while the raster thread is busy, and the rest by the raster job once it is free, so neither waits for the
+/// other (the split adapts to which side is slower; a chunk is set up identically on either). Sets `taken` to the
+/// number of chunks set up here, [0, taken), and returns how many triangles they hold.
+uint64_t setup_chunks_while_raster_busy(SetupPass& pass, const RasterScratch& scratch, const SetupParams& params,
+                                        std::span<const uint32_t> indices, size_t first, size_t triangle_count,
+                                        int64_t chunks, int64_t& taken);
 
 /// The triangle indices reordered far to near by the window depth of each triangle's centroid (stable), into
 /// scratch.order.
@@ -892,9 +902,9 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
     scratch.next_pass ^= 1;
     const size_t count = std::min(per_pass, triangles - first);
     const auto chunks = int64_t((count + kChunkTriangles - 1) / kChunkTriangles);
-    const int64_t split = std::max<int64_t>(0, chunks - kJobChunks);
     reset_pass(pass, params);
-    stats.rasterized += setup_chunks(pass, params, indices, first, count, 0, split);
+    int64_t split = 0;
+    stats.rasterized += setup_chunks_while_raster_busy(pass, scratch, params, indices, first, count, chunks, split);
     submit_raster(scratch, [&framebuffer, &scratch, &pass, params, indices, first, count, split, chunks, fragment, &fs,
                             tiles, keep_alive] {
       scratch.job_rasterized += setup_chunks(pass, params, indices, first, count, split, chunks);
