@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 #include <immintrin.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -121,7 +122,7 @@ void prepare_vertices(RasterScratch& scratch, SetupParams& params, uint32_t coun
   prepared.resize(count);
   PreparedVertex* out = prepared.data();
   const int stride = 4 + params.varying_count;
-  parallel_for(0, count, 4096, [&](int64_t begin, int64_t end) {
+  pipeline_for(scratch, PipelineSide::caller, 0, count, 4096, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) out[i] = prepare_vertex(params, params.vertices + i * stride, false);
   });
   params.prepared = out;
@@ -377,9 +378,10 @@ void reset_pass(SetupPass& pass, const SetupParams& params) {
   }
 }
 
-uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
-                      size_t triangle_count, int64_t chunk_begin, int64_t chunk_end) {
-  parallel_for(chunk_begin, chunk_end, 1, [&](int64_t begin, int64_t end) {
+uint64_t setup_chunks(RasterScratch& scratch, SetupPass& pass, const SetupParams& params,
+                      std::span<const uint32_t> indices, size_t first, size_t triangle_count, int64_t chunk_begin,
+                      int64_t chunk_end) {
+  pipeline_for(scratch, PipelineSide::raster, chunk_begin, chunk_end, 1, [&](int64_t begin, int64_t end) {
     for (int64_t c = begin; c < end; ++c) {
       const size_t start = first + size_t(c) * kChunkTriangles;
       const size_t count = std::min<size_t>(kChunkTriangles, first + triangle_count - start);
@@ -391,12 +393,12 @@ uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<cons
   return rasterized;
 }
 
-uint64_t setup_chunks_while_raster_busy(SetupPass& pass, const RasterScratch& scratch, const SetupParams& params,
+uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch, const SetupParams& params,
                                         std::span<const uint32_t> indices, size_t first, size_t triangle_count,
                                         int64_t chunks, int64_t& taken) {
   // Chunks are claimed in order, so those set up here are [0, taken) and the job's [taken, chunks).
   std::atomic<int64_t> next{0};
-  parallel_for(0, chunks, 1, [&](int64_t begin, int64_t end) {
+  pipeline_for(scratch, PipelineSide::caller, 0, chunks, 1, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       if (raster_idle(scratch)) return;
       const int64_t c = next.fetch_add(1, std::memory_order_relaxed);
@@ -476,6 +478,26 @@ class RasterThread {
   bool stop_ = false;
   std::thread thread_;  // last: it starts once the members above exist
 };
+
+struct PipelineArenas {
+  std::unique_ptr<tbb::task_arena> of_side[2];
+};
+
+void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int64_t last, int64_t grain,
+                  const std::function<void(int64_t, int64_t)>& body) {
+  const int n = thread_count();
+  const bool other_busy = side == PipelineSide::raster || !raster_idle(scratch);
+  const int slots = other_busy ? n - 1 : n;
+  if (slots >= n) return parallel_for(first, last, grain, body);
+  if (slots <= 1) {
+    for (int64_t b = first; b < last; b += grain) body(b, std::min(last, b + grain));
+    return;
+  }
+  if (!scratch.arenas) scratch.arenas = std::make_unique<PipelineArenas>();
+  std::unique_ptr<tbb::task_arena>& arena = scratch.arenas->of_side[side == PipelineSide::raster];
+  if (!arena || arena->max_concurrency() != slots) arena = std::make_unique<tbb::task_arena>(slots);
+  arena->execute([&] { parallel_for(first, last, grain, body); });
+}
 
 RasterScratch::RasterScratch() = default;
 RasterScratch::~RasterScratch() = default;

@@ -375,9 +375,9 @@ Framebuffer render_state_churn(bool synchronous) {
 
 TEST(Context, PipelinedDrawingEqualsDrawingOneCallAtATime) {
   // The raster thread draws a batch while the caller changes state and collects the next one: every batch must still
-  // be drawn with the state it was specified under, in order, on 1 and 2 threads alike.
+  // be drawn with the state it was specified under, in order, on 1, 2 and 4 threads alike.
   const Framebuffer synchronous = render_state_churn(true);
-  for (int threads : {1, 2}) {
+  for (int threads : {1, 2, 4}) {
     const ThreadLimit limit(threads);
     for (int run = 0; run < 3; ++run) EXPECT_TRUE(same_pixels(render_state_churn(false), synchronous)) << threads;
   }

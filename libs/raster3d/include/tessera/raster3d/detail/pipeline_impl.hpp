@@ -94,6 +94,7 @@ struct PreparedVertex {
 using SetupPass = std::vector<SetupChunk>;
 
 class RasterThread;  // the framebuffer's raster thread (pipeline.cpp)
+struct PipelineArenas;  // the oneTBB arenas of pipeline_for (pipeline.cpp)
 
 /// Memory reused from draw to draw, and the raster thread, owned by the Framebuffer.
 struct RasterScratch {
@@ -114,8 +115,20 @@ struct RasterScratch {
   // Double buffered: setup fills passes[next_pass] while the raster thread reads the other one.
   std::array<SetupPass, 2> passes;
   int next_pass = 0;
-  std::unique_ptr<RasterThread> raster_thread;  // started by the first submit_raster
+  std::unique_ptr<PipelineArenas> arenas;       // made by pipeline_for when it needs one
+  std::unique_ptr<RasterThread> raster_thread;  // started by the first submit_raster; last, so it ends first
 };
+
+/// The two sides of the pipeline: the calling thread (vertex stage, setup) and the raster job.
+enum class PipelineSide { caller, raster };
+
+/// parallel_for for one side of the pipeline, counting the other side's thread among the ThreadLimit's N while it
+/// is busy: the raster job's loops run on up to N - 1 threads, and the caller's on N - 1 while a raster job runs,
+/// else on N. So with N = 2 (and on two cores) a side's loop runs on its own thread, and no oneTBB worker takes a
+/// core from the other side's thread, then spins once its part is done (it did: a tenth more CPU time per frame).
+/// The chunks are the same for any thread count.
+void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int64_t last, int64_t grain,
+                  const std::function<void(int64_t, int64_t)>& body);
 
 /// Runs `job` on the scratch's raster thread (started on first use), after every job submitted before it: waits for
 /// the previous job to finish, then hands this one over and returns. So at most one job runs at a time, in
@@ -153,15 +166,17 @@ void reset_pass(SetupPass& pass, const SetupParams& params);
 
 /// Clips, culls, snaps and sets up chunks [chunk_begin, chunk_end) of the pass of `triangle_count` triangles of
 /// `indices` starting at triangle `first`, into `pass` (chunk c: kChunkTriangles from first + c kChunkTriangles, in
-/// parallel), binning each record to the tiles it touches. Returns how many triangles they hold.
-uint64_t setup_chunks(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
-                      size_t triangle_count, int64_t chunk_begin, int64_t chunk_end);
+/// parallel on the raster job's side), binning each record to the tiles it touches. Returns how many triangles they
+/// hold.
+uint64_t setup_chunks(RasterScratch& scratch, SetupPass& pass, const SetupParams& params,
+                      std::span<const uint32_t> indices, size_t first, size_t triangle_count, int64_t chunk_begin,
+                      int64_t chunk_end);
 
-/// setup_chunks from chunk 0 on (in parallel) until the raster thread has no job: the chunks are set up on this
+/// setup_chunks from chunk 0 on (in parallel on the caller's side) until the raster thread has no job: the chunks are set up on this
 /// thread while the raster thread is busy, and the rest by the raster job once it is free, so neither waits for the
 /// other (the split adapts to which side is slower; a chunk is set up identically on either). Sets `taken` to the
 /// number of chunks set up here, [0, taken), and returns how many triangles they hold.
-uint64_t setup_chunks_while_raster_busy(SetupPass& pass, const RasterScratch& scratch, const SetupParams& params,
+uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch, const SetupParams& params,
                                         std::span<const uint32_t> indices, size_t first, size_t triangle_count,
                                         int64_t chunks, int64_t& taken);
 
@@ -193,7 +208,7 @@ struct Scissor {
 };
 Scissor scissor(const SetupParams& params);
 
-/// Runs the vertex shader on vertices [0, count) in parallel into the current draw input's vertices.
+/// Runs the vertex shader on vertices [0, count) in parallel (pipeline_for) into the current draw input's vertices.
 template <class VS>
 const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& vs) {
   using V = VaryingsOf<VS>;
@@ -203,7 +218,7 @@ const float* run_vertex_stage(RasterScratch& scratch, uint32_t count, const VS& 
   std::vector<float>& vertices = scratch.inputs[size_t(scratch.input)].vertices;
   vertices.resize(size_t(count) * stride);
   float* out = vertices.data();
-  parallel_for(0, count, 1024, [&](int64_t begin, int64_t end) {
+  pipeline_for(scratch, PipelineSide::caller, 0, count, 1024, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       const auto v = vs(uint32_t(i));
       float* d = out + i * stride;
@@ -907,9 +922,9 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
     stats.rasterized += setup_chunks_while_raster_busy(pass, scratch, params, indices, first, count, chunks, split);
     submit_raster(scratch, [&framebuffer, &scratch, &pass, params, indices, first, count, split, chunks, fragment, &fs,
                             tiles, keep_alive] {
-      scratch.job_rasterized += setup_chunks(pass, params, indices, first, count, split, chunks);
+      scratch.job_rasterized += setup_chunks(scratch, pass, params, indices, first, count, split, chunks);
       dispatch_depth_func(fragment.func, [&](auto f) {
-        parallel_for(0, tiles, 1, [&](int64_t begin, int64_t end) {
+        pipeline_for(scratch, PipelineSide::raster, 0, tiles, 1, [&](int64_t begin, int64_t end) {
           for (int64_t t = begin; t < end; ++t)
             raster_tile<n, V, FS, decltype(f)::value>(framebuffer, pass, params, fragment.depth_write, int(t), fs);
         });
