@@ -439,10 +439,13 @@ class RasterThread {
 
   void wait() {
     std::unique_lock lock(mutex_);
+    caller_waiting_.store(true, std::memory_order_relaxed);
     done_.wait(lock, [&] { return !job_; });
+    caller_waiting_.store(false, std::memory_order_relaxed);
   }
 
   bool idle() const noexcept { return !busy_.load(std::memory_order_relaxed); }
+  bool caller_waiting() const noexcept { return caller_waiting_.load(std::memory_order_relaxed); }
 
   std::exception_ptr take_error() {
     const std::lock_guard lock(mutex_);
@@ -474,6 +477,7 @@ class RasterThread {
   std::condition_variable wake_, done_;
   std::function<void()> job_;  // the slot: the job running or about to run
   std::atomic<bool> busy_{false};  // job_ is set: read by the caller without the lock, as a hint
+  std::atomic<bool> caller_waiting_{false};  // the caller is in wait(): read by the job as a hint
   std::exception_ptr error_;   // the first exception a job ended with, until finish_raster takes it
   bool stop_ = false;
   std::thread thread_;  // last: it starts once the members above exist
@@ -483,10 +487,13 @@ struct PipelineArenas {
   std::unique_ptr<tbb::task_arena> of_side[2];
 };
 
-void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int64_t last, int64_t grain,
-                  const std::function<void(int64_t, int64_t)>& body) {
-  const int n = thread_count();
-  const bool other_busy = side == PipelineSide::raster || !raster_idle(scratch);
+namespace {
+
+void pipeline_for_piece(RasterScratch& scratch, PipelineSide side, int n, int64_t first, int64_t last, int64_t grain,
+                        const std::function<void(int64_t, int64_t)>& body) {
+  const bool other_busy = side == PipelineSide::raster
+                              ? !(scratch.raster_thread && scratch.raster_thread->caller_waiting())
+                              : !raster_idle(scratch);
   const int slots = other_busy ? n - 1 : n;
   if (slots >= n) return parallel_for(first, last, grain, body);
   if (slots <= 1) {
@@ -497,6 +504,23 @@ void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int6
   std::unique_ptr<tbb::task_arena>& arena = scratch.arenas->of_side[side == PipelineSide::raster];
   if (!arena || arena->max_concurrency() != slots) arena = std::make_unique<tbb::task_arena>(slots);
   arena->execute([&] { parallel_for(first, last, grain, body); });
+}
+
+}  // namespace
+
+void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int64_t last, int64_t grain,
+                  const std::function<void(int64_t, int64_t)>& body) {
+  if (last <= first) return;
+  const int n = thread_count();
+  // The raster job's loop runs in four pieces, each counting the threads anew: the caller may start waiting for the
+  // job (flush: then its core is free) after the loop has begun. The pieces end on multiples of grain: same chunks.
+  const int pieces = side == PipelineSide::raster && n > 1 ? 4 : 1;
+  const int64_t chunks = (last - first + grain - 1) / grain;
+  for (int p = 0; p < pieces; ++p) {
+    const int64_t begin = first + chunks * p / pieces * grain;
+    const int64_t end = std::min(last, first + chunks * (p + 1) / pieces * grain);
+    if (begin < end) pipeline_for_piece(scratch, side, n, begin, end, grain, body);
+  }
 }
 
 RasterScratch::RasterScratch() = default;

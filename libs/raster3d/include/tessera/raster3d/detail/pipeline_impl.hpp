@@ -123,10 +123,10 @@ struct RasterScratch {
 enum class PipelineSide { caller, raster };
 
 /// parallel_for for one side of the pipeline, counting the other side's thread among the ThreadLimit's N while it
-/// is busy: the raster job's loops run on up to N - 1 threads, and the caller's on N - 1 while a raster job runs,
-/// else on N. So with N = 2 (and on two cores) a side's loop runs on its own thread, and no oneTBB worker takes a
-/// core from the other side's thread, then spins once its part is done (it did: a tenth more CPU time per frame).
-/// The chunks are the same for any thread count.
+/// is busy: the raster job's loops run on up to N - 1 threads (N while the caller waits for the job), and the
+/// caller's on N - 1 while a raster job runs, else on N. So with N = 2 (and on two cores) a side's loop runs on its
+/// own thread while the other side works, and no oneTBB worker takes a core from the other side's thread, then spins
+/// once its part is done (it did: a tenth more CPU time per frame). The chunks are the same for any thread count.
 void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int64_t last, int64_t grain,
                   const std::function<void(int64_t, int64_t)>& body);
 
