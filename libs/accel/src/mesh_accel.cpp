@@ -17,16 +17,15 @@ namespace {
 
 /// Collapses the binary tree into a wide one (Wald et al. 2008, "Getting rid of packets"): a node takes its two
 /// children, then repeatedly replaces the interior child of largest area by that child's two children, until it has W.
+/// The children are wide node indices (>= 0) or ~b for the binary leaf b; Layout then places them.
 template <int W>
 class Collapser {
  public:
-  Collapser(std::span<const BvhNode> binary, const std::vector<int32_t>& leaf_refs,
-            RawVector<MeshAccel::WideNode<W>>& out)
-      : bn_(binary), leaf_refs_(leaf_refs), out_(out) {}
+  Collapser(std::span<const BvhNode> binary, std::vector<MeshAccel::WideNode<W>>& out) : bn_(binary), out_(out) {}
 
-  /// The reference of binary node b's subtree (a wide node index, or a leaf reference).
+  /// The reference of binary node b's subtree (a wide node index, or ~b for a leaf).
   int32_t ref(int b) {
-    if (bn_[size_t(b)].count > 0) return leaf_refs_[size_t(b)];
+    if (bn_[size_t(b)].count > 0) return ~b;
     int kids[W] = {b + 1, bn_[size_t(b)].first};
     int k = 2;
     while (k < W) {
@@ -64,9 +63,73 @@ class Collapser {
 
  private:
   std::span<const BvhNode> bn_;
-  const std::vector<int32_t>& leaf_refs_;
-  RawVector<MeshAccel::WideNode<W>>& out_;
+  std::vector<MeshAccel::WideNode<W>>& out_;
 };
+
+/// Lays the collapsed tree out in MeshAccel's array of cache lines (see MeshAccel::node_ref), depth first: a node,
+/// the blocks of its leaf children, then its interior children's subtrees. Embree's allocator gives a similar order;
+/// here a node's reference also says how many lines of leaf blocks follow it, so that they are fetched with it.
+template <int W>
+class Layout {
+ public:
+  Layout(std::span<const BvhNode> binary, const std::vector<MeshAccel::WideNode<W>>& nodes,
+         RawVector<MeshAccel::CacheLine>& tree, std::vector<int>& leaf_unit)
+      : bn_(binary), nodes_(nodes), tree_(tree), leaf_unit_(leaf_unit) {}
+
+  /// Places the subtree of collapsed reference r (a node index, or ~b for binary leaf b) from byte end_ on; returns
+  /// its final reference.
+  int32_t place(int32_t r) {
+    if (r < 0) return place_leaf(~r);
+    constexpr size_t kNodeLines = sizeof(MeshAccel::WideNode<W>) / 64;
+    const size_t line = (end_ + 63) / 64;
+    end_ = (line + kNodeLines) * 64;
+    MeshAccel::WideNode<W> node = nodes_[size_t(r)];
+    const size_t leaves_begin = end_;
+    for (int i = 0; i < W; ++i)
+      if (node.child[i] < 0) node.child[i] = place_leaf(~node.child[i]);
+    const int leaf_lines = int(std::min<size_t>(15, (end_ - leaves_begin + 63) / 64));
+    for (int i = 0; i < W; ++i)
+      if (node.child[i] >= 0 && node.box[0][i] <= node.box[3][i]) node.child[i] = place(node.child[i]);
+    *reinterpret_cast<MeshAccel::WideNode<W>*>(tree_.data() + line) = node;
+    return MeshAccel::node_ref(line, leaf_lines);
+  }
+
+  /// Bytes used.
+  size_t end() const { return end_; }
+
+ private:
+  int32_t place_leaf(int b) {
+    const int blocks = (bn_[size_t(b)].count + 3) / 4;
+    leaf_unit_[size_t(b)] = int(end_ / 32);
+    const int32_t ref = MeshAccel::leaf_ref(int(end_ / 32), blocks);
+    end_ += size_t(blocks) * sizeof(MeshAccel::TriangleBlock);
+    return ref;
+  }
+
+  std::span<const BvhNode> bn_;
+  const std::vector<MeshAccel::WideNode<W>>& nodes_;
+  RawVector<MeshAccel::CacheLine>& tree_;
+  std::vector<int>& leaf_unit_;
+  size_t end_ = 0;
+};
+
+/// Collapses the binary tree, lays it out in tree (sized to fit) and returns the root's reference; leaf_unit[b] gets
+/// the first 32-byte unit of binary leaf b's blocks.
+template <int W>
+int32_t build_wide(std::span<const BvhNode> binary, size_t block_count, RawVector<MeshAccel::CacheLine>& tree,
+                   std::vector<int>& leaf_unit, size_t& wide_nodes) {
+  std::vector<MeshAccel::WideNode<W>> nodes;
+  nodes.reserve(binary.size() / 2 + 1);
+  const int32_t root = Collapser<W>(binary, nodes).ref(0);
+  wide_nodes = nodes.size();
+  // At most: every node, a line of padding after each node's leaves, and the blocks.
+  tree.resize(nodes.size() * (sizeof(MeshAccel::WideNode<W>) / 64 + 1) +
+              (block_count * sizeof(MeshAccel::TriangleBlock) + 63) / 64 + 1);
+  Layout<W> layout(binary, nodes, tree, leaf_unit);
+  const int32_t ref = layout.place(root);
+  tree.resize((layout.end() + 63) / 64);
+  return ref;
+}
 
 int pick_width(int requested) {
   const bool avx2 = __builtin_cpu_supports("avx2");
@@ -110,26 +173,24 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     width_ = 0;
     return;
   }
-  // Blocks of 4 triangles, leaf after leaf (leaves come in depth-first order, which is the order of prim_indices).
-  std::vector<int32_t> leaf_refs(nodes.size(), 0);
-  int64_t block_count = 0;
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    if (nodes[i].count == 0) continue;
-    const int blocks = (nodes[i].count + 3) / 4;
-    if (block_count + blocks > (int64_t(1) << 26))
-      throw InvalidInput("MeshAccel: " + std::to_string(nt) + " triangles, more than supported");
-    leaf_refs[i] = leaf_ref(int(block_count), blocks);
-    block_count += blocks;
-  }
-  blocks_.resize(size_t(block_count));
+  size_t block_count = 0;
+  for (const BvhNode& n : nodes) block_count += size_t(n.count + 3) / 4;
+  // 32-byte units are addressed by 26 bits (leaf_ref), lines by 27 (node_ref).
+  if (block_count * sizeof(TriangleBlock) + nodes.size() * 2 * sizeof(WideNode<8>) >= (size_t(1) << 31))
+    throw InvalidInput("MeshAccel: " + std::to_string(nt) + " triangles, more than supported");
+  std::vector<int> leaf_unit(nodes.size(), -1);
+  root_ = width_ == 8 ? build_wide<8>(nodes, block_count, tree_, leaf_unit, wide_nodes_)
+                      : build_wide<4>(nodes, block_count, tree_, leaf_unit, wide_nodes_);
+  // The blocks of 4 triangles, where the layout put each leaf.
   const auto order = bvh_.prim_indices();
   parallel_for(0, int64_t(nodes.size()), 4096, [&](int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       const BvhNode& n = nodes[size_t(i)];
       if (n.count == 0) continue;
-      const int first_block = leaf_first_block(leaf_refs[size_t(i)]);
+      auto* blocks = reinterpret_cast<TriangleBlock*>(reinterpret_cast<char*>(tree_.data()) +
+                                                      size_t(leaf_unit[size_t(i)]) * 32);
       for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
-        TriangleBlock& b = blocks_[size_t(first_block) + size_t(k / 4)];
+        TriangleBlock& b = blocks[k / 4];
         const int lane = k % 4;
         Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
         int index = -1;
@@ -149,19 +210,12 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
       }
     }
   });
-  if (width_ == 8) {
-    nodes8_.reserve(nodes.size() / 2 + 1);
-    root_ = Collapser<8>(nodes, leaf_refs, nodes8_).ref(0);
-  } else {
-    nodes4_.reserve(nodes.size() / 2 + 1);
-    root_ = Collapser<4>(nodes, leaf_refs, nodes4_).ref(0);
-  }
 }
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::intersect8(nodes8_.data(), blocks_.data(), root_, ray, hit, stats)
-                     : mesh_traversal::intersect4(nodes4_.data(), blocks_.data(), root_, ray, hit, stats);
+  return width_ == 8 ? mesh_traversal::intersect8(tree_.data(), root_, ray, hit, stats)
+                     : mesh_traversal::intersect4(tree_.data(), root_, ray, hit, stats);
 }
 
 void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const {
@@ -171,34 +225,29 @@ void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const 
   if (width_ == 0) {
     std::fill(hits.begin(), hits.end(), Hit{});
   } else if (width_ == 8) {
-    mesh_traversal::intersect_stream8(nodes8_.data(), blocks_.data(), root_, rays, hits);
+    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits);
   } else {
-    mesh_traversal::intersect_stream4(nodes4_.data(), blocks_.data(), root_, rays, hits);
+    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits);
   }
 }
 
 bool MeshAccel::occluded(const Ray& ray) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::occluded8(nodes8_.data(), blocks_.data(), root_, ray)
-                     : mesh_traversal::occluded4(nodes4_.data(), blocks_.data(), root_, ray);
+  return width_ == 8 ? mesh_traversal::occluded8(tree_.data(), root_, ray)
+                     : mesh_traversal::occluded4(tree_.data(), root_, ray);
 }
 
 namespace mesh_traversal {
 
-bool intersect4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root, Ray& ray,
-                Hit& hit, TraversalStats* stats) {
-  return nearest_hit<4>(nodes, blocks, root, ray, hit, stats);
+bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats) {
+  return nearest_hit<4>(tree, root, ray, hit, stats);
 }
 
-void intersect_stream4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
-                       std::span<const Ray> rays, std::span<Hit> hits) {
-  nearest_hits<4>(nodes, blocks, root, rays, hits);
+void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits) {
+  nearest_hits<4>(tree, root, rays, hits);
 }
 
-bool occluded4(const MeshAccel::WideNode<4>* nodes, const MeshAccel::TriangleBlock* blocks, int32_t root,
-               const Ray& ray) {
-  return any_hit<4>(nodes, blocks, root, ray);
-}
+bool occluded4(Tree tree, int32_t root, const Ray& ray) { return any_hit<4>(tree, root, ray); }
 
 }  // namespace mesh_traversal
 

@@ -50,10 +50,11 @@ class MeshAccel {
   size_t triangle_count() const { return triangle_count_; }
   /// The wide tree's width (4 or 8; 0 when the mesh is empty) and node count.
   int simd_width() const { return width_; }
-  size_t wide_node_count() const { return width_ == 8 ? nodes8_.size() : nodes4_.size(); }
+  size_t wide_node_count() const { return wide_nodes_; }
 
   /// A node of the wide tree: the boxes of its W children as rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z of W floats
-  /// (an unused child has an empty box, which no ray hits), and the children: >= 0 a node, < 0 a leaf (see leaf_ref).
+  /// (an unused child has an empty box, which no ray hits), and the children: >= 0 a node (see node_ref), < 0 a leaf
+  /// (see leaf_ref).
   template <int W>
   struct alignas(64) WideNode {
     float box[6][W];
@@ -66,20 +67,31 @@ class MeshAccel {
     int32_t index[4];
   };
   static constexpr int kMaxLeafBlocks = 32;  ///< blocks of 4 triangles per leaf (128 triangles)
-  /// A leaf's child reference: its first block and block count packed into a negative number.
-  static int32_t leaf_ref(int first_block, int blocks) { return ~((first_block << 5) | (blocks - 1)); }
-  /// The first block and the block count of a leaf reference.
-  static int leaf_first_block(int32_t ref) { return int(~uint32_t(ref) >> 5); }
+  /// The tree lies in one array of cache lines, depth first: each node, then the blocks of its leaf children, then its
+  /// interior children's subtrees. A node's reference: its first line and how many lines of leaf blocks follow it
+  /// (up to 15), so that fetching a node can fetch its leaves with it.
+  static int32_t node_ref(size_t line, int leaf_lines) { return int32_t((line << 4) | size_t(leaf_lines)); }
+  /// The first line of a node reference, and the lines of leaf blocks after the node.
+  static size_t node_line(int32_t ref) { return size_t(uint32_t(ref) >> 4); }
+  static int node_leaf_lines(int32_t ref) { return int(ref & 15); }
+  /// A leaf's reference: the offset of its first block in 32-byte units and its block count, packed into a negative
+  /// number.
+  static int32_t leaf_ref(int first_unit, int blocks) { return ~((first_unit << 5) | (blocks - 1)); }
+  /// The first block (in 32-byte units) and the block count of a leaf reference.
+  static int leaf_first_unit(int32_t ref) { return int(~uint32_t(ref) >> 5); }
   static int leaf_block_count(int32_t ref) { return int(~uint32_t(ref) & 31) + 1; }
+  /// One line of the tree's array.
+  struct alignas(64) CacheLine {
+    unsigned char bytes[64];
+  };
 
  private:
   Bvh bvh_;
   size_t triangle_count_ = 0;
   int width_ = 0;
   int32_t root_ = 0;  // the wide tree's root reference (a leaf for meshes of one leaf)
-  RawVector<WideNode<4>> nodes4_;
-  RawVector<WideNode<8>> nodes8_;
-  RawVector<TriangleBlock> blocks_;  // uninitialized growth on huge pages: written in full by the constructor
+  size_t wide_nodes_ = 0;
+  RawVector<CacheLine> tree_;  // nodes and blocks (see node_ref); uninitialized growth on huge pages
 };
 
 /// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel
