@@ -21,7 +21,7 @@ namespace {
 template <int W>
 class Collapser {
  public:
-  Collapser(std::span<const BvhNode> binary, std::vector<MeshAccel::WideNode<W>>& out) : bn_(binary), out_(out) {}
+  Collapser(std::span<const BvhNode> binary, RawVector<MeshAccel::WideNode<W>>& out) : bn_(binary), out_(out) {}
 
   /// The reference of binary node b's subtree (a wide node index, or ~b for a leaf).
   int32_t ref(int b) {
@@ -63,7 +63,7 @@ class Collapser {
 
  private:
   std::span<const BvhNode> bn_;
-  std::vector<MeshAccel::WideNode<W>>& out_;
+  RawVector<MeshAccel::WideNode<W>>& out_;
 };
 
 /// Lays the collapsed tree out in MeshAccel's array of cache lines (see MeshAccel::node_ref), depth first: a node,
@@ -72,7 +72,7 @@ class Collapser {
 template <int W>
 class Layout {
  public:
-  Layout(std::span<const BvhNode> binary, const std::vector<MeshAccel::WideNode<W>>& nodes,
+  Layout(std::span<const BvhNode> binary, const RawVector<MeshAccel::WideNode<W>>& nodes,
          RawVector<MeshAccel::CacheLine>& tree, std::vector<int>& leaf_unit)
       : bn_(binary), nodes_(nodes), tree_(tree), leaf_unit_(leaf_unit) {}
 
@@ -107,7 +107,7 @@ class Layout {
   }
 
   std::span<const BvhNode> bn_;
-  const std::vector<MeshAccel::WideNode<W>>& nodes_;
+  const RawVector<MeshAccel::WideNode<W>>& nodes_;
   RawVector<MeshAccel::CacheLine>& tree_;
   std::vector<int>& leaf_unit_;
   size_t end_ = 0;
@@ -118,7 +118,7 @@ class Layout {
 template <int W>
 int32_t build_wide(std::span<const BvhNode> binary, size_t block_count, RawVector<MeshAccel::CacheLine>& tree,
                    std::vector<int>& leaf_unit, size_t& wide_nodes) {
-  std::vector<MeshAccel::WideNode<W>> nodes;
+  RawVector<MeshAccel::WideNode<W>> nodes;
   nodes.reserve(binary.size() / 2 + 1);
   const int32_t root = Collapser<W>(binary, nodes).ref(0);
   wide_nodes = nodes.size();
