@@ -500,7 +500,7 @@ void pipeline_for_piece(RasterScratch& scratch, PipelineSide side, int n, int64_
     for (int64_t b = first; b < last; b += grain) body(b, std::min(last, b + grain));
     return;
   }
-  if (!scratch.arenas) scratch.arenas = std::make_unique<PipelineArenas>();
+  // Each side's arena is made and used only by that side's thread (the holder exists from the start).
   std::unique_ptr<tbb::task_arena>& arena = scratch.arenas->of_side[side == PipelineSide::raster];
   if (!arena || arena->max_concurrency() != slots) arena = std::make_unique<tbb::task_arena>(slots);
   arena->execute([&] { parallel_for(first, last, grain, body); });
@@ -523,7 +523,7 @@ void pipeline_for(RasterScratch& scratch, PipelineSide side, int64_t first, int6
   }
 }
 
-RasterScratch::RasterScratch() = default;
+RasterScratch::RasterScratch() : arenas(std::make_unique<PipelineArenas>()) {}
 RasterScratch::~RasterScratch() = default;
 
 void submit_raster(RasterScratch& scratch, std::function<void()> job) {

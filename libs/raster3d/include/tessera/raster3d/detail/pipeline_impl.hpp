@@ -115,7 +115,7 @@ struct RasterScratch {
   // Double buffered: setup fills passes[next_pass] while the raster thread reads the other one.
   std::array<SetupPass, 2> passes;
   int next_pass = 0;
-  std::unique_ptr<PipelineArenas> arenas;       // made by pipeline_for when it needs one
+  std::unique_ptr<PipelineArenas> arenas;       // each side's, made by pipeline_for on that side's thread
   std::unique_ptr<RasterThread> raster_thread;  // started by the first submit_raster; last, so it ends first
 };
 
@@ -172,10 +172,10 @@ uint64_t setup_chunks(RasterScratch& scratch, SetupPass& pass, const SetupParams
                       std::span<const uint32_t> indices, size_t first, size_t triangle_count, int64_t chunk_begin,
                       int64_t chunk_end);
 
-/// setup_chunks from chunk 0 on (in parallel on the caller's side) until the raster thread has no job: the chunks are set up on this
-/// thread while the raster thread is busy, and the rest by the raster job once it is free, so neither waits for the
-/// other (the split adapts to which side is slower; a chunk is set up identically on either). Sets `taken` to the
-/// number of chunks set up here, [0, taken), and returns how many triangles they hold.
+/// setup_chunks from chunk 0 on (in parallel on the caller's side) until the raster thread has no job: the chunks are
+/// set up on this thread while the raster thread is busy, and the rest by the raster job once it is free, so neither
+/// waits for the other (the split adapts to which side is slower; a chunk is set up identically on either). Sets
+/// `taken` to the number of chunks set up here, [0, taken), and returns how many triangles they hold.
 uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch, const SetupParams& params,
                                         std::span<const uint32_t> indices, size_t first, size_t triangle_count,
                                         int64_t chunks, int64_t& taken);
