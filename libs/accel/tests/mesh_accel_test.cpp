@@ -125,12 +125,19 @@ TEST(MeshAccel, MatchesBruteForceOnATorus) {
   }
 }
 
-TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
-  // The 4-wide (SSE) and 8-wide (AVX2, when the CPU has it) trees, over binned-SAH and bottom-up binary trees with
-  // leaves of 1 to 128 triangles (a larger leaf size is capped at 128), against brute force; both widths give
-  // bit-identical t for the same tree (the same triangle arithmetic).
-  const TriMesh torus = to_tri_mesh(make_torus(1.0, 0.3, 48, 24));
-  const std::vector<Ray> rays = random_rays(torus, 1500, 11);
+/// The 4-wide (SSE) and 8-wide (AVX2, when the CPU has it) trees of a torus moved by `offset` and scaled by `size`,
+/// over binned-SAH and bottom-up binary trees with leaves of 1 to 128 triangles (a larger leaf size is capped at 128),
+/// against brute force, for random rays from around the mesh and from 1000 times its size away; both widths give
+/// bit-identical t for the same tree (the same triangle arithmetic).
+void check_widths_against_brute_force(const Vec3& offset, double size) {
+  TriMesh torus = to_tri_mesh(make_torus(1.0, 0.3, 48, 24));
+  for (Vec3& p : torus.positions) p = offset + size * p;
+  std::vector<Ray> rays = random_rays(torus, 1500, 11);
+  for (size_t i = 0, n = rays.size(); i < n; ++i) {
+    Ray far = rays[i];
+    far.origin -= float(1000 * size) * far.dir;
+    rays.push_back(far);
+  }
   std::vector<float> brute(rays.size(), -1.0f);
   for (size_t i = 0; i < rays.size(); ++i) {
     float best_t = rays[i].tmax;
@@ -175,7 +182,15 @@ TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
         }
       }
     }
-  EXPECT_THROW(MeshAccel(torus, MeshAccel::default_settings(), 5), InvalidInput);
+}
+
+TEST(MeshAccel, EveryWidthAndBuildMatchesBruteForce) {
+  check_widths_against_brute_force(Vec3(0.0), 1.0);
+  // Far from the origin, tiny and huge (the float rounding of boxes and ray origins scales with the coordinates).
+  check_widths_against_brute_force(Vec3(2.5e4, -1.2e4, 7e3), 1.0);
+  check_widths_against_brute_force(Vec3(1e-3, 0.0, -2e-3), 1e-5);
+  check_widths_against_brute_force(Vec3(0.0), 3e6);
+  EXPECT_THROW(MeshAccel(to_tri_mesh(make_torus(1.0, 0.3, 8, 4)), MeshAccel::default_settings(), 5), InvalidInput);
 }
 
 /// Whether two hits are the same bit for bit (t, point, normal, uv, prim).
