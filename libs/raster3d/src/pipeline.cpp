@@ -296,8 +296,8 @@ void emit_triangle(const SetupParams& params, const Scissor& sc, const float* v0
   emit_prepared(params, sc, v, p, flat_values, chunk);
 }
 
-void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
-                 SetupChunk& chunk) {
+void setup_chunk_baseline(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
+                          SetupChunk& chunk) {
   const int n = params.varying_count;
   const int stride = 4 + n;
   const Scissor sc = scissor(params);
@@ -326,6 +326,22 @@ void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, s
       emit_triangle(params, sc, a[i - 1], a[i], a[0], made, flat, chunk);
     }
   }
+}
+
+// setup_chunk_baseline compiled for AVX2 with everything it calls inlined (VEX encodings, BMI, SSE4.1 rounding):
+// the same IEEE operations (no contraction: -ffp-contract=off), so the same records.
+[[gnu::target("avx2,fma,bmi,bmi2,lzcnt,popcnt"), gnu::flatten]] void setup_chunk_avx2(
+    const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count, SetupChunk& chunk) {
+  setup_chunk_baseline(params, indices, first, count, chunk);
+}
+
+// Sets up and bins the triangles [first, first + count) of the index list into chunk.
+void setup_chunk(const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count,
+                 SetupChunk& chunk) {
+  if (span_isa() >= 1)
+    setup_chunk_avx2(params, indices, first, count, chunk);
+  else
+    setup_chunk_baseline(params, indices, first, count, chunk);
 }
 
 }  // namespace
