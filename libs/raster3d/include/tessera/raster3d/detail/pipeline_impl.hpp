@@ -594,8 +594,8 @@ template <DepthFunc F>
   const __m512 rx = _mm512_set1_ps(r.rx), ry = _mm512_set1_ps(r.ry), zdx = _mm512_set1_ps(r.zdx);
   const __m512 zdy = _mm512_set1_ps(r.zdy), za = _mm512_set1_ps(r.za), depth_scale = _mm512_set1_ps(float(kDepthMax));
   const __m512 c255 = _mm512_set1_ps(255.0f), round_magic = _mm512_set1_ps(12582912.0f);
-  __m512 pcv[4], pxv[4], pyv[4];
-  for (int k = 0; k < 4; ++k) pcv[k] = _mm512_set1_ps(pc[k]), pxv[k] = _mm512_set1_ps(px[k]), pyv[k] = _mm512_set1_ps(py[k]);
+  __m512 pxv[4];
+  for (int k = 0; k < 4; ++k) pxv[k] = _mm512_set1_ps(px[k]);
   for (int j = y0; j < y1; j += 2) {
     const bool two = j + 1 < y1;
     const __mmask16 rows = two ? __mmask16(0xffff) : __mmask16(0x00ff);
@@ -606,7 +606,9 @@ template <DepthFunc F>
     const __m512i jv = _mm512_add_epi32(_mm512_set1_epi32(j), up);
     const __m512 dy = _mm512_sub_ps(_mm512_add_ps(_mm512_cvtepi32_ps(jv), half), ry);
     __m512 base[4];
-    for (int k = 0; k < 4; ++k) base[k] = _mm512_add_ps(pcv[k], _mm512_mul_ps(pyv[k], dy));
+    // The row's planes broadcast from memory here (hoisted, twelve vectors were spilled to the stack).
+    for (int k = 0; k < 4; ++k)
+      base[k] = _mm512_add_ps(_mm512_set1_ps(pc[k]), _mm512_mul_ps(_mm512_set1_ps(py[k]), dy));
     const __m512 rowv = _mm512_cvtepi32_ps(_mm512_sub_epi32(_mm512_set1_epi32(row), up));
     __m512i edge[3] = {edge_row[0], edge_row[1], edge_row[2]};
     for (int x = x0; x < x1; x += 8) {
