@@ -394,22 +394,35 @@ void reset_pass(SetupPass& pass, const SetupParams& params) {
   }
 }
 
+namespace {
+
+// Sets up chunk c of a pass of triangle_count triangles starting at triangle first (see setup_chunks).
+void setup_pass_chunk(SetupPass& pass, const SetupParams& params, std::span<const uint32_t> indices, size_t first,
+                      size_t triangle_count, int64_t c) {
+  const size_t start = first + size_t(c) * kChunkTriangles;
+  setup_chunk(params, indices, start, std::min<size_t>(kChunkTriangles, first + triangle_count - start),
+              pass[size_t(c)]);
+}
+
+// The triangles held by chunks [begin, end) of a pass.
+uint64_t rasterized_in(const SetupPass& pass, int64_t begin, int64_t end) {
+  uint64_t rasterized = 0;
+  for (int64_t c = begin; c < end; ++c) rasterized += pass[size_t(c)].rasterized;
+  return rasterized;
+}
+
+}  // namespace
+
 uint64_t setup_chunks(RasterScratch& scratch, SetupPass& pass, const SetupParams& params,
                       std::span<const uint32_t> indices, size_t first, size_t triangle_count, int64_t chunk_begin,
                       int64_t chunk_end) {
   pipeline_for(scratch, PipelineSide::raster, chunk_begin, chunk_end, 1, [&](int64_t begin, int64_t end) {
-    for (int64_t c = begin; c < end; ++c) {
-      const size_t start = first + size_t(c) * kChunkTriangles;
-      const size_t count = std::min<size_t>(kChunkTriangles, first + triangle_count - start);
-      setup_chunk(params, indices, start, count, pass[size_t(c)]);
-    }
+    for (int64_t c = begin; c < end; ++c) setup_pass_chunk(pass, params, indices, first, triangle_count, c);
   });
-  uint64_t rasterized = 0;
-  for (int64_t c = chunk_begin; c < chunk_end; ++c) rasterized += pass[size_t(c)].rasterized;
-  return rasterized;
+  return rasterized_in(pass, chunk_begin, chunk_end);
 }
 
-uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch, const SetupParams& params,
+uint64_t setup_chunks_while_raster_busy(RasterScratch& scratch, SetupPass& pass, const SetupParams& params,
                                         std::span<const uint32_t> indices, size_t first, size_t triangle_count,
                                         int64_t chunks, int64_t& taken) {
   // Chunks are claimed in order, so those set up here are [0, taken) and the job's [taken, chunks).
@@ -419,15 +432,11 @@ uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch,
       if (raster_idle(scratch)) return;
       const int64_t c = next.fetch_add(1, std::memory_order_relaxed);
       if (c >= chunks) return;
-      const size_t start = first + size_t(c) * kChunkTriangles;
-      setup_chunk(params, indices, start, std::min<size_t>(kChunkTriangles, first + triangle_count - start),
-                  pass[size_t(c)]);
+      setup_pass_chunk(pass, params, indices, first, triangle_count, c);
     }
   });
   taken = std::min(next.load(), chunks);
-  uint64_t rasterized = 0;
-  for (int64_t c = 0; c < taken; ++c) rasterized += pass[size_t(c)].rasterized;
-  return rasterized;
+  return rasterized_in(pass, 0, taken);
 }
 
 // One thread that runs raster jobs one at a time, in order: a one-job slot, filled by submit once the job before is

@@ -176,7 +176,7 @@ uint64_t setup_chunks(RasterScratch& scratch, SetupPass& pass, const SetupParams
 /// set up on this thread while the raster thread is busy, and the rest by the raster job once it is free, so neither
 /// waits for the other (the split adapts to which side is slower; a chunk is set up identically on either). Sets
 /// `taken` to the number of chunks set up here, [0, taken), and returns how many triangles they hold.
-uint64_t setup_chunks_while_raster_busy(SetupPass& pass, RasterScratch& scratch, const SetupParams& params,
+uint64_t setup_chunks_while_raster_busy(RasterScratch& scratch, SetupPass& pass, const SetupParams& params,
                                         std::span<const uint32_t> indices, size_t first, size_t triangle_count,
                                         int64_t chunks, int64_t& taken);
 
@@ -921,7 +921,7 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
     const auto chunks = int64_t((count + kChunkTriangles - 1) / kChunkTriangles);
     reset_pass(pass, params);
     int64_t split = 0;
-    stats.rasterized += setup_chunks_while_raster_busy(pass, scratch, params, indices, first, count, chunks, split);
+    stats.rasterized += setup_chunks_while_raster_busy(scratch, pass, params, indices, first, count, chunks, split);
     submit_raster(scratch, [&framebuffer, &scratch, &pass, params, indices, first, count, split, chunks, fragment, &fs,
                             tiles, keep_alive] {
       scratch.job_rasterized += setup_chunks(scratch, pass, params, indices, first, count, split, chunks);
