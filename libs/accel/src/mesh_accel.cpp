@@ -1,7 +1,11 @@
 // Ray casting of triangle meshes: the binary Bvh collapsed into a wide tree with triangles packed 4 to a block.
 #include "tessera/accel/mesh_accel.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cmath>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,121 +19,180 @@ namespace tessera {
 
 namespace {
 
-/// Collapses the binary tree into a wide one (Wald et al. 2008, "Getting rid of packets"): a node takes its two
-/// children, then repeatedly replaces the interior child of largest area by that child's two children, until it has W.
-/// The children are wide node indices (>= 0) or ~b for the binary leaf b; Layout then places them.
+/// Builds the wide tree from the binary one and lays it out in MeshAccel's array of cache lines.
+///
+/// Collapse (Wald et al. 2008, "Getting rid of packets"): a wide node takes its binary node's two children, then
+/// repeatedly replaces the interior child of largest area by that child's two children, until it has W.
+/// Layout (see MeshAccel::node_ref), depth first: a node, the blocks of its leaf children, then its interior children's
+/// subtrees. Embree's allocator gives a similar order; here a node's reference also says how many lines of leaf blocks
+/// follow it, so that they are fetched with it.
+/// Two passes, each parallel over large subtrees: measure() sizes every subtree, so that place() knows where each
+/// child's subtree starts. A subtree starts on a line, so its layout does not depend on where it lies, and the result
+/// is the same for any thread count.
 template <int W>
-class Collapser {
+class WideTreeBuilder {
  public:
-  Collapser(std::span<const BvhNode> binary, RawVector<MeshAccel::WideNode<W>>& out) : bn_(binary), out_(out) {}
+  WideTreeBuilder(std::span<const BvhNode> binary, std::span<const int> order, std::span<const uint32_t> indices,
+                  std::span<const Vec3f> positions)
+      : bn_(binary), order_(order), indices_(indices), p_(positions) {}
 
-  /// The reference of binary node b's subtree (a wide node index, or ~b for a leaf).
-  int32_t ref(int b) {
-    if (bn_[size_t(b)].count > 0) return ~b;
-    int kids[W] = {b + 1, bn_[size_t(b)].first};
+  /// Lays the tree out in tree (sized to fit); returns the root's reference and sets wide_nodes. Throws InvalidInput
+  /// when the tree would pass the 2 GiB that references address.
+  int32_t build(RawVector<MeshAccel::CacheLine>& tree, size_t& wide_nodes) {
+    const Subtree root{0, int(bn_.size())};
+    if (is_leaf(root)) {  // a mesh of one leaf
+      wide_nodes = 0;
+      tree.resize((leaf_bytes(root) + 63) / 64);
+      tree_ = tree.data();
+      return place_leaf(root, 0);
+    }
+    subtree_bytes_.resize(bn_.size());
+    const Size size = measure(root);
+    // 32-byte units are addressed by 26 bits (leaf_ref), lines by 27 (node_ref).
+    if (size.bytes >= (size_t(1) << 31))
+      throw InvalidInput("MeshAccel: " + std::to_string(order_.size()) + " triangles, more than supported");
+    wide_nodes = size.nodes;
+    tree.resize((size.bytes + 63) / 64);
+    tree_ = tree.data();
+    return place(root, 0);
+  }
+
+ private:
+  /// A binary subtree: its root and the end of its nodes (the binary tree is depth first).
+  struct Subtree {
+    int node, end;
+  };
+  struct Size {
+    size_t bytes, nodes;
+  };
+  static constexpr size_t kNodeBytes = sizeof(MeshAccel::WideNode<W>);
+  static constexpr int kParallelNodes = 4096;  // subtrees of more binary nodes than this do their children in parallel
+
+  bool is_leaf(Subtree s) const { return bn_[size_t(s.node)].count > 0; }
+  size_t leaf_bytes(Subtree s) const {
+    return size_t(bn_[size_t(s.node)].count + 3) / 4 * sizeof(MeshAccel::TriangleBlock);
+  }
+  static size_t line_up(size_t bytes) { return (bytes + 63) / 64 * 64; }
+
+  /// The children of the wide node made of interior binary node s; returns their count.
+  int widen(Subtree s, Subtree kids[W]) const {
+    const int second = bn_[size_t(s.node)].first;
+    kids[0] = {s.node + 1, second};
+    kids[1] = {second, s.end};
     int k = 2;
     while (k < W) {
       int widest = -1;
       float area = -1;
-      for (int i = 0; i < k; ++i) {
-        const BvhNode& c = bn_[size_t(kids[i])];
-        if (c.count == 0 && c.box.area() > area) {
-          area = c.box.area();
+      for (int i = 0; i < k; ++i)
+        if (!is_leaf(kids[i]) && bn_[size_t(kids[i].node)].box.area() > area) {
+          area = bn_[size_t(kids[i].node)].box.area();
           widest = i;
         }
-      }
       if (widest < 0) break;
-      const int split = kids[widest];
-      kids[widest] = split + 1;
-      kids[k++] = bn_[size_t(split)].first;
+      const Subtree split = kids[widest];
+      const int split_second = bn_[size_t(split.node)].first;
+      kids[widest] = {split.node + 1, split_second};
+      kids[k++] = {split_second, split.end};
     }
-    const int self = int(out_.size());
-    out_.emplace_back();
-    MeshAccel::WideNode<W>& node = out_.back();
+    return k;
+  }
+
+  /// Calls f(i) for each interior child i, in parallel when s is large (each child writes its own subtree).
+  template <class F>
+  void each_interior(Subtree s, const Subtree* kids, int k, const F& f) const {
+    if (s.end - s.node > kParallelNodes) {
+      tbb::parallel_for(0, k, [&](int i) {
+        if (!is_leaf(kids[i])) f(i);
+      });
+    } else {
+      for (int i = 0; i < k; ++i)
+        if (!is_leaf(kids[i])) f(i);
+    }
+  }
+
+  /// The bytes and wide nodes of interior subtree s laid out from a line on; keeps the bytes for place().
+  Size measure(Subtree s) {
+    Subtree kids[W];
+    const int k = widen(s, kids);
+    Size sub[W] = {};
+    each_interior(s, kids, k, [&](int i) { sub[i] = measure(kids[i]); });
+    Size size{kNodeBytes, 1};
+    for (int i = 0; i < k; ++i)
+      if (is_leaf(kids[i])) size.bytes += leaf_bytes(kids[i]);
+    for (int i = 0; i < k; ++i)
+      if (!is_leaf(kids[i])) {
+        size.bytes = line_up(size.bytes) + sub[i].bytes;
+        size.nodes += sub[i].nodes;
+      }
+    subtree_bytes_[size_t(s.node)] = uint32_t(size.bytes);  // exact below 4 GiB: build() refuses 2 GiB and more
+    return size;
+  }
+
+  /// Writes interior subtree s from line `line` on; returns its reference.
+  int32_t place(Subtree s, size_t line) {
+    Subtree kids[W];
+    const int k = widen(s, kids);
+    MeshAccel::WideNode<W> node;
     for (int i = 0; i < W; ++i) {
-      const AABB box = i < k ? bn_[size_t(kids[i])].box : AABB{};
+      const AABB box = i < k ? bn_[size_t(kids[i].node)].box : AABB{};
       for (int a = 0; a < 3; ++a) {
         node.box[a][i] = box.lo[a];
         node.box[3 + a][i] = box.hi[a];
       }
       node.child[i] = 0;
     }
-    for (int i = 0; i < k; ++i) {
-      const int32_t r = ref(kids[i]);
-      out_[size_t(self)].child[i] = r;  // out_ may have grown: index again
-    }
-    return self;
-  }
-
- private:
-  std::span<const BvhNode> bn_;
-  RawVector<MeshAccel::WideNode<W>>& out_;
-};
-
-/// Lays the collapsed tree out in MeshAccel's array of cache lines (see MeshAccel::node_ref), depth first: a node,
-/// the blocks of its leaf children, then its interior children's subtrees. Embree's allocator gives a similar order;
-/// here a node's reference also says how many lines of leaf blocks follow it, so that they are fetched with it.
-template <int W>
-class Layout {
- public:
-  Layout(std::span<const BvhNode> binary, const RawVector<MeshAccel::WideNode<W>>& nodes,
-         RawVector<MeshAccel::CacheLine>& tree, std::vector<int>& leaf_unit)
-      : bn_(binary), nodes_(nodes), tree_(tree), leaf_unit_(leaf_unit) {}
-
-  /// Places the subtree of collapsed reference r (a node index, or ~b for binary leaf b) from byte end_ on; returns
-  /// its final reference.
-  int32_t place(int32_t r) {
-    if (r < 0) return place_leaf(~r);
-    constexpr size_t kNodeLines = sizeof(MeshAccel::WideNode<W>) / 64;
-    const size_t line = (end_ + 63) / 64;
-    end_ = (line + kNodeLines) * 64;
-    MeshAccel::WideNode<W> node = nodes_[size_t(r)];
-    const size_t leaves_begin = end_;
-    for (int i = 0; i < W; ++i)
-      if (node.child[i] < 0) node.child[i] = place_leaf(~node.child[i]);
-    const int leaf_lines = int(std::min<size_t>(15, (end_ - leaves_begin + 63) / 64));
-    for (int i = 0; i < W; ++i)
-      if (node.child[i] >= 0 && node.box[0][i] <= node.box[3][i]) node.child[i] = place(node.child[i]);
-    *reinterpret_cast<MeshAccel::WideNode<W>*>(tree_.data() + line) = node;
+    const size_t leaves_begin = line * 64 + kNodeBytes;
+    size_t end = leaves_begin;
+    for (int i = 0; i < k; ++i)
+      if (is_leaf(kids[i])) {
+        node.child[i] = place_leaf(kids[i], end);
+        end += leaf_bytes(kids[i]);
+      }
+    const int leaf_lines = int(std::min<size_t>(15, (end - leaves_begin + 63) / 64));
+    size_t first_line[W];
+    for (int i = 0; i < k; ++i)
+      if (!is_leaf(kids[i])) {
+        first_line[i] = line_up(end) / 64;
+        end = first_line[i] * 64 + subtree_bytes_[size_t(kids[i].node)];
+      }
+    each_interior(s, kids, k, [&](int i) { node.child[i] = place(kids[i], first_line[i]); });
+    *reinterpret_cast<MeshAccel::WideNode<W>*>(tree_ + line) = node;
     return MeshAccel::node_ref(line, leaf_lines);
   }
 
-  /// Bytes used.
-  size_t end() const { return end_; }
-
- private:
-  int32_t place_leaf(int b) {
-    const int blocks = (bn_[size_t(b)].count + 3) / 4;
-    leaf_unit_[size_t(b)] = int(end_ / 32);
-    const int32_t ref = MeshAccel::leaf_ref(int(end_ / 32), blocks);
-    end_ += size_t(blocks) * sizeof(MeshAccel::TriangleBlock);
-    return ref;
+  /// Writes leaf s's triangles as blocks of 4 from byte `at` on; returns its reference.
+  int32_t place_leaf(Subtree s, size_t at) {
+    const BvhNode& n = bn_[size_t(s.node)];
+    auto* blocks = reinterpret_cast<MeshAccel::TriangleBlock*>(reinterpret_cast<char*>(tree_) + at);
+    for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
+      MeshAccel::TriangleBlock& b = blocks[k / 4];
+      const int lane = k % 4;
+      Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
+      int index = -1;
+      if (k < n.count) {
+        const size_t t = size_t(order_[size_t(n.first) + size_t(k)]);
+        v0 = p_[indices_[3 * t]];
+        e1 = p_[indices_[3 * t + 1]] - v0;
+        e2 = p_[indices_[3 * t + 2]] - v0;
+        index = int(t);
+      }
+      for (int a = 0; a < 3; ++a) {
+        b.v0[a][lane] = v0[a];
+        b.e1[a][lane] = e1[a];
+        b.e2[a][lane] = e2[a];
+      }
+      b.index[lane] = index;
+    }
+    return MeshAccel::leaf_ref(int(at / 32), (n.count + 3) / 4);
   }
 
   std::span<const BvhNode> bn_;
-  const RawVector<MeshAccel::WideNode<W>>& nodes_;
-  RawVector<MeshAccel::CacheLine>& tree_;
-  std::vector<int>& leaf_unit_;
-  size_t end_ = 0;
+  std::span<const int> order_;
+  std::span<const uint32_t> indices_;
+  std::span<const Vec3f> p_;
+  RawVector<uint32_t> subtree_bytes_;  // by binary node: the bytes of the subtree of the wide node made of it
+  MeshAccel::CacheLine* tree_ = nullptr;
 };
-
-/// Collapses the binary tree, lays it out in tree (sized to fit) and returns the root's reference; leaf_unit[b] gets
-/// the first 32-byte unit of binary leaf b's blocks.
-template <int W>
-int32_t build_wide(std::span<const BvhNode> binary, size_t block_count, RawVector<MeshAccel::CacheLine>& tree,
-                   std::vector<int>& leaf_unit, size_t& wide_nodes) {
-  RawVector<MeshAccel::WideNode<W>> nodes;
-  nodes.reserve(binary.size() / 2 + 1);
-  const int32_t root = Collapser<W>(binary, nodes).ref(0);
-  wide_nodes = nodes.size();
-  // At most: every node, a line of padding after each node's leaves, and the blocks.
-  tree.resize(nodes.size() * (sizeof(MeshAccel::WideNode<W>) / 64 + 1) +
-              (block_count * sizeof(MeshAccel::TriangleBlock) + 63) / 64 + 1);
-  Layout<W> layout(binary, nodes, tree, leaf_unit);
-  const int32_t ref = layout.place(root);
-  tree.resize((layout.end() + 63) / 64);
-  return ref;
-}
 
 int pick_width(int requested) {
   const bool avx2 = __builtin_cpu_supports("avx2");
@@ -144,19 +207,29 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     : triangle_count_(mesh.triangle_count()), width_(pick_width(simd_width)) {
   const size_t nv = mesh.positions.size(), nt = mesh.triangle_count();
   // Fresh arrays of tens of megabytes for large meshes: uninitialized and on huge pages (page faults dominated).
+  // Checked in parallel; the serial scan that names the first bad vertex or triangle runs only on bad input.
   RawVector<Vec3f> p(nv);
-  for (size_t i = 0; i < nv; ++i) {
-    p[i] = Vec3f(mesh.positions[i]);
-    if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
-      throw InvalidInput("MeshAccel: vertex " + std::to_string(i) + " is not finite");
-  }
-  for (size_t t = 0; t < nt; ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t v = mesh.indices[3 * t + size_t(k)];
-      if (v >= nv)
-        throw InvalidInput("MeshAccel: triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + " of " +
-                           std::to_string(nv));
+  std::atomic<bool> bad{false};
+  parallel_for(0, int64_t(nv), 16384, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      p[size_t(i)] = Vec3f(mesh.positions[size_t(i)]);
+      const Vec3f& v = p[size_t(i)];
+      if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z)) bad = true;
     }
+  });
+  parallel_for(0, int64_t(3 * nt), 65536, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i)
+      if (mesh.indices[size_t(i)] >= nv) bad = true;
+  });
+  if (bad) {
+    for (size_t i = 0; i < nv; ++i)
+      if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y) || !std::isfinite(p[i].z))
+        throw InvalidInput("MeshAccel: vertex " + std::to_string(i) + " is not finite");
+    for (size_t i = 0; i < 3 * nt; ++i)
+      if (mesh.indices[i] >= nv)
+        throw InvalidInput("MeshAccel: triangle " + std::to_string(i / 3) + " uses vertex " +
+                           std::to_string(mesh.indices[i]) + " of " + std::to_string(nv));
+  }
   BvhSettings capped = settings;
   capped.max_leaf_size = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
   capped.leaf_block = 4;  // the leaves' triangles are tested 4 at a time
@@ -173,43 +246,8 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     width_ = 0;
     return;
   }
-  size_t block_count = 0;
-  for (const BvhNode& n : nodes) block_count += size_t(n.count + 3) / 4;
-  // 32-byte units are addressed by 26 bits (leaf_ref), lines by 27 (node_ref).
-  if (block_count * sizeof(TriangleBlock) + nodes.size() * 2 * sizeof(WideNode<8>) >= (size_t(1) << 31))
-    throw InvalidInput("MeshAccel: " + std::to_string(nt) + " triangles, more than supported");
-  std::vector<int> leaf_unit(nodes.size(), -1);
-  root_ = width_ == 8 ? build_wide<8>(nodes, block_count, tree_, leaf_unit, wide_nodes_)
-                      : build_wide<4>(nodes, block_count, tree_, leaf_unit, wide_nodes_);
-  // The blocks of 4 triangles, where the layout put each leaf.
-  const auto order = bvh_.prim_indices();
-  parallel_for(0, int64_t(nodes.size()), 4096, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) {
-      const BvhNode& n = nodes[size_t(i)];
-      if (n.count == 0) continue;
-      auto* blocks = reinterpret_cast<TriangleBlock*>(reinterpret_cast<char*>(tree_.data()) +
-                                                      size_t(leaf_unit[size_t(i)]) * 32);
-      for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
-        TriangleBlock& b = blocks[k / 4];
-        const int lane = k % 4;
-        Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
-        int index = -1;
-        if (k < n.count) {
-          const size_t t = size_t(order[size_t(n.first) + size_t(k)]);
-          v0 = p[mesh.indices[3 * t]];
-          e1 = p[mesh.indices[3 * t + 1]] - v0;
-          e2 = p[mesh.indices[3 * t + 2]] - v0;
-          index = int(t);
-        }
-        for (int a = 0; a < 3; ++a) {
-          b.v0[a][lane] = v0[a];
-          b.e1[a][lane] = e1[a];
-          b.e2[a][lane] = e2[a];
-        }
-        b.index[lane] = index;
-      }
-    }
-  });
+  root_ = width_ == 8 ? WideTreeBuilder<8>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_)
+                      : WideTreeBuilder<4>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_);
 }
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
