@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <variant>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include "tessera/accel/grid.hpp"
 #include "tessera/accel/shapes.hpp"
@@ -335,27 +337,38 @@ TEST(Bvh, TwoPrimitivesByHand) {
 }
 
 TEST(Bvh, SameTreeForAnyThreadCount) {
-  const auto boxes = boxes_of(random_scene(11, 70000));  // large enough for the parallel build paths
-  for (auto build : {BvhSettings::Build::binned_sah, BvhSettings::Build::bottom_up}) {
-    BvhSettings s;
-    s.build = build;
-    std::vector<BvhNode> one;
-    std::vector<int> one_prims;
-    {
-      ThreadLimit limit(1);
-      const Bvh bvh(boxes, s);
-      one.assign(bvh.nodes().begin(), bvh.nodes().end());
-      one_prims.assign(bvh.prim_indices().begin(), bvh.prim_indices().end());
+  // Large enough for the parallel paths: subtrees as tasks, parallel binning, and (with more than one thread) the
+  // parallel partition of the ranges that are a large share of all, which must give the serial partition's result.
+  // Shuffled boxes (the serial partition's branch-free blocks) and boxes sorted along x (its plain loop); arenas of
+  // 3 and 8 threads reach deeper levels with the parallel partition, even on a 2-core machine.
+  auto boxes = boxes_of(random_scene(11, 70000));
+  auto sorted = boxes;
+  std::sort(sorted.begin(), sorted.end(), [](const AABB& a, const AABB& b) { return a.lo.x < b.lo.x; });
+  for (const auto* input : {&boxes, &sorted})
+    for (auto build : {BvhSettings::Build::binned_sah, BvhSettings::Build::bottom_up}) {
+      BvhSettings s;
+      s.build = build;
+      std::optional<Bvh> one;
+      {
+        ThreadLimit limit(1);
+        one.emplace(*input, s);
+      }
+      auto expect_same = [&](const Bvh& other, const char* threads) {
+        ASSERT_EQ(other.nodes().size(), one->nodes().size()) << threads;
+        EXPECT_TRUE(std::equal(one->prim_indices().begin(), one->prim_indices().end(), other.prim_indices().begin()))
+            << threads;
+        for (size_t i = 0; i < one->nodes().size(); ++i) {
+          ASSERT_EQ(other.nodes()[i].first, one->nodes()[i].first) << threads << " node " << i;
+          ASSERT_EQ(other.nodes()[i].count, one->nodes()[i].count) << threads << " node " << i;
+          ASSERT_EQ(other.nodes()[i].box.lo, one->nodes()[i].box.lo) << threads << " node " << i;
+        }
+      };
+      expect_same(Bvh(*input, s), "all threads");
+      for (int threads : {3, 8}) {
+        tbb::task_arena arena(threads);
+        arena.execute([&] { expect_same(Bvh(*input, s), threads == 3 ? "3 threads" : "8 threads"); });
+      }
     }
-    const Bvh all(boxes, s);
-    ASSERT_EQ(all.nodes().size(), one.size());
-    EXPECT_TRUE(std::equal(one_prims.begin(), one_prims.end(), all.prim_indices().begin()));
-    for (size_t i = 0; i < one.size(); ++i) {
-      ASSERT_EQ(all.nodes()[i].first, one[i].first) << i;
-      ASSERT_EQ(all.nodes()[i].count, one[i].count) << i;
-      ASSERT_EQ(all.nodes()[i].box.lo, one[i].box.lo) << i;
-    }
-  }
 }
 
 TEST(Bvh, BadSettingsAndBoxesThrow) {
