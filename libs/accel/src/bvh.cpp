@@ -91,7 +91,7 @@ float leaf_tests(const BvhSettings& s, int n) {
   return float(unsigned(n + s.leaf_block - 1) >> std::countr_zero(unsigned(s.leaf_block)));
 }
 
-constexpr int kParallelPrims = 4096;     // ranges above this build their two halves as parallel tasks
+constexpr int kMinTaskPrims = 1024;       // ranges of this many or fewer are never split into parallel tasks
 constexpr int kParallelBinning = 65536;   // ranges above this bin in parallel
 constexpr int kParallelSplitMin = 16384;  // smaller ranges never bin or partition in parallel
 constexpr int kMaxBins = 64;
@@ -304,7 +304,10 @@ struct Split {
 class SahBuilder {
  public:
   SahBuilder(const BvhSettings& s, RawVector<PrimRef>& refs)
-      : s_(s), refs_(refs), threads_(tbb::this_task_arena::max_concurrency()) {}
+      : s_(s),
+        refs_(refs),
+        threads_(tbb::this_task_arena::max_concurrency()),
+        task_prims_(std::max<int64_t>(kMinTaskPrims, int64_t(refs.size()) / (16 * threads_))) {}
 
   /// Builds the subtree of refs[begin, end), whose bounds are rb, into the 2 n - 1 slots from `self` on (enough for
   /// any binary tree over n primitives), depth-first: its root at self, the left subtree from self + 1, the right one
@@ -354,7 +357,7 @@ class SahBuilder {
     }
     node.axis = uint16_t(axis);
     Built l, r;
-    if (n > kParallelPrims) {
+    if (n > task_prims_) {
       node.first = self + 2 * (mid - begin);
       tbb::parallel_invoke([&] { l = build(begin, mid, left, slots, self + 1, level + 1); },
                            [&] { r = build(mid, end, right, slots, node.first, level + 1); });
@@ -450,13 +453,15 @@ class SahBuilder {
   /// Whether a range of n references is so large a share of all that the tasks of other ranges cannot keep the
   /// threads busy meanwhile (the root, on 2 threads): then it bins and partitions with all threads. The parallel forms
   /// give the same result as the serial ones, so the tree does not depend on the thread count.
-  bool large_share(int n) const {
-    return n >= kParallelSplitMin && int64_t(n) * threads_ >= 2 * int64_t(refs_.size());
-  }
+  bool large_share(int n) const { return n >= kParallelSplitMin && int64_t(n) * threads_ >= 2 * int64_t(refs_.size()); }
 
   const BvhSettings& s_;
   RawVector<PrimRef>& refs_;
   int threads_;
+  // Ranges above this build their halves as parallel tasks: about 16 tasks per thread, fine enough to balance 16
+  // threads on a small mesh (bunny +16% there, against 4096 always) without the overhead of small tasks on 1 or 2.
+  // The compacted tree does not depend on where the tasks split.
+  int64_t task_prims_;
 };
 
 /// Copies the tree that SahBuilder::build left in gapped slots from `slot` on into out[next...] (depth-first, gaps

@@ -2,6 +2,7 @@
 #include "tessera/accel/mesh_accel.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <atomic>
@@ -34,7 +35,12 @@ class WideTreeBuilder {
  public:
   WideTreeBuilder(std::span<const BvhNode> binary, std::span<const int> order, std::span<const uint32_t> indices,
                   std::span<const Vec3f> positions)
-      : bn_(binary), order_(order), indices_(indices), p_(positions) {}
+      : bn_(binary),
+        order_(order),
+        indices_(indices),
+        p_(positions),
+        parallel_nodes_(
+            std::max<int64_t>(1024, int64_t(binary.size()) / (16 * tbb::this_task_arena::max_concurrency()))) {}
 
   /// Lays the tree out in tree (sized to fit); returns the root's reference and sets wide_nodes. Throws InvalidInput
   /// when the tree would pass the 2 GiB that references address.
@@ -66,7 +72,6 @@ class WideTreeBuilder {
     size_t bytes, nodes;
   };
   static constexpr size_t kNodeBytes = sizeof(MeshAccel::WideNode<W>);
-  static constexpr int kParallelNodes = 4096;  // subtrees of more binary nodes than this do their children in parallel
 
   bool is_leaf(Subtree s) const { return bn_[size_t(s.node)].count > 0; }
   size_t leaf_bytes(Subtree s) const {
@@ -100,7 +105,7 @@ class WideTreeBuilder {
   /// Calls f(i) for each interior child i, in parallel when s is large (each child writes its own subtree).
   template <class F>
   void each_interior(Subtree s, const Subtree* kids, int k, const F& f) const {
-    if (s.end - s.node > kParallelNodes) {
+    if (s.end - s.node > parallel_nodes_) {
       tbb::parallel_for(0, k, [&](int i) {
         if (!is_leaf(kids[i])) f(i);
       });
@@ -190,6 +195,9 @@ class WideTreeBuilder {
   std::span<const int> order_;
   std::span<const uint32_t> indices_;
   std::span<const Vec3f> p_;
+  // Subtrees of more binary nodes than this do their children in parallel (about 16 tasks per thread, as the binary
+  // build's).
+  int64_t parallel_nodes_;
   RawVector<uint32_t> subtree_bytes_;  // by binary node: the bytes of the subtree of the wide node made of it
   MeshAccel::CacheLine* tree_ = nullptr;
 };
