@@ -55,6 +55,18 @@ struct Box4 {
   AABB aabb() const { return AABB{Vec3f(lo[0], lo[1], lo[2]), Vec3f(hi[0], hi[1], hi[2])}; }
 };
 
+/// The surface areas of three boxes, lane a for box a (lane 3 unused): Box4::area's arithmetic on the transposed
+/// extents. An empty box's extents are all negative and a valid one's none, so clamping them at 0 gives area 0 as
+/// Box4::area does.
+inline v4f areas(const Box4 (&b)[3]) {
+  const v4f e0 = vmax(b[0].hi - b[0].lo, v4f{}), e1 = vmax(b[1].hi - b[1].lo, v4f{}),
+            e2 = vmax(b[2].hi - b[2].lo, v4f{});
+  const v4f xy = __builtin_shufflevector(e0, e1, 0, 4, 1, 5), zw = __builtin_shufflevector(e0, e1, 2, 6, 3, 7);
+  const v4f x = __builtin_shufflevector(xy, e2, 0, 1, 4, 4), y = __builtin_shufflevector(xy, e2, 2, 3, 5, 5),
+            z = __builtin_shufflevector(zw, e2, 0, 1, 6, 6);
+  return 2.0f * (x * y + y * z + z * x);
+}
+
 /// A primitive during the build in 32 bytes (half a cache line): its box, with its index in the unused fourth lane of
 /// both corners (Embree's trick). The index is stored with its exponent field raised by 64, so that the lane holds a
 /// float in [2^-63, 2^127) whose sums and differences are never denormal (a denormal makes SSE arithmetic on the whole
@@ -262,33 +274,37 @@ int parallel_partition(PrimRef* refs, int begin, int end, const IsLeft& is_left,
 }
 
 /// Per-axis SAH bins (only the first `bins` of each axis are used and initialized; plain vectors, so that nothing
-/// else is written: a split of a few primitives would otherwise spend its time clearing 192 boxes).
+/// else is written: a split of a few primitives would otherwise spend its time clearing 192 boxes). Bin b of axis a
+/// is slot a * kMaxBins + b of each array, so that one index addresses its box and its count.
 struct Bins {
-  v4f lo[3][kMaxBins], hi[3][kMaxBins];
-  int count[3][kMaxBins];
+  v4f lo[3 * kMaxBins], hi[3 * kMaxBins];
+  int count[3 * kMaxBins];
   explicit Bins(int bins) {
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < bins; ++b) {
-        lo[a][b] = splat(std::numeric_limits<float>::infinity());
-        hi[a][b] = splat(-std::numeric_limits<float>::infinity());
-        count[a][b] = 0;
+      for (int b = a * kMaxBins; b < a * kMaxBins + bins; ++b) {
+        lo[b] = splat(std::numeric_limits<float>::infinity());
+        hi[b] = splat(-std::numeric_limits<float>::infinity());
+        count[b] = 0;
       }
   }
   Bins() = default;  // uninitialized: only for parallel_reduce's identity copies, which are assigned before use
   void add(const Bins& o, int bins) {
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < bins; ++b) {
-        lo[a][b] = vmin(lo[a][b], o.lo[a][b]);
-        hi[a][b] = vmax(hi[a][b], o.hi[a][b]);
-        count[a][b] += o.count[a][b];
+      for (int b = a * kMaxBins; b < a * kMaxBins + bins; ++b) {
+        lo[b] = vmin(lo[b], o.lo[b]);
+        hi[b] = vmax(hi[b], o.hi[b]);
+        count[b] += o.count[b];
       }
   }
-  void add(int a, int b, const Box4& box) {
-    lo[a][b] = vmin(lo[a][b], box.lo);
-    hi[a][b] = vmax(hi[a][b], box.hi);
-    ++count[a][b];
+  /// Adds a box to the slot (axis * kMaxBins + bin).
+  void add(unsigned slot, const Box4& box) {
+    lo[slot] = vmin(lo[slot], box.lo);
+    hi[slot] = vmax(hi[slot], box.hi);
+    ++count[slot];
   }
-  Box4 box(int a, int b) const { return Box4{lo[a][b], hi[a][b]}; }
+  /// Bin b's counts on the three axes (lane a: axis a).
+  v4i counts(int b) const { return v4i{count[b], count[kMaxBins + b], count[2 * kMaxBins + b], 0}; }
+  Box4 box(int a, int b) const { return Box4{lo[a * kMaxBins + b], hi[a * kMaxBins + b]}; }
 };
 
 /// A split: axis, first bin of the right side (-1: none, the centroids coincide), SAH cost, the binning origin and
@@ -379,11 +395,12 @@ class SahBuilder {
     for (int a = 0; a < 3; ++a) scale[a] = cext[a] > 0 ? float(nb) * (1.0f - 1e-5f) / cext[a] : 0.0f;
     scale[3] = 0;
     const PrimRef* refs = refs_.data() + begin;
-    const v4i last{nb - 1, nb - 1, nb - 1, nb - 1}, zero{0, 0, 0, 0};
+    const v4f last = splat(float(nb - 1));
     auto bin_one = [&](const PrimRef& p, Bins& into) {
-      v4i b = __builtin_convertvector((p.centroid2() - clo) * scale, v4i);
-      b = b < zero ? zero : (b > last ? last : b);
-      for (int a = 0; a < 3; ++a) into.add(a, b[a], p.box);
+      // Clamped before the truncation, which gives the bins of clamping after it (SSE2 has no integer min/max).
+      const v4i slot = __builtin_convertvector(vmin(vmax((p.centroid2() - clo) * scale, v4f{}), last), v4i) +
+                       v4i{0, kMaxBins, 2 * kMaxBins, 0};
+      for (int a = 0; a < 3; ++a) into.add(unsigned(slot[a]), p.box);
     };
     auto bin_into = [&](int first, int last_index, Bins& acc) {
       if (last_index - first < 256) {
@@ -416,36 +433,51 @@ class SahBuilder {
             return a;
           });
     }
-    const float inv_area = 1.0f / rb.box.area();
-    Split best;
-    for (int a = 0; a < 3; ++a) {
-      if (!(cext[a] > 0)) continue;
-      // Sweep from the right for the areas and counts of the right sides, then from the left.
-      float right_area[kMaxBins];
-      int right_count[kMaxBins];
-      Box4 acc;
-      int cnt = 0;
-      for (int b = nb - 1; b > 0; --b) {
-        acc.expand(bins.box(a, b));
-        cnt += bins.count[a][b];
-        right_area[b] = acc.area();
-        right_count[b] = cnt;
-      }
-      acc = Box4{};
-      cnt = 0;
-      for (int b = 1; b < nb; ++b) {
-        acc.expand(bins.box(a, b - 1));
-        cnt += bins.count[a][b - 1];
-        if (cnt == 0 || right_count[b] == 0) continue;
-        // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
-        const float cost = s_.traversal_cost + s_.intersection_cost * inv_area *
-                                                   (acc.area() * leaf_tests(s_, cnt) +
-                                                    right_area[b] * leaf_tests(s_, right_count[b]));
-        if (cost < best.cost) best = Split{a, b, cost, clo[a], scale[a], acc, Box4{}};
-      }
+    // The three axes are swept at once, one lane each (their areas from the transposed extents): first from the
+    // right, for the right sides' costs and counts, then from the left. Each lane keeps its first least cost, so the
+    // candidates win in the order (axis, bin) below, as in a scalar sweep; the arithmetic is the scalar one's.
+    const v4f k = splat(s_.intersection_cost * (1.0f / rb.box.area())), trav = splat(s_.traversal_cost);
+    const v4i round_up = v4i{} + (s_.leaf_block - 1);
+    const int block_shift = std::countr_zero(unsigned(s_.leaf_block));
+    auto side_cost = [&](const Box4 (&acc)[3], v4i count) {  // area times leaf_tests(count), per axis
+      return areas(acc) * __builtin_convertvector((count + round_up) >> block_shift, v4f);
+    };
+    v4f right_cost[kMaxBins];
+    v4i right_count[kMaxBins];
+    Box4 acc[3];
+    v4i cnt{};
+    for (int b = nb - 1; b > 0; --b) {
+      for (int a = 0; a < 3; ++a) acc[a].expand(bins.box(a, b));
+      cnt += bins.counts(b);
+      right_cost[b] = side_cost(acc, cnt);
+      right_count[b] = cnt;
     }
-    if (best.bin >= 0)
+    v4f best_cost = splat(std::numeric_limits<float>::infinity());
+    v4i best_bin = v4i{} - 1;
+    for (int a = 0; a < 3; ++a) acc[a] = Box4{};
+    cnt = v4i{};
+    for (int b = 1; b < nb; ++b) {
+      for (int a = 0; a < 3; ++a) acc[a].expand(bins.box(a, b - 1));
+      cnt += bins.counts(b - 1);
+      // SAH: C = C_trav + C_isect (A_L N_L + A_R N_R) / A.
+      const v4f cost = trav + k * (side_cost(acc, cnt) + right_cost[b]);
+      const v4i better = (cnt != 0) & (right_count[b] != 0) & (cost < best_cost);
+      best_cost = better ? cost : best_cost;
+      best_bin = better ? b : best_bin;
+    }
+    Split best;
+    for (int a = 0; a < 3; ++a)
+      if (cext[a] > 0 && best_bin[a] >= 0 && best_cost[a] < best.cost) {
+        best.axis = a;
+        best.bin = best_bin[a];
+        best.cost = best_cost[a];
+      }
+    if (best.bin >= 0) {
+      best.lo = clo[best.axis];
+      best.scale = scale[best.axis];
+      for (int b = 0; b < best.bin; ++b) best.left.expand(bins.box(best.axis, b));
       for (int b = best.bin; b < nb; ++b) best.right.expand(bins.box(best.axis, b));
+    }
     return best;
   }
 
