@@ -80,6 +80,8 @@ struct alignas(32) PrimRef {
   }
   int index() const { return int(std::bit_cast<uint32_t>(box.lo[3]) - kIndexBias); }
   v4f centroid2() const { return box.lo + box.hi; }  // twice the centroid: enough for binning
+  /// centroid2()[axis] from two scalar loads (a lane picked by a variable index from a register goes through memory).
+  float centroid2(int axis) const { return box.lo[axis] + box.hi[axis]; }
   static constexpr uint32_t kIndexBias = 64u << 23;
   static constexpr int kMaxIndex = (190 << 23) - 1;  // keeps the exponent field at most 253 (sums stay finite)
 };
@@ -186,17 +188,20 @@ int partition(PrimRef* refs, int begin, int end, const IsLeft& is_left, RangeBou
     if (count_l == 0) lo += kBlock;
     if (count_r == 0) hi -= kBlock;
   }
-  left.centroids.expand(Box4{left_lo, left_hi});
-  right.centroids.expand(Box4{right_lo, right_hi});
+  // Local bounds: `left` and `right` might alias the references written by the swaps (both hold vectors), which would
+  // keep them in memory, a chain of stores and loads through every step.
+  Box4 lc{left_lo, left_hi}, rc{right_lo, right_hi};
   int i = lo, j = hi - 1;
   for (;;) {
-    while (i <= j && is_left(refs[i])) left.centroids.expand_point(refs[i++].centroid2());
-    while (i <= j && !is_left(refs[j])) right.centroids.expand_point(refs[j--].centroid2());
+    while (i <= j && is_left(refs[i])) lc.expand_point(refs[i++].centroid2());
+    while (i <= j && !is_left(refs[j])) rc.expand_point(refs[j--].centroid2());
     if (i >= j) break;
     std::swap(refs[i], refs[j]);
-    left.centroids.expand_point(refs[i++].centroid2());
-    right.centroids.expand_point(refs[j--].centroid2());
+    lc.expand_point(refs[i++].centroid2());
+    rc.expand_point(refs[j--].centroid2());
   }
+  left.centroids.expand(lc);
+  right.centroids.expand(rc);
   return i;
 }
 
@@ -357,14 +362,14 @@ class SahBuilder {
       axis = ce[0] >= ce[1] && ce[0] >= ce[2] ? 0 : (ce[1] >= ce[2] ? 1 : 2);
       mid = begin + n / 2;
       std::nth_element(refs + begin, refs + mid, refs + end, [axis](const PrimRef& a, const PrimRef& b) {
-        const float ca = a.centroid2()[axis], cb = b.centroid2()[axis];
+        const float ca = a.centroid2(axis), cb = b.centroid2(axis);
         return ca < cb || (ca == cb && a.index() < b.index());
       });
       left = range_bounds(refs + begin, mid - begin);
       right = range_bounds(refs + mid, end - mid);
     } else {
       // Partition by bin, accumulating the centroid bounds of both sides on the way (boxes come from the bins).
-      auto is_left = [&](const PrimRef& r) { return bin_of(r.centroid2()[axis], split.lo, split.scale) < split.bin; };
+      auto is_left = [&](const PrimRef& r) { return bin_of(r.centroid2(axis), split.lo, split.scale) < split.bin; };
       mid = large_share(n) ? parallel_partition(refs, begin, end, is_left, left, right)
                            : partition(refs, begin, end, is_left, left, right);
       left.box = split.left;
@@ -577,7 +582,7 @@ class BottomUpBuilder {
       for (size_t i = r.begin(); i < r.end(); ++i) {
         uint32_t code = 0;
         for (int a = 0; a < 3; ++a) {
-          const float u = ext[a] > 0 ? (refs_[i].centroid2()[a] - cb.lo[a]) / ext[a] : 0.0f;
+          const float u = ext[a] > 0 ? (refs_[i].centroid2(a) - cb.lo[a]) / ext[a] : 0.0f;
           code |= spread_bits(uint32_t(std::clamp(u * 1024.0f, 0.0f, 1023.0f))) << (2 - a);
         }
         keys[i] = {code, int(i)};
