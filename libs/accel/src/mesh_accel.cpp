@@ -268,12 +268,16 @@ void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const 
   if (hits.size() != rays.size())
     throw InvalidInput("MeshAccel::intersect: " + std::to_string(rays.size()) + " rays but " +
                        std::to_string(hits.size()) + " hits");
+  // Where the walks' nodes come from: the crossover measured on an AMD EPYC (1 MiB L2 per core) lay between trees of
+  // 15 and 29 MiB (tori of 270K and 540K triangles): the 1M torus's 58 MiB stream 15-20% faster fetched into L2.
+  constexpr size_t kFarTreeBytes = size_t(24) << 20;
+  const bool far_tree = tree_.size() * sizeof(CacheLine) >= kFarTreeBytes;
   if (width_ == 0) {
     std::fill(hits.begin(), hits.end(), Hit{});
   } else if (width_ == 8) {
-    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits);
+    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits, far_tree);
   } else {
-    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits);
+    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits, far_tree);
   }
 }
 
@@ -289,8 +293,11 @@ bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* sta
   return nearest_hit<4>(tree, root, ray, hit, stats);
 }
 
-void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits) {
-  nearest_hits<4>(tree, root, rays, hits);
+void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree) {
+  if (far_tree)
+    nearest_hits<4, _MM_HINT_T1>(tree, root, rays, hits);
+  else
+    nearest_hits<4, _MM_HINT_T0>(tree, root, rays, hits);
 }
 
 bool occluded4(Tree tree, int32_t root, const Ray& ray) { return any_hit<4>(tree, root, ray); }
