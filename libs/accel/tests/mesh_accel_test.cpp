@@ -208,7 +208,24 @@ bool same_bits(const Hit& a, const Hit& b) {
 TEST(MeshAccel, StreamsGiveTheOneRayHitsBitForBit) {
   // The span intersect walks several rays interleaved; each ray's walk must be the one-ray walk (same hit, same bits),
   // for both widths, small and large leaves, random rays (a third with a finite tmax, a sixth with tmin > 0), primary
-  // rays, and streams shorter than the number of walks in flight.
+  // rays, streams shorter than the number of walks in flight, and a tree of more than 24 MiB (whose streams fetch
+  // into L2 rather than L1: another instantiation).
+  auto expect_streams_match = [](const MeshAccel& accel, const std::vector<Ray>& rays, const std::string& what) {
+    std::vector<Hit> one(rays.size());
+    long hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Ray ray = rays[i];
+      hits += accel.intersect(ray, one[i]);
+    }
+    EXPECT_GT(hits, long(rays.size()) / 10) << what;
+    for (const size_t count : {size_t(0), size_t(1), size_t(5), rays.size()}) {
+      std::vector<Hit> streamed(count);
+      // Stale contents must be overwritten, misses included.
+      for (Hit& h : streamed) h.prim = 12345;
+      accel.intersect(std::span<const Ray>(rays).first(count), streamed);
+      for (size_t i = 0; i < count; ++i) ASSERT_TRUE(same_bits(streamed[i], one[i])) << what << " ray " << i;
+    }
+  };
   const TriMesh torus = to_tri_mesh(make_torus(1.0, 0.3, 64, 32));
   std::vector<Ray> rays = random_rays(torus, 4000, 21);
   Rng rng(5, 21);
@@ -220,27 +237,18 @@ TEST(MeshAccel, StreamsGiveTheOneRayHitsBitForBit) {
   rays.insert(rays.end(), primary.begin(), primary.end());
   std::vector<int> widths{4};
   if (__builtin_cpu_supports("avx2")) widths.push_back(8);
-  for (const int width : widths)
+  const TriMesh big = to_tri_mesh(make_torus(1.0, 0.4, 1200, 450));
+  const std::vector<Ray> big_rays = random_rays(big, 3000, 22);
+  for (const int width : widths) {
     for (const int leaf : {1, 8, 1000}) {
       BvhSettings s = MeshAccel::default_settings();
       s.max_leaf_size = leaf;
-      const MeshAccel accel(torus, s, width);
-      std::vector<Hit> one(rays.size());
-      long hits = 0;
-      for (size_t i = 0; i < rays.size(); ++i) {
-        Ray ray = rays[i];
-        hits += accel.intersect(ray, one[i]);
-      }
-      EXPECT_GT(hits, long(rays.size()) / 10);
-      for (const size_t count : {size_t(0), size_t(1), size_t(5), rays.size()}) {
-        std::vector<Hit> streamed(count);
-        // Stale contents must be overwritten, misses included.
-        for (Hit& h : streamed) h.prim = 12345;
-        accel.intersect(std::span<const Ray>(rays).first(count), streamed);
-        for (size_t i = 0; i < count; ++i)
-          ASSERT_TRUE(same_bits(streamed[i], one[i])) << "width " << width << " leaf " << leaf << " ray " << i;
-      }
+      expect_streams_match(MeshAccel(torus, s, width), rays,
+                           "width " + std::to_string(width) + " leaf " + std::to_string(leaf));
     }
+    expect_streams_match(MeshAccel(big, MeshAccel::default_settings(), width), big_rays,
+                         "1M torus, width " + std::to_string(width));
+  }
   std::vector<Hit> too_few(3);
   EXPECT_THROW(MeshAccel(torus).intersect(std::span<const Ray>(rays).first(4), too_few), InvalidInput);
   std::vector<Hit> from_empty(2);
