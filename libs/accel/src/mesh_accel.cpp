@@ -256,51 +256,48 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
   }
   root_ = width_ == 8 ? WideTreeBuilder<8>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_)
                       : WideTreeBuilder<4>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_);
+  // The crossover measured on an AMD EPYC (1 MiB L2 per core) lay between trees of 15 and 29 MiB (tori of 270K and
+  // 540K triangles); see mesh_traversal::Traversal.
+  constexpr size_t kFarTreeBytes = size_t(24) << 20;
+  far_tree_ = tree_.size() * sizeof(CacheLine) >= kFarTreeBytes;
 }
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::intersect8(tree_.data(), root_, ray, hit, stats)
-                     : mesh_traversal::intersect4(tree_.data(), root_, ray, hit, stats);
+  return width_ == 8 ? mesh_traversal::intersect8(tree_.data(), root_, ray, hit, stats, far_tree_)
+                     : mesh_traversal::intersect4(tree_.data(), root_, ray, hit, stats, far_tree_);
 }
 
 void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const {
   if (hits.size() != rays.size())
     throw InvalidInput("MeshAccel::intersect: " + std::to_string(rays.size()) + " rays but " +
                        std::to_string(hits.size()) + " hits");
-  // Where the walks' nodes come from: the crossover measured on an AMD EPYC (1 MiB L2 per core) lay between trees of
-  // 15 and 29 MiB (tori of 270K and 540K triangles): the 1M torus's 58 MiB stream 15-20% faster fetched into L2.
-  constexpr size_t kFarTreeBytes = size_t(24) << 20;
-  const bool far_tree = tree_.size() * sizeof(CacheLine) >= kFarTreeBytes;
   if (width_ == 0) {
     std::fill(hits.begin(), hits.end(), Hit{});
   } else if (width_ == 8) {
-    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits, far_tree);
+    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits, far_tree_);
   } else {
-    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits, far_tree);
+    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits, far_tree_);
   }
 }
 
 bool MeshAccel::occluded(const Ray& ray) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::occluded8(tree_.data(), root_, ray)
-                     : mesh_traversal::occluded4(tree_.data(), root_, ray);
+  return width_ == 8 ? mesh_traversal::occluded8(tree_.data(), root_, ray, far_tree_)
+                     : mesh_traversal::occluded4(tree_.data(), root_, ray, far_tree_);
 }
 
 namespace mesh_traversal {
 
-bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats) {
-  return nearest_hit<4>(tree, root, ray, hit, stats);
+bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree) {
+  return nearest_hit<4>(tree, root, ray, hit, stats, far_tree);
 }
 
 void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree) {
-  if (far_tree)
-    nearest_hits<4, _MM_HINT_T1>(tree, root, rays, hits);
-  else
-    nearest_hits<4, _MM_HINT_T0>(tree, root, rays, hits);
+  nearest_hits<4>(tree, root, rays, hits, far_tree);
 }
 
-bool occluded4(Tree tree, int32_t root, const Ray& ray) { return any_hit<4>(tree, root, ray); }
+bool occluded4(Tree tree, int32_t root, const Ray& ray, bool far_tree) { return any_hit<4>(tree, root, ray, far_tree); }
 
 }  // namespace mesh_traversal
 

@@ -3,17 +3,14 @@
 
 namespace tessera::mesh_traversal {
 
-bool intersect8(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats) {
-  return nearest_hit<8>(tree, root, ray, hit, stats);
+bool intersect8(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree) {
+  return nearest_hit<8>(tree, root, ray, hit, stats, far_tree);
 }
 
 void intersect_stream8(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree) {
-  if (far_tree)
-    nearest_hits<8, _MM_HINT_T1>(tree, root, rays, hits);
-  else
-    nearest_hits<8, _MM_HINT_T0>(tree, root, rays, hits);
+  nearest_hits<8>(tree, root, rays, hits, far_tree);
 }
 
-bool occluded8(Tree tree, int32_t root, const Ray& ray) { return any_hit<8>(tree, root, ray); }
+bool occluded8(Tree tree, int32_t root, const Ray& ray, bool far_tree) { return any_hit<8>(tree, root, ray, far_tree); }
 
 }  // namespace tessera::mesh_traversal

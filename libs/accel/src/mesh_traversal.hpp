@@ -16,15 +16,15 @@ namespace tessera::mesh_traversal {
 
 /// The entry points: 4 wide with SSE (mesh_accel.cpp), 8 wide with AVX2 (mesh_accel_avx2.cpp), over the tree's lines
 /// (see MeshAccel::node_ref). intersect fills hit as MeshAccel::intersect documents; intersect_stream fills hits[i] for
-/// rays[i] the same way (Hit{} for a miss), fetching the walks' next nodes into L2 instead of L1 when far_tree (a tree
-/// whose nodes mostly come from memory: see nearest_hits).
+/// rays[i] the same way (Hit{} for a miss). far_tree: the tree mostly comes from memory, not from the caches, and what
+/// a walk needs later is fetched into L2 instead of L1 (see Traversal).
 using Tree = const MeshAccel::CacheLine*;
-bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats);
+bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree);
 void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree);
-bool occluded4(Tree tree, int32_t root, const Ray& ray);
-bool intersect8(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats);
+bool occluded4(Tree tree, int32_t root, const Ray& ray, bool far_tree);
+bool intersect8(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree);
 void intersect_stream8(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree);
-bool occluded8(Tree tree, int32_t root, const Ray& ray);
+bool occluded8(Tree tree, int32_t root, const Ray& ray, bool far_tree);
 
 // Everything below is compiled once per including file (an unnamed namespace), so the AVX2 file's copies never replace
 // the baseline file's at link time.
@@ -116,7 +116,12 @@ static_assert(sizeof(MeshAccel::TriangleBlock) % 32 == 0);
 /// nearest hit). Nearest hit (AnyHit false: keeps the nearest, shrinks ray().tmax) or any hit (AnyHit true: stops at
 /// the first); Stats counts into stats. A one-ray cast steps it to the end; a stream interleaves the steps of several
 /// (the same operations in the same order per ray, so both give bit-identical hits).
-template <int W, bool AnyHit, bool Stats>
+///
+/// Where a walk fetches the nodes it visits later: L1 (_MM_HINT_T0), or L2 (_MM_HINT_T1) for a tree that mostly comes
+/// from memory. There, fetches into L1 wait on its few miss buffers; into L2 they do not, and the later load costs an
+/// L2 hit. Children: `Children` (the hit children of a node, prefetched as they are pushed); a stream's next node: the
+/// stream's choice (prefetch_current). What a step needs at once (a node's child line and leaf blocks) goes to L1.
+template <int W, bool AnyHit, bool Stats, int Children>
 class Traversal {
   using vf = typename Lanes<W>::vf;
 
@@ -188,7 +193,7 @@ class Traversal {
 
   /// Fetches every cache line of [p, p + bytes) (blocks need not start a line) into L1 (_MM_HINT_T0) or L2
   /// (_MM_HINT_T1; inline assembly, because GCC 12 emitted no prefetcht1 at all for _mm_prefetch in these loops).
-  template <int Hint = _MM_HINT_T0>
+  template <int Hint>
   static void prefetch_lines(const void* p, size_t bytes) {
     static_assert(Hint == _MM_HINT_T0 || Hint == _MM_HINT_T1);
     const uintptr_t begin = reinterpret_cast<uintptr_t>(p);
@@ -199,8 +204,8 @@ class Traversal {
         asm volatile("prefetcht1 %0" : : "m"(*reinterpret_cast<const char*>(line)));
   }
 
-  /// Fetches a node and the leaf blocks that follow it, or a leaf's first block, into the caches.
-  template <int Hint = _MM_HINT_T0>
+  /// Fetches a node and the leaf blocks that follow it, or a leaf's first block, for a later step.
+  template <int Hint = Children>
   void prefetch(int32_t ref) const {
     if (ref >= 0)
       prefetch_lines<Hint>(&node_at<W>(tree_, ref),
@@ -325,8 +330,8 @@ class Traversal {
 };
 
 /// Fills hit from a finished nearest-hit walk (see MeshAccel::intersect); false (hit untouched) for a miss.
-template <int W, bool Stats>
-[[gnu::always_inline]] inline bool fill_hit(const Traversal<W, false, Stats>& walk, Hit& hit) {
+template <int W, bool Stats, int Children>
+[[gnu::always_inline]] inline bool fill_hit(const Traversal<W, false, Stats, Children>& walk, Hit& hit) {
   if (!walk.hit()) return false;
   const Nearest& nearest = walk.nearest();
   const MeshAccel::TriangleBlock& b = block_at(walk.tree(), nearest.block);
@@ -341,11 +346,12 @@ template <int W, bool Stats>
   return true;
 }
 
-/// The nearest hit of one ray (see MeshAccel::intersect), with or without counting (two instantiations, so the
-/// counting costs nothing when off).
-template <int W, bool Stats>
+/// The nearest hit of one ray (see MeshAccel::intersect), with or without counting (separate instantiations, so the
+/// counting costs nothing when off). A far tree's children are fetched into L2 (measured on an AMD EPYC, 1M torus:
+/// about 5% more rays, -5% to +17% over three sets of interleaved runs; trees in the caches 5% fewer).
+template <int W, bool Stats, int Children>
 bool nearest_hit(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats) {
-  Traversal<W, false, Stats> walk(tree, root, stats);
+  Traversal<W, false, Stats, Children> walk(tree, root, stats);
   walk.start(ray);
   while (walk.step()) {
   }
@@ -354,30 +360,35 @@ bool nearest_hit(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* st
 }
 
 template <int W>
-bool nearest_hit(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats) {
-  return stats ? nearest_hit<W, true>(tree, root, ray, hit, stats)
-               : nearest_hit<W, false>(tree, root, ray, hit, nullptr);
+bool nearest_hit(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree) {
+  if (stats) return nearest_hit<W, true, _MM_HINT_T0>(tree, root, ray, hit, stats);
+  return far_tree ? nearest_hit<W, false, _MM_HINT_T1>(tree, root, ray, hit, nullptr)
+                  : nearest_hit<W, false, _MM_HINT_T0>(tree, root, ray, hit, nullptr);
 }
 
 /// Whether any triangle is hit with t in [ray.tmin, ray.tmax].
-template <int W>
+template <int W, int Children>
 bool any_hit(Tree tree, int32_t root, const Ray& ray) {
-  Traversal<W, true, false> walk(tree, root);
+  Traversal<W, true, false, Children> walk(tree, root);
   walk.start(ray);
   while (walk.step()) {
   }
   return walk.hit();
 }
 
+template <int W>
+bool any_hit(Tree tree, int32_t root, const Ray& ray, bool far_tree) {
+  return far_tree ? any_hit<W, _MM_HINT_T1>(tree, root, ray) : any_hit<W, _MM_HINT_T0>(tree, root, ray);
+}
+
 /// The nearest hits of a stream of rays: kInFlight walks interleaved a node at a time, each asking the caches for its
 /// next node before the others take their turns, so that several misses are pending at once instead of one per ray.
-/// Hint says where to: L1 (_MM_HINT_T0) where the tree is mostly in the caches, L2 (_MM_HINT_T1) where it mostly comes
-/// from memory. There, fetches into L1 wait on its few miss buffers (measured on an AMD EPYC: streams on the 1M torus
-/// 15-20% faster into L2; on trees in the caches 5-20% slower, every later load then missing L1).
-template <int W, int Hint>
+/// Next: where to (_MM_HINT_T1, L2, for a far tree: measured on an AMD EPYC, 1M torus, 15-20% more rays; on trees in
+/// the caches 5-20% fewer). The children stay fetched into L1 (into L2 too: 5-10% fewer rays on the torus).
+template <int W, int Next>
 void nearest_hits(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits) {
   constexpr int kInFlight = 12;
-  using Walk = Traversal<W, false, false>;
+  using Walk = Traversal<W, false, false, _MM_HINT_T0>;
   alignas(Walk) unsigned char storage[kInFlight][sizeof(Walk)];
   Walk* walks[kInFlight];
   size_t index[kInFlight];
@@ -392,14 +403,14 @@ void nearest_hits(Tree tree, int32_t root, std::span<const Ray> rays, std::span<
   for (int k = 0; active > 0;) {
     Walk& walk = *walks[k];
     if (walk.step()) {
-      walk.template prefetch_current<Hint>();
+      walk.template prefetch_current<Next>();
     } else {
       Hit& hit = hits[index[k]];
       hit = Hit{};
       fill_hit(walk, hit);
       if (next < rays.size()) {
         walk.start(rays[next]);
-        walk.template prefetch_current<Hint>();
+        walk.template prefetch_current<Next>();
         index[k] = next++;
       } else {
         --active;
@@ -411,6 +422,14 @@ void nearest_hits(Tree tree, int32_t root, std::span<const Ray> rays, std::span<
     }
     if (++k == active) k = 0;
   }
+}
+
+template <int W>
+void nearest_hits(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree) {
+  if (far_tree)
+    nearest_hits<W, _MM_HINT_T1>(tree, root, rays, hits);
+  else
+    nearest_hits<W, _MM_HINT_T0>(tree, root, rays, hits);
 }
 
 }  // namespace

@@ -208,14 +208,16 @@ bool same_bits(const Hit& a, const Hit& b) {
 TEST(MeshAccel, StreamsGiveTheOneRayHitsBitForBit) {
   // The span intersect walks several rays interleaved; each ray's walk must be the one-ray walk (same hit, same bits),
   // for both widths, small and large leaves, random rays (a third with a finite tmax, a sixth with tmin > 0), primary
-  // rays, streams shorter than the number of walks in flight, and a tree of more than 24 MiB (whose streams fetch
-  // into L2 rather than L1: another instantiation).
+  // rays, streams shorter than the number of walks in flight, and a tree of more than 24 MiB (whose walks fetch into
+  // L2 rather than L1: other instantiations). occluded() must agree with the one-ray hit or miss.
   auto expect_streams_match = [](const MeshAccel& accel, const std::vector<Ray>& rays, const std::string& what) {
     std::vector<Hit> one(rays.size());
     long hits = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
       Ray ray = rays[i];
-      hits += accel.intersect(ray, one[i]);
+      const bool hit = accel.intersect(ray, one[i]);
+      ASSERT_EQ(accel.occluded(rays[i]), hit) << what << " ray " << i;  // any hit in the same interval
+      hits += hit;
     }
     EXPECT_GT(hits, long(rays.size()) / 10) << what;
     for (const size_t count : {size_t(0), size_t(1), size_t(5), rays.size()}) {

@@ -92,6 +92,7 @@ class MeshAccel {
   int32_t root_ = 0;  // the wide tree's root reference (a leaf for meshes of one leaf)
   size_t wide_nodes_ = 0;
   RawVector<CacheLine> tree_;  // nodes and blocks (see node_ref); uninitialized growth on huge pages
+  bool far_tree_ = false;      // a tree mostly in memory, not in the caches: walks fetch for later steps into L2
 };
 
 /// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel
