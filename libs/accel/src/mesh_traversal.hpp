@@ -119,8 +119,8 @@ static_assert(sizeof(MeshAccel::TriangleBlock) % 32 == 0);
 ///
 /// Where a walk fetches the nodes it visits later: L1 (_MM_HINT_T0), or L2 (_MM_HINT_T1) for a tree that mostly comes
 /// from memory. There, fetches into L1 wait on its few miss buffers; into L2 they do not, and the later load costs an
-/// L2 hit. Children: `Children` (the hit children of a node, prefetched as they are pushed); a stream's next node: the
-/// stream's choice (prefetch_current). What a step needs at once (a node's child line and leaf blocks) goes to L1.
+/// L2 hit. `Children` is where a node's hit children go (fetched as they are pushed); a stream says where its walks'
+/// next nodes go (prefetch_current). What a step needs at once (a node's child line and leaf blocks) goes to L1.
 template <int W, bool AnyHit, bool Stats, int Children>
 class Traversal {
   using vf = typename Lanes<W>::vf;
