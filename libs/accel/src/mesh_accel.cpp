@@ -256,16 +256,12 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
   }
   root_ = width_ == 8 ? WideTreeBuilder<8>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_)
                       : WideTreeBuilder<4>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_);
-  // The crossover measured on an AMD EPYC (1 MiB L2 per core) lay between trees of 15 and 29 MiB (tori of 270K and
-  // 540K triangles); see mesh_traversal::Traversal.
-  constexpr size_t kFarTreeBytes = size_t(24) << 20;
-  far_tree_ = tree_.size() * sizeof(CacheLine) >= kFarTreeBytes;
 }
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::intersect8(tree_.data(), root_, ray, hit, stats, far_tree_)
-                     : mesh_traversal::intersect4(tree_.data(), root_, ray, hit, stats, far_tree_);
+  return width_ == 8 ? mesh_traversal::intersect8(tree_.data(), root_, ray, hit, stats, far_tree())
+                     : mesh_traversal::intersect4(tree_.data(), root_, ray, hit, stats, far_tree());
 }
 
 void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const {
@@ -275,16 +271,16 @@ void MeshAccel::intersect(std::span<const Ray> rays, std::span<Hit> hits) const 
   if (width_ == 0) {
     std::fill(hits.begin(), hits.end(), Hit{});
   } else if (width_ == 8) {
-    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits, far_tree_);
+    mesh_traversal::intersect_stream8(tree_.data(), root_, rays, hits, far_tree());
   } else {
-    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits, far_tree_);
+    mesh_traversal::intersect_stream4(tree_.data(), root_, rays, hits, far_tree());
   }
 }
 
 bool MeshAccel::occluded(const Ray& ray) const {
   if (width_ == 0) return false;
-  return width_ == 8 ? mesh_traversal::occluded8(tree_.data(), root_, ray, far_tree_)
-                     : mesh_traversal::occluded4(tree_.data(), root_, ray, far_tree_);
+  return width_ == 8 ? mesh_traversal::occluded8(tree_.data(), root_, ray, far_tree())
+                     : mesh_traversal::occluded4(tree_.data(), root_, ray, far_tree());
 }
 
 namespace mesh_traversal {
