@@ -236,13 +236,15 @@ TEST(Bvh, StructureInvariants) {
   }
 }
 
+/// The tests the SAH charges a leaf of `count` primitives: whole blocks of s.leaf_block.
+double block_tests(const BvhSettings& s, int count) { return double((count + s.leaf_block - 1) / s.leaf_block); }
+
 /// The binned SAH by brute force (no sweep): the least cost over every bin boundary of every axis for the primitives
 /// `prims`, binned as docs/accel.md says (twice the centroids, nb = min(bins, max(4, n)) bins over their bounds,
 /// scale nb (1 - 1e-5) / extent in float), costed in double. Infinity when the centroids coincide.
 double cheapest_binned_split(const std::vector<AABB>& boxes, const std::vector<int>& prims, const BvhSettings& s) {
   const int n = int(prims.size()), nb = std::min(s.bins, std::max(4, n));
   auto centroid2 = [&](int p, int a) { return boxes[size_t(p)].lo[a] + boxes[size_t(p)].hi[a]; };
-  auto leaf_tests = [&](int count) { return double((count + s.leaf_block - 1) / s.leaf_block); };
   AABB all;
   for (int p : prims) all.expand(boxes[size_t(p)]);
   double best = INFINITY;
@@ -261,8 +263,8 @@ double cheapest_binned_split(const std::vector<AABB>& boxes, const std::vector<i
       }
       if (left_count == 0 || left_count == n) continue;
       const double cost = s.traversal_cost + s.intersection_cost *
-                                                 (double(left.area()) * leaf_tests(left_count) +
-                                                  double(right.area()) * leaf_tests(n - left_count)) /
+                                                 (double(left.area()) * block_tests(s, left_count) +
+                                                  double(right.area()) * block_tests(s, n - left_count)) /
                                                  double(all.area());
       best = std::min(best, cost);
     }
@@ -303,7 +305,7 @@ TEST(Bvh, EverySplitIsTheCheapestBinBoundary) {
       if (n == 1) continue;
       const double cheapest = cheapest_binned_split(boxes, under[i], s);
       ASSERT_LT(cheapest, INFINITY) << "node " << i;  // random boxes: no coincident centroids
-      auto tests = [&](size_t k) { return double((int(under[k].size()) + s.leaf_block - 1) / s.leaf_block); };
+      auto tests = [&](size_t k) { return block_tests(s, int(under[k].size())); };
       const double leaf_cost = s.intersection_cost * tests(i);
       const bool one_block = n <= s.leaf_block && n <= s.max_leaf_size && s.traversal_cost >= s.intersection_cost;
       if (node.count > 0) {
