@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <random>
 
@@ -52,7 +54,7 @@ TEST(Bpt, RoundTripsExactly) {
   ASSERT_EQ(back.size(), patches.size());
   for (size_t i = 0; i < patches.size(); ++i) EXPECT_EQ(back[i].points, patches[i].points);
 
-  const auto dir = std::filesystem::temp_directory_path() / "tessera_bpt_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("tessera_bpt_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   write_bpt(dir / "a.bpt", patches);
   EXPECT_EQ(read_bpt(dir / "a.bpt")[4].points, patches[4].points);

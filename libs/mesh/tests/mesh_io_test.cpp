@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 
 #include "tessera/core/atomic_file.hpp"
@@ -17,8 +19,11 @@ namespace fs = std::filesystem;
 class MeshFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           fmt::format("tessera-mesh-io-{}", ::testing::UnitTest::GetInstance()->random_seed());
+    // One folder per process and test: ctest runs this fixture's tests at once, and a shared folder let one test's
+    // TearDown delete the other's files.
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / fmt::format("tessera-mesh-io-{}-{}", ::getpid(), info->name());
+    fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

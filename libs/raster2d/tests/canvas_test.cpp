@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <random>
 
@@ -256,7 +258,7 @@ TEST(Canvas, SaveWritesAFile) {
   Canvas c(8, 8);
   c.fill(rgb255(255, 150, 150));
   c.rect(2, 2, 4, 4);
-  const auto path = std::filesystem::temp_directory_path() / "tessera_canvas_test.png";
+  const auto path = std::filesystem::temp_directory_path() / ("tessera_canvas_test_" + std::to_string(::getpid()) + ".png");
   c.save(path);
   EXPECT_GT(std::filesystem::file_size(path), 0u);
   std::filesystem::remove(path);

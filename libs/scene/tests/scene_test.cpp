@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -114,7 +116,7 @@ TEST(Scene, TransformListComposesLikeTheNotesCalls) {
 }
 
 TEST(Scene, MeshFilesAreRelativeToTheSceneFile) {
-  const auto dir = std::filesystem::temp_directory_path() / "tessera_scene_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("tessera_scene_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir / "meshes");
   std::ofstream(dir / "meshes" / "tri.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   std::ofstream(dir / "scene.json") << with_objects(R"([{"type": "mesh", "file": "meshes/tri.obj", "material": "m"}])");
@@ -129,7 +131,7 @@ TEST(Scene, MeshFilesAreRelativeToTheSceneFile) {
 
 TEST(Scene, TextureMultipliesTheSurfaceColor) {
   // A one-color red texture on a white floor seen from above: the floor shows C_r * texture = red only.
-  const auto dir = std::filesystem::temp_directory_path() / "tessera_scene_texture";
+  const auto dir = std::filesystem::temp_directory_path() / ("tessera_scene_texture_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   write_image(dir / "red.png", ImageRGB(2, 2, Vec3f(1, 0, 0)));
   std::ofstream(dir / "scene.json") << R"({"image": {"size": [8, 8]}, "ambient": 1,
