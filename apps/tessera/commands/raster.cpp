@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -17,6 +18,9 @@
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/pipeline.hpp"
+#include "tessera/raster3d/shadow_map.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
 
 namespace tessera::cli {
 namespace {
@@ -27,6 +31,13 @@ struct RasterArgs {
   bool wireframe = false;
   int repeat = 1;
   CameraOptions camera;
+  // The maps (drawn per pixel by raster3d's surface shaders).
+  std::string texture, filter = "trilinear", bump, env;
+  double bump_scale = 0.01, reflect = 0.6;
+  bool shadows = false, floor = false, shading_given = false;
+  int shadow_size = 2048;
+
+  bool maps() const { return !texture.empty() || !bump.empty() || !env.empty() || shadows || floor; }
 };
 
 const std::map<std::string, raster3d::ShadingModel> kShadings = {{"unlit", raster3d::ShadingModel::unlit},
@@ -75,6 +86,151 @@ Vec3 parse_vec3(const std::string& text, const char* what) {
   return {v[0], v[1], v[2]};
 }
 
+const std::map<std::string, Filter> kFilters = {
+    {"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}};
+
+/// A floor under the box [lo, hi] (y up): a square at y = lo.y, three times the box's larger horizontal size.
+raster3d::VertexArrays floor_under(const Bounds3& box) {
+  const Vec3 mid = 0.5 * (box.lo + box.hi);
+  const float half = float(1.5 * std::max({box.hi.x - box.lo.x, box.hi.z - box.lo.z, 1e-6}));
+  const float y = float(box.lo.y), x = float(mid.x), z = float(mid.z);
+  raster3d::VertexArrays a;
+  a.positions = {{x - half, y, z - half}, {x + half, y, z - half}, {x + half, y, z + half}, {x - half, y, z + half}};
+  a.normals.assign(4, Vec3f(0, 1, 0));
+  a.indices = {0, 2, 1, 0, 3, 2};  // counterclockwise seen from above
+  return a;
+}
+
+/// The mesh drawn per pixel with the maps of the options (texture, bump, environment, shadows, floor) into a new
+/// framebuffer; `seconds` gets the time of all --repeat frames.
+raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& box, Camera camera,
+                                       const Vec3f& surface, const Vec3f& background, double& seconds) {
+  const bool textured = !a.texture.empty() || !a.bump.empty();
+  if (textured && mesh.uvs.empty())
+    throw InvalidInput(fmt::format("{}: --texture and --bump need texture coordinates, and the mesh has none", a.mesh));
+  // Everything is read before drawing.
+  std::optional<Texture2D> texture, bump;
+  std::optional<EnvironmentMap> environment;
+  if (!a.texture.empty()) texture.emplace(read_image(a.texture), Sampler{.filter = kFilters.at(a.filter)});
+  if (!a.bump.empty()) bump.emplace(read_image(a.bump));
+  if (!a.env.empty()) environment.emplace(read_image(a.env));
+
+  const auto [width, height] = a.camera.image_size();
+  Bounds3 scene = box;
+  raster3d::VertexArrays floor;
+  if (a.floor) {
+    floor = floor_under(box);
+    for (const Vec3f& p : floor.positions) {
+      scene.lo = glm::min(scene.lo, Vec3(p));
+      scene.hi = glm::max(scene.hi, Vec3(p));
+    }
+    // The framing is the mesh's; the far plane must reach the floor's far corners.
+    if (a.camera.far == 0) camera.far = std::max(camera.far, 2 * glm::length(scene.hi - scene.lo) + glm::length(camera.eye - camera.center));
+  }
+  const Mat4 view = camera.view(), projection = camera.projection();
+  const Mat3 view_linear(view);
+  // The light, as in the fixed-function path: a direction or a point in world space, else over the viewer's
+  // upper-left shoulder (fixed in eye space).
+  raster3d::Lighting lighting;
+  lighting.material = raster3d::Material::plastic(surface, 32, 0.4f);
+  lighting.color_material = true;  // the (textured) surface color is C_r
+  Vec3 to_light_world;
+  bool point_light = false;
+  if (!a.light_pos.empty()) {
+    const Vec3 p = parse_vec3(a.light_pos, "--light-pos");
+    lighting.lights[0].position = Vec4f(Vec3f(view * glm::dvec4(p, 1)), 1);
+    to_light_world = p;
+    point_light = true;
+  } else {
+    to_light_world = a.light_dir.empty() ? glm::transpose(view_linear) * glm::normalize(Vec3(-0.4, 0.6, 1.0))
+                                         : glm::normalize(parse_vec3(a.light_dir, "--light-dir"));
+    lighting.lights[0].position = Vec4f(Vec3f(view_linear * to_light_world), 0);
+  }
+  std::optional<raster3d::ShadowMap> shadow;
+  if (a.shadows)
+    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(to_light_world, scene.lo, scene.hi)
+                                              : raster3d::ShadowMap::directional(to_light_world, scene.lo, scene.hi));
+
+  raster3d::SurfaceUniforms u;
+  u.model_view = Mat4f(view);
+  u.model_view_projection = Mat4f(projection * view);
+  u.normal_matrix = Mat3f(normal_matrix(view));
+  u.eye_to_world = Mat4f(glm::inverse(view));
+  u.viewer = raster3d::viewer_of(projection);
+  u.lighting = raster3d::PreparedLighting(lighting);
+  u.color = surface;
+  u.maps.shadow = shadow ? &*shadow : nullptr;
+  raster3d::SurfaceUniforms floor_uniforms = u;  // the floor: light gray, shadows only
+  floor_uniforms.color = Vec3f(0.85f);
+  u.maps.texture = texture ? &*texture : nullptr;
+  u.maps.bump = bump ? &*bump : nullptr;
+  u.maps.bump_scale = float(a.bump_scale * glm::length(box.hi - box.lo));
+  u.maps.environment = environment ? &*environment : nullptr;
+  u.maps.reflectivity = float(a.reflect);
+
+  const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
+  const raster3d::UvTangents tangents =
+      bump ? raster3d::uv_tangents(arrays.positions, arrays.uvs, arrays.indices) : raster3d::UvTangents{};
+  raster3d::SurfaceVertexShader vs{arrays.attributes(), bump ? tangents.u.data() : nullptr,
+                                   bump ? tangents.v.data() : nullptr, &u};
+  raster3d::SurfaceVertexShader floor_vs{floor.attributes(), nullptr, nullptr, &floor_uniforms};
+  raster3d::RasterState state;
+  state.cull = a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none;
+  raster3d::Framebuffer fb(width, height);
+  const auto start = std::chrono::steady_clock::now();
+  for (int frame = 0; frame < a.repeat; ++frame) {
+    if (shadow) {
+      shadow->clear();
+      shadow->draw(arrays);
+      if (a.floor) shadow->draw(floor);
+    }
+    fb.clear(background);
+    raster3d::draw_triangles(fb, state, uint32_t(arrays.positions.size()), arrays.indices, vs,
+                             raster3d::SurfaceFragmentShader{&u});
+    if (a.floor)
+      raster3d::draw_triangles(fb, raster3d::RasterState{}, 4, floor.indices, floor_vs,
+                               raster3d::SurfaceFragmentShader{&floor_uniforms});
+  }
+  seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (environment) {
+    // The background shows the environment: each empty pixel the direction of its line of sight.
+    const Mat4 to_world = glm::inverse(projection * view);
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        if (fb.depth()(x, y) < raster3d::kDepthMax) continue;
+        const double nx = 2 * (x + 0.5) / width - 1, ny = 1 - 2 * (y + 0.5) / height;
+        const glm::dvec4 near = to_world * glm::dvec4(nx, ny, -1, 1), far = to_world * glm::dvec4(nx, ny, 1, 1);
+        const Vec3 d = Vec3(far) / far.w - Vec3(near) / near.w;
+        fb.color()(x, y) = raster3d::to_color8(Vec3f(environment->lookup(Vec3f(d))));
+      }
+  }
+  return fb;
+}
+
+/// Writes the image and, with --depth-out, the depth buffer: both or neither.
+void write_outputs(const RasterArgs& a, const raster3d::Framebuffer& fb) {
+  write_image(a.output, fb.color_rgb());
+  if (!a.depth_out.empty()) {
+    try {
+      write_pfm(a.depth_out, fb.depth_image());
+    } catch (...) {
+      std::filesystem::remove(a.output);
+      throw;
+    }
+  }
+}
+
+/// The --stats lines: tris and pixels per frame (pixels: those the mesh covers), seconds for all `repeat` frames.
+void print_raster_stats(const raster3d::Framebuffer& fb, const TriMesh& mesh, double seconds, int repeat) {
+  size_t covered = 0;
+  for (const uint32_t d : fb.depth().pixels()) covered += d < raster3d::kDepthMax ? 1 : 0;
+  const double tris = double(mesh.triangle_count());
+  print_stats({{"tris", stat_value(tris)},
+               {"pixels", stat_value(double(covered))},
+               {"seconds", stat_value(seconds)},
+               {"tris_per_s", stat_value(seconds > 0 ? tris * repeat / seconds : 0)}});
+}
+
 void run_raster(const RasterArgs& a, const CommonOptions& common) {
   // Every option is checked before the mesh is read or anything is drawn.
   const auto [width, height] = a.camera.image_size();
@@ -87,6 +243,11 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   if (!a.depth_out.empty() && std::filesystem::path(a.depth_out).extension() != ".pfm")
     throw InvalidInput(fmt::format("--depth-out: expected a .pfm file, got '{}'", a.depth_out));
   const raster3d::ShadingModel shading = kShadings.at(a.shading);
+  if (a.maps() && a.shading_given && shading != raster3d::ShadingModel::phong)
+    throw InvalidInput(fmt::format("--shading {}: texture, bump, environment and shadow mapping are per pixel "
+                                   "(--shading phong, the default with them)", a.shading));
+  if (a.maps() && a.wireframe)
+    throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --shadows or --floor");
 
   PolyMesh poly = read_mesh(a.mesh);
   if (poly.face_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to draw", a.mesh));
@@ -97,6 +258,15 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
 
   const Bounds3 box = bounding_box(poly);
   const Camera camera = a.camera.camera(box.lo, box.hi);
+  const Vec3f surface(color.r, color.g, color.b);
+  const Vec3f bg(background.r, background.g, background.b);
+  if (a.maps()) {
+    double seconds = 0;
+    const raster3d::Framebuffer fb = render_with_maps(a, mesh, box, camera, surface, bg, seconds);
+    write_outputs(a, fb);
+    if (common.stats) print_raster_stats(fb, mesh, seconds, a.repeat);
+    return;
+  }
 
   raster3d::Context ctx(width, height);
   ctx.perspective(camera.fovy, camera.near, camera.far, camera.aspect);
@@ -107,14 +277,12 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   ctx.look_at(camera.eye, camera.center, camera.up);
   if (!a.light_dir.empty()) ctx.light(0, {.position = Vec4f(Vec3f(glm::normalize(light_dir)), 0)});
   if (!a.light_pos.empty()) ctx.light(0, {.position = Vec4f(Vec3f(light_pos), 1)});
-  const Vec3f surface(color.r, color.g, color.b);
   ctx.material(raster3d::Material::plastic(surface, 32, 0.4f));
   ctx.color(surface);
   ctx.shading(shading);
   ctx.cull(a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none);
   const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
   const auto edges = a.wireframe ? polygon_edges(poly) : std::vector<std::pair<uint32_t, uint32_t>>{};
-  const Vec3f bg(background.r, background.g, background.b);
   // Edges dark on a light background, light on a dark one.
   const Vec3f wire_color = (bg.x + bg.y + bg.z) > 1.5f ? Vec3f(0.1f, 0.1f, 0.15f) : Vec3f(0.9f, 0.9f, 0.8f);
 
@@ -149,25 +317,8 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   const raster3d::Framebuffer& fb = ctx.framebuffer();
-  write_image(a.output, fb.color_rgb());
-  if (!a.depth_out.empty()) {
-    try {
-      write_pfm(a.depth_out, fb.depth_image());
-    } catch (...) {
-      std::filesystem::remove(a.output);  // both outputs or neither
-      throw;
-    }
-  }
-  if (common.stats) {
-    size_t covered = 0;
-    for (const uint32_t d : fb.depth().pixels()) covered += d < raster3d::kDepthMax ? 1 : 0;
-    // tris and pixels per frame (pixels: those the mesh covers); seconds for all --repeat frames.
-    const double tris = double(mesh.triangle_count());
-    print_stats({{"tris", stat_value(tris)},
-                 {"pixels", stat_value(double(covered))},
-                 {"seconds", stat_value(seconds)},
-                 {"tris_per_s", stat_value(seconds > 0 ? tris * a.repeat / seconds : 0)}});
-  }
+  write_outputs(a, fb);
+  if (common.stats) print_raster_stats(fb, mesh, seconds, a.repeat);
 }
 
 }  // namespace
@@ -177,7 +328,8 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("mesh", a->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
   cmd.add_option("-o,--output", a->output, "Output image (.png, .ppm, .pfm, .hdr, .jpg, ...)")->required();
   a->camera.add(cmd);
-  cmd.add_option("--shading", a->shading, "unlit | flat (per polygon) | gouraud (per vertex) | phong (per pixel)")
+  cmd.add_option("--shading", a->shading,
+                 "unlit | flat (per polygon) | gouraud (per vertex) | phong (per pixel; the default with maps)")
       ->check(CLI::IsMember({"unlit", "flat", "gouraud", "phong"}))
       ->capture_default_str();
   cmd.add_option("--color", a->color, "Surface color r,g,b in [0,1] or #rrggbb (a plastic: white highlights)")
@@ -194,7 +346,27 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--repeat", a->repeat, "Render N frames (for timing with --stats)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd.callback([a, &common] { run_raster(*a, common); });
+  cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
+  cmd.add_option("--filter", a->filter, "Texture filter: nearest | bilinear | trilinear (MIPmaps)")
+      ->check(CLI::IsMember({"nearest", "bilinear", "trilinear"}))
+      ->capture_default_str();
+  cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
+  cmd.add_option("--bump-scale", a->bump_scale, "Height of a white bump texel, as a fraction of the mesh's size")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd.add_option("--env", a->env, "Environment map: a lat-long (equirectangular) image the surface reflects");
+  cmd.add_option("--reflect", a->reflect, "How much of the environment the surface reflects, in [0,1]")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
+  cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd.add_flag("--floor", a->floor, "Add a light gray floor under the mesh (y up), to receive its shadow");
+  cmd.callback([a, &common, &cmd] {
+    a->shading_given = cmd.count("--shading") > 0;
+    run_raster(*a, common);
+  });
 }
 
 }  // namespace tessera::cli

@@ -58,7 +58,7 @@ PreparedLighting::PreparedLighting(const Lighting& lighting)
   }
 }
 
-Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color) const {
+Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, float light0_visibility) const {
   const Vec3f ambient_m = color_material_ ? color : ambient_m_;
   Vec3f c = emission_ + ambient_m * ambient_sum_;
   const Vec3f eye = local_viewer_ ? glm::normalize(-p) : Vec3f(0, 0, 1);
@@ -66,8 +66,10 @@ Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color
     const PreparedLight& light = lights_[size_t(i)];
     const Vec3f l = light.directional ? light.direction : glm::normalize(Vec3f(light.position) - p);
     const float n_dot_l = glm::dot(n, l);
-    if (n_dot_l <= 0) continue;
-    c += n_dot_l * (color_material_ ? color * light.diffuse : light.diffuse);
+    const float visible = i == 0 ? light0_visibility : 1.0f;
+    if (n_dot_l <= 0 || visible <= 0) continue;
+    // Times 1 unless in shadow: exactly the unshadowed sums then.
+    c += visible * (n_dot_l * (color_material_ ? color * light.diffuse : light.diffuse));
     if (!light.has_specular) continue;
     float spec;
     if (blinn_) {
@@ -76,7 +78,7 @@ Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color
     } else {
       spec = std::max(glm::dot(eye, 2.0f * n_dot_l * n - l), 0.0f);  // (E.R), R = 2N(N.L) - L
     }
-    c += specular_power(spec, shininess_) * light.specular;
+    c += visible * (specular_power(spec, shininess_) * light.specular);
   }
   return glm::clamp(c, 0.0f, 1.0f);
 }

@@ -78,7 +78,9 @@ class PreparedLighting {
   explicit PreparedLighting(const Lighting& lighting);
 
   /// The shading equation at eye-space point p with unit normal n (vertex color `color`), clamped to [0, 1].
-  Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color) const;
+  /// light0_visibility scales light 0's diffuse and specular terms: the notes' visible(P, L), 0 in its shadow (see
+  /// ShadowMap), fractions at a filtered shadow's edge.
+  Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, float light0_visibility = 1.0f) const;
 
  private:
   struct PreparedLight {

@@ -50,11 +50,29 @@ concept VertexShader = requires(const VS& vs, uint32_t i) {
 template <class VS>
 using VaryingsOf = decltype(std::declval<const VS&>()(uint32_t{}).varyings);
 
-/// A fragment shader consuming varyings V.
+/// A fragment shader that reads the varyings' screen-space derivatives (GLSL's dFdx and dFdy): `bool fs(const V& in,
+/// const V& ddx, const V& ddy, Vec3f& color)`. ddx and ddy are the exact derivatives of the perspective-correct
+/// interpolation at the pixel center, per window pixel to the right and up (not 2 x 2 finite differences, as GPUs
+/// take them): what a texture's level of detail needs. They are zero for lines, points and flat-shaded triangles.
 template <class FS, class V>
-concept FragmentShader = requires(const FS& fs, const V& v, Vec3f& color) {
+concept DerivativeFragmentShader = requires(const FS& fs, const V& v, Vec3f& color) {
+  { fs(v, v, v, color) } -> std::convertible_to<bool>;
+};
+
+/// A fragment shader consuming varyings V: `bool fs(const V& in, Vec3f& color)`, or a DerivativeFragmentShader.
+template <class FS, class V>
+concept FragmentShader = DerivativeFragmentShader<FS, V> || requires(const FS& fs, const V& v, Vec3f& color) {
   { fs(v, color) } -> std::convertible_to<bool>;
 };
+
+/// Calls fs in whichever form it has (the derivatives are ignored by the plain form).
+template <class V, FragmentShader<V> FS>
+bool run_fragment_shader(const FS& fs, const V& in, const V& ddx, const V& ddy, Vec3f& color) {
+  if constexpr (DerivativeFragmentShader<FS, V>)
+    return fs(in, ddx, ddy, color);
+  else
+    return fs(in, color);
+}
 
 // ---- Vertex attribute arrays
 // -----------------------------------------------------------------------------------------

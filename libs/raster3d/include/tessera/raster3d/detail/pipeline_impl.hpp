@@ -697,7 +697,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
         V v{};
         if constexpr (N > 0) std::memcpy(&v, data, sizeof(float) * N);
         Vec3f c;
-        if (!fs(v, c)) continue;
+        if (!run_fragment_shader(fs, v, V{}, V{}, c)) continue;
         const glm::u8vec4 c8 = to_color8(c);
         uint32_t c32;
         std::memcpy(&c32, &c8, sizeof c32);
@@ -753,9 +753,23 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
           std::array<float, N> values;
           for (int q = 0; q < N; ++q) values[q] = (base[q + 1] + px[q + 1] * dx) * w;
           V v;
-          std::memcpy(&v, values.data(), sizeof(float) * N);
+          if constexpr (N > 0) std::memcpy(&v, values.data(), sizeof(float) * N);
           Vec3f c;
-          if (!fs(v, c)) continue;
+          if constexpr (DerivativeFragmentShader<FS, V> && N > 0) {
+            // value = P / Q with P (the varying / w) and Q (1 / w) affine on the screen, w = 1 / Q: so
+            // d value / dx = (dP/dx - value dQ/dx) w, and the same in y.
+            std::array<float, N> ddx, ddy;
+            for (int q = 0; q < N; ++q) {
+              ddx[q] = (px[q + 1] - values[q] * px[0]) * w;
+              ddy[q] = (py[q + 1] - values[q] * py[0]) * w;
+            }
+            V vx, vy;
+            std::memcpy(&vx, ddx.data(), sizeof(float) * N);
+            std::memcpy(&vy, ddy.data(), sizeof(float) * N);
+            if (!fs(v, vx, vy, c)) continue;
+          } else if (!fs(v, c)) {
+            continue;
+          }
           crow[lo + k] = to_color8(c);
           if (write_depth) drow[lo + k] = d[k];
         }
@@ -773,7 +787,7 @@ void shade_fragment(Framebuffer& fb, int i, int j, uint32_t d, const float* valu
   V v{};
   if constexpr (N > 0) std::memcpy(&v, values, sizeof(float) * N);
   Vec3f c;
-  if (!fs(v, c)) return;
+  if (!run_fragment_shader(fs, v, V{}, V{}, c)) return;
   fb.color()(i, row) = to_color8(c);
   if (depth_write) stored = d;
 }

@@ -1,0 +1,59 @@
+#pragma once
+// Shadow mapping, the notes' "2-pass z-buffer" (Williams 1978): pass 1 renders the scene's depth as seen from the
+// light; pass 2, the camera's, takes each visible point P to the light's window space, P' = L V^-1 P, and compares
+// its depth z' with the depth the light saw there. The notes write "z' < z_light(x', y') -> shadow"; the test is the
+// other way round: P is in shadow when something lies nearer to the light, z' > z_light(x', y').
+//
+// The comparison needs a bias, or a lit surface shadows itself ("shadow acne": the map stores the depth at texel
+// centers, P lies anywhere in its texel). Here the bias follows the receiver: the depth of P's tangent plane is
+// predicted at each texel center it is compared with (receiver-plane depth bias, Isidoro 2006), with an allowance
+// of one texel's depth change along that plane (as glPolygonOffset(1, 1) gives the caster) for a mesh's facets
+// turning within the filter's reach, and a small constant for the map's 24-bit rounding. With pcf > 0 the comparison is made at the (2 pcf + 1)^2 texels around P'
+// and the visibility is the fraction that pass (percentage-closer filtering, Reeves, Salesin and Cook 1987): soft,
+// antialiased shadow edges.
+#include <cstdint>
+
+#include "tessera/math/types.hpp"
+#include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/framebuffer.hpp"
+
+namespace tessera::raster3d {
+
+/// A light's depth map and the test of pass 2.
+class ShadowMap {
+ public:
+  /// An empty map (everything lit) of size x size texels, seen through `light_view_projection` (world space to the
+  /// light's clip space; see directional() and spot()). Throws InvalidInput unless 1 <= size <= 16384.
+  ShadowMap(int size, const Mat4& light_view_projection);
+
+  /// The view-projection of a directional light shining along -to_light: orthographic, its box holding the sphere
+  /// around [lo, hi]. Throws InvalidInput for a zero direction or an empty box.
+  static Mat4 directional(const Vec3& to_light, const Vec3& lo, const Vec3& hi);
+  /// The view-projection of a point light at `position` aimed at the center of [lo, hi]: a perspective whose cone
+  /// holds the sphere around the box. Throws InvalidInput when the light lies inside that sphere (one map cannot see
+  /// all around it) or the box is empty.
+  static Mat4 spot(const Vec3& position, const Vec3& lo, const Vec3& hi);
+
+  /// Pass 1: renders the depth of the triangles of `arrays` (positions after `model`, object to world).
+  void draw(const VertexArrays& arrays, const Mat4& model = Mat4(1.0));
+  /// Clears the map (everything lit again).
+  void clear();
+
+  /// Pass 2: the fraction of the light that reaches world point p on a surface with unit world normal n, 1 lit,
+  /// 0 in shadow; pcf is the filter radius in texels (0: one texel, a hard edge). Points outside the light's view
+  /// are lit; a surface seen edge-on by the light is in its own (attached) shadow.
+  float visibility(const Vec3f& p, const Vec3f& n, int pcf = 1) const;
+
+  /// Texels along each side.
+  int size() const { return depth_.width(); }
+  /// World to the light's clip space.
+  const Mat4f& light_view_projection() const { return light_; }
+  /// The stored depths, window z in [0, 1] (1 where nothing was drawn), row 0 at the top.
+  DepthImage depth_image() const { return depth_.depth_image(); }
+
+ private:
+  Framebuffer depth_;  // its color buffer is unused: the pipeline always has one
+  Mat4f light_;
+};
+
+}  // namespace tessera::raster3d

@@ -1,0 +1,112 @@
+#pragma once
+// The notes' mapping techniques as one per-pixel shader pair: texture mapping (the texture colors the surface,
+// C_r = color x texture(s, t), filtered with MIPmaps at the level of detail of the pixel's footprint), bump mapping
+// (Blinn 1978: the normal tilted by the height map's slopes), environment mapping (Blinn and Newell 1976: the
+// reflected view direction looks up a lat-long image) and shadow mapping (ShadowMap: light 0 is blocked where the
+// light saw something nearer). Lighting is PreparedLighting's equation, evaluated at every pixel (Phong
+// interpolation). Each map is optional.
+//
+// Texture coordinates are interpolated perspective-correctly by the pipeline (the notes: s/|z|, t/|z| and 1/|z|
+// linearly, then divided per pixel), and the fragment program gets their exact screen derivatives, from which the
+// MIPmap level of detail follows (Texture2D::lod).
+#include <span>
+#include <vector>
+
+#include "tessera/image/texture.hpp"
+#include "tessera/raster3d/lighting.hpp"
+#include "tessera/raster3d/shaders.hpp"
+#include "tessera/raster3d/shadow_map.hpp"
+
+namespace tessera::raster3d {
+
+/// Per-vertex tangents P_s = dP/du and P_t = dP/dv (the notes' bump-mapping tangents; u, v the texture coordinates).
+struct UvTangents {
+  std::vector<Vec3f> u, v;
+};
+
+/// The tangents of an indexed triangle mesh with texture coordinates: each triangle's dP/du and dP/dv solve
+/// [e1 e2] = [P_s P_t] [du1 du2; dv1 dv2] for its edges e1, e2 and their uv differences; a vertex takes the mean
+/// over its triangles (triangles with a degenerate uv triangle are skipped; a vertex with none gets zero tangents,
+/// which leave its normal unbumped). Throws InvalidInput when uvs and positions differ in size or an index is out of
+/// range.
+UvTangents uv_tangents(std::span<const Vec3f> positions, std::span<const Vec2f> uvs,
+                       std::span<const uint32_t> indices);
+
+/// Blinn's bump-mapped normal for the surface P(u, v) displaced by B(u, v) along its unit normal n:
+/// N' = N + (B_u (N x P_t) - B_v (N x P_s)) / |N| with N = P_s x P_t, written with the unit n as
+/// normalize(n + (B_u (n x P_t) - B_v (n x P_s)) / |P_s x P_t|). It is the exact normal of the displaced surface
+/// where n does not vary (a plane), and its first-order approximation elsewhere. (The notes' N - (B_u P_s + B_v P_t)
+/// is the case of orthonormal tangents.) Where P_s x P_t points against n (a mirrored texture), the tilt is negated
+/// so that the result is still the displaced surface's normal on n's side. Returns n when P_s x P_t is zero.
+Vec3f bump_normal(const Vec3f& n, const Vec3f& p_s, const Vec3f& p_t, float b_u, float b_v);
+
+/// The slopes (B_u, B_v) = (dB/du, dB/dv) of the height B = scale x (red channel of `height`) at uv: central
+/// differences one texel apart on the bilinear level 0.
+Vec2f height_gradient(const Texture2D& height, Vec2f uv, float scale);
+
+/// The eye (center of projection) of a projection matrix in eye space, as a homogeneous point: the vector e with
+/// (P e).x = (P e).y = (P e).w = 0, which every point on the line of sight through a pixel shares. (0, 0, 0, 1) for a
+/// perspective (the origin), (0, 0, 1, 0) for an orthographic projection (a point at infinity: all lines of sight
+/// are parallel to z). The direction toward the eye from eye-space p is then e.xyz - p e.w.
+Vec4f viewer_of(const Mat4& projection);
+
+/// The optional maps of a surface. Pointers not owned; null = off.
+struct SurfaceMaps {
+  const Texture2D* texture = nullptr;  ///< multiplies the surface color (the sampler's filter; trilinear uses lod)
+  const Texture2D* bump = nullptr;     ///< height map (red channel), needs the vertex shader's tangents
+  float bump_scale = 0.02f;            ///< height of a texel value 1, in object units
+  const EnvironmentMap* environment = nullptr;  ///< lat-long radiance around the scene (world space)
+  float reflectivity = 0;                       ///< adds reflectivity x environment(R)
+  const ShadowMap* shadow = nullptr;            ///< light 0's shadow map (world space)
+  int shadow_pcf = 1;                           ///< its filter radius in texels
+};
+
+/// The uniforms of the surface shaders.
+struct SurfaceUniforms {
+  Mat4f model_view_projection{1.0f};
+  Mat4f model_view{1.0f};
+  Mat3f normal_matrix{1.0f};
+  Mat4f eye_to_world{1.0f};     ///< the inverse view matrix: environment and shadow lookups are in world space
+  Vec4f viewer{0, 0, 0, 1};     ///< the eye in eye space, homogeneous (see viewer_of): E = viewer.xyz - p viewer.w
+  PreparedLighting lighting;    ///< prepare with color_material on, so that the textured color is C_r
+  Vec3f color{1, 1, 1};         ///< the surface color for vertices without one
+  SurfaceMaps maps;
+};
+
+/// Eye-space normal and position, color, texture coordinates and eye-space tangents.
+struct SurfaceVaryings {
+  Vec3f normal;
+  Vec3f position;
+  Vec3f color;
+  Vec2f uv;
+  Vec3f tangent_u, tangent_v;
+};
+
+/// The vertex program: clip position, and the varyings in eye space. Normals are required; uvs when a texture or
+/// bump map is used, tangents (uv_tangents) when a bump map is.
+struct SurfaceVertexShader {
+  VertexAttributes attributes;
+  const Vec3f* tangents_u = nullptr;  ///< or null (no bump mapping)
+  const Vec3f* tangents_v = nullptr;
+  const SurfaceUniforms* uniforms = nullptr;
+
+  VertexOut<SurfaceVaryings> operator()(uint32_t i) const {
+    const SurfaceUniforms& u = *uniforms;
+    const Vec4f object(attributes.positions[i], 1.0f);
+    const Mat3f linear(u.model_view);  // tangents are directions on the surface: the model-view's linear part
+    return {gl_transform(u.model_view_projection, attributes.positions[i]),
+            {u.normal_matrix * attributes.normals[i], Vec3f(u.model_view * object), attributes.color_or(i, u.color),
+             attributes.uvs ? attributes.uvs[i] : Vec2f(0),
+             tangents_u ? linear * tangents_u[i] : Vec3f(0), tangents_v ? linear * tangents_v[i] : Vec3f(0)}};
+  }
+};
+
+/// The fragment program: bump, texture, shadow, lighting, environment, in that order.
+struct SurfaceFragmentShader {
+  const SurfaceUniforms* uniforms = nullptr;
+
+  bool operator()(const SurfaceVaryings& in, const SurfaceVaryings& ddx, const SurfaceVaryings& ddy,
+                  Vec3f& color) const;
+};
+
+}  // namespace tessera::raster3d

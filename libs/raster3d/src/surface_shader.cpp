@@ -1,0 +1,108 @@
+#include "tessera/raster3d/surface_shader.hpp"
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_access.hpp>
+
+#include "tessera/core/error.hpp"
+
+namespace tessera::raster3d {
+
+UvTangents uv_tangents(std::span<const Vec3f> positions, std::span<const Vec2f> uvs,
+                       std::span<const uint32_t> indices) {
+  if (uvs.size() != positions.size())
+    throw InvalidInput(fmt::format("uv_tangents: {} uvs for {} positions", uvs.size(), positions.size()));
+  if (indices.size() % 3 != 0) throw InvalidInput("uv_tangents: the index count is not a multiple of 3");
+  for (const uint32_t i : indices)
+    if (i >= positions.size())
+      throw InvalidInput(fmt::format("uv_tangents: index {} out of range [0, {})", i, positions.size()));
+  UvTangents t{std::vector<Vec3f>(positions.size(), Vec3f(0)), std::vector<Vec3f>(positions.size(), Vec3f(0))};
+  std::vector<int> count(positions.size(), 0);
+  for (size_t k = 0; k < indices.size(); k += 3) {
+    const uint32_t a = indices[k], b = indices[k + 1], c = indices[k + 2];
+    const Vec3f e1 = positions[b] - positions[a], e2 = positions[c] - positions[a];
+    const Vec2f d1 = uvs[b] - uvs[a], d2 = uvs[c] - uvs[a];
+    const float det = d1.x * d2.y - d2.x * d1.y;
+    if (!(std::abs(det) > 0)) continue;
+    // [e1 e2] = [P_s P_t] [d1 d2] (columns), so [P_s P_t] = [e1 e2] [d1 d2]^-1.
+    const Vec3f p_s = (e1 * d2.y - e2 * d1.y) / det, p_t = (e2 * d1.x - e1 * d2.x) / det;
+    for (const uint32_t v : {a, b, c}) {
+      t.u[v] += p_s;
+      t.v[v] += p_t;
+      ++count[v];
+    }
+  }
+  for (size_t v = 0; v < positions.size(); ++v)
+    if (count[v] > 1) {
+      t.u[v] /= float(count[v]);
+      t.v[v] /= float(count[v]);
+    }
+  return t;
+}
+
+Vec4f viewer_of(const Mat4& projection) {
+  // The null vector of rows x, y and w: the generalized cross product of the three rows (cofactors along a fourth).
+  const glm::dmat3x4 rows(glm::row(projection, 0), glm::row(projection, 1), glm::row(projection, 3));
+  glm::dvec4 e;
+  for (int k = 0; k < 4; ++k) {
+    glm::dmat3 minor;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0, col = 0; c < 4; ++c)
+        if (c != k) minor[col++][r] = rows[r][c];
+    e[k] = (k % 2 ? -1 : 1) * glm::determinant(minor);
+  }
+  // Scale so that a finite eye has w = 1, and a direction unit length pointing toward the viewer (+z in eye space).
+  if (std::abs(e.w) > 1e-12 * glm::length(e)) return Vec4f(e / e.w);
+  const glm::dvec3 d = glm::normalize(glm::dvec3(e));
+  return Vec4f(Vec3f(d.z < 0 ? -d : d), 0);
+}
+
+Vec3f bump_normal(const Vec3f& n, const Vec3f& p_s, const Vec3f& p_t, float b_u, float b_v) {
+  const Vec3f cross = glm::cross(p_s, p_t);
+  const float area = glm::length(cross);
+  if (!(area > 0)) return n;
+  // Where the texture is mirrored, P_s x P_t points against n (the parameterization is left-handed there): the
+  // displaced surface's normal on n's side then tilts the other way.
+  const float side = glm::dot(cross, n) < 0 ? -1.0f : 1.0f;
+  return glm::normalize(n + side * (b_u * glm::cross(n, p_t) - b_v * glm::cross(n, p_s)) / area);
+}
+
+Vec2f height_gradient(const Texture2D& height, Vec2f uv, float scale) {
+  const float du = 1.0f / float(height.width()), dv = 1.0f / float(height.height());
+  const auto h = [&](float u, float v) { return height.bilinear({u, v}, 0).x; };
+  return {scale * (h(uv.x + du, uv.y) - h(uv.x - du, uv.y)) / (2 * du),
+          scale * (h(uv.x, uv.y + dv) - h(uv.x, uv.y - dv)) / (2 * dv)};
+}
+
+bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceVaryings& ddx,
+                                       const SurfaceVaryings& ddy, Vec3f& color) const {
+  const SurfaceUniforms& u = *uniforms;
+  const SurfaceMaps& maps = u.maps;
+  Vec3f n = glm::normalize(in.normal);
+  if (maps.bump) {
+    const Vec2f slope = height_gradient(*maps.bump, in.uv, maps.bump_scale);
+    n = bump_normal(n, in.tangent_u, in.tangent_v, slope.x, slope.y);
+  }
+  Vec3f surface = in.color;
+  if (maps.texture) surface *= Vec3f(maps.texture->sample(in.uv, ddx.uv, ddy.uv));
+  const Mat3f to_world(u.eye_to_world);
+  float visible = 1;
+  if (maps.shadow) {
+    // The shadow test needs the surface's true plane, the facet's, not the interpolated normal: it is the cross
+    // product of the position's screen derivatives.
+    const Vec3f facet = glm::cross(ddx.position, ddy.position);
+    const Vec3f plane = glm::dot(facet, facet) > 0 ? facet : n;
+    visible = maps.shadow->visibility(Vec3f(u.eye_to_world * Vec4f(in.position, 1.0f)),
+                                      glm::normalize(to_world * plane), maps.shadow_pcf);
+  }
+  Vec3f c = u.lighting.shade(n, in.position, surface, visible);
+  if (maps.environment) {
+    // The notes: R from N and the view vector, R = 2 (N.E) N - E with E toward the eye; looked up in world space.
+    const Vec3f e = glm::normalize(Vec3f(u.viewer) - in.position * u.viewer.w);
+    const Vec3f r = 2 * glm::dot(n, e) * n - e;
+    c += maps.reflectivity * Vec3f(maps.environment->lookup(to_world * r));
+  }
+  color = glm::clamp(c, 0.0f, 1.0f);
+  return true;
+}
+
+}  // namespace tessera::raster3d
