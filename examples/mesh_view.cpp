@@ -71,7 +71,8 @@ Surfaces triangles(const PolyMesh& mesh, const MeshViewOptions& o) {
   return s;
 }
 
-/// Box-filters s x s blocks.
+}  // namespace
+
 ImageRGB downsample(const ImageRGB& image, int s) {
   if (s == 1) return image;
   ImageRGB out(image.width() / s, image.height() / s);
@@ -85,7 +86,21 @@ ImageRGB downsample(const ImageRGB& image, int s) {
   return out;
 }
 
-}  // namespace
+PolyMesh with_face_normals(PolyMesh mesh) {
+  mesh.corner_normals.clear();
+  for (size_t f = 0; f < mesh.face_count(); ++f)
+    mesh.corner_normals.insert(mesh.corner_normals.end(), mesh.face(f).size(), face_normal(mesh, f));
+  return mesh;
+}
+
+raster3d::Lighting surface_lighting(const Vec3& to_light, const Mat4& view, float ambient, float specular) {
+  raster3d::Lighting l;
+  l.material = raster3d::Material::plastic(Vec3f(1), 24, specular);
+  l.color_material = true;
+  l.model_ambient = Vec3f(ambient);
+  l.lights[0].position = Vec4f(Vec3f(glm::normalize(Mat3(view) * to_light)), 0);
+  return l;
+}
 
 ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& o) {
   if (mesh.face_count() == 0) return ImageRGB(o.width, o.height, o.background);  // e.g. marching-cubes case 0

@@ -34,4 +34,16 @@ struct MeshViewOptions {
 /// width / height. A mesh without faces gives the background.
 ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& options = {});
 
+/// The mesh with each face's normal on its corners (corner_normals): flat faces under per-pixel shading.
+PolyMesh with_face_normals(PolyMesh mesh);
+
+/// Box-filters s x s blocks of a supersampled picture (s = 1: the picture itself).
+ImageRGB downsample(const ImageRGB& image, int s);
+
+/// Lighting for raster3d's surface shaders: one white directional light toward `to_light` (world space; the light is
+/// set in the eye space of `view`), model ambient `ambient`, the surface color as C_r (color material) and a white
+/// plastic highlight of strength `specular`.
+raster3d::Lighting surface_lighting(const Vec3& to_light, const Mat4& view, float ambient = 0.2f,
+                                    float specular = 0.3f);
+
 }  // namespace tessera::examples

@@ -83,6 +83,59 @@ PY
 "$tessera" raster cube.obj -o t2.ppm --size 96x64 --shading phong --wireframe --threads 2
 cmp -s t1.ppm t2.ppm || { echo "--threads 1 and 2 differ"; exit 1; }
 
+# The maps. A textured square: texture coordinates (0,0)..(1,1), a texture red on its left half and blue on its
+# right half, a bump map with a ramp, a constant green environment; lit head-on.
+cat > tquad.obj <<'OBJ'
+v -1 -1 0
+v 1 -1 0
+v 1 1 0
+v -1 1 0
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+f 1/1 2/2 3/3 4/4
+OBJ
+$py -c "
+from PIL import Image
+t = Image.new('RGB', (8, 8), (255, 0, 0))
+for x in range(4, 8):
+    for y in range(8): t.putpixel((x, y), (0, 0, 255))
+t.save('halves.png')
+Image.new('RGB', (16, 8), (0, 255, 0)).save('green.png')
+ramp = Image.new('L', (64, 64))
+for x in range(64):
+    for y in range(64): ramp.putpixel((x, y), (x * 37) % 256)
+ramp.save('ramp.png')
+"
+view=(--size 64x64 --eye 0,0,4 --center 0,0,0 --fovy 40 --light-dir 0,0,1)
+"$tessera" raster tquad.obj -o textured.png "${view[@]}" --texture halves.png --filter nearest
+"$tessera" raster tquad.obj -o plain.png "${view[@]}" --shading phong
+"$tessera" raster tquad.obj -o bumped.png "${view[@]}" --bump ramp.png --bump-scale 0.05
+"$tessera" raster tquad.obj -o mirror.png "${view[@]}" --env green.png --reflect 1 --color 0,0,0
+# A cube over the floor, lit from the side: with --shadows the floor darkens where the cube hides the light.
+"$tessera" raster cube.obj -o lit_floor.png --size 96x64 --floor --light-dir 1,1,0.3 --eye 0,3,6
+"$tessera" raster cube.obj -o shadowed_floor.png --size 96x64 --floor --shadows --shadow-size 512 --light-dir 1,1,0.3 \
+  --eye 0,3,6 --stats > maps_stats.txt
+grep -q '^tris=12$' maps_stats.txt || { echo "expected tris=12 with the floor"; cat maps_stats.txt; exit 1; }
+$py - <<'PY'
+import numpy as np
+from PIL import Image
+load = lambda name: np.asarray(Image.open(name).convert('RGB')).astype(int)
+t = load('textured.png')
+assert t[32, 20, 0] - t[32, 20, 2] > 100, t[32, 20]            # left half: red (plus a white highlight)
+assert t[32, 44, 2] - t[32, 44, 0] > 100, t[32, 44]            # right half: blue
+plain, bumped = load('plain.png'), load('bumped.png')
+assert (np.abs(plain - bumped).max(axis=2) > 8).sum() > 200, 'the bump map changed too little'
+m = load('mirror.png')
+assert m[2, 2, 1] > 250 and m[2, 2, 0] < 5, m[2, 2]           # the background shows the environment
+assert m[32, 20, 1] - m[32, 20, 0] > 100, m[32, 20]            # and the mirror reflects it
+lit, shadowed = load('lit_floor.png'), load('shadowed_floor.png')
+darker = (lit.sum(axis=2) - shadowed.sum(axis=2) > 60).sum()
+brighter = (shadowed.sum(axis=2) - lit.sum(axis=2) > 3).sum()
+assert darker > 150 and brighter == 0, (darker, brighter)
+PY
+
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
 expect_error() {
   local status="$1" pattern="$2"
@@ -109,4 +162,11 @@ expect_error 2 "shading" cube.obj -o bad.png --shading toon
 expect_error 2 "repeat" cube.obj -o bad.png --repeat 0
 expect_error 2 "cull" cube.obj -o bad.png --cull front
 expect_error 2 "output" cube.obj
+expect_error 1 "texture coordinates" cube.obj -o bad.png --texture halves.png
+expect_error 1 "missing.png" tquad.obj -o bad.png --texture missing.png
+expect_error 1 "per pixel" tquad.obj -o bad.png --texture halves.png --shading gouraud
+expect_error 1 "wireframe" cube.obj -o bad.png --shadows --wireframe
+expect_error 1 "inside" cube.obj -o bad.png --shadows --light-pos 0,0,0
+expect_error 2 "filter" tquad.obj -o bad.png --texture halves.png --filter cubic
+expect_error 2 "reflect" tquad.obj -o bad.png --env green.png --reflect 2
 echo "raster CLI ok"

@@ -18,7 +18,6 @@
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/raster3d/context.hpp"
-#include "tessera/raster3d/pipeline.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 
@@ -152,11 +151,7 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
                                               : raster3d::ShadowMap::directional(to_light_world, scene.lo, scene.hi));
 
   raster3d::SurfaceUniforms u;
-  u.model_view = Mat4f(view);
-  u.model_view_projection = Mat4f(projection * view);
-  u.normal_matrix = Mat3f(normal_matrix(view));
-  u.eye_to_world = Mat4f(glm::inverse(view));
-  u.viewer = raster3d::viewer_of(projection);
+  u.set_camera(projection, view);
   u.lighting = raster3d::PreparedLighting(lighting);
   u.color = surface;
   u.maps.shadow = shadow ? &*shadow : nullptr;
@@ -171,9 +166,6 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
   const raster3d::UvTangents tangents =
       bump ? raster3d::uv_tangents(arrays.positions, arrays.uvs, arrays.indices) : raster3d::UvTangents{};
-  raster3d::SurfaceVertexShader vs{arrays.attributes(), bump ? tangents.u.data() : nullptr,
-                                   bump ? tangents.v.data() : nullptr, &u};
-  raster3d::SurfaceVertexShader floor_vs{floor.attributes(), nullptr, nullptr, &floor_uniforms};
   raster3d::RasterState state;
   state.cull = a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none;
   raster3d::Framebuffer fb(width, height);
@@ -185,25 +177,11 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
       if (a.floor) shadow->draw(floor);
     }
     fb.clear(background);
-    raster3d::draw_triangles(fb, state, uint32_t(arrays.positions.size()), arrays.indices, vs,
-                             raster3d::SurfaceFragmentShader{&u});
-    if (a.floor)
-      raster3d::draw_triangles(fb, raster3d::RasterState{}, 4, floor.indices, floor_vs,
-                               raster3d::SurfaceFragmentShader{&floor_uniforms});
+    raster3d::draw_surface(fb, state, arrays, u, bump ? &tangents : nullptr);
+    if (a.floor) raster3d::draw_surface(fb, raster3d::RasterState{}, floor, floor_uniforms);
   }
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (environment) {
-    // The background shows the environment: each empty pixel the direction of its line of sight.
-    const Mat4 to_world = glm::inverse(projection * view);
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        if (fb.depth()(x, y) < raster3d::kDepthMax) continue;
-        const double nx = 2 * (x + 0.5) / width - 1, ny = 1 - 2 * (y + 0.5) / height;
-        const glm::dvec4 near = to_world * glm::dvec4(nx, ny, -1, 1), far = to_world * glm::dvec4(nx, ny, 1, 1);
-        const Vec3 d = Vec3(far) / far.w - Vec3(near) / near.w;
-        fb.color()(x, y) = raster3d::to_color8(Vec3f(environment->lookup(Vec3f(d))));
-      }
-  }
+  if (environment) raster3d::fill_background(fb, *environment, projection * view);
   return fb;
 }
 

@@ -4,6 +4,7 @@
 #include <glm/gtc/matrix_access.hpp>
 
 #include "tessera/core/error.hpp"
+#include "tessera/math/transform.hpp"
 
 namespace tessera::raster3d {
 
@@ -37,6 +38,15 @@ UvTangents uv_tangents(std::span<const Vec3f> positions, std::span<const Vec2f> 
       t.v[v] /= float(count[v]);
     }
   return t;
+}
+
+void SurfaceUniforms::set_camera(const Mat4& projection, const Mat4& view, const Mat4& model) {
+  const Mat4 model_view_d = view * model;
+  model_view = Mat4f(model_view_d);
+  model_view_projection = Mat4f(projection * model_view_d);
+  normal_matrix = Mat3f(tessera::normal_matrix(model_view_d));
+  eye_to_world = Mat4f(glm::inverse(view));
+  viewer = viewer_of(projection);
 }
 
 Vec4f viewer_of(const Mat4& projection) {
@@ -103,6 +113,34 @@ bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceV
   }
   color = glm::clamp(c, 0.0f, 1.0f);
   return true;
+}
+
+DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
+                       const SurfaceUniforms& u, const UvTangents* tangents) {
+  if (arrays.normals.size() != arrays.positions.size())
+    throw InvalidInput("draw_surface: the surface shaders need a normal per vertex");
+  if ((u.maps.texture || u.maps.bump) && arrays.uvs.size() != arrays.positions.size())
+    throw InvalidInput("draw_surface: texture and bump mapping need texture coordinates per vertex");
+  if (tangents && (tangents->u.size() != arrays.positions.size() || tangents->v.size() != arrays.positions.size()))
+    throw InvalidInput("draw_surface: the tangents are not those of these arrays (one per vertex)");
+  const SurfaceVertexShader vs{arrays.attributes(), tangents ? tangents->u.data() : nullptr,
+                               tangents ? tangents->v.data() : nullptr, &u};
+  return draw_triangles(framebuffer, state, uint32_t(arrays.positions.size()), arrays.indices, vs,
+                        SurfaceFragmentShader{&u});
+}
+
+void fill_background(Framebuffer& framebuffer, const EnvironmentMap& environment, const Mat4& view_projection) {
+  const Mat4 to_world = glm::inverse(view_projection);
+  const int width = framebuffer.width(), height = framebuffer.height();
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (framebuffer.depth()(x, y) < kDepthMax) continue;
+      // The line of sight: the pixel center's points on the near and far planes (row 0 is the top).
+      const double nx = 2 * (x + 0.5) / width - 1, ny = 1 - 2 * (y + 0.5) / height;
+      const glm::dvec4 near = to_world * glm::dvec4(nx, ny, -1, 1), far = to_world * glm::dvec4(nx, ny, 1, 1);
+      const Vec3 direction = Vec3(far) / far.w - Vec3(near) / near.w;
+      framebuffer.color()(x, y) = to_color8(Vec3f(environment.lookup(Vec3f(direction))));
+    }
 }
 
 }  // namespace tessera::raster3d

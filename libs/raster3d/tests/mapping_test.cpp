@@ -113,24 +113,9 @@ SurfaceUniforms unlit_uniforms(const Mat4& projection, const Mat4& view) {
   l.color_material = true;
   l.model_ambient = Vec3f(1);
   SurfaceUniforms u;
-  u.model_view_projection = Mat4f(projection * view);
-  u.model_view = Mat4f(view);
-  u.normal_matrix = Mat3f(normal_matrix(view));
-  u.eye_to_world = Mat4f(glm::inverse(view));
-  u.viewer = viewer_of(projection);
+  u.set_camera(projection, view);
   u.lighting = PreparedLighting(l);
   return u;
-}
-
-void draw_surface(Framebuffer& fb, const VertexArrays& arrays, const SurfaceUniforms& u,
-                  const UvTangents* tangents = nullptr) {
-  SurfaceVertexShader vs{arrays.attributes()};
-  vs.uniforms = &u;
-  if (tangents) {
-    vs.tangents_u = tangents->u.data();
-    vs.tangents_v = tangents->v.data();
-  }
-  draw_triangles(fb, RasterState{}, uint32_t(arrays.positions.size()), arrays.indices, vs, SurfaceFragmentShader{&u});
 }
 
 TEST(TextureMapping, APerspectiveCheckerboardIsTheRayCastPlanes) {
@@ -146,7 +131,7 @@ TEST(TextureMapping, APerspectiveCheckerboardIsTheRayCastPlanes) {
   u.maps.texture = &texture;
   Framebuffer fb(w, h);
   fb.clear(Vec3f(0.5f));
-  draw_surface(fb, floor_quad(), u);
+  draw_surface(fb, RasterState{}, floor_quad(), u);
   int compared = 0, wrong = 0;
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {
@@ -182,7 +167,7 @@ TEST(TextureMapping, TrilinearFilteringUsesTheFootprintsLevel) {
     SurfaceUniforms u = unlit_uniforms(projection, view);
     u.maps.texture = &texture;
     Framebuffer fb(w, w);
-    draw_surface(fb, floor_quad(2), u);
+    draw_surface(fb, RasterState{}, floor_quad(2), u);
     int least = 255, most = 0;
     for (int y = 34; y < 44; ++y)  // rows from the top, just below the far edge
       for (int x = 0; x < w; ++x) {
@@ -298,10 +283,10 @@ TEST(BumpMapping, ABumpMappedPlaneShadesAsTheDisplacedMesh) {
   u.lighting = PreparedLighting(l);
   u.color = Vec3f(0.8f);
   Framebuffer bumped(128, 128), reference(128, 128);
-  draw_surface(reference, VertexArrays::from_mesh(displaced), u);
+  draw_surface(reference, RasterState{}, VertexArrays::from_mesh(displaced), u);
   u.maps.bump = &bumps;
   u.maps.bump_scale = scale;
-  draw_surface(bumped, flat_arrays, u, &tangents);
+  draw_surface(bumped, RasterState{}, flat_arrays, u, &tangents);
   int close = 0, total = 0, lit_range = 0;
   for (int y = 0; y < 128; ++y)
     for (int x = 0; x < 128; ++x) {
@@ -332,7 +317,7 @@ TEST(EnvironmentMapping, AMirrorSphereShowsTheReflectedDirections) {
   u.maps.environment = &environment;
   u.maps.reflectivity = 1;
   Framebuffer fb(w, w);
-  draw_surface(fb, arrays, u);
+  draw_surface(fb, RasterState{}, arrays, u);
   int compared = 0, close = 0;
   double worst = 0;
   for (int j = 0; j < w; ++j)
@@ -379,7 +364,7 @@ TEST(ShadowMap, ASquaresShadowIsItsProjectionAlongTheLight) {
   u.maps.shadow = &map;
   u.maps.shadow_pcf = 0;
   Framebuffer fb(w, w);
-  draw_surface(fb, ground, u);
+  draw_surface(fb, RasterState{}, ground, u);
   const double texel = 2 * 1.01 * glm::length(Vec3(4, 1, 4)) / 2 / 1024;  // the map's texel in world units
   int shadowed = 0, wrong = 0;
   for (int j = 0; j < w; ++j)

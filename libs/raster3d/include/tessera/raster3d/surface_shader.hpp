@@ -13,6 +13,8 @@
 #include <vector>
 
 #include "tessera/image/texture.hpp"
+#include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/pipeline.hpp"
 #include "tessera/raster3d/lighting.hpp"
 #include "tessera/raster3d/shaders.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
@@ -54,7 +56,7 @@ Vec4f viewer_of(const Mat4& projection);
 struct SurfaceMaps {
   const Texture2D* texture = nullptr;  ///< multiplies the surface color (the sampler's filter; trilinear uses lod)
   const Texture2D* bump = nullptr;     ///< height map (red channel), needs the vertex shader's tangents
-  float bump_scale = 0.02f;            ///< height of a texel value 1, in object units
+  float bump_scale = 0.02f;            ///< height of a texel value 1, in object units (negative: bright is low)
   const EnvironmentMap* environment = nullptr;  ///< lat-long radiance around the scene (world space)
   float reflectivity = 0;                       ///< adds reflectivity x environment(R)
   const ShadowMap* shadow = nullptr;            ///< light 0's shadow map (world space)
@@ -71,6 +73,9 @@ struct SurfaceUniforms {
   PreparedLighting lighting;    ///< prepare with color_material on, so that the textured color is C_r
   Vec3f color{1, 1, 1};         ///< the surface color for vertices without one
   SurfaceMaps maps;
+
+  /// Sets the matrices, eye_to_world and viewer for a camera (projection, view) and an object's model matrix.
+  void set_camera(const Mat4& projection, const Mat4& view, const Mat4& model = Mat4(1.0));
 };
 
 /// Eye-space normal and position, color, texture coordinates and eye-space tangents.
@@ -108,5 +113,15 @@ struct SurfaceFragmentShader {
   bool operator()(const SurfaceVaryings& in, const SurfaceVaryings& ddx, const SurfaceVaryings& ddy,
                   Vec3f& color) const;
 };
+
+/// Draws the triangles of `arrays` with the surface shaders and uniforms `u` (normals required; uvs for a texture or
+/// bump map; `tangents`, uv_tangents of the same arrays, for a bump map, else null). Throws InvalidInput when the
+/// normals, the uvs a map needs, or the tangents do not match the positions in number.
+DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
+                       const SurfaceUniforms& u, const UvTangents* tangents = nullptr);
+
+/// Paints every pixel that nothing was drawn on (depth still 1) with the environment seen along its line of sight
+/// through the camera `view_projection` (world to clip space): the background of an environment-mapped scene.
+void fill_background(Framebuffer& framebuffer, const EnvironmentMap& environment, const Mat4& view_projection);
 
 }  // namespace tessera::raster3d

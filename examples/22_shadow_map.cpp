@@ -1,0 +1,80 @@
+// Example 22: shadow mapping, the notes' 2-pass z-buffer (Williams 1978). Pass 1 renders the scene's depth from the
+// light (left: near is dark); pass 2 renders from the camera and compares each visible point's depth in the light's
+// view with the stored one. A coarse map gives hard, stair-stepped shadow edges (middle); percentage-closer
+// filtering of the same map averages the test over 5 x 5 texels (right): soft edges.
+#include <algorithm>
+
+#include "gallery.hpp"
+#include "mesh_view.hpp"
+#include "tessera/math/transform.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
+
+namespace {
+
+using namespace tessera;
+
+struct Object {
+  raster3d::VertexArrays arrays;
+  Mat4 model;
+  Vec3f color;
+};
+
+std::vector<Object> scene() {
+  raster3d::VertexArrays floor = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1)));
+  return {{floor, scale(3, 1, 3), {0.85f, 0.85f, 0.8f}},
+          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(48, 24))), translate(-0.9, 0.6, 0.4) *
+                                                                                       scale(0.6, 0.6, 0.6),
+           {0.8f, 0.3f, 0.25f}},
+          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_torus(0.55, 0.18, 64, 24))),
+           translate(0.9, 0.75, -0.2) * rotate_x(radians(75)), {0.3f, 0.5f, 0.8f}},
+          {raster3d::VertexArrays::from_mesh(to_tri_mesh(examples::with_face_normals(make_box()))),
+           translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}}};
+}
+
+}  // namespace
+
+TESSERA_EXAMPLE(ex22_shadow_map, "22_shadow_map", "Shadow mapping: the light's depth map, hard and filtered shadows") {
+  const std::vector<Object> objects = scene();
+  const Vec3 to_light = glm::normalize(Vec3(-0.7, 1.0, 0.5));
+  const Mat4 light = raster3d::ShadowMap::directional(to_light, {-3, 0, -3}, {3, 1.5, 3});
+  raster3d::ShadowMap map(128, light);  // coarse on purpose: its texels show at the shadow edges
+  for (const Object& o : objects) map.draw(o.arrays, o.model);
+
+  const int w = 300, h = 240, s = 2;
+  std::vector<ImageRGB> panels;
+  // The light's depths over the range they cover, near dark.
+  const DepthImage depth = map.depth_image();
+  float lo = 1, hi = 0;
+  for (const float d : depth.pixels())
+    if (d < 1) lo = std::min(lo, d), hi = std::max(hi, d);
+  ImageRGB depth_picture(h, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < h; ++x) {
+      const float d = depth(x * depth.width() / h, y * depth.height() / h);
+      depth_picture(x, y) = Vec3f(d < 1 ? 0.1f + 0.9f * (d - lo) / std::max(hi - lo, 1e-6f) : 1.0f);
+    }
+  panels.push_back(depth_picture);
+
+  const Mat4 projection = perspective(radians(45), double(w) / h, 0.5, 30);
+  const Mat4 view = look_at({1.2, 3.4, 5.6}, {0, 0.3, 0}, {0, 1, 0});
+  for (const int pcf : {0, 2}) {
+    raster3d::Framebuffer fb(w * s, h * s);
+    fb.clear({1, 1, 1});
+    for (const Object& o : objects) {
+      raster3d::SurfaceUniforms u;
+      u.set_camera(projection, view, o.model);
+      u.lighting = raster3d::PreparedLighting(examples::surface_lighting(to_light, view, 0.25f));
+      u.color = o.color;
+      u.maps.shadow = &map;
+      u.maps.shadow_pcf = pcf;
+      raster3d::draw_surface(fb, raster3d::RasterState{}, o.arrays, u);
+    }
+    panels.push_back(examples::downsample(fb.color_rgb(), s));
+  }
+  gallery.add("22_shadow_map.png", examples::side_by_side(panels),
+              "Shadow mapping: pass 1, the light's depth map (128 x 128, near dark); pass 2 with the plain depth test "
+              "(hard, stair-stepped edges from the map's texels) and with percentage-closer filtering over 5 x 5 texels "
+              "(soft edges).");
+}

@@ -1,0 +1,85 @@
+// Example 23: environment mapping (Blinn and Newell 1976; the notes: "calculate vector R from N and V, use R to look
+// up color from environment map"). Each pixel reflects the view direction about the interpolated normal,
+// R = 2 (N.E) N - E, and looks R up in a lat-long image of the surroundings, which also fills the background. A
+// mirror sphere, a partly reflective torus and a mirror cube (flat faces: plane mirrors). The environment is Poly
+// Haven's Venice Sunset from the shared data (TESSERA_SHARED_DATA or ../shared/data); without it, a procedural sky
+// over a checkered ground.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "gallery.hpp"
+#include "mesh_view.hpp"
+#include "tessera/image/image_io.hpp"
+#include "tessera/math/transform.hpp"
+#include "tessera/mesh/convert.hpp"
+#include "tessera/mesh/primitives.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
+
+namespace {
+
+using namespace tessera;
+
+/// A sky (blue above, pale at the horizon, a sun) over a checkered ground, as a lat-long image.
+ImageRGBA procedural_sky() {
+  const int w = 512, h = 256;
+  ImageRGBA image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 d = latlong_direction({(x + 0.5f) / w, 1 - (y + 0.5f) / h});
+      glm::vec3 c;
+      if (d.y > 0) {
+        c = glm::mix(glm::vec3(0.85f, 0.88f, 0.92f), glm::vec3(0.25f, 0.45f, 0.85f), std::sqrt(d.y));
+        if (glm::dot(d, glm::normalize(glm::vec3(-0.5f, 0.4f, -0.6f))) > 0.995f) c = glm::vec3(1.0f, 0.95f, 0.7f);
+      } else {
+        // The ground plane y = -1 seen from the origin: checks of 1 unit.
+        const float t = -1 / d.y;
+        const bool odd = (int(std::floor(d.x * t)) + int(std::floor(d.z * t))) % 2 != 0;
+        c = glm::mix(odd ? glm::vec3(0.55f, 0.4f, 0.3f) : glm::vec3(0.85f, 0.8f, 0.7f), glm::vec3(0.7f), -d.y < 0.1f ? 0.6f : 0.0f);
+      }
+      image(x, y) = glm::vec4(c, 1);
+    }
+  return image;
+}
+
+ImageRGBA environment_image() {
+  const char* env = std::getenv("TESSERA_SHARED_DATA");
+  const std::filesystem::path hdr = std::filesystem::path(env ? env : "../shared/data") / "env/venice_sunset_1k.hdr";
+  return std::filesystem::exists(hdr) ? read_image(hdr) : procedural_sky();
+}
+
+}  // namespace
+
+TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping: reflections looked up in a lat-long map") {
+  const EnvironmentMap environment(environment_image());
+  struct Panel {
+    PolyMesh mesh;
+    Mat4 model;
+    Vec3f color;
+    float reflectivity;
+  };
+  const Panel panels_spec[] = {{make_uv_sphere(96, 48), Mat4(1.0), {0, 0, 0}, 1.0f},
+                               {make_torus(0.75, 0.3, 96, 48), rotate_x(radians(60)), {0.6f, 0.15f, 0.1f}, 0.45f},
+                               {examples::with_face_normals(make_box()), rotate_y(radians(35)) * rotate_x(radians(20)) * scale(0.62, 0.62, 0.62),
+                                {0, 0, 0}, 0.9f}};
+  const int w = 280, h = 240, s = 2;
+  const Mat4 projection = perspective(radians(40), double(w) / h, 0.5, 20);
+  const Mat4 view = look_at({0.6, 0.5, 3.6}, {0, 0, 0}, {0, 1, 0});
+  std::vector<ImageRGB> panels;
+  for (const Panel& p : panels_spec) {
+    const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(to_tri_mesh(p.mesh));
+    raster3d::SurfaceUniforms u;
+    u.set_camera(projection, view, p.model);
+    u.lighting = raster3d::PreparedLighting(examples::surface_lighting({-0.5, 0.6, 0.6}, view, 0.15f, 0.5f));
+    u.color = p.color;
+    u.maps.environment = &environment;
+    u.maps.reflectivity = p.reflectivity;
+    raster3d::Framebuffer fb(w * s, h * s);
+    raster3d::draw_surface(fb, raster3d::RasterState{}, arrays, u);
+    raster3d::fill_background(fb, environment, projection * view);
+    panels.push_back(examples::downsample(fb.color_rgb(), s));
+  }
+  gallery.add("23_environment_map.png", examples::side_by_side(panels),
+              "Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
+              "mirror sphere, a red torus reflecting 45 %, a mirror cube (each face a plane mirror).");
+}
