@@ -4,7 +4,6 @@
 // highlight), and the Stanford bunny with per-pixel (Phong-interpolated) shading. Both come from the shared data
 // (TESSERA_SHARED_DATA or ../shared/data); without it, a checker-textured torus and a quad sphere stand in.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "gallery.hpp"
@@ -56,11 +55,6 @@ struct TexturedFragmentShader {
   }
 };
 
-std::filesystem::path shared_data() {
-  const char* env = std::getenv("TESSERA_SHARED_DATA");
-  return env ? env : "../shared/data";
-}
-
 // A checkerboard texture for the fallback torus.
 Texture2D checker_texture() {
   ImageRGBA image(64, 64);
@@ -89,9 +83,9 @@ ImageRGB textured(PolyMesh poly, const Texture2D& texture, const Mat4& model) {
 }  // namespace
 
 TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured Spot and the Stanford bunny") {
-  const std::filesystem::path spot = shared_data() / "meshes/spot/spot_triangulated.obj";
-  const std::filesystem::path spot_png = shared_data() / "meshes/spot/spot_texture.png";
-  const std::filesystem::path bunny = shared_data() / "meshes/bunny/bun_zipper_res2.ply";
+  const std::filesystem::path spot = examples::shared_data() / "meshes/spot/spot_triangulated.obj";
+  const std::filesystem::path spot_png = examples::shared_data() / "meshes/spot/spot_texture.png";
+  const std::filesystem::path bunny = examples::shared_data() / "meshes/bunny/bun_zipper_res2.ply";
   const bool have_data = std::filesystem::exists(spot) && std::filesystem::exists(spot_png) && std::filesystem::exists(bunny);
 
   ImageRGB left;

@@ -5,7 +5,6 @@
 // Haven's Venice Sunset from the shared data (TESSERA_SHARED_DATA or ../shared/data); without it, a procedural sky
 // over a checkered ground.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "gallery.hpp"
@@ -43,8 +42,7 @@ ImageRGBA procedural_sky() {
 }
 
 ImageRGBA environment_image() {
-  const char* env = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path hdr = std::filesystem::path(env ? env : "../shared/data") / "env/venice_sunset_1k.hdr";
+  const std::filesystem::path hdr = examples::shared_data() / "env/venice_sunset_1k.hdr";
   return std::filesystem::exists(hdr) ? read_image(hdr) : procedural_sky();
 }
 

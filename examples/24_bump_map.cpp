@@ -4,7 +4,6 @@
 // data's brick texture as the height map (TESSERA_SHARED_DATA or ../shared/data), else procedural bricks.
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "gallery.hpp"
@@ -48,8 +47,7 @@ ImageRGBA procedural_bricks() {
 }
 
 ImageRGBA brick_heights() {
-  const char* env = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path png = std::filesystem::path(env ? env : "../shared/data") / "textures/brick.png";
+  const std::filesystem::path png = examples::shared_data() / "textures/brick.png";
   return std::filesystem::exists(png) ? read_image(png) : procedural_bricks();
 }
 

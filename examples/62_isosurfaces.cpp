@@ -1,6 +1,5 @@
 // Marching cubes: a CT head's skin and bone (shared data when present, else a procedural phantom) and a gyroid.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include "gallery.hpp"
@@ -12,9 +11,7 @@
 TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces: CT head skin and bone, a gyroid") {
   using namespace tessera;
   using namespace tessera::examples;
-  const char* shared = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path head =
-      std::filesystem::path(shared ? shared : "../shared/data") / "volumes/headsq_64x64x93_int16le.mhd";
+  const std::filesystem::path head = examples::shared_data() / "volumes/headsq_64x64x93_int16le.mhd";
   Volume<float> ct;
   float skin = 500, bone = 1150;
   if (std::filesystem::exists(head)) {

@@ -1,5 +1,4 @@
 // Direct volume rendering: the same volume by compositing (DVR) and by maximum-intensity projection, side by side.
-#include <cstdlib>
 #include <filesystem>
 
 #include "gallery.hpp"
@@ -9,9 +8,7 @@
 
 TESSERA_EXAMPLE(ex63_volume_rendering, "63_volume_rendering", "Direct volume rendering and MIP") {
   using namespace tessera;
-  const char* shared = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path head =
-      std::filesystem::path(shared ? shared : "../shared/data") / "volumes/headsq_64x64x93_int16le.mhd";
+  const std::filesystem::path head = examples::shared_data() / "volumes/headsq_64x64x93_int16le.mhd";
   const bool real = std::filesystem::exists(head);
   const Volume<float> v = real ? to_float(read_volume(head.string())) : make_metaballs(64);
   VolumeRenderOptions o;

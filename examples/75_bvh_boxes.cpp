@@ -47,9 +47,7 @@ void draw_box(ImageRGB& img, const Mat4& vp, const AABB& box, const Vec3f& color
 }  // namespace
 
 TESSERA_EXAMPLE(ex75_bvh_boxes, "75_bvh_boxes", "A bounding volume hierarchy, boxes colored by depth") {
-  const char* shared = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path bunny =
-      std::filesystem::path(shared ? shared : "../shared/data") / "meshes/bunny/bun_zipper_res2.ply";
+  const std::filesystem::path bunny = examples::shared_data() / "meshes/bunny/bun_zipper_res2.ply";
   const TriMesh mesh = std::filesystem::exists(bunny) ? to_tri_mesh(read_mesh(bunny))
                                                       : to_tri_mesh(make_torus(1.0, 0.35, 96, 48));
   const MeshAccel accel(mesh);

@@ -4,7 +4,6 @@
 // sizes").
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -48,9 +47,7 @@ std::vector<float> cost_image(const Accel& accel, const std::vector<Triangle>& t
 }  // namespace
 
 TESSERA_EXAMPLE(ex76_bvh_grid_cost, "76_bvh_grid_cost", "Traversal cost: BVH versus uniform grid") {
-  const char* shared = std::getenv("TESSERA_SHARED_DATA");
-  const std::filesystem::path bunny =
-      std::filesystem::path(shared ? shared : "../shared/data") / "meshes/bunny/bun_zipper_res2.ply";
+  const std::filesystem::path bunny = examples::shared_data() / "meshes/bunny/bun_zipper_res2.ply";
   TriMesh mesh = std::filesystem::exists(bunny) ? to_tri_mesh(read_mesh(bunny))
                                                 : to_tri_mesh(make_torus(0.08, 0.03, 96, 48));
   std::vector<Triangle> tris;

@@ -1,5 +1,6 @@
 #include "gallery.hpp"
 
+#include <cstdlib>
 #include <algorithm>
 #include <sstream>
 
@@ -73,6 +74,11 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0) {
   for (int y = 0; y < tile.height(); ++y)
     for (int x = 0; x < tile.width(); ++x)
       if (sheet.contains(x0 + x, y0 + y)) sheet(x0 + x, y0 + y) = tile(x, y);
+}
+
+std::filesystem::path shared_data() {
+  const char* env = std::getenv("TESSERA_SHARED_DATA");
+  return env ? env : "../shared/data";
 }
 
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {

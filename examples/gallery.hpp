@@ -47,6 +47,10 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0 = 0);
 /// Panels placed left to right, top-aligned, on a white sheet as tall as the tallest. Precondition: not empty.
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels);
 
+/// The shared data folder: $TESSERA_SHARED_DATA, else ../shared/data. Examples that read from it draw generated
+/// stand-ins when a file is missing.
+std::filesystem::path shared_data();
+
 /// A registered example: `name` is its file stem ("01_pixels"), `title` a line for the gallery.
 struct Example {
   const char* name;

@@ -203,9 +203,9 @@ TEST(BumpMapping, BlinnsNormalIsTheDisplacedPlanesNormal) {
   EXPECT_EQ(bump_normal({0, 0, 1}, {1, 0, 0}, {2, 0, 0}, 1, 1), Vec3f(0, 0, 1));  // no area: unchanged
 }
 
-TEST(BumpMapping, HeightSlopesAreTheAnalyticDerivatives) {
-  const auto height = [](double u, double v) { return 0.5 + 0.4 * std::sin(2 * kPi * u) * std::cos(2 * kPi * v); };
-  const int n = 256;
+/// An n x n gray texture sampling height(u, v) at the texel centers.
+template <class Height>
+Texture2D height_map(int n, const Height& height) {
   ImageRGBA image(n, n);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x) {
@@ -213,7 +213,12 @@ TEST(BumpMapping, HeightSlopesAreTheAnalyticDerivatives) {
       const float value = float(height((x + 0.5) / n, (n - 1 - y + 0.5) / n));
       image(x, y) = Vec4f(value, value, value, 1);
     }
-  const Texture2D texture(image);
+  return Texture2D(image);
+}
+
+TEST(BumpMapping, HeightSlopesAreTheAnalyticDerivatives) {
+  const auto height = [](double u, double v) { return 0.5 + 0.4 * std::sin(2 * kPi * u) * std::cos(2 * kPi * v); };
+  const Texture2D texture(height_map(256, height));
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> d(0.1f, 0.9f);
   for (int k = 0; k < 100; ++k) {
@@ -251,14 +256,7 @@ TEST(BumpMapping, ABumpMappedPlaneShadesAsTheDisplacedMesh) {
   // one, so the bump-mapped flat plane and a finely tessellated displaced plane, lit alike, must match pixel by pixel.
   const auto height = [](double u, double v) { return 0.5 + 0.5 * std::sin(4 * kPi * u) * std::sin(2 * kPi * v); };
   const float scale = 0.08f;
-  const int n = 512;
-  ImageRGBA image(n, n);
-  for (int y = 0; y < n; ++y)
-    for (int x = 0; x < n; ++x) {
-      const float value = float(height((x + 0.5) / n, (n - 1 - y + 0.5) / n));
-      image(x, y) = Vec4f(value, value, value, 1);
-    }
-  const Texture2D bumps(image);
+  const Texture2D bumps(height_map(512, height));
   const TriMesh flat = to_tri_mesh(make_grid(1, 1));
   const VertexArrays flat_arrays = VertexArrays::from_mesh(flat);
   const UvTangents tangents = uv_tangents(flat_arrays.positions, flat_arrays.uvs, flat_arrays.indices);
