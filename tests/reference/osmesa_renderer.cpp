@@ -23,6 +23,7 @@ GlMesh::GlMesh(const TriMesh& mesh) : indices(mesh.indices) {
   positions = to_floats(mesh.positions);
   normals = to_floats(mesh.normals);
   colors = to_floats(mesh.colors);
+  for (const Vec2& t : mesh.uvs) texcoords.insert(texcoords.end(), {float(t.x), float(t.y)});
 }
 
 namespace {
@@ -40,6 +41,7 @@ void load_matrix(GLenum mode, const Mat4f& m) {
 
 struct OsmesaContext::Impl {
   OSMesaContext context = nullptr;
+  GLuint texture = 0;
 };
 
 OsmesaContext::OsmesaContext(int width, int height, int rasterizer_threads)
@@ -67,7 +69,10 @@ OsmesaContext::OsmesaContext(int width, int height, int rasterizer_threads)
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
 }
 
-OsmesaContext::~OsmesaContext() { OSMesaDestroyContext(impl_->context); }
+OsmesaContext::~OsmesaContext() {
+  if (impl_->texture != 0) glDeleteTextures(1, &impl_->texture);
+  OSMesaDestroyContext(impl_->context);
+}
 
 int OsmesaContext::rasterizer_threads() { return g_rasterizer_threads; }
 
@@ -107,6 +112,24 @@ void OsmesaContext::begin(const GlState& s) {
     glDisable(GL_DEPTH_TEST);
   }
   glColor3f(s.color.x, s.color.y, s.color.z);
+  if (s.texture != nullptr) {
+    const GlTexture& t = *s.texture;
+    if (impl_->texture == 0) glGenTextures(1, &impl_->texture);
+    glBindTexture(GL_TEXTURE_2D, impl_->texture);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    const bool mipmaps = t.filter == GlFilter::linear_mipmap_linear;
+    glTexParameteri(GL_TEXTURE_2D, GL_GENERATE_MIPMAP, mipmaps ? GL_TRUE : GL_FALSE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
+                    t.filter == GlFilter::nearest ? GL_NEAREST : mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t.filter == GlFilter::nearest ? GL_NEAREST : GL_LINEAR);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+    glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+    glEnable(GL_TEXTURE_2D);
+  } else {
+    glDisable(GL_TEXTURE_2D);
+  }
   if (s.clear) {
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClearDepth(1.0);
@@ -115,15 +138,17 @@ void OsmesaContext::begin(const GlState& s) {
 }
 
 void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
-  const bool normals = !mesh.normals.empty(), colors = !mesh.colors.empty();
+  const bool normals = !mesh.normals.empty(), colors = !mesh.colors.empty(), texcoords = !mesh.texcoords.empty();
   if (submit == GlSubmit::Immediate) {
     const float* p = mesh.positions.data();
     const float* n = mesh.normals.data();
     const float* c = mesh.colors.data();
+    const float* t = mesh.texcoords.data();
     glBegin(GL_TRIANGLES);
     for (const uint32_t i : mesh.indices) {
       if (normals) glNormal3fv(n + 3 * size_t(i));
       if (colors) glColor3fv(c + 3 * size_t(i));
+      if (texcoords) glTexCoord2fv(t + 2 * size_t(i));
       glVertex3fv(p + 3 * size_t(i));
     }
     glEnd();
@@ -139,10 +164,15 @@ void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
     glEnableClientState(GL_COLOR_ARRAY);
     glColorPointer(3, GL_FLOAT, 0, mesh.colors.data());
   }
+  if (texcoords) {
+    glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+    glTexCoordPointer(2, GL_FLOAT, 0, mesh.texcoords.data());
+  }
   glDrawElements(GL_TRIANGLES, GLsizei(mesh.indices.size()), GL_UNSIGNED_INT, mesh.indices.data());
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
 }
 
 void OsmesaContext::finish() { glFinish(); }

@@ -37,6 +37,17 @@ struct GlMaterial {
   float shininess = 0;
 };
 
+/// GL_TEXTURE_2D's filters (GL_TEXTURE_MIN_FILTER; magnification is GL_NEAREST for nearest, else GL_LINEAR).
+enum class GlFilter { nearest, linear, linear_mipmap_linear };
+
+/// An RGBA8 texture (rows bottom first, as glTexImage2D takes them), drawn with GL_REPLACE and GL_REPEAT; mipmaps
+/// are built by OpenGL (GL_GENERATE_MIPMAP) for linear_mipmap_linear.
+struct GlTexture {
+  int width = 0, height = 0;
+  std::vector<uint8_t> rgba;  ///< 4 bytes per texel
+  GlFilter filter = GlFilter::nearest;
+};
+
 /// The fixed-function state of one drawing.
 struct GlState {
   Mat4f projection{1.0f};  ///< loaded with glMatrixMode(GL_PROJECTION) + glLoadMatrixf
@@ -50,6 +61,7 @@ struct GlState {
   Vec3f color{1, 1, 1};     ///< glColor3f when unlit and the mesh has no colors
   Vec3f background{0, 0, 0};
   bool clear = true;        ///< clear color and depth (to 1.0) before drawing
+  const GlTexture* texture = nullptr;  ///< GL_TEXTURE_2D with GL_REPLACE (the texel is the color), or off
 };
 
 /// A mesh in OpenGL's float arrays (converted once from a TriMesh, so that drawing measures only OpenGL).
@@ -57,9 +69,10 @@ struct GlMesh {
   std::vector<float> positions;  ///< 3 per vertex
   std::vector<float> normals;    ///< 3 per vertex, or empty
   std::vector<float> colors;     ///< 3 per vertex, or empty
+  std::vector<float> texcoords;  ///< 2 per vertex, or empty
   std::vector<uint32_t> indices;
 
-  /// The mesh's positions, and its normals and colors when it has them, as float32 arrays.
+  /// The mesh's positions, and its normals, colors and texture coordinates when it has them, as float32 arrays.
   explicit GlMesh(const TriMesh& mesh);
   size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -28,6 +28,7 @@
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
 
 namespace tessera {
 namespace {
@@ -356,6 +357,67 @@ TEST(OsmesaCompareImmediate, ImmediateModeMatchesOpenGLImmediateMode) {
     SCOPED_TRACE(name);
     EXPECT_GE(c.color_match(), 0.99) << describe(c);
     EXPECT_GE(c.coverage_depth_match(), 0.999) << describe(c);
+  }
+}
+
+// Texture mapping against OpenGL's GL_TEXTURE_2D with GL_REPLACE: a floor in perspective whose texture repeats 4
+// times, a 32 x 32 texture of random colors. Nearest texels (perspective-correct interpolation and texel selection),
+// bilinear, and trilinear MIPmaps (OpenGL builds its own pyramid and takes the level of detail from 2 x 2 pixel
+// differences; Tessera from the exact derivatives: nearly the same levels, so a looser tolerance).
+TEST(OsmesaCompareTextures, TextureMappingMatchesOpenGL) {
+  const int w = 160, h = 120, n = 32;
+  Rng rng(17);
+  reference::GlTexture gl_texture{n, n, std::vector<uint8_t>(size_t(n) * n * 4, 255), reference::GlFilter::nearest};
+  ImageRGBA image(n, n);
+  for (int j = 0; j < n; ++j)  // GL rows bottom first; image rows top first
+    for (int i = 0; i < n; ++i) {
+      uint8_t* texel = &gl_texture.rgba[(size_t(j) * n + i) * 4];
+      for (int k = 0; k < 3; ++k) texel[k] = uint8_t(rng.next_u32() >> 24);
+      image(i, n - 1 - j) = Vec4f(texel[0] / 255.0f, texel[1] / 255.0f, texel[2] / 255.0f, 1.0f);
+    }
+  TriMesh floor;
+  floor.positions = {{-3, 0, -6}, {3, 0, -6}, {3, 0, 1}, {-3, 0, 1}};
+  floor.uvs = {{0, 4}, {4, 4}, {4, 0}, {0, 0}};
+  floor.indices = {0, 2, 1, 0, 3, 2};
+  const Mat4 projection = persp(50, w, h, 0.5, 30), view = look_at({0.4, 1.4, 2.6}, {0, 0, -2}, {0, 1, 0});
+  GlState state;
+  state.projection = Mat4f(projection);
+  state.modelview = Mat4f(view);
+  state.background = kBackground;
+  state.texture = &gl_texture;
+
+  raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(floor);
+  arrays.normals.assign(4, Vec3f(0, 1, 0));
+  raster3d::Lighting unlit;  // the texel as the color, as GL_REPLACE
+  unlit.light_count = 0;
+  unlit.color_material = true;
+  unlit.model_ambient = Vec3f(1);
+  struct Case {
+    reference::GlFilter gl;
+    Filter filter;
+    int tolerance;
+    double share;
+  };
+  // Measured: nearest identical on every pixel, bilinear within 2/255, trilinear within 10/255 (Mesa 22.3).
+  for (const Case& k : {Case{reference::GlFilter::nearest, Filter::nearest, 0, 0.999},
+                        Case{reference::GlFilter::linear, Filter::bilinear, 2, 0.999},
+                        Case{reference::GlFilter::linear_mipmap_linear, Filter::trilinear, 12, 0.99}}) {
+    gl_texture.filter = k.gl;
+    const GlFrame gl = reference::render_osmesa(floor, w, h, state);
+    const Texture2D texture(image, Sampler{.filter = k.filter});
+    raster3d::SurfaceUniforms u;
+    u.set_camera(projection, view);
+    u.model_view_projection = raster3d::gl_matrix_product(Mat4f(projection), Mat4f(view));  // as OpenGL forms it
+    u.lighting = raster3d::PreparedLighting(unlit);
+    u.maps.texture = &texture;
+    raster3d::Framebuffer fb(w, h);
+    fb.clear(kBackground);
+    raster3d::draw_surface(fb, raster3d::RasterState{}, arrays, u);
+    const Comparison c = compare(fb, gl, k.tolerance, fmt::format("texture_{}", int(k.gl)));
+    SCOPED_TRACE(int(k.gl));
+    EXPECT_GE(c.coverage_depth_match(), 0.999) << describe(c);
+    EXPECT_GE(c.color_match(), k.share) << describe(c);
+    fmt::print("texture filter {}: {}\n", int(k.gl), describe(c));
   }
 }
 
