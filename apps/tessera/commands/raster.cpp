@@ -145,10 +145,11 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
                                          : glm::normalize(parse_vec3(a.light_dir, "--light-dir"));
     lighting.lights[0].position = Vec4f(Vec3f(view_linear * to_light_world), 0);
   }
+  // The map is fitted to the mesh, the only caster: the floor beyond it is shadowed all the same.
   std::optional<raster3d::ShadowMap> shadow;
   if (a.shadows)
-    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(to_light_world, scene.lo, scene.hi)
-                                              : raster3d::ShadowMap::directional(to_light_world, scene.lo, scene.hi));
+    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(to_light_world, box.lo, box.hi)
+                                              : raster3d::ShadowMap::directional(to_light_world, box.lo, box.hi));
 
   raster3d::SurfaceUniforms u;
   u.set_camera(projection, view);
@@ -174,7 +175,6 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
     if (shadow) {
       shadow->clear();
       shadow->draw(arrays);
-      if (a.floor) shadow->draw(floor);
     }
     fb.clear(background);
     raster3d::draw_surface(fb, state, arrays, u, bump ? &tangents : nullptr);

@@ -84,9 +84,21 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   if (!(q.w > 0)) return 1;  // behind a spot light
   const float inv_w = 1 / q.w;
   const Vec3f ndc = Vec3f(q) * inv_w;
-  if (!(std::abs(ndc.x) <= 1 && std::abs(ndc.y) <= 1 && std::abs(ndc.z) <= 1)) return 1;  // outside its view
+  // Outside the light's view, or nearer to it than its near plane: nothing the map holds can block the light.
+  if (!(std::abs(ndc.x) <= 1 && std::abs(ndc.y) <= 1 && ndc.z >= -1)) return 1;
   const int size = this->size();
   const float half = 0.5f * float(size);
+  const int ci = int(std::floor((ndc.x + 1) * half)), cj = int(std::floor((ndc.y + 1) * half));
+  const auto& depth = depth_.depth();
+  if (ndc.z > 1) {
+    // Beyond the far plane (a map fitted to the casters only): behind everything the map holds, so in shadow
+    // wherever it holds something.
+    int lit = 0, taps = 0;
+    for (int j = cj - pcf; j <= cj + pcf; ++j)
+      for (int i = ci - pcf; i <= ci + pcf; ++i, ++taps)
+        lit += i < 0 || j < 0 || i >= size || j >= size || depth(i, size - 1 - j) == kDepthMax;
+    return float(lit) / float(taps);
+  }
   const Vec3f window((ndc.x + 1) * half, (ndc.y + 1) * half, 0.5f * ndc.z + 0.5f);
 
   // The tangent plane's depth gradient in the light's window space: two tangents through the derivative of the
@@ -108,8 +120,6 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   // glPolygonOffset(1, 1) gives a caster, leaves none on the bunny).
   const float epsilon = 0x1p-16f + (std::abs(gx) + std::abs(gy));
 
-  const auto& depth = depth_.depth();
-  const int ci = int(std::floor(window.x)), cj = int(std::floor(window.y));
   int lit = 0, taps = 0;
   for (int j = cj - pcf; j <= cj + pcf; ++j)
     for (int i = ci - pcf; i <= ci + pcf; ++i) {
@@ -120,8 +130,8 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
       }
       // The receiver's depth at this texel's center, against what the light saw there (row 0 is the top).
       const float predicted = window.z + gx * (float(i) + 0.5f - window.x) + gy * (float(j) + 0.5f - window.y);
-      const float stored = float(depth(i, size - 1 - j)) * (1.0f / float(kDepthMax));
-      if (predicted - epsilon <= stored) ++lit;
+      const uint32_t stored = depth(i, size - 1 - j);
+      if (stored == kDepthMax || predicted - epsilon <= float(stored) * (1.0f / float(kDepthMax))) ++lit;
     }
   return float(lit) / float(taps);
 }

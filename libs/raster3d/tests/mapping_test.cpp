@@ -422,6 +422,33 @@ TEST(ShadowMap, LitSurfacesDoNotShadowThemselves) {
   }
 }
 
+TEST(ShadowMap, AMapFittedToTheCastersShadowsReceiversBeyondIt) {
+  // The map holds only the occluder square (at height 1); the floor lies beyond its far plane, yet is shadowed
+  // exactly where the square's projection falls, and lit elsewhere (also outside the map).
+  const Vec3 to_light = glm::normalize(Vec3(0.4, 1, -0.3));
+  VertexArrays occluder = floor_quad(0.5f);
+  for (Vec3f& p : occluder.positions) p.y = 1;
+  ShadowMap map(512, ShadowMap::directional(to_light, {-0.5, 1, -0.5}, {0.5, 1, 0.5}));
+  map.draw(occluder);
+  map.draw(floor_quad(2));  // mostly clipped away: beyond the far plane
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> d(-2, 2);
+  int shadowed = 0;
+  for (int k = 0; k < 4000; ++k) {
+    const double x = d(rng), z = d(rng);
+    const bool expected = in_square_shadow(to_light, x, z);
+    bool near_edge = false;
+    for (const double e : {-0.02, 0.02}) near_edge |= in_square_shadow(to_light, x + e, z) != expected ||
+                                                     in_square_shadow(to_light, x, z + e) != expected;
+    if (near_edge) continue;
+    shadowed += expected;
+    EXPECT_EQ(map.visibility(Vec3f(float(x), 0, float(z)), {0, 1, 0}, 1), expected ? 0.0f : 1.0f) << x << " " << z;
+  }
+  EXPECT_GT(shadowed, 100);
+  // The occluder itself, lit from above, is not shadowed by its own depth.
+  EXPECT_EQ(map.visibility({0.1f, 1, 0.2f}, {0, 1, 0}, 1), 1.0f);
+}
+
 TEST(ShadowMap, RejectsBadInput) {
   EXPECT_THROW(ShadowMap(0, Mat4(1.0)), InvalidInput);
   EXPECT_THROW(ShadowMap(20000, Mat4(1.0)), InvalidInput);

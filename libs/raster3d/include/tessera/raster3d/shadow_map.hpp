@@ -41,7 +41,9 @@ class ShadowMap {
 
   /// Pass 2: the fraction of the light that reaches world point p on a surface with unit world normal n, 1 lit,
   /// 0 in shadow; pcf is the filter radius in texels (0: one texel, a hard edge). Points outside the light's view
-  /// are lit; a surface seen edge-on by the light is in its own (attached) shadow.
+  /// or nearer than its near plane are lit, points beyond its far plane in shadow wherever the map holds something
+  /// (so a map need only be fitted to the shadow casters); a surface seen edge-on by the light is in its own
+  /// (attached) shadow. Throws InvalidInput for a negative pcf.
   float visibility(const Vec3f& p, const Vec3f& n, int pcf = 1) const;
 
   /// Texels along each side.
