@@ -28,7 +28,7 @@ cat > sub/scene.json <<'JSON'
 JSON
 "$tessera" render sub/scene.json -o s.pfm --quiet && test -s s.pfm
 
-# The rasterizer backend: same scene, local shading.
+# The rasterizer backend: same scene, local shading and shadow maps.
 "$tessera" render shapes -o r.png --backend raster --size 80x40 --stats > rstats.txt
 grep -q '^seconds=' rstats.txt && test -s r.png
 

@@ -88,7 +88,7 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)");
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
-  cmd.add_option("--backend", a->backend, "Renderer: raytrace (everything) or raster (z-buffer, local shading only)")
+  cmd.add_option("--backend", a->backend, "Renderer: raytrace (everything) or raster (z-buffer, local shading, shadow-mapped shadows of the first light)")
       ->check(CLI::IsMember({"raytrace", "raster"}));
   cmd.callback([a, &common] { run_render(*a, common); });
 }

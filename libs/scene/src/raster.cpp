@@ -2,6 +2,8 @@
 #include "tessera/scene/raster.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <optional>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/frame.hpp"
@@ -9,6 +11,8 @@
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/shadow_map.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
 
 namespace tessera {
 namespace {
@@ -115,53 +119,93 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
       shape);
 }
 
+namespace {
+
+/// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, a
+/// perspective from the position of the others (an area light's center); none for a light inside the casters'
+/// bounding sphere, which one map cannot see all around.
+std::optional<raster3d::ShadowMap> shadow_map(const Light& light, const Vec3& lo, const Vec3& hi) {
+  constexpr int kSize = 2048;
+  if (light.type == LightType::directional)
+    return raster3d::ShadowMap(kSize, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
+  Vec3 position(light.position);
+  if (light.type == LightType::rect) position += 0.5 * Vec3(light.edge_u + light.edge_v);
+  if (glm::length(position - 0.5 * (lo + hi)) <= 1.02 * 0.5 * glm::length(hi - lo)) return std::nullopt;
+  return raster3d::ShadowMap(kSize, raster3d::ShadowMap::spot(position, lo, hi));
+}
+
+}  // namespace
+
 ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
   if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
-  raster3d::Context ctx(width, height);
-  ctx.clear(scene.image.background);
-  ctx.shading(raster3d::ShadingModel::phong);
-  ctx.matrix_mode(raster3d::MatrixMode::projection);
-  ctx.perspective(radians(scene.camera.fovy), 0.05, 4000);
-  ctx.matrix_mode(raster3d::MatrixMode::model_view);
-  ctx.load_identity();
-  ctx.look_at(scene.camera.eye, scene.camera.center, scene.camera.up);
-  ctx.light_model_ambient(scene.ambient);
-  const int lights = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
-  for (int i = 0; i < raster3d::kMaxLights; ++i) ctx.enable_light(i, i < lights);
-  for (int i = 0; i < lights; ++i) {
+  const Mat4 projection = perspective(radians(scene.camera.fovy), double(width) / height, 0.05, 4000);
+  const Mat4 view = look_at(scene.camera.eye, scene.camera.center, scene.camera.up);
+  const Mat3 view_linear(view);
+
+  // The lights in eye space, as glLight places them under the view matrix.
+  raster3d::Lighting lighting;
+  lighting.model_ambient = Vec3f(scene.ambient);
+  lighting.light_count = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
+  for (int i = 0; i < lighting.light_count; ++i) {
     const Light& l = scene.lights[size_t(i)];
-    raster3d::Light gl;
+    raster3d::Light& gl = lighting.lights[size_t(i)];
     gl.diffuse = gl.specular = l.color;
     switch (l.type) {
       case LightType::directional:
-        gl.position = Vec4f(-glm::normalize(l.direction), 0.0f);
+        gl.position = Vec4f(Vec3f(view_linear * -glm::normalize(Vec3(l.direction))), 0.0f);
         break;
       case LightType::rect:
-        gl.position = Vec4f(l.position + 0.5f * (l.edge_u + l.edge_v), 1.0f);
+        gl.position = Vec4f(Vec3f(view * glm::dvec4(Vec3(l.position + 0.5f * (l.edge_u + l.edge_v)), 1.0)), 1.0f);
         break;
-      default:
-        gl.position = Vec4f(l.position, 1.0f);
-        break;  // point, disk and sphere centers
+      default:  // point, disk and sphere centers
+        gl.position = Vec4f(Vec3f(view * glm::dvec4(Vec3(l.position), 1.0)), 1.0f);
+        break;
     }
-    ctx.light(i, gl);  // transformed by the current model-view (the view), as glLight
   }
+
+  // Every object tessellated once; the shadow casters' world box (planes are infinite: they receive shadows only).
+  std::vector<raster3d::VertexArrays> arrays;
+  Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const SceneObject& o : scene.objects) {
-    const Material& m = scene.materials.at(o.material);
-    raster3d::Material gl;
-    gl.diffuse = m.diffuse;
-    gl.ambient = m.diffuse * m.ambient;
-    gl.specular = m.specular;
-    gl.shininess = m.shininess;
-    gl.emission = m.emission;
-    ctx.material(gl);
-    ctx.specular_model(m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn
-                                                       : raster3d::SpecularModel::phong);
-    ctx.push_matrix();
-    ctx.mult_matrix(o.transform);
-    ctx.draw(o.shape ? tessellate(*o.shape) : *o.mesh);
-    ctx.pop_matrix();
+    // A mesh without normals shows its facets, as the ray tracer shades it with the geometric normal.
+    arrays.push_back(raster3d::VertexArrays::from_mesh(o.shape                ? tessellate(*o.shape)
+                                                       : o.mesh->normals.empty() ? faceted(*o.mesh)
+                                                                                 : *o.mesh));
+    if (!o.casts_shadows || (o.shape && std::holds_alternative<Plane>(*o.shape))) continue;
+    for (const Vec3f& p : arrays.back().positions) {
+      const Vec3 w = transform_point(o.transform, Vec3(p));
+      lo = glm::min(lo, w);
+      hi = glm::max(hi, w);
+    }
   }
-  return ctx.framebuffer().color_rgb();
+  // The notes' pass 1 for light 0 (the one PreparedLighting's visibility scales).
+  std::optional<raster3d::ShadowMap> shadow;
+  if (lighting.light_count > 0 && lo.x <= hi.x) shadow = shadow_map(scene.lights[0], lo, hi);
+  if (shadow)
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+      const SceneObject& o = scene.objects[k];
+      if (o.casts_shadows && !(o.shape && std::holds_alternative<Plane>(*o.shape))) shadow->draw(arrays[k], o.transform);
+    }
+
+  raster3d::Framebuffer fb(width, height);
+  fb.clear(scene.image.background);
+  for (size_t k = 0; k < scene.objects.size(); ++k) {
+    const SceneObject& o = scene.objects[k];
+    const Material& m = scene.materials.at(o.material);
+    raster3d::Lighting l = lighting;
+    l.material.diffuse = m.diffuse;
+    l.material.ambient = m.diffuse * m.ambient;
+    l.material.specular = m.specular;
+    l.material.shininess = m.shininess;
+    l.material.emission = m.emission;
+    l.specular_model = m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
+    raster3d::SurfaceUniforms u;
+    u.set_camera(projection, view, o.transform);
+    u.lighting = raster3d::PreparedLighting(l);
+    u.maps.shadow = shadow ? &*shadow : nullptr;
+    raster3d::draw_surface(fb, raster3d::RasterState{}, arrays[k], u);
+  }
+  return fb.color_rgb();
 }
 
 }  // namespace tessera

@@ -201,5 +201,44 @@ TEST(Scene, RasterizerAndRayTracerSeeTheSameSilhouettes) {
   EXPECT_LT(differ, w * h / 100);
 }
 
+TEST(Scene, RasterizedShadowsAreTheRayTracersHardShadows) {
+  // A sphere and a box over a floor under one point light, no reflections: the ray tracer's shadow rays and the
+  // rasterizer's shadow map must darken the same floor pixels, except along the shadows' outlines. Two lights: only
+  // the first casts shadows in the rasterizer, so the second is off here.
+  const std::string json = R"({"image": {"size": [160, 120], "background": [0, 0, 0]}, "ambient": 0.1,
+      "camera": {"eye": [0, 6, 7], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 45},
+      "lights": [{"type": "point", "position": [3, 7, 2], "color": 1}],
+      "materials": {"floor": {"diffuse": 0.8}, "m": {"diffuse": 0.6}},
+      "objects": [{"type": "plane", "material": "floor"},
+                  {"type": "sphere", "center": [-1, 1, 0], "radius": 1, "material": "m"},
+                  {"type": "box", "min": [1, 0, -1.5], "max": [2, 1.5, -0.5], "material": "m"}]})";
+  const Scene scene = parse_scene(json, "shadows.json", ".");
+  const int w = 160, h = 120;
+  const ImageRGB raster = rasterize_scene(scene, w, h);
+  RenderSettings settings = render_settings(scene);
+  settings.samples = 1;
+  settings.progress = false;
+  const ImageRGB traced = render(to_ray_scene(scene), settings);
+  // The floor's shadowed pixels: ambient only, 0.8 * 0.1 (both renderers' floor is exactly that there).
+  const auto shadowed = [](const Vec3f& c) { return c.x < 0.12f; };
+  int floor_shadow = 0, differ = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const bool a = shadowed(raster(x, y)), b = shadowed(traced(x, y));
+      floor_shadow += b;
+      if (a == b) continue;
+      // A difference must lie on an outline: a neighbour of the ray-traced picture disagrees with this pixel.
+      bool outline = false;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = std::clamp(x + dx, 0, w - 1), ny = std::clamp(y + dy, 0, h - 1);
+          outline |= shadowed(traced(nx, ny)) != b;
+        }
+      differ += outline ? 0 : 1;
+    }
+  EXPECT_GT(floor_shadow, w * h / 30);  // the shadows are in view
+  EXPECT_LT(differ, w * h / 500);
+}
+
 }  // namespace
 }  // namespace tessera
