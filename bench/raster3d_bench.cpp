@@ -6,6 +6,9 @@
 //   fill       z-tested flat fill at 1920x1080, 32 full-screen layers back to front (every fragment passes and
 //              writes); pixels/s, and as a share of the machine's memory bandwidth (12 bytes per pixel: depth read,
 //              depth write, color write)
+//   textured   8 full-screen layers at 1280x720 back to front, a 512 x 512 texture repeated 4 times across (about
+//              1.6 texels per pixel: trilinear between MIPmap levels 0 and 1), GL_REPLACE against raster3d's surface
+//              shaders (unlit, the texel as the color); pixels/s
 //   bandwidth  a STREAM-like copy and triad over 128 MiB arrays (3 of them: far beyond the caches) with oneTBB on
 //              1 and on 2 threads; the fill's share is taken against the same thread count
 // Threads: with LP_NUM_THREADS = N llvmpipe rasterizes on N threads beside the application's thread, which transforms,
@@ -50,6 +53,7 @@
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/gt.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
 
 namespace {
 
@@ -60,11 +64,14 @@ using reference::GlSubmit;
 // ---------------------------------------------------------------------------------------------------------------
 // Workloads, built identically in the parent and in the llvmpipe children.
 
-enum class Case { Immediate, Batched, Fill };
-const char* case_name(Case c) { return c == Case::Immediate ? "immediate" : c == Case::Batched ? "batched" : "fill"; }
+enum class Case { Immediate, Batched, Fill, Textured };
+const char* case_name(Case c) {
+  return c == Case::Immediate ? "immediate" : c == Case::Batched ? "batched" : c == Case::Fill ? "fill" : "textured";
+}
 
 constexpr int kTriWidth = 1280, kTriHeight = 720;
 constexpr int kFillWidth = 1920, kFillHeight = 1080, kFillLayers = 32;
+constexpr int kTexturedLayers = 8, kTextureSize = 512;
 constexpr int kFrames = 3;  // best of
 
 // The camera of the triangle workloads: 60 degrees vertical field of view, looking down -z.
@@ -107,16 +114,34 @@ TriMesh layered_grid() {
   return mesh;
 }
 
-// 32 full-screen quads at window depths from 0.97 down to 0.03 (back to front), identity matrices.
-TriMesh fill_layers() {
+// `layers` full-screen quads at window depths from 0.97 down to 0.03 (back to front), identity matrices; texture
+// coordinates 0..4 across, 0..4 * 9/16 up (square texels on a 16:9 screen), normals +z.
+TriMesh fill_layers(int layers) {
   TriMesh mesh;
-  for (int layer = 0; layer < kFillLayers; ++layer) {
-    const double z_ndc = 2 * (0.97 - 0.94 * layer / (kFillLayers - 1)) - 1;
+  for (int layer = 0; layer < layers; ++layer) {
+    const double z_ndc = 2 * (0.97 - 0.94 * layer / (layers - 1)) - 1;
     const auto base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {{-1, -1, z_ndc}, {1, -1, z_ndc}, {1, 1, z_ndc}, {-1, 1, z_ndc}});
+    mesh.uvs.insert(mesh.uvs.end(), {{0, 0}, {4, 0}, {4, 2.25}, {0, 2.25}});
+    mesh.normals.insert(mesh.normals.end(), 4, Vec3(0, 0, 1));
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   return mesh;
+}
+
+// The textured case's texture: smooth color waves with a fine checker on top (texel (i, j) from the bottom-left).
+reference::GlTexture bench_texture() {
+  reference::GlTexture t{kTextureSize, kTextureSize, std::vector<uint8_t>(size_t(kTextureSize) * kTextureSize * 4, 255),
+                         reference::GlFilter::linear_mipmap_linear};
+  for (int j = 0; j < kTextureSize; ++j)
+    for (int i = 0; i < kTextureSize; ++i) {
+      uint8_t* texel = &t.rgba[(size_t(j) * kTextureSize + i) * 4];
+      const int check = ((i / 4 + j / 4) % 2) * 40;
+      texel[0] = uint8_t(100 + 80 * std::sin(i * 0.05) + check / 2);
+      texel[1] = uint8_t(100 + 80 * std::cos(j * 0.03) + check / 2);
+      texel[2] = uint8_t(60 + check * 3);
+    }
+  return t;
 }
 
 // The fixed-function state of the triangle workloads: a white directional light from the upper right, a bluish
@@ -142,6 +167,17 @@ GlState fill_gl_state() {
   return s;
 }
 
+GlState textured_gl_state() {
+  static const reference::GlTexture texture = bench_texture();
+  GlState s;
+  s.texture = &texture;
+  return s;
+}
+
+GlState gl_state(Case c) {
+  return c == Case::Fill ? fill_gl_state() : c == Case::Textured ? textured_gl_state() : tri_gl_state();
+}
+
 struct Workload {
   int width, height;
   TriMesh mesh;
@@ -154,7 +190,10 @@ const Workload& workload(Case c) {
   if (!w) {
     if (c == Case::Fill)
       w = std::make_unique<Workload>(
-          Workload{kFillWidth, kFillHeight, fill_layers(), double(kFillLayers) * kFillWidth * kFillHeight});
+          Workload{kFillWidth, kFillHeight, fill_layers(kFillLayers), double(kFillLayers) * kFillWidth * kFillHeight});
+    else if (c == Case::Textured)
+      w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, fill_layers(kTexturedLayers),
+                                              double(kTexturedLayers) * kTriWidth * kTriHeight});
     else
       w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, layered_grid(), 0});
   }
@@ -240,7 +279,7 @@ int llvmpipe_child(Case c, int threads) {
   const Workload& w = workload(c);
   const reference::GlMesh mesh(w.mesh);
   reference::OsmesaContext context(w.width, w.height, threads);
-  const GlState state = c == Case::Fill ? fill_gl_state() : tri_gl_state();
+  const GlState state = gl_state(c);
   const GlSubmit submit = c == Case::Immediate ? GlSubmit::Immediate : GlSubmit::VertexArrays;
   Timing best;
   for (int frame = 0; frame < kFrames + 1; ++frame) {  // frame 0 warms up (shader compilation, allocations)
@@ -293,13 +332,13 @@ std::string key(Case c, int threads) { return fmt::format("{}/{}", case_name(c),
 
 double rate_of(Case c, double seconds) {
   const Workload& w = workload(c);
-  return (c == Case::Fill ? w.pixels_per_frame : double(w.mesh.triangle_count())) / seconds;
+  return (w.pixels_per_frame > 0 ? w.pixels_per_frame : double(w.mesh.triangle_count())) / seconds;
 }
 
 // Sets a finished measurement's counters and keeps its best rates (wall and CPU) for the ratios.
 const Rates& record(benchmark::State& state, Case c, int threads, const Timing& timing, bool peer) {
   const double rate = rate_of(c, timing.wall);
-  state.counters[c == Case::Fill ? "pixels_per_s" : "tris_per_s"] = rate;
+  state.counters[workload(c).pixels_per_frame > 0 ? "pixels_per_s" : "tris_per_s"] = rate;
   if (c == Case::Fill && g_bandwidth[threads] > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
   state.counters["cpu_ms"] = 1e3 * timing.cpu;
   Rates& r = g_rates[key(c, threads)];
@@ -362,7 +401,7 @@ void BM_Bandwidth(benchmark::State& state, bool triad, int threads) {
 // Tessera: the same state through the Context (the light placed in eye space, as the GL state does).
 
 void set_tessera_state(raster3d::Context& ctx, Case c) {
-  const GlState gl = c == Case::Fill ? fill_gl_state() : tri_gl_state();
+  const GlState gl = gl_state(c);
   ctx.matrix_mode(raster3d::MatrixMode::projection);
   ctx.load_matrix(Mat4(gl.projection));
   ctx.matrix_mode(raster3d::MatrixMode::model_view);
@@ -410,8 +449,31 @@ void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) 
   set_tessera_state(ctx, c);
   gt::gtMakeCurrent(&ctx);
   const ThreadLimit limit(threads);
-  const Vec3f background = c == Case::Fill ? fill_gl_state().background : tri_gl_state().background;
+  const Vec3f background = gl_state(c).background;
+  // The textured case: the surface shaders with the same texture (unlit: the texel is the color, as GL_REPLACE).
+  const reference::GlTexture& gl_texture = *textured_gl_state().texture;
+  ImageRGBA image(gl_texture.width, gl_texture.height);
+  for (int j = 0; j < image.height(); ++j)
+    for (int i = 0; i < image.width(); ++i) {
+      const uint8_t* t = &gl_texture.rgba[(size_t(j) * image.width() + i) * 4];
+      image(i, image.height() - 1 - j) = Vec4f(t[0], t[1], t[2], 255) / 255.0f;
+    }
+  const Texture2D texture(image, Sampler{.filter = Filter::trilinear});
+  raster3d::Lighting unlit;
+  unlit.light_count = 0;
+  unlit.color_material = true;
+  unlit.model_ambient = Vec3f(1);
+  raster3d::SurfaceUniforms surface;
+  surface.lighting = raster3d::PreparedLighting(unlit);
+  surface.maps.texture = &texture;
+  raster3d::Framebuffer textured_fb(w.width, w.height);
   const auto frame = [&] {
+    if (c == Case::Textured) {
+      textured_fb.clear(background);
+      raster3d::draw_surface(textured_fb, raster3d::RasterState{}, arrays, surface);
+      benchmark::DoNotOptimize(textured_fb.color().pixels().data());
+      return;
+    }
     ctx.clear(background);
     if (c == Case::Immediate)
       draw_immediate(arrays, unpipelined);
@@ -459,7 +521,10 @@ int main(int argc, char** argv) {
       const std::string spec = argv[i] + 17;
       const size_t comma = spec.find(',');
       const std::string name = spec.substr(0, comma);
-      const Case c = name == "immediate" ? Case::Immediate : name == "batched" ? Case::Batched : Case::Fill;
+      const Case c = name == "immediate" ? Case::Immediate
+                     : name == "batched" ? Case::Batched
+                     : name == "fill"    ? Case::Fill
+                                         : Case::Textured;
       return llvmpipe_child(c, std::atoi(spec.c_str() + comma + 1));
     }
   char self[4096];
@@ -473,7 +538,7 @@ int main(int argc, char** argv) {
           ->UseManualTime()
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
-  for (Case c : {Case::Immediate, Case::Batched, Case::Fill})
+  for (Case c : {Case::Immediate, Case::Batched, Case::Fill, Case::Textured})
     for (int threads : {1, 2}) {
       // The peer first, so that the Tessera run can report the ratio.
       benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe,

@@ -37,6 +37,24 @@ long long wrap_index(long long i, long long n, Wrap wrap) {
   return 0;
 }
 
+// The texel indices (i, i + 1) of a row of n texels after wrapping: the interior without any wrapping arithmetic.
+struct IndexPair {
+  int lo, hi;
+};
+
+IndexPair wrap_pair(long long i, int n, Wrap wrap) {
+  if (i >= 0 && i < n - 1) return {int(i), int(i) + 1};
+  return {int(wrap_index(i, n, wrap)), int(wrap_index(i + 1, n, wrap))};
+}
+
+// The texel-space coordinate x = t n - 1/2 of bilinear filtering; with repeat wrapping brought into [-1/2, n - 1/2)
+// first, so that the integer wrapping (two divisions per index) is left for the last column only.
+double bilinear_coordinate(float t, int n, Wrap wrap) {
+  double x = double(t) * n - 0.5;
+  if (wrap == Wrap::repeat && !(x >= -0.5 && x < n - 0.5) && std::abs(x) < 1e15) x -= n * std::floor((x + 0.5) / n);
+  return x;
+}
+
 // One output sample of a 1D reduction: up to three source indices and their weights.
 struct Taps {
   int index[3];
@@ -117,11 +135,15 @@ glm::vec4 Texture2D::nearest(glm::vec2 uv, int level) const {
 
 glm::vec4 Texture2D::bilinear(glm::vec2 uv, int level) const {
   const ImageRGBA& image = levels_[size_t(level)];
+  const int w = image.width(), h = image.height();
   // Texel centers sit at integer + 0.5: (i, j) is the bottom-left texel of the four, (a, b) the offset from it.
-  const auto [i, a] = split(double(uv.x) * image.width() - 0.5);
-  const auto [j, b] = split(double(uv.y) * image.height() - 0.5);
-  const glm::vec4 bottom = glm::mix(texel(image, i, j), texel(image, i + 1, j), a);
-  const glm::vec4 top = glm::mix(texel(image, i, j + 1), texel(image, i + 1, j + 1), a);
+  const auto [i, a] = split(bilinear_coordinate(uv.x, w, sampler_.wrap_u));
+  const auto [j, b] = split(bilinear_coordinate(uv.y, h, sampler_.wrap_v));
+  const IndexPair x = wrap_pair(i, w, sampler_.wrap_u), y = wrap_pair(j, h, sampler_.wrap_v);
+  const glm::vec4* lower = image.row(h - 1 - y.lo);  // texel rows count from the bottom
+  const glm::vec4* upper = image.row(h - 1 - y.hi);
+  const glm::vec4 bottom = glm::mix(lower[x.lo], lower[x.hi], a);
+  const glm::vec4 top = glm::mix(upper[x.lo], upper[x.hi], a);
   return glm::mix(bottom, top, b);
 }
 
