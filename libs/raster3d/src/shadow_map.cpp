@@ -89,16 +89,24 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   const int size = this->size();
   const float half = 0.5f * float(size);
   const int ci = int(std::floor((ndc.x + 1) * half)), cj = int(std::floor((ndc.y + 1) * half));
+  // The fraction of the (2 pcf + 1)^2 texels around P' that let the light through: texels outside the map or
+  // holding nothing (the cleared depth) do, the others when `passes(i, j, stored depth)` says so.
   const auto& depth = depth_.depth();
-  if (ndc.z > 1) {
-    // Beyond the far plane (a map fitted to the casters only): behind everything the map holds, so in shadow
-    // wherever it holds something.
+  const auto filtered = [&](auto passes) {
     int lit = 0, taps = 0;
     for (int j = cj - pcf; j <= cj + pcf; ++j)
-      for (int i = ci - pcf; i <= ci + pcf; ++i, ++taps)
-        lit += i < 0 || j < 0 || i >= size || j >= size || depth(i, size - 1 - j) == kDepthMax;
+      for (int i = ci - pcf; i <= ci + pcf; ++i, ++taps) {
+        if (i < 0 || j < 0 || i >= size || j >= size) {
+          ++lit;
+          continue;
+        }
+        const uint32_t stored = depth(i, size - 1 - j);  // row 0 is the top
+        lit += stored == kDepthMax || passes(i, j, float(stored) * (1.0f / float(kDepthMax)));
+      }
     return float(lit) / float(taps);
-  }
+  };
+  // Beyond the far plane (a map fitted to the casters only): behind everything the map holds.
+  if (ndc.z > 1) return filtered([](int, int, float) { return false; });
   const Vec3f window((ndc.x + 1) * half, (ndc.y + 1) * half, 0.5f * ndc.z + 0.5f);
 
   // The tangent plane's depth gradient in the light's window space: two tangents through the derivative of the
@@ -120,20 +128,11 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   // glPolygonOffset(1, 1) gives a caster, leaves none on the bunny).
   const float epsilon = 0x1p-16f + (std::abs(gx) + std::abs(gy));
 
-  int lit = 0, taps = 0;
-  for (int j = cj - pcf; j <= cj + pcf; ++j)
-    for (int i = ci - pcf; i <= ci + pcf; ++i) {
-      ++taps;
-      if (i < 0 || j < 0 || i >= size || j >= size) {
-        ++lit;
-        continue;
-      }
-      // The receiver's depth at this texel's center, against what the light saw there (row 0 is the top).
-      const float predicted = window.z + gx * (float(i) + 0.5f - window.x) + gy * (float(j) + 0.5f - window.y);
-      const uint32_t stored = depth(i, size - 1 - j);
-      if (stored == kDepthMax || predicted - epsilon <= float(stored) * (1.0f / float(kDepthMax))) ++lit;
-    }
-  return float(lit) / float(taps);
+  // The receiver's depth predicted at each texel's center, against what the light saw there.
+  return filtered([&](int i, int j, float stored) {
+    const float predicted = window.z + gx * (float(i) + 0.5f - window.x) + gy * (float(j) + 0.5f - window.y);
+    return predicted - epsilon <= stored;
+  });
 }
 
 }  // namespace tessera::raster3d
