@@ -80,4 +80,57 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
   gallery.add("23_environment_map.png", examples::side_by_side(panels),
               "Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
               "mirror sphere, a red torus reflecting 45 %, a mirror cube (each face a plane mirror).");
+
+  // Cube mapping: a mirror sphere among nearby objects. The lat-long map alone shows only the far surroundings (the
+  // notes: "good if objects are far away"); the scene rendered 6 times from the sphere's center puts the floor and
+  // the objects into its reflection.
+  struct Object {
+    raster3d::VertexArrays arrays;
+    Mat4 model;
+    Vec3f color;
+  };
+  const std::vector<Object> objects = {
+      {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1))), scale(2.5, 1, 2.5), {0.8f, 0.78f, 0.7f}},
+      {raster3d::VertexArrays::from_mesh(to_tri_mesh(examples::with_face_normals(make_box()))),
+       translate(-1.2, 0.4, 0.55) * rotate_y(radians(25)) * scale(0.4, 0.4, 0.4), {0.85f, 0.2f, 0.15f}},
+      {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(48, 24))),
+       translate(1.2, 0.45, 0.5) * scale(0.45, 0.45, 0.45), {0.2f, 0.7f, 0.3f}},
+      {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_torus(0.5, 0.18, 64, 24))),
+       translate(1.1, 0.68, -1.5) * rotate_x(radians(90)), {0.2f, 0.35f, 0.85f}}};
+  const Vec3 to_light(-0.5, 0.8, 0.6);
+  const auto draw_scene = [&](raster3d::Framebuffer& fb, const Mat4& p, const Mat4& v) {
+    for (const Object& o : objects) {
+      raster3d::SurfaceUniforms u;
+      u.set_camera(p, v, o.model);
+      u.lighting = raster3d::PreparedLighting(examples::surface_lighting(to_light, v, 0.25f, 0.3f));
+      u.color = o.color;
+      raster3d::draw_surface(fb, raster3d::RasterState{}, o.arrays, u);
+    }
+    raster3d::fill_background(fb, environment, p * v);
+  };
+  const Vec3 center(0, 0.7, 0);
+  const CubeMap cube = raster3d::render_cube_map(center, 256, draw_scene, 0.05, 50);
+  const raster3d::VertexArrays mirror = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(96, 48)));
+  const Mat4 scene_projection = perspective(radians(40), double(w) / h, 0.2, 50);
+  const Mat4 scene_view = look_at({0.4, 1.6, 5.2}, {0, 0.55, 0}, {0, 1, 0});
+  std::vector<ImageRGB> cube_panels;
+  for (const bool use_cube : {false, true}) {
+    raster3d::Framebuffer fb(w * s, h * s);
+    draw_scene(fb, scene_projection, scene_view);
+    raster3d::SurfaceUniforms u;
+    u.set_camera(scene_projection, scene_view, translate(center.x, center.y, center.z) * scale(0.7, 0.7, 0.7));
+    u.lighting = raster3d::PreparedLighting(examples::surface_lighting(to_light, scene_view, 0.0f, 0.5f));
+    u.color = Vec3f(0);
+    u.maps.reflectivity = 0.95f;
+    if (use_cube)
+      u.maps.cube = &cube;
+    else
+      u.maps.environment = &environment;
+    raster3d::draw_surface(fb, raster3d::RasterState{}, mirror, u);
+    cube_panels.push_back(examples::downsample(fb.color_rgb(), s));
+  }
+  gallery.add("23_cube_mapping.png", examples::side_by_side(cube_panels),
+              "Cube mapping: a mirror sphere among near objects reflecting the far lat-long environment only (left), "
+              "and a cube map of the scene rendered 6 times from its center (right): the floor and the objects "
+              "appear in the reflection.");
 }

@@ -113,6 +113,27 @@ view=(--size 64x64 --eye 0,0,4 --center 0,0,0 --fovy 40 --light-dir 0,0,1)
 "$tessera" raster tquad.obj -o plain.png "${view[@]}" --shading phong
 "$tessera" raster tquad.obj -o bumped.png "${view[@]}" --bump ramp.png --bump-scale 0.05
 "$tessera" raster tquad.obj -o mirror.png "${view[@]}" --env green.png --reflect 1 --color 0,0,0
+# A mirror octahedron on the floor: below its middle the surface faces down, and with --env-cube it reflects the
+# (gray) floor there; without, only the (green) environment.
+cat > octa.obj <<'OBJ'
+v 1 0 0
+v -1 0 0
+v 0 1 0
+v 0 -1 0
+v 0 0 1
+v 0 0 -1
+f 1 3 5
+f 3 2 5
+f 2 4 5
+f 4 1 5
+f 3 1 6
+f 2 3 6
+f 4 2 6
+f 1 4 6
+OBJ
+mirror=(--size 48x48 --eye 0,0,4 --center 0,0,0 --floor --env green.png --reflect 1 --color 0,0,0)
+"$tessera" raster octa.obj -o mirror_env.png "${mirror[@]}"
+"$tessera" raster octa.obj -o mirror_cube.png "${mirror[@]}" --env-cube
 # A cube over the floor, lit from the side: with --shadows the floor darkens where the cube hides the light.
 "$tessera" raster cube.obj -o lit_floor.png --size 96x64 --floor --light-dir 1,1,0.3 --eye 0,3,6
 "$tessera" raster cube.obj -o shadowed_floor.png --size 96x64 --floor --shadows --shadow-size 512 --light-dir 1,1,0.3 \
@@ -130,6 +151,9 @@ assert (np.abs(plain - bumped).max(axis=2) > 8).sum() > 200, 'the bump map chang
 m = load('mirror.png')
 assert m[2, 2, 1] > 250 and m[2, 2, 0] < 5, m[2, 2]           # the background shows the environment
 assert m[32, 20, 1] - m[32, 20, 0] > 100, m[32, 20]            # and the mirror reflects it
+env, cube = load('mirror_env.png'), load('mirror_cube.png')
+assert env[34, 24, 1] - env[34, 24, 0] > 100, env[34, 24]     # the environment: green
+assert abs(cube[34, 24, 1] - cube[34, 24, 0]) < 30 and cube[34, 24, 0] > 60, cube[34, 24]  # the floor: gray
 lit, shadowed = load('lit_floor.png'), load('shadowed_floor.png')
 darker = (lit.sum(axis=2) - shadowed.sum(axis=2) > 60).sum()
 brighter = (shadowed.sum(axis=2) - lit.sum(axis=2) > 3).sum()
@@ -167,6 +191,7 @@ expect_error 1 "missing.png" tquad.obj -o bad.png --texture missing.png
 expect_error 1 "per pixel" tquad.obj -o bad.png --texture halves.png --shading gouraud
 expect_error 1 "wireframe" cube.obj -o bad.png --shadows --wireframe
 expect_error 1 "inside" cube.obj -o bad.png --shadows --light-pos 0,0,0
+expect_error 1 "env-cube" tquad.obj -o bad.png --env-cube
 expect_error 2 "filter" tquad.obj -o bad.png --texture halves.png --filter cubic
 expect_error 2 "reflect" tquad.obj -o bad.png --env green.png --reflect 2
 echo "raster CLI ok"

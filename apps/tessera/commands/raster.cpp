@@ -33,10 +33,10 @@ struct RasterArgs {
   // The maps (drawn per pixel by raster3d's surface shaders).
   std::string texture, filter = "trilinear", bump, env;
   double bump_scale = 0.01, reflect = 0.6;
-  bool shadows = false, floor = false, shading_given = false;
+  bool shadows = false, floor = false, env_cube = false, shading_given = false;
   int shadow_size = 2048;
 
-  bool maps() const { return !texture.empty() || !bump.empty() || !env.empty() || shadows || floor; }
+  bool maps() const { return !texture.empty() || !bump.empty() || !env.empty() || shadows || floor || env_cube; }
 };
 
 const std::map<std::string, raster3d::ShadingModel> kShadings = {{"unlit", raster3d::ShadingModel::unlit},
@@ -126,34 +126,32 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
     // The framing is the mesh's; the far plane must reach the floor's far corners.
     if (a.camera.far == 0) camera.far = std::max(camera.far, 2 * glm::length(scene.hi - scene.lo) + glm::length(camera.eye - camera.center));
   }
+  if (a.env_cube && !environment && !a.floor)
+    throw InvalidInput("--env-cube: nothing around the mesh to reflect; add --env or --floor");
   const Mat4 view = camera.view(), projection = camera.projection();
-  const Mat3 view_linear(view);
   // The light, as in the fixed-function path: a direction or a point in world space, else over the viewer's
-  // upper-left shoulder (fixed in eye space).
-  raster3d::Lighting lighting;
-  lighting.material = raster3d::Material::plastic(surface, 32, 0.4f);
-  lighting.color_material = true;  // the (textured) surface color is C_r
-  Vec3 to_light_world;
-  bool point_light = false;
-  if (!a.light_pos.empty()) {
-    const Vec3 p = parse_vec3(a.light_pos, "--light-pos");
-    lighting.lights[0].position = Vec4f(Vec3f(view * glm::dvec4(p, 1)), 1);
-    to_light_world = p;
-    point_light = true;
-  } else {
-    to_light_world = a.light_dir.empty() ? glm::transpose(view_linear) * glm::normalize(Vec3(-0.4, 0.6, 1.0))
-                                         : glm::normalize(parse_vec3(a.light_dir, "--light-dir"));
-    lighting.lights[0].position = Vec4f(Vec3f(view_linear * to_light_world), 0);
-  }
+  // upper-left shoulder (fixed in eye space). `lighting_under(v)` places it in the eye space of view v.
+  const bool point_light = !a.light_pos.empty();
+  const Vec3 light = point_light          ? parse_vec3(a.light_pos, "--light-pos")
+                     : a.light_dir.empty() ? glm::transpose(Mat3(view)) * glm::normalize(Vec3(-0.4, 0.6, 1.0))
+                                          : glm::normalize(parse_vec3(a.light_dir, "--light-dir"));
+  const auto lighting_under = [&](const Mat4& v) {
+    raster3d::Lighting lighting;
+    lighting.material = raster3d::Material::plastic(surface, 32, 0.4f);
+    lighting.color_material = true;  // the (textured) surface color is C_r
+    lighting.lights[0].position = point_light ? Vec4f(Vec3f(v * glm::dvec4(light, 1)), 1)
+                                              : Vec4f(Vec3f(Mat3(v) * light), 0);
+    return raster3d::PreparedLighting(lighting);
+  };
   // The map is fitted to the mesh, the only caster: the floor beyond it is shadowed all the same.
   std::optional<raster3d::ShadowMap> shadow;
   if (a.shadows)
-    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(to_light_world, box.lo, box.hi)
-                                              : raster3d::ShadowMap::directional(to_light_world, box.lo, box.hi));
+    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(light, box.lo, box.hi)
+                                              : raster3d::ShadowMap::directional(light, box.lo, box.hi));
 
   raster3d::SurfaceUniforms u;
   u.set_camera(projection, view);
-  u.lighting = raster3d::PreparedLighting(lighting);
+  u.lighting = lighting_under(view);
   u.color = surface;
   u.maps.shadow = shadow ? &*shadow : nullptr;
   raster3d::SurfaceUniforms floor_uniforms = u;  // the floor: light gray, shadows only
@@ -169,12 +167,30 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
       bump ? raster3d::uv_tangents(arrays.positions, arrays.uvs, arrays.indices) : raster3d::UvTangents{};
   raster3d::RasterState state;
   state.cull = a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none;
+  // --env-cube: what surrounds the mesh (the floor, the environment) seen from its center, the notes' "render scene
+  // 6 times, eye at center of cube".
+  const auto draw_surroundings = [&](raster3d::Framebuffer& face, const Mat4& p, const Mat4& v) {
+    if (a.floor) {
+      raster3d::SurfaceUniforms f = floor_uniforms;
+      f.set_camera(p, v);
+      f.lighting = lighting_under(v);
+      raster3d::draw_surface(face, raster3d::RasterState{}, floor, f);
+    }
+    if (environment) raster3d::fill_background(face, *environment, p * v);
+  };
+  std::optional<CubeMap> cube;
   raster3d::Framebuffer fb(width, height);
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < a.repeat; ++frame) {
     if (shadow) {
       shadow->clear();
       shadow->draw(arrays);
+    }
+    if (a.env_cube) {
+      const Vec3 center = 0.5 * (box.lo + box.hi);
+      cube.emplace(raster3d::render_cube_map(center, 256, draw_surroundings, 1e-3 * glm::length(box.hi - box.lo),
+                                             camera.far));
+      u.maps.cube = &*cube;
     }
     fb.clear(background);
     raster3d::draw_surface(fb, state, arrays, u, bump ? &tangents : nullptr);
@@ -225,7 +241,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     throw InvalidInput(fmt::format("--shading {}: texture, bump, environment and shadow mapping are per pixel "
                                    "(--shading phong, the default with them)", a.shading));
   if (a.maps() && a.wireframe)
-    throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --shadows or --floor");
+    throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
 
   PolyMesh poly = read_mesh(a.mesh);
   if (poly.face_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to draw", a.mesh));
@@ -336,6 +352,8 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--reflect", a->reflect, "How much of the environment the surface reflects, in [0,1]")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd.add_flag("--env-cube", a->env_cube,
+               "Reflect what surrounds the mesh (--floor, --env) through a cube map rendered from its center");
   cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
       ->check(CLI::Range(16, 16384))

@@ -1,5 +1,7 @@
 #include "tessera/raster3d/surface_shader.hpp"
 
+#include <array>
+
 #include <fmt/format.h>
 #include <glm/gtc/matrix_access.hpp>
 
@@ -105,11 +107,11 @@ bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceV
                                       glm::normalize(to_world * plane), maps.shadow_pcf);
   }
   Vec3f c = u.lighting.shade(n, in.position, surface, visible);
-  if (maps.environment) {
+  if (maps.environment || maps.cube) {
     // The notes: R from N and the view vector, R = 2 (N.E) N - E with E toward the eye; looked up in world space.
     const Vec3f e = glm::normalize(Vec3f(u.viewer) - in.position * u.viewer.w);
-    const Vec3f r = 2 * glm::dot(n, e) * n - e;
-    c += maps.reflectivity * Vec3f(maps.environment->lookup(to_world * r));
+    const Vec3f r = to_world * (2 * glm::dot(n, e) * n - e);
+    c += maps.reflectivity * Vec3f(maps.cube ? maps.cube->lookup(r) : maps.environment->lookup(r));
   }
   color = glm::clamp(c, 0.0f, 1.0f);
   return true;
@@ -127,6 +129,33 @@ DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const
                                tangents ? tangents->v.data() : nullptr, &u};
   return draw_triangles(framebuffer, state, uint32_t(arrays.positions.size()), arrays.indices, vs,
                         SurfaceFragmentShader{&u});
+}
+
+CubeMap render_cube_map(const Vec3& center, int size,
+                        const std::function<void(Framebuffer&, const Mat4& projection, const Mat4& view)>& draw,
+                        double near, double far, Filter filter) {
+  if (size < 1) throw InvalidInput(fmt::format("render_cube_map: size {} must be at least 1", size));
+  if (!(near > 0 && near < far))
+    throw InvalidInput(fmt::format("render_cube_map: expected 0 < near < far, got {} and {}", near, far));
+  std::array<ImageRGBA, 6> faces;
+  Framebuffer framebuffer(size, size);
+  for (int f = 0; f < 6; ++f) {
+    // The face's axis C and its s and t directions S, T (cube_direction: C + (2s - 1) S + (2t - 1) T).
+    const auto at = [f](float s, float t) { return Vec3(cube_direction({CubeFace(f), {s, t}})); };
+    const Vec3 c = at(0.5f, 0.5f), s = 0.5 * (at(1, 0.5f) - at(0, 0.5f)), t = 0.5 * (at(0.5f, 1) - at(0.5f, 0));
+    // Looking along C with up -T, window x is along T x C and window y along -T. Face pixel (x, y) sits at
+    // s = (x + 1/2) / size and t = (y + 1/2) / size, with row 0 at the top: x must run along S (so the projection
+    // mirrors x where T x C = -S) and rows down along +T (window y along -T: as it is).
+    const double mirror = glm::dot(glm::cross(t, c), s) > 0 ? 1 : -1;
+    const Mat4 projection = scale(mirror, 1, 1) * perspective(kPi / 2, 1, near, far);
+    framebuffer.clear(Vec3f(0));
+    draw(framebuffer, projection, look_at(center, center + c, -t));
+    const ImageRGB picture = framebuffer.color_rgb();
+    faces[size_t(f)] = ImageRGBA(size, size);
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) faces[size_t(f)](x, y) = glm::vec4(picture(x, y), 1.0f);
+  }
+  return CubeMap(std::move(faces), filter);
 }
 
 void fill_background(Framebuffer& framebuffer, const EnvironmentMap& environment, const Mat4& view_projection) {

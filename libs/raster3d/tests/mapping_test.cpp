@@ -336,6 +336,57 @@ TEST(EnvironmentMapping, AMirrorSphereShowsTheReflectedDirections) {
   EXPECT_LT(worst, 6);
 }
 
+TEST(EnvironmentMapping, ARenderedCubeMapShowsWhatIsSeenFromItsCenter) {
+  // A room, the cube [-2, 2]^3 with six walls of six colors, rendered 6 times from an off-center point: looking up a
+  // direction must give the color of the wall that the ray from that point hits first (away from the room's edges).
+  const Vec3f colors[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {1, 1, 0}, {0, 1, 1}, {1, 0, 1}};
+  VertexArrays room;
+  for (int axis = 0; axis < 3; ++axis)
+    for (const float side : {-2.0f, 2.0f}) {
+      const int i = (axis + 1) % 3, j = (axis + 2) % 3;
+      const auto base = uint32_t(room.positions.size());
+      for (const auto [a, b] : {std::pair{-2.f, -2.f}, {2.f, -2.f}, {2.f, 2.f}, {-2.f, 2.f}}) {
+        Vec3f p(0);
+        p[axis] = side;
+        p[i] = a;
+        p[j] = b;
+        room.positions.push_back(p);
+        room.normals.push_back(Vec3f(0));
+        room.colors.push_back(colors[2 * axis + (side > 0)]);
+      }
+      room.indices.insert(room.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+  for (Vec3f& n : room.normals) n = Vec3f(0, 0, 1);  // unlit: unused
+  const Vec3 center(0.3, -0.4, 0.5);
+  const CubeMap cube = render_cube_map(center, 64, [&](Framebuffer& fb, const Mat4& projection, const Mat4& view) {
+    draw_surface(fb, RasterState{}, room, unlit_uniforms(projection, view));
+  });
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> d(-1, 1);
+  int checked = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 dir = glm::normalize(Vec3(d(rng), d(rng), d(rng)));
+    // The first wall along the ray: the least positive t of the three slabs.
+    double t_best = 1e30;
+    int wall = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+      const double t = ((dir[axis] > 0 ? 2.0 : -2.0) - center[axis]) / dir[axis];
+      if (t < t_best) t_best = t, wall = 2 * axis + (dir[axis] > 0);
+    }
+    const Vec3 hit = center + t_best * dir;
+    // Skip hits near the room's edges, where a texel may mix two walls.
+    int near_edge = 0;
+    for (int axis = 0; axis < 3; ++axis) near_edge += std::abs(std::abs(hit[axis]) - 2) < 0.15;
+    if (near_edge > 1) continue;
+    const Vec3f got(cube.lookup(Vec3f(dir)));
+    EXPECT_NEAR(glm::length(got - colors[wall]), 0, 0.02f) << dir.x << " " << dir.y << " " << dir.z;
+    ++checked;
+  }
+  EXPECT_GT(checked, 1500);
+  EXPECT_THROW(render_cube_map(center, 0, [](Framebuffer&, const Mat4&, const Mat4&) {}), InvalidInput);
+  EXPECT_THROW(render_cube_map(center, 8, [](Framebuffer&, const Mat4&, const Mat4&) {}, 1, 1), InvalidInput);
+}
+
 /// The analytic shadow of the square |x|, |z| <= 0.5 at height 1 on the floor, for light toward `to_light`.
 bool in_square_shadow(const Vec3& to_light, double x, double z) {
   const double t = 1 / to_light.y;

@@ -9,6 +9,7 @@
 // Texture coordinates are interpolated perspective-correctly by the pipeline (the notes: s/|z|, t/|z| and 1/|z|
 // linearly, then divided per pixel), and the fragment program gets their exact screen derivatives, from which the
 // MIPmap level of detail follows (Texture2D::lod).
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -58,6 +59,7 @@ struct SurfaceMaps {
   const Texture2D* bump = nullptr;     ///< height map (red channel), needs the vertex shader's tangents
   float bump_scale = 0.02f;            ///< height of a texel value 1, in object units (negative: bright is low)
   const EnvironmentMap* environment = nullptr;  ///< lat-long radiance around the scene (world space)
+  const CubeMap* cube = nullptr;                ///< or a cube map (render_cube_map); used when set
   float reflectivity = 0;                       ///< adds reflectivity x environment(R)
   const ShadowMap* shadow = nullptr;            ///< light 0's shadow map (world space)
   int shadow_pcf = 1;                           ///< its filter radius in texels
@@ -119,6 +121,15 @@ struct SurfaceFragmentShader {
 /// normals, the uvs a map needs, or the tangents do not match the positions in number.
 DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
                        const SurfaceUniforms& u, const UvTangents* tangents = nullptr);
+
+/// The notes' cube mapping ("render scene 6 times, eye at center of cube"): `draw(framebuffer, projection, view)`
+/// renders the scene once per face into a size x size framebuffer cleared to black, and the six pictures become a
+/// CubeMap whose lookup(d) is what is seen from `center` in direction d (world space): a dynamic environment map,
+/// reflecting the objects near a mirror. Each face is a 90-degree perspective (near, far) from `center` in OpenGL's
+/// face layout, which mirrors x: draw without culling. Throws InvalidInput for size < 1 or not 0 < near < far.
+CubeMap render_cube_map(const Vec3& center, int size,
+                        const std::function<void(Framebuffer&, const Mat4& projection, const Mat4& view)>& draw,
+                        double near = 0.01, double far = 1000, Filter filter = Filter::bilinear);
 
 /// Paints every pixel that nothing was drawn on (depth still 1) with the environment seen along its line of sight
 /// through the camera `view_projection` (world to clip space): the background of an environment-mapped scene.
