@@ -43,6 +43,7 @@
 #include <cstring>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -114,16 +115,18 @@ TriMesh layered_grid() {
   return mesh;
 }
 
-// `layers` full-screen quads at window depths from 0.97 down to 0.03 (back to front), identity matrices; texture
-// coordinates 0..4 across, 0..4 * 9/16 up (square texels on a 16:9 screen), normals +z.
-TriMesh fill_layers(int layers) {
+// `layers` full-screen quads at window depths from 0.97 down to 0.03 (back to front), identity matrices; `textured`:
+// with texture coordinates 0..4 across, 0..4 * 9/16 up (square texels on a 16:9 screen), and normals +z.
+TriMesh fill_layers(int layers, bool textured) {
   TriMesh mesh;
   for (int layer = 0; layer < layers; ++layer) {
     const double z_ndc = 2 * (0.97 - 0.94 * layer / (layers - 1)) - 1;
     const auto base = uint32_t(mesh.positions.size());
     mesh.positions.insert(mesh.positions.end(), {{-1, -1, z_ndc}, {1, -1, z_ndc}, {1, 1, z_ndc}, {-1, 1, z_ndc}});
-    mesh.uvs.insert(mesh.uvs.end(), {{0, 0}, {4, 0}, {4, 2.25}, {0, 2.25}});
-    mesh.normals.insert(mesh.normals.end(), 4, Vec3(0, 0, 1));
+    if (textured) {
+      mesh.uvs.insert(mesh.uvs.end(), {{0, 0}, {4, 0}, {4, 2.25}, {0, 2.25}});
+      mesh.normals.insert(mesh.normals.end(), 4, Vec3(0, 0, 1));
+    }
     mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   return mesh;
@@ -190,9 +193,9 @@ const Workload& workload(Case c) {
   if (!w) {
     if (c == Case::Fill)
       w = std::make_unique<Workload>(
-          Workload{kFillWidth, kFillHeight, fill_layers(kFillLayers), double(kFillLayers) * kFillWidth * kFillHeight});
+          Workload{kFillWidth, kFillHeight, fill_layers(kFillLayers, false), double(kFillLayers) * kFillWidth * kFillHeight});
     else if (c == Case::Textured)
-      w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, fill_layers(kTexturedLayers),
+      w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, fill_layers(kTexturedLayers, true),
                                               double(kTexturedLayers) * kTriWidth * kTriHeight});
     else
       w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, layered_grid(), 0});
@@ -440,6 +443,36 @@ void draw_immediate(const raster3d::VertexArrays& arrays, bool unpipelined) {
   gt::gtEndShape();
 }
 
+/// The textured case through the surface shaders: the llvmpipe case's texture, unlit (the texel is the color, as
+/// GL_REPLACE), trilinear.
+struct TexturedDraw {
+  Texture2D texture;
+  raster3d::SurfaceUniforms uniforms;
+  raster3d::Framebuffer framebuffer;
+
+  TexturedDraw(int width, int height)
+      : texture(texture_image(*textured_gl_state().texture), Sampler{.filter = Filter::trilinear}),
+        framebuffer(width, height) {
+    raster3d::Lighting unlit;
+    unlit.light_count = 0;
+    unlit.color_material = true;
+    unlit.model_ambient = Vec3f(1);
+    uniforms.lighting = raster3d::PreparedLighting(unlit);
+    uniforms.maps.texture = &texture;
+  }
+
+  /// The GL texture (rows bottom first) as an image (rows top first).
+  static ImageRGBA texture_image(const reference::GlTexture& gl) {
+    ImageRGBA image(gl.width, gl.height);
+    for (int j = 0; j < gl.height; ++j)
+      for (int i = 0; i < gl.width; ++i) {
+        const uint8_t* t = &gl.rgba[(size_t(j) * gl.width + i) * 4];
+        image(i, gl.height - 1 - j) = Vec4f(t[0], t[1], t[2], 255) / 255.0f;
+      }
+    return image;
+  }
+};
+
 std::map<int, Rates> g_unpipelined;  // immediate mode drawn batch by batch, by thread count (tessera fields only)
 
 void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) {
@@ -450,28 +483,13 @@ void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) 
   gt::gtMakeCurrent(&ctx);
   const ThreadLimit limit(threads);
   const Vec3f background = gl_state(c).background;
-  // The textured case: the surface shaders with the same texture (unlit: the texel is the color, as GL_REPLACE).
-  const reference::GlTexture& gl_texture = *textured_gl_state().texture;
-  ImageRGBA image(gl_texture.width, gl_texture.height);
-  for (int j = 0; j < image.height(); ++j)
-    for (int i = 0; i < image.width(); ++i) {
-      const uint8_t* t = &gl_texture.rgba[(size_t(j) * image.width() + i) * 4];
-      image(i, image.height() - 1 - j) = Vec4f(t[0], t[1], t[2], 255) / 255.0f;
-    }
-  const Texture2D texture(image, Sampler{.filter = Filter::trilinear});
-  raster3d::Lighting unlit;
-  unlit.light_count = 0;
-  unlit.color_material = true;
-  unlit.model_ambient = Vec3f(1);
-  raster3d::SurfaceUniforms surface;
-  surface.lighting = raster3d::PreparedLighting(unlit);
-  surface.maps.texture = &texture;
-  raster3d::Framebuffer textured_fb(w.width, w.height);
+  std::optional<TexturedDraw> textured;
+  if (c == Case::Textured) textured.emplace(w.width, w.height);
   const auto frame = [&] {
-    if (c == Case::Textured) {
-      textured_fb.clear(background);
-      raster3d::draw_surface(textured_fb, raster3d::RasterState{}, arrays, surface);
-      benchmark::DoNotOptimize(textured_fb.color().pixels().data());
+    if (textured) {
+      textured->framebuffer.clear(background);
+      raster3d::draw_surface(textured->framebuffer, raster3d::RasterState{}, arrays, textured->uniforms);
+      benchmark::DoNotOptimize(textured->framebuffer.color().pixels().data());
       return;
     }
     ctx.clear(background);
