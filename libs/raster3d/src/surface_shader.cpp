@@ -123,6 +123,7 @@ DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const
     throw InvalidInput("draw_surface: the surface shaders need a normal per vertex");
   if ((u.maps.texture || u.maps.bump) && arrays.uvs.size() != arrays.positions.size())
     throw InvalidInput("draw_surface: texture and bump mapping need texture coordinates per vertex");
+  if (u.maps.bump && !tangents) throw InvalidInput("draw_surface: bump mapping needs the tangents (uv_tangents)");
   if (tangents && (tangents->u.size() != arrays.positions.size() || tangents->v.size() != arrays.positions.size()))
     throw InvalidInput("draw_surface: the tangents are not those of these arrays (one per vertex)");
   const SurfaceVertexShader vs{arrays.attributes(), tangents ? tangents->u.data() : nullptr,

@@ -251,6 +251,27 @@ TEST(BumpMapping, TangentsOfAnAffineUvMapAreItsInverse) {
   EXPECT_THROW(uv_tangents(a.positions, a.uvs, bad), InvalidInput);
 }
 
+TEST(DrawSurface, RefusesArraysThatDoNotFitTheMaps) {
+  // A bump map without tangents, tangents of other arrays, missing uvs or normals.
+  const VertexArrays a = VertexArrays::from_mesh(to_tri_mesh(make_grid(2, 2)));
+  const UvTangents t = uv_tangents(a.positions, a.uvs, a.indices);
+  const Texture2D bumps(ImageRGBA(4, 4, Vec4f(0.5f)));
+  SurfaceUniforms u;
+  u.maps.bump = &bumps;
+  Framebuffer fb(8, 8);
+  EXPECT_THROW(draw_surface(fb, RasterState{}, a, u), InvalidInput);
+  const UvTangents other = uv_tangents(std::span<const Vec3f>(a.positions).first(3),
+                                       std::span<const Vec2f>(a.uvs).first(3), std::vector<uint32_t>{0, 1, 2});
+  EXPECT_THROW(draw_surface(fb, RasterState{}, a, u, &other), InvalidInput);
+  VertexArrays bare = a;
+  bare.uvs.clear();
+  EXPECT_THROW(draw_surface(fb, RasterState{}, bare, u, &t), InvalidInput);
+  bare = a;
+  bare.normals.clear();
+  EXPECT_THROW(draw_surface(fb, RasterState{}, bare, SurfaceUniforms{}), InvalidInput);
+  EXPECT_NO_THROW(draw_surface(fb, RasterState{}, a, u, &t));
+}
+
 TEST(BumpMapping, ABumpMappedPlaneShadesAsTheDisplacedMesh) {
   // Seen straight down (orthographic), a plane displaced along its normal projects onto the same pixels as the flat
   // one, so the bump-mapped flat plane and a finely tessellated displaced plane, lit alike, must match pixel by pixel.

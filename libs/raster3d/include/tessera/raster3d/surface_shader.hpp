@@ -118,7 +118,7 @@ struct SurfaceFragmentShader {
 
 /// Draws the triangles of `arrays` with the surface shaders and uniforms `u` (normals required; uvs for a texture or
 /// bump map; `tangents`, uv_tangents of the same arrays, for a bump map, else null). Throws InvalidInput when the
-/// normals, the uvs a map needs, or the tangents do not match the positions in number.
+/// normals, the uvs a map needs, or the tangents do not match the positions in number, or a bump map has no tangents.
 DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
                        const SurfaceUniforms& u, const UvTangents* tangents = nullptr);
 
