@@ -453,11 +453,7 @@ struct TexturedDraw {
   TexturedDraw(int width, int height)
       : texture(texture_image(*textured_gl_state().texture), Sampler{.filter = Filter::trilinear}),
         framebuffer(width, height) {
-    raster3d::Lighting unlit;
-    unlit.light_count = 0;
-    unlit.color_material = true;
-    unlit.model_ambient = Vec3f(1);
-    uniforms.lighting = raster3d::PreparedLighting(unlit);
+    uniforms.lighting = raster3d::PreparedLighting(raster3d::unlit_lighting());
     uniforms.maps.texture = &texture;
   }
 

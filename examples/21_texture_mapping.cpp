@@ -64,10 +64,6 @@ TESSERA_EXAMPLE(ex21_texture_mapping, "21_texture_mapping",
   const Mat4 projection = perspective(radians(55), double(w) / h, 0.1, 50);
   const Mat4 view = look_at({0.5, 2.2, 5}, {0, 0, -1.5}, {0, 1, 0});
   const raster3d::VertexArrays floor = floor_quad();
-  raster3d::Lighting unlit;  // the texture's colors as they are: ambient 1, no light
-  unlit.light_count = 0;
-  unlit.color_material = true;
-  unlit.model_ambient = Vec3f(1);
 
   std::vector<ImageRGB> panels;
   const Vec3f sky(0.8f, 0.85f, 0.9f);
@@ -83,7 +79,7 @@ TESSERA_EXAMPLE(ex21_texture_mapping, "21_texture_mapping",
     const Texture2D texture(checks, Sampler{.filter = filter});
     raster3d::SurfaceUniforms u;
     u.set_camera(projection, view);
-    u.lighting = raster3d::PreparedLighting(unlit);
+    u.lighting = raster3d::PreparedLighting(raster3d::unlit_lighting());  // the texels as they are
     u.maps.texture = &texture;
     raster3d::Framebuffer fb(w * s, h * s);
     fb.clear(sky);

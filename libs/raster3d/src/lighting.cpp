@@ -83,6 +83,14 @@ Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color
   return glm::clamp(c, 0.0f, 1.0f);
 }
 
+Lighting unlit_lighting() {
+  Lighting l;
+  l.light_count = 0;
+  l.color_material = true;
+  l.model_ambient = Vec3f(1);
+  return l;
+}
+
 Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color) {
   return PreparedLighting(lighting).shade(n, p, color);
 }

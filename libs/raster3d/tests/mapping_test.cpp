@@ -108,13 +108,9 @@ TEST(Derivatives, AreTheExactScreenDerivativesOfPerspectiveCorrectUvs) {
 
 /// Uniforms that show the surface color as it is (ambient 1, no lights): texture and environment tests.
 SurfaceUniforms unlit_uniforms(const Mat4& projection, const Mat4& view) {
-  Lighting l;
-  l.light_count = 0;
-  l.color_material = true;
-  l.model_ambient = Vec3f(1);
   SurfaceUniforms u;
   u.set_camera(projection, view);
-  u.lighting = PreparedLighting(l);
+  u.lighting = PreparedLighting(unlit_lighting());
   return u;
 }
 
@@ -366,18 +362,17 @@ TEST(EnvironmentMapping, ARenderedCubeMapShowsWhatIsSeenFromItsCenter) {
     for (const float side : {-2.0f, 2.0f}) {
       const int i = (axis + 1) % 3, j = (axis + 2) % 3;
       const auto base = uint32_t(room.positions.size());
-      for (const auto [a, b] : {std::pair{-2.f, -2.f}, {2.f, -2.f}, {2.f, 2.f}, {-2.f, 2.f}}) {
+      for (const auto& [a, b] : {std::pair{-2.f, -2.f}, {2.f, -2.f}, {2.f, 2.f}, {-2.f, 2.f}}) {
         Vec3f p(0);
         p[axis] = side;
         p[i] = a;
         p[j] = b;
         room.positions.push_back(p);
-        room.normals.push_back(Vec3f(0));
+        room.normals.push_back(Vec3f(0, 0, 1));  // unlit: unused
         room.colors.push_back(colors[2 * axis + (side > 0)]);
       }
       room.indices.insert(room.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
     }
-  for (Vec3f& n : room.normals) n = Vec3f(0, 0, 1);  // unlit: unused
   const Vec3 center(0.3, -0.4, 0.5);
   const CubeMap cube = render_cube_map(center, 64, [&](Framebuffer& fb, const Mat4& projection, const Mat4& view) {
     draw_surface(fb, RasterState{}, room, unlit_uniforms(projection, view));

@@ -388,10 +388,6 @@ TEST(OsmesaCompareTextures, TextureMappingMatchesOpenGL) {
 
   raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(floor);
   arrays.normals.assign(4, Vec3f(0, 1, 0));
-  raster3d::Lighting unlit;  // the texel as the color, as GL_REPLACE
-  unlit.light_count = 0;
-  unlit.color_material = true;
-  unlit.model_ambient = Vec3f(1);
   struct Case {
     reference::GlFilter gl;
     Filter filter;
@@ -408,7 +404,7 @@ TEST(OsmesaCompareTextures, TextureMappingMatchesOpenGL) {
     raster3d::SurfaceUniforms u;
     u.set_camera(projection, view);
     u.model_view_projection = raster3d::gl_matrix_product(Mat4f(projection), Mat4f(view));  // as OpenGL forms it
-    u.lighting = raster3d::PreparedLighting(unlit);
+    u.lighting = raster3d::PreparedLighting(raster3d::unlit_lighting());  // the texel, as GL_REPLACE
     u.maps.texture = &texture;
     raster3d::Framebuffer fb(w, h);
     fb.clear(kBackground);

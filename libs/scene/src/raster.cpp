@@ -164,6 +164,9 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
   }
 
   // Every object tessellated once; the shadow casters' world box (planes are infinite: they receive shadows only).
+  const auto casts = [](const SceneObject& o) {
+    return o.casts_shadows && !(o.shape && std::holds_alternative<Plane>(*o.shape));
+  };
   std::vector<raster3d::VertexArrays> arrays;
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const SceneObject& o : scene.objects) {
@@ -171,7 +174,7 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
     arrays.push_back(raster3d::VertexArrays::from_mesh(o.shape                ? tessellate(*o.shape)
                                                        : o.mesh->normals.empty() ? faceted(*o.mesh)
                                                                                  : *o.mesh));
-    if (!o.casts_shadows || (o.shape && std::holds_alternative<Plane>(*o.shape))) continue;
+    if (!casts(o)) continue;
     for (const Vec3f& p : arrays.back().positions) {
       const Vec3 w = transform_point(o.transform, Vec3(p));
       lo = glm::min(lo, w);
@@ -182,10 +185,8 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
   std::optional<raster3d::ShadowMap> shadow;
   if (lighting.light_count > 0 && lo.x <= hi.x) shadow = shadow_map(scene.lights[0], lo, hi);
   if (shadow)
-    for (size_t k = 0; k < scene.objects.size(); ++k) {
-      const SceneObject& o = scene.objects[k];
-      if (o.casts_shadows && !(o.shape && std::holds_alternative<Plane>(*o.shape))) shadow->draw(arrays[k], o.transform);
-    }
+    for (size_t k = 0; k < scene.objects.size(); ++k)
+      if (casts(scene.objects[k])) shadow->draw(arrays[k], scene.objects[k].transform);
 
   raster3d::Framebuffer fb(width, height);
   fb.clear(scene.image.background);

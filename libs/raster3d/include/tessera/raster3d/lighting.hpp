@@ -65,6 +65,10 @@ struct Lighting {
   bool color_material = false;  ///< the vertex color replaces ambient and diffuse (GL_COLOR_MATERIAL)
 };
 
+/// Lighting that shows the surface color as it is: no lights, model ambient 1, color material (for the surface
+/// shaders, OpenGL's GL_REPLACE: a texture's texels unchanged).
+Lighting unlit_lighting();
+
 /// The shading equation above at eye-space point p with unit normal n; `color` is the vertex color used when
 /// lighting.color_material is set. Returns the color clamped to [0, 1].
 Vec3f shade(const Lighting& lighting, const Vec3f& n, const Vec3f& p, const Vec3f& color);
