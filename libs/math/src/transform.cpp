@@ -105,6 +105,14 @@ Mat4 perspective(double fovy, double aspect, double n, double f) {
                {0, 0, -1, 0});
 }
 
+Mat4 infinite_perspective(double fovy, double aspect, double n) {
+  // The limits of perspective's third row; the checks are perspective's (with a finite far plane beyond n).
+  Mat4 p = perspective(fovy, aspect, n, 2 * n + 1);
+  p[2][2] = -1;
+  p[3][2] = -2 * n;
+  return p;
+}
+
 Mat3 normal_matrix(const Mat4& model_view) { return glm::inverse(glm::transpose(Mat3(model_view))); }
 
 Vec3 transform_point(const Mat4& m, const Vec3& p) {

@@ -73,6 +73,7 @@ TEST_F(RandomInputs, ProjectionsMatchGlm) {
     EXPECT_LT(max_diff(ortho(l, r, b, t, n, f), glm::orthoRH_NO(l, r, b, t, n, f)), 1e-6);
     const double fovy = uni(0.05, 3.0), aspect = uni(0.2, 5);
     EXPECT_LT(max_diff(perspective(fovy, aspect, n, f), glm::perspectiveRH_NO(fovy, aspect, n, f)), 1e-6);
+    EXPECT_LT(max_diff(infinite_perspective(fovy, aspect, n), glm::infinitePerspectiveRH(fovy, aspect, n)), 1e-6);
   }
 }
 

@@ -11,6 +11,7 @@ Framebuffer::Framebuffer(int width, int height) : scratch_(std::make_unique<deta
   color_ = ImageRGBA8(width, height, glm::u8vec4(0, 0, 0, 255));
   front_ = color_;
   depth_ = Image<uint32_t>(width, height, kDepthMax);
+  stencil_ = Image<uint8_t>(width, height, 0);
 }
 
 // A raster job in flight writes the buffers through this object: everything that moves, frees or writes them from
@@ -29,6 +30,7 @@ Framebuffer& Framebuffer::operator=(Framebuffer&& other) noexcept {
   color_ = std::move(other.color_);
   front_ = std::move(other.front_);
   depth_ = std::move(other.depth_);
+  stencil_ = std::move(other.stencil_);
   scratch_ = std::move(other.scratch_);
   return *this;
 }
@@ -41,6 +43,11 @@ void Framebuffer::clear_color(const Vec3f& color) {
 void Framebuffer::clear_depth(double depth) {
   wait_for_raster();
   depth_.fill(depth_to_unorm24(depth));
+}
+
+void Framebuffer::clear_stencil(uint8_t value) {
+  wait_for_raster();
+  stencil_.fill(value);
 }
 
 void Framebuffer::swap() {

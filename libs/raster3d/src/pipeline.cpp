@@ -238,6 +238,7 @@ void emit_prepared(const SetupParams& params, const Scissor& sc, const float* co
   }
 
   // Depth and varying planes from the unsnapped float window positions, in llvmpipe's arithmetic.
+  r.front = area > 0;
   const LpPlaneSetup ps(g, area > 0);
   depth_plane(ps, g, r);
   r.rx = ps.x0;
@@ -365,6 +366,10 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
   p.flat = state.flat;
   p.painter = state.painter;
   p.cull = state.cull == CullMode::back ? 1 : state.cull == CullMode::front ? 2 : 0;
+  p.color_write = state.color_write;
+  p.stencil_test = state.stencil_test;
+  p.stencil[0] = state.stencil_back;
+  p.stencil[1] = state.stencil_front;
   p.fb_width = fb.width();
   p.fb_height = fb.height();
   const bool whole = state.viewport.width <= 0 || state.viewport.height <= 0;
@@ -375,6 +380,36 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
   p.tiles_x = (fb.width() + kTileSize - 1) / kTileSize;
   p.tiles_y = (fb.height() + kTileSize - 1) / kTileSize;
   return p;
+}
+
+bool stencil_passes(const StencilFace& face, uint8_t s) {
+  const unsigned a = face.ref & face.mask, b = s & face.mask;
+  switch (face.func) {
+    case DepthFunc::never: return false;
+    case DepthFunc::less: return a < b;
+    case DepthFunc::equal: return a == b;
+    case DepthFunc::lequal: return a <= b;
+    case DepthFunc::greater: return a > b;
+    case DepthFunc::notequal: return a != b;
+    case DepthFunc::gequal: return a >= b;
+    case DepthFunc::always: return true;
+  }
+  return true;
+}
+
+void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s) {
+  unsigned v = s;
+  switch (op) {
+    case StencilOp::keep: return;
+    case StencilOp::zero: v = 0; break;
+    case StencilOp::replace: v = face.ref; break;
+    case StencilOp::incr: v = s == 255 ? 255 : s + 1; break;
+    case StencilOp::incr_wrap: v = uint8_t(s + 1); break;
+    case StencilOp::decr: v = s == 0 ? 0 : s - 1; break;
+    case StencilOp::decr_wrap: v = uint8_t(s - 1); break;
+    case StencilOp::invert: v = uint8_t(~s); break;
+  }
+  s = uint8_t((s & ~face.write_mask) | (v & face.write_mask));
 }
 
 FragmentState fragment_state(const RasterState& state) {

@@ -97,13 +97,13 @@ bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceV
   Vec3f surface = in.color;
   if (maps.texture) surface *= Vec3f(maps.texture->sample(in.uv, ddx.uv, ddy.uv));
   const Mat3f to_world(u.eye_to_world);
-  float visible = 1;
-  if (maps.shadow) {
+  float visible = u.light0;
+  if (maps.shadow && visible > 0) {
     // The shadow test needs the surface's true plane, the facet's, not the interpolated normal: it is the cross
     // product of the position's screen derivatives.
     const Vec3f facet = glm::cross(ddx.position, ddy.position);
     const Vec3f plane = glm::dot(facet, facet) > 0 ? facet : n;
-    visible = maps.shadow->visibility(Vec3f(u.eye_to_world * Vec4f(in.position, 1.0f)),
+    visible *= maps.shadow->visibility(Vec3f(u.eye_to_world * Vec4f(in.position, 1.0f)),
                                       glm::normalize(to_world * plane), maps.shadow_pcf);
   }
   Vec3f c = u.lighting.shade(n, in.position, surface, visible);

@@ -66,6 +66,11 @@ Mat4 ortho(double l, double r, double b, double t, double n, double f);
 /// [-k, k]. Throws InvalidInput for fovy outside (0, pi), aspect <= 0, or not 0 < n < f.
 Mat4 perspective(double fovy, double aspect, double n, double f);
 
+/// perspective with the far plane at infinity (f -> inf): [1/(aspect k) 0 0 0; 0 1/k 0 0; 0 0 -1 -2n; 0 0 -1 0]. A
+/// point at infinity in front of the camera, (d, 0) with d.z < 0, lands on the far plane (z = w) instead of beyond
+/// it, as z-fail shadow volumes need (Everitt and Kilgard 2002). Throws as perspective for fovy, aspect or n <= 0.
+Mat4 infinite_perspective(double fovy, double aspect, double n);
+
 /// The normal matrix: inverse transpose of the upper-left 3x3 of a model-view matrix.
 Mat3 normal_matrix(const Mat4& model_view);
 

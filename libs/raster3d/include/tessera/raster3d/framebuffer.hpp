@@ -4,8 +4,8 @@
 //
 // Color is 8-bit RGBA, as an OpenGL RGBA8 framebuffer: a fragment's color is clamped to [0, 1] and rounded to
 // nearest when written, so results compare with Mesa pixel for pixel. Depth is a 24-bit unsigned normalized integer
-// per pixel (0 = near plane, 2^24 - 1 = far plane), gl-raster-conventions.md item 7. Both images keep row 0 at the
-// top (DESIGN.md section 3); the pipeline maps OpenGL's window row j (y up) to image row height - 1 - j.
+// per pixel (0 = near plane, 2^24 - 1 = far plane), gl-raster-conventions.md item 7. Stencil is 8 bits per pixel
+// (GL's usual depth 24 / stencil 8). The images keep row 0 at the top (DESIGN.md section 3); the pipeline maps OpenGL's window row j (y up) to image row height - 1 - j.
 #include <cstdint>
 #include <memory>
 
@@ -40,12 +40,12 @@ namespace detail {
 struct RasterScratch;  // binning memory reused from draw to draw (pipeline.cpp)
 }  // namespace detail
 
-/// Color + depth buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
+/// Color, depth and stencil buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
 /// The pipeline's raster thread may still be writing the buffers after a Context call returns: read them through
 /// Context::framebuffer(), which waits; clear_*, swap, moves and the destructor wait too.
 class Framebuffer {
  public:
-  /// A width x height framebuffer, color black, depth cleared to the far plane. Throws InvalidInput for sizes < 1.
+  /// A width x height framebuffer, color black, depth cleared to the far plane, stencil 0. Throws InvalidInput for sizes < 1.
   Framebuffer(int width, int height);
   ~Framebuffer();
   Framebuffer(Framebuffer&&) noexcept;
@@ -61,6 +61,9 @@ class Framebuffer {
   /// The depth buffer: 24-bit unorm values in uint32, row 0 at the top.
   Image<uint32_t>& depth() { return depth_; }
   const Image<uint32_t>& depth() const { return depth_; }
+  /// The stencil buffer: 8 bits per pixel, row 0 at the top.
+  Image<uint8_t>& stencil() { return stencil_; }
+  const Image<uint8_t>& stencil() const { return stencil_; }
   /// The front color buffer: what the last swap() presented.
   const ImageRGBA8& front() const { return front_; }
 
@@ -68,7 +71,9 @@ class Framebuffer {
   void clear_color(const Vec3f& color);
   /// Clears the depth buffer to window z `depth` (default the far plane, 1.0).
   void clear_depth(double depth = 1.0);
-  /// Clears both buffers.
+  /// Clears the stencil buffer to `value` (glClearStencil + glClear(GL_STENCIL_BUFFER_BIT)).
+  void clear_stencil(uint8_t value = 0);
+  /// Clears color and depth.
   void clear(const Vec3f& color, double depth = 1.0) {
     clear_color(color);
     clear_depth(depth);
@@ -89,6 +94,7 @@ class Framebuffer {
 
   ImageRGBA8 color_, front_;
   Image<uint32_t> depth_;
+  Image<uint8_t> stencil_;
   std::unique_ptr<detail::RasterScratch> scratch_;
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 // The 3D pipeline as free function templates over a vertex shader and a fragment shader (shaders.hpp):
 // vertex stage -> primitive assembly -> clipping in homogeneous clip space (all six planes, Sutherland-Hodgman) ->
-// perspective divide -> viewport -> 1/256-pixel snapping -> integer edge functions with the tie rule -> depth test ->
-// fragment shader -> 8-bit color write. The rules are gl-raster-conventions.md's (Mesa's), so the output compares with
+// perspective divide -> viewport -> 1/256-pixel snapping -> integer edge functions with the tie rule -> stencil test
+// (when on) -> depth test -> fragment shader -> 8-bit color write. The stencil operations are applied by the tests'
+// outcome, before the fragment shader (as GLSL's early_fragment_tests): a discard does not undo them. The rules are gl-raster-conventions.md's (Mesa's), so the output compares with
 // OpenGL pixel for pixel.
 //
 // Triangles are binned to 64 x 64 screen tiles and the tiles rasterized in parallel (oneTBB), each in submission order,
@@ -22,6 +23,20 @@ enum class DepthFunc { never, less, equal, lequal, greater, notequal, gequal, al
 /// Which faces are discarded before rasterization (glCullFace); the front face is counterclockwise on screen.
 enum class CullMode { none, back, front };
 
+/// What a stencil test outcome does to the stored stencil value (glStencilOp). The wrapping forms go 255 -> 0 and
+/// 0 -> 255; incr and decr clamp.
+enum class StencilOp { keep, zero, replace, incr, incr_wrap, decr, decr_wrap, invert };
+
+/// The stencil state of one face orientation (glStencilFuncSeparate + glStencilOpSeparate + glStencilMaskSeparate).
+/// The test passes when `(ref & mask) func (stored & mask)`; a fragment that fails it is dropped after `fail`; one
+/// that passes it is then depth-tested: `zfail` when the depth test fails, `zpass` when it passes (or is off). The new
+/// value is written where `write_mask` has bits.
+struct StencilFace {
+  DepthFunc func = DepthFunc::always;
+  uint8_t ref = 0, mask = 0xff, write_mask = 0xff;
+  StencilOp fail = StencilOp::keep, zfail = StencilOp::keep, zpass = StencilOp::keep;
+};
+
 /// The viewport (glViewport) in OpenGL window coordinates: origin at the bottom-left pixel, y up.
 /// A zero width or height means the whole framebuffer.
 struct Viewport {
@@ -38,6 +53,10 @@ struct RasterState {
   bool flat = false;     ///< varyings are the last vertex's, not interpolated (GL_FLAT)
   bool painter = false;  ///< the painter's algorithm: sort by average depth, draw far to near, no
                          ///< depth test or write (the notes' alternative to the z-buffer)
+  bool color_write = true;    ///< store the fragment shader's color (glColorMask)
+  bool stencil_test = false;  ///< the stencil test and its operations (GL_STENCIL_TEST)
+  StencilFace stencil_front;  ///< for front faces (counterclockwise on screen), lines and points
+  StencilFace stencil_back;   ///< for back faces
 };
 
 /// What a draw did, for statistics.

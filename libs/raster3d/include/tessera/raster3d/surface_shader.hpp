@@ -74,6 +74,7 @@ struct SurfaceUniforms {
   Vec4f viewer{0, 0, 0, 1};     ///< the eye in eye space, homogeneous (see viewer_of): E = viewer.xyz - p viewer.w
   PreparedLighting lighting;    ///< prepare with color_material on, so that the textured color is C_r
   Vec3f color{1, 1, 1};         ///< the surface color for vertices without one
+  float light0 = 1;             ///< light 0's visibility before the shadow map's (0: the dark pass of shadow volumes)
   SurfaceMaps maps;
 
   /// Sets the matrices, eye_to_world and viewer for a camera (projection, view) and an object's model matrix.

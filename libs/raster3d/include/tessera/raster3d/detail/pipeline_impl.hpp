@@ -49,6 +49,7 @@ struct TriangleRecord {
   uint32_t varyings;       // offset in the chunk's varyings: constant, N floats; else the planes c[N+1], cx[N+1],
                            // cy[N+1] of 1/w and of each varying / w: value(px, py) = c + cx (px - rx) + cy (py - ry)
   bool constant;           // flat shading, or the three vertices' varyings are equal: no interpolation
+  bool front;              // counterclockwise on screen (the stencil state of front faces)
 };
 
 /// The triangles one setup task produced, and their per-tile lists (record indices in submission order).
@@ -156,6 +157,8 @@ struct SetupParams {
   int varying_count;      // N
   bool flat, painter;
   int cull;  // 0 none, 1 back, 2 front
+  bool color_write, stencil_test;
+  StencilFace stencil[2];  // back, front (indexed by TriangleRecord::front)
   int fb_width, fb_height;
   int vx, vy, vw, vh;  // the viewport
   int tiles_x, tiles_y;
@@ -266,6 +269,22 @@ inline bool depth_passes(uint32_t d, uint32_t s) {
     return d >= s;
   else
     return true;
+}
+
+/// The stencil test of `face` against the stored value s: (ref & mask) func (s & mask).
+bool stencil_passes(const StencilFace& face, uint8_t s);
+/// Applies `op` of `face` to the stored value s (through its write mask).
+void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s);
+
+/// The stencil test and the depth test outcome `depth_pass` of a fragment, with their stencil operations on s
+/// (params.stencil_test on): whether the fragment goes on to the fragment shader.
+inline bool stencil_and_depth(const StencilFace& face, bool depth_pass, uint8_t& s) {
+  if (!stencil_passes(face, s)) {
+    stencil_apply(face, face.fail, s);
+    return false;
+  }
+  stencil_apply(face, depth_pass ? face.zpass : face.zfail, s);
+  return depth_pass;
 }
 
 /// One constant color over image-row pixels [lo, hi) of image row r with the depth plane (za, zdx, zdy): depth test,
@@ -656,6 +675,87 @@ template <DepthFunc F>
 }
 #pragma GCC diagnostic pop
 
+/// The varying planes of a record (not constant) at the centers of GL row j: (c + cy dy) for 1/w and each varying,
+/// so that a pixel adds cx dx (each plane evaluated directly at the pixel center, as the vector loops do).
+template <int N>
+[[gnu::always_inline]] inline std::array<float, N + 1> row_planes(const TriangleRecord& r, const float* data, int j) {
+  const float* pc = data;
+  const float* py = data + 2 * (N + 1);
+  const float dy = float(j) + 0.5f - r.ry;
+  std::array<float, N + 1> base;
+  for (int k = 0; k <= N; ++k) base[k] = pc[k] + py[k] * dy;
+  return base;
+}
+
+/// Interpolates the varyings perspective-correctly at dx from the record's origin along a row (base from row_planes,
+/// px and py the planes' slopes) and runs the fragment shader; false when it discards.
+template <int N, class V, class FS>
+[[gnu::always_inline]] inline bool interpolated_fragment(const FS& fs, const float* base, const float* px,
+                                                         const float* py, float dx, Vec3f& c) {
+  const float w = 1.0f / (base[0] + px[0] * dx);
+  std::array<float, N> values;
+  for (int q = 0; q < N; ++q) values[q] = (base[q + 1] + px[q + 1] * dx) * w;
+  V v;
+  if constexpr (N > 0) std::memcpy(&v, values.data(), sizeof(float) * N);
+  if constexpr (DerivativeFragmentShader<FS, V> && N > 0) {
+    // value = P / Q with P (the varying / w) and Q (1 / w) affine on the screen, w = 1 / Q: so
+    // d value / dx = (dP/dx - value dQ/dx) w, and the same in y.
+    std::array<float, N> ddx, ddy;
+    for (int q = 0; q < N; ++q) {
+      ddx[q] = (px[q + 1] - values[q] * px[0]) * w;
+      ddy[q] = (py[q + 1] - values[q] * py[0]) * w;
+    }
+    V vx, vy;
+    std::memcpy(&vx, ddx.data(), sizeof(float) * N);
+    std::memcpy(&vy, ddy.data(), sizeof(float) * N);
+    return fs(v, vx, vy, c);
+  } else {
+    return run_fragment_shader(fs, v, V{}, V{}, c);
+  }
+}
+
+/// Rasterizes one record over GL pixels [x0, x1) x [y0, y1) pixel by pixel, with the stencil test (when on) and the
+/// color write mask: the path of draws that use them (shadow volumes, masks), not of ordinary shading.
+template <int N, class V, class FS, DepthFunc F>
+void raster_record_masked(Framebuffer& fb, const TriangleRecord& r, const float* data, const SetupParams& params,
+                          bool depth_write, int x0, int x1, int y0, int y1, const FS& fs) {
+  const bool constant = r.constant || N == 0;
+  Vec3f constant_color;
+  bool constant_kept = false;
+  if (constant) {
+    V v{};
+    if constexpr (N > 0) std::memcpy(&v, data, sizeof(float) * N);
+    constant_kept = run_fragment_shader(fs, v, V{}, V{}, constant_color);
+  }
+  const StencilFace& face = params.stencil[r.front];
+  const float* px = data + (N + 1);
+  const float* py = data + 2 * (N + 1);
+  for (int j = y0; j < y1; ++j) {
+    int lo = x0, hi = x1;
+    edge_span(r, j, lo, hi);
+    if (lo >= hi) continue;
+    const int row = fb.height() - 1 - j;
+    uint32_t* drow = fb.depth().row(row);
+    glm::u8vec4* crow = fb.color().row(row);
+    uint8_t* srow = fb.stencil().row(row);
+    uint32_t d[kTileSize];
+    bool pass[kTileSize];
+    test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
+    std::array<float, N + 1> base{};
+    if (!constant) base = row_planes<N>(r, data, j);
+    for (int k = 0; k < hi - lo; ++k) {
+      const bool go = params.stencil_test ? stencil_and_depth(face, pass[k], srow[lo + k]) : pass[k];
+      if (!go) continue;
+      Vec3f c = constant_color;
+      if (constant ? !constant_kept
+                   : !interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c))
+        continue;
+      if (params.color_write) crow[lo + k] = to_color8(c);
+      if (depth_write) drow[lo + k] = d[k];
+    }
+  }
+}
+
 /// Rasterizes the records binned to `tile` of every chunk of the pass, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& params, bool depth_write, int tile,
@@ -692,6 +792,10 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
       const int x0 = std::max(tile_x0, r.x0), x1 = std::min(tile_x1, r.x1);
       const int y0 = std::max(tile_y0, r.y0), y1 = std::min(tile_y1, r.y1);
       if (x0 >= x1 || y0 >= y1) continue;
+      if (params.stencil_test || !params.color_write) {
+        raster_record_masked<N, V, FS, F>(fb, r, data, params, write_depth, x0, x1, y0, y1, fs);
+        continue;
+      }
       if (r.constant || N == 0) {
         // Constant varyings: the fragment shader's answer is the same at every pixel.
         V v{};
@@ -727,7 +831,6 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
           continue;
         }
       }
-      const float* pc = data;
       const float* px = data + (N + 1);
       const float* py = data + 2 * (N + 1);
       for (int j = y0; j < y1; ++j) {
@@ -742,34 +845,11 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
         bool pass[kTileSize];
         const int n = hi - lo;
         test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
-        // Each varying plane evaluated directly at the pixel center, (c + cy dy) + cx dx, as the vector loop does.
-        const float dy = float(j) + 0.5f - r.ry;
-        std::array<float, N + 1> base;
-        for (int k = 0; k <= N; ++k) base[k] = pc[k] + py[k] * dy;
+        const auto base = row_planes<N>(r, data, j);
         for (int k = 0; k < n; ++k) {
           if (!pass[k]) continue;
-          const float dx = float(lo + k) + 0.5f - r.rx;
-          const float w = 1.0f / (base[0] + px[0] * dx);
-          std::array<float, N> values;
-          for (int q = 0; q < N; ++q) values[q] = (base[q + 1] + px[q + 1] * dx) * w;
-          V v;
-          if constexpr (N > 0) std::memcpy(&v, values.data(), sizeof(float) * N);
           Vec3f c;
-          if constexpr (DerivativeFragmentShader<FS, V> && N > 0) {
-            // value = P / Q with P (the varying / w) and Q (1 / w) affine on the screen, w = 1 / Q: so
-            // d value / dx = (dP/dx - value dQ/dx) w, and the same in y.
-            std::array<float, N> ddx, ddy;
-            for (int q = 0; q < N; ++q) {
-              ddx[q] = (px[q + 1] - values[q] * px[0]) * w;
-              ddy[q] = (py[q + 1] - values[q] * py[0]) * w;
-            }
-            V vx, vy;
-            std::memcpy(&vx, ddx.data(), sizeof(float) * N);
-            std::memcpy(&vy, ddy.data(), sizeof(float) * N);
-            if (!fs(v, vx, vy, c)) continue;
-          } else if (!fs(v, c)) {
-            continue;
-          }
+          if (!interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c)) continue;
           crow[lo + k] = to_color8(c);
           if (write_depth) drow[lo + k] = d[k];
         }
@@ -778,17 +858,21 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
   }
 }
 
-/// Depth-tests, shades and writes one fragment at GL pixel (i, j) (inside the scissor) with depth d and varyings.
+/// Stencil- and depth-tests, shades and writes one fragment (of a line or point: the front stencil state) at GL pixel
+/// (i, j) (inside the scissor) with depth d and varyings.
 template <int N, class V, class FS, DepthFunc F>
-void shade_fragment(Framebuffer& fb, int i, int j, uint32_t d, const float* values, bool depth_write, const FS& fs) {
+void shade_fragment(Framebuffer& fb, const SetupParams& params, int i, int j, uint32_t d, const float* values,
+                    bool depth_write, const FS& fs) {
   const int row = fb.height() - 1 - j;
   uint32_t& stored = fb.depth()(i, row);
-  if (!depth_passes<F>(d, stored)) return;
+  const bool depth_pass = depth_passes<F>(d, stored);
+  if (params.stencil_test ? !stencil_and_depth(params.stencil[1], depth_pass, fb.stencil()(i, row)) : !depth_pass)
+    return;
   V v{};
   if constexpr (N > 0) std::memcpy(&v, values, sizeof(float) * N);
   Vec3f c;
   if (!run_fragment_shader(fs, v, V{}, V{}, c)) return;
-  fb.color()(i, row) = to_color8(c);
+  if (params.color_write) fb.color()(i, row) = to_color8(c);
   if (depth_write) stored = d;
 }
 
@@ -827,7 +911,7 @@ void raster_segment(Framebuffer& fb, const SetupParams& params, bool depth_write
         values[q] = (a[4 + q] * wa.inv_w + t * (b[4 + q] * wb.inv_w - a[4 + q] * wa.inv_w)) / inv_w;
       in = values.data();
     }
-    shade_fragment<N, V, FS, F>(fb, i, j, d, in, depth_write, fs);
+    shade_fragment<N, V, FS, F>(fb, params, i, j, d, in, depth_write, fs);
   }
 }
 
@@ -890,7 +974,7 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
       const int i = int(std::floor(wv.x)), j = int(std::floor(wv.y));
       if (i < sc.x0 || i >= sc.x1 || j < sc.y0 || j >= sc.y1) continue;
       ++stats.rasterized;
-      detail::shade_fragment<n, V, FS, decltype(f)::value>(framebuffer, i, j, depth_to_unorm24(wv.z), v + 4,
+      detail::shade_fragment<n, V, FS, decltype(f)::value>(framebuffer, params, i, j, depth_to_unorm24(wv.z), v + 4,
                                                            fragment.depth_write, fs);
     }
   });
