@@ -139,6 +139,11 @@ mirror=(--size 48x48 --eye 0,0,4 --center 0,0,0 --floor --env green.png --reflec
 "$tessera" raster cube.obj -o shadowed_floor.png --size 96x64 --floor --shadows --shadow-size 512 --light-dir 1,1,0.3 \
   --eye 0,3,6 --stats > maps_stats.txt
 grep -q '^tris=12$' maps_stats.txt || { echo "expected tris=12 with the floor"; cat maps_stats.txt; exit 1; }
+# The same shadow by stencil shadow volumes, counted in front of the surface and behind it.
+for method in zpass zfail; do
+  "$tessera" raster cube.obj -o "volume_$method.png" --size 96x64 --floor --shadows --shadow-method "$method" \
+    --light-dir 1,1,0.3 --eye 0,3,6
+done
 $py - <<'PY'
 import numpy as np
 from PIL import Image
@@ -158,6 +163,11 @@ lit, shadowed = load('lit_floor.png'), load('shadowed_floor.png')
 darker = (lit.sum(axis=2) - shadowed.sum(axis=2) > 60).sum()
 brighter = (shadowed.sum(axis=2) - lit.sum(axis=2) > 3).sum()
 assert darker > 150 and brighter == 0, (darker, brighter)
+for method in ('zpass', 'zfail'):
+    volume = load(f'volume_{method}.png')
+    # The map's shadow and the volumes' agree but on its outline (the map's texels, its bias).
+    differ = (np.abs(volume - shadowed).max(axis=2) > 60).sum()
+    assert differ < darker / 10, (method, differ, darker)
 PY
 
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
@@ -192,6 +202,8 @@ expect_error 1 "per pixel" tquad.obj -o bad.png --texture halves.png --shading g
 expect_error 1 "wireframe" cube.obj -o bad.png --shadows --wireframe
 expect_error 1 "inside" cube.obj -o bad.png --shadows --light-pos 0,0,0
 expect_error 1 "env-cube" tquad.obj -o bad.png --env-cube
+expect_error 1 "add --shadows" cube.obj -o bad.png --shadow-method zfail
+expect_error 2 "shadow-method" cube.obj -o bad.png --shadows --shadow-method volume
 expect_error 2 "filter" tquad.obj -o bad.png --texture halves.png --filter cubic
 expect_error 2 "reflect" tquad.obj -o bad.png --env green.png --reflect 2
 echo "raster CLI ok"

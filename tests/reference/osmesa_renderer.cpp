@@ -5,6 +5,7 @@
 #include <mutex>
 #include <string>
 
+#define GL_GLEXT_PROTOTYPES  // glStencilFuncSeparate, glStencilOpSeparate, glStencilMaskSeparate (OpenGL 2.0)
 #include <GL/osmesa.h>
 #include <fmt/format.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -37,6 +38,40 @@ void load_matrix(GLenum mode, const Mat4f& m) {
   glLoadMatrixf(glm::value_ptr(m));
 }
 
+GLenum gl_compare(GlCompare f) {
+  switch (f) {
+    case GlCompare::never: return GL_NEVER;
+    case GlCompare::less: return GL_LESS;
+    case GlCompare::equal: return GL_EQUAL;
+    case GlCompare::lequal: return GL_LEQUAL;
+    case GlCompare::greater: return GL_GREATER;
+    case GlCompare::notequal: return GL_NOTEQUAL;
+    case GlCompare::gequal: return GL_GEQUAL;
+    case GlCompare::always: return GL_ALWAYS;
+  }
+  return GL_ALWAYS;
+}
+
+GLenum gl_stencil_op(GlStencilOp op) {
+  switch (op) {
+    case GlStencilOp::keep: return GL_KEEP;
+    case GlStencilOp::zero: return GL_ZERO;
+    case GlStencilOp::replace: return GL_REPLACE;
+    case GlStencilOp::incr: return GL_INCR;
+    case GlStencilOp::incr_wrap: return GL_INCR_WRAP;
+    case GlStencilOp::decr: return GL_DECR;
+    case GlStencilOp::decr_wrap: return GL_DECR_WRAP;
+    case GlStencilOp::invert: return GL_INVERT;
+  }
+  return GL_KEEP;
+}
+
+void stencil_face(GLenum face, const GlStencilFace& f) {
+  glStencilFuncSeparate(face, gl_compare(f.func), GLint(f.ref), GLuint(f.mask));
+  glStencilOpSeparate(face, gl_stencil_op(f.fail), gl_stencil_op(f.zfail), gl_stencil_op(f.zpass));
+  glStencilMaskSeparate(face, GLuint(f.write_mask));
+}
+
 }  // namespace
 
 struct OsmesaContext::Impl {
@@ -52,18 +87,20 @@ OsmesaContext::OsmesaContext(int width, int height, int rasterizer_threads)
     const char* env = std::getenv("LP_NUM_THREADS");
     g_rasterizer_threads = env != nullptr ? std::atoi(env) : -1;
   });
-  // RGBA, 24-bit depth, no stencil or accumulation buffer.
-  impl_->context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 0, 0, nullptr);
+  // RGBA, 24-bit depth, 8-bit stencil, no accumulation buffer.
+  impl_->context = OSMesaCreateContextExt(OSMESA_RGBA, 24, 8, 0, nullptr);
   if (impl_->context == nullptr) throw Error("OSMesa: OSMesaCreateContextExt failed");
   if (!OSMesaMakeCurrent(impl_->context, buffer_.data(), GL_UNSIGNED_BYTE, width, height)) {
     OSMesaDestroyContext(impl_->context);
     throw Error("OSMesa: OSMesaMakeCurrent failed");
   }
-  GLint depth_bits = 0;
+  GLint depth_bits = 0, stencil_bits = 0;
   glGetIntegerv(GL_DEPTH_BITS, &depth_bits);
-  if (depth_bits != 24) {
+  glGetIntegerv(GL_STENCIL_BITS, &stencil_bits);
+  if (depth_bits != 24 || stencil_bits != 8) {
     OSMesaDestroyContext(impl_->context);
-    throw Error(fmt::format("OSMesa: expected a 24-bit depth buffer, got {} bits", depth_bits));
+    throw Error(fmt::format("OSMesa: expected a 24-bit depth and an 8-bit stencil buffer, got {} and {} bits",
+                            depth_bits, stencil_bits));
   }
   glViewport(0, 0, width, height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -107,10 +144,17 @@ void OsmesaContext::begin(const GlState& s) {
   }
   if (s.depth_test) {
     glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
+    glDepthFunc(gl_compare(s.depth_func));
   } else {
     glDisable(GL_DEPTH_TEST);
   }
+  if (s.stencil_test) {
+    glEnable(GL_STENCIL_TEST);
+  } else {
+    glDisable(GL_STENCIL_TEST);
+  }
+  stencil_face(GL_FRONT, s.stencil_front);
+  stencil_face(GL_BACK, s.stencil_back);
   glColor3f(s.color.x, s.color.y, s.color.z);
   if (s.texture != nullptr) {
     const GlTexture& t = *s.texture;
@@ -130,11 +174,20 @@ void OsmesaContext::begin(const GlState& s) {
   } else {
     glDisable(GL_TEXTURE_2D);
   }
-  if (s.clear) {
+  if (s.clear) {  // glClear obeys the write masks: all on for it
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthMask(GL_TRUE);
+    glStencilMask(0xff);
     glClearColor(s.background.x, s.background.y, s.background.z, 1.0f);
     glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glClearStencil(GLint(s.clear_stencil));
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT | GL_STENCIL_BUFFER_BIT);
+    glStencilMaskSeparate(GL_FRONT, GLuint(s.stencil_front.write_mask));
+    glStencilMaskSeparate(GL_BACK, GLuint(s.stencil_back.write_mask));
   }
+  const GLboolean color_write = s.color_write ? GL_TRUE : GL_FALSE;
+  glColorMask(color_write, color_write, color_write, color_write);
+  glDepthMask(s.depth_write ? GL_TRUE : GL_FALSE);
 }
 
 void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
@@ -185,14 +238,18 @@ GlFrame OsmesaContext::read() const {
   const size_t w = size_t(width_), h = size_t(height_);
   std::vector<uint8_t> rgb(w * h * 3);
   std::vector<uint32_t> depth(w * h);
+  std::vector<uint8_t> stencil(w * h);
   glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
   glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, depth.data());
+  glReadPixels(0, 0, width_, height_, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil.data());
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:x}", error));
   frame.rgb.resize(rgb.size());
   frame.depth.resize(depth.size());
+  frame.stencil.resize(stencil.size());
   for (size_t row = 0; row < h; ++row) {  // GL row 0 is the bottom
     const size_t gl_row = h - 1 - row;
     std::copy_n(rgb.begin() + std::ptrdiff_t(gl_row * w * 3), w * 3, frame.rgb.begin() + std::ptrdiff_t(row * w * 3));
+    std::copy_n(stencil.begin() + std::ptrdiff_t(gl_row * w), w, frame.stencil.begin() + std::ptrdiff_t(row * w));
     // GL_UNSIGNED_INT scales depth to 32 bits; the top 24 are the stored value.
     for (size_t x = 0; x < w; ++x) frame.depth[row * w + x] = depth[gl_row * w + x] >> 8;
   }

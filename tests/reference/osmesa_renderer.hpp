@@ -48,6 +48,21 @@ struct GlTexture {
   GlFilter filter = GlFilter::nearest;
 };
 
+/// A comparison (glDepthFunc, glStencilFuncSeparate): raster3d::DepthFunc's values, in its order.
+enum class GlCompare { never, less, equal, lequal, greater, notequal, gequal, always };
+
+/// What a stencil test outcome does to the stored value (glStencilOpSeparate): raster3d::StencilOp's values, in its
+/// order.
+enum class GlStencilOp { keep, zero, replace, incr, incr_wrap, decr, decr_wrap, invert };
+
+/// The stencil state of one face orientation (glStencilFuncSeparate + glStencilOpSeparate + glStencilMaskSeparate):
+/// raster3d::StencilFace's fields, OpenGL's defaults.
+struct GlStencilFace {
+  GlCompare func = GlCompare::always;
+  uint8_t ref = 0, mask = 0xff, write_mask = 0xff;
+  GlStencilOp fail = GlStencilOp::keep, zfail = GlStencilOp::keep, zpass = GlStencilOp::keep;
+};
+
 /// The fixed-function state of one drawing.
 struct GlState {
   Mat4f projection{1.0f};  ///< loaded with glMatrixMode(GL_PROJECTION) + glLoadMatrixf
@@ -55,12 +70,19 @@ struct GlState {
   bool lighting = false;   ///< GL_LIGHTING with GL_LIGHT0; off: the flat color (or per-vertex colors) unlit
   GlLight light;
   GlMaterial material;
-  bool smooth = true;       ///< glShadeModel(GL_SMOOTH), else GL_FLAT (the last vertex of a triangle colors it)
-  bool cull_back = false;   ///< glEnable(GL_CULL_FACE) with glCullFace(GL_BACK), front faces counterclockwise
-  bool depth_test = true;   ///< GL_DEPTH_TEST with GL_LESS
-  Vec3f color{1, 1, 1};     ///< glColor3f when unlit and the mesh has no colors
+  bool smooth = true;      ///< glShadeModel(GL_SMOOTH), else GL_FLAT (the last vertex of a triangle colors it)
+  bool cull_back = false;  ///< glEnable(GL_CULL_FACE) with glCullFace(GL_BACK), front faces counterclockwise
+  bool depth_test = true;  ///< GL_DEPTH_TEST with glDepthFunc(depth_func)
+  GlCompare depth_func = GlCompare::less;
+  bool depth_write = true;      ///< glDepthMask
+  bool color_write = true;      ///< glColorMask (all four channels on or off)
+  bool stencil_test = false;    ///< GL_STENCIL_TEST
+  GlStencilFace stencil_front;  ///< GL_FRONT's stencil state (counterclockwise faces, lines, points)
+  GlStencilFace stencil_back;   ///< GL_BACK's
+  Vec3f color{1, 1, 1};         ///< glColor3f when unlit and the mesh has no colors
   Vec3f background{0, 0, 0};
-  bool clear = true;        ///< clear color and depth (to 1.0) before drawing
+  uint8_t clear_stencil = 0;  ///< glClearStencil
+  bool clear = true;  ///< clear color, depth (to 1.0) and stencil (to clear_stencil) before drawing, all write masks on
   const GlTexture* texture = nullptr;  ///< GL_TEXTURE_2D with GL_REPLACE (the texel is the color), or off
 };
 
@@ -80,17 +102,20 @@ struct GlMesh {
 /// What OpenGL drew, top row first.
 struct GlFrame {
   int width = 0, height = 0;
-  std::vector<uint8_t> rgb;     ///< 3 bytes per pixel
-  std::vector<uint32_t> depth;  ///< 24-bit depth per pixel (2^24 - 1 = cleared / far)
+  std::vector<uint8_t> rgb;      ///< 3 bytes per pixel
+  std::vector<uint32_t> depth;   ///< 24-bit depth per pixel (2^24 - 1 = cleared / far)
+  std::vector<uint8_t> stencil;  ///< 8-bit stencil value per pixel
 
   uint8_t channel(int x, int y, int c) const { return rgb[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)]; }
   uint32_t depth_at(int x, int y) const { return depth[size_t(y) * size_t(width) + size_t(x)]; }
+  uint8_t stencil_at(int x, int y) const { return stencil[size_t(y) * size_t(width) + size_t(x)]; }
 };
 
-/// An OSMesa context with an RGBA color buffer and a 24-bit depth buffer, current on the calling thread while it
-/// lives. llvmpipe reads LP_NUM_THREADS once per process, when the first context is created: `rasterizer_threads`
-/// (>= 0; 0 rasterizes on the calling thread) is only honoured by the process's first context, later ones keep that
-/// first value (rasterizer_threads() says which). Throws tessera::Error when OSMesa cannot create the context.
+/// An OSMesa context with an RGBA color buffer, a 24-bit depth buffer and an 8-bit stencil buffer, current on the
+/// calling thread while it lives. llvmpipe reads LP_NUM_THREADS once per process, when the first context is created:
+/// `rasterizer_threads` (>= 0; 0 rasterizes on the calling thread) is only honoured by the process's first context,
+/// later ones keep that first value (rasterizer_threads() says which). Throws tessera::Error when OSMesa cannot create
+/// the context.
 class OsmesaContext {
  public:
   OsmesaContext(int width, int height, int rasterizer_threads = -1);  ///< -1: leave LP_NUM_THREADS as it is
@@ -103,14 +128,14 @@ class OsmesaContext {
   /// The LP_NUM_THREADS value in force when the process's first context was created (-1: unset, llvmpipe's default).
   static int rasterizer_threads();
 
-  /// Sets the fixed-function state (matrices, lighting, material, shade model, culling, depth test) and clears when
-  /// state.clear is set.
+  /// Sets the fixed-function state (matrices, lighting, material, shade model, culling, depth and stencil tests,
+  /// write masks) and clears when state.clear is set. A later begin with clear off draws over the same buffers.
   void begin(const GlState& state);
   /// Draws the mesh's triangles with the current state.
   void draw(const GlMesh& mesh, GlSubmit submit);
   /// glFinish: returns when every drawing has reached the framebuffer.
   void finish();
-  /// Reads color and depth back (after glFinish), flipped to top-row-first.
+  /// Reads color, depth and stencil back (after glFinish), flipped to top-row-first.
   GlFrame read() const;
 
  private:

@@ -19,6 +19,7 @@
 #include "tessera/mesh/normals.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
+#include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 
 namespace tessera::cli {
@@ -31,7 +32,7 @@ struct RasterArgs {
   int repeat = 1;
   CameraOptions camera;
   // The maps (drawn per pixel by raster3d's surface shaders).
-  std::string texture, filter = "trilinear", bump, env;
+  std::string texture, filter = "trilinear", bump, env, shadow_method = "map";
   double bump_scale = 0.01, reflect = 0.6;
   bool shadows = false, floor = false, env_cube = false, shading_given = false;
   int shadow_size = 2048;
@@ -128,7 +129,12 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   }
   if (a.env_cube && !environment && !a.floor)
     throw InvalidInput("--env-cube: nothing around the mesh to reflect; add --env or --floor");
-  const Mat4 view = camera.view(), projection = camera.projection();
+  // z-fail shadow volumes need the far cap at infinity inside the view volume: a far plane at infinity.
+  const bool volumes = a.shadows && a.shadow_method != "map";
+  const Mat4 view = camera.view(),
+             projection = volumes && a.shadow_method == "zfail"
+                              ? infinite_perspective(camera.fovy, camera.aspect, camera.near)
+                              : camera.projection();
   // The light, as in the fixed-function path: a direction or a point in world space, else over the viewer's
   // upper-left shoulder (fixed in eye space). `lighting_under(v)` places it in the eye space of view v.
   const bool point_light = !a.light_pos.empty();
@@ -145,7 +151,11 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   };
   // The map is fitted to the mesh, the only caster: the floor beyond it is shadowed all the same.
   std::optional<raster3d::ShadowMap> shadow;
-  if (a.shadows)
+  std::vector<raster3d::ShadowVolume> shadow_volumes;
+  if (volumes)
+    shadow_volumes.push_back(raster3d::shadow_volume(raster3d::VertexArrays::from_mesh(mesh).positions, mesh.indices,
+                                                     Vec4f(Vec3f(light), point_light ? 1.0f : 0.0f)));
+  else if (a.shadows)
     shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(light, box.lo, box.hi)
                                               : raster3d::ShadowMap::directional(light, box.lo, box.hi));
 
@@ -193,8 +203,22 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
       u.maps.cube = &*cube;
     }
     fb.clear(background);
-    raster3d::draw_surface(fb, state, arrays, u, bump ? &tangents : nullptr);
-    if (a.floor) raster3d::draw_surface(fb, raster3d::RasterState{}, floor, floor_uniforms);
+    // Light 0 off (0) or on (1), as the shadow volumes' passes ask; without them, on.
+    const auto draw_scene = [&](const raster3d::RasterState& pass, float light0) {
+      raster3d::RasterState mesh_state = pass;
+      mesh_state.cull = state.cull;
+      raster3d::SurfaceUniforms mesh_uniforms = u, f = floor_uniforms;
+      mesh_uniforms.light0 = f.light0 = light0;
+      raster3d::draw_surface(fb, mesh_state, arrays, mesh_uniforms, bump ? &tangents : nullptr);
+      if (a.floor) raster3d::draw_surface(fb, pass, floor, f);
+    };
+    if (volumes)
+      raster3d::draw_with_shadow_volumes(fb, shadow_volumes, Mat4f(projection * view),
+                                         a.shadow_method == "zfail" ? raster3d::ShadowCount::zfail
+                                                                    : raster3d::ShadowCount::zpass,
+                                         draw_scene);
+    else
+      draw_scene(raster3d::RasterState{}, 1.0f);
   }
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (environment) raster3d::fill_background(fb, *environment, projection * view);
@@ -240,6 +264,8 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   if (a.maps() && a.shading_given && shading != raster3d::ShadingModel::phong)
     throw InvalidInput(fmt::format("--shading {}: texture, bump, environment and shadow mapping are per pixel "
                                    "(--shading phong, the default with them)", a.shading));
+  if (a.shadow_method != "map" && !a.shadows)
+    throw InvalidInput(fmt::format("--shadow-method {}: shadows are off; add --shadows", a.shadow_method));
   if (a.maps() && a.wireframe)
     throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
 
@@ -355,6 +381,11 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_flag("--env-cube", a->env_cube,
                "Reflect what surrounds the mesh (--floor, --env) through a cube map rendered from its center");
   cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
+  cmd.add_option("--shadow-method", a->shadow_method,
+                 "With --shadows: map (shadow mapping) | zpass | zfail (stencil shadow volumes, counted in front of or "
+                 "behind the surface; zfail is right with the eye in shadow)")
+      ->check(CLI::IsMember({"map", "zpass", "zfail"}))
+      ->capture_default_str();
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
       ->check(CLI::Range(16, 16384))
       ->capture_default_str();
