@@ -195,6 +195,23 @@ void Context::cull(CullMode mode) {
   submit_batch();
   state_.cull = mode;
 }
+void Context::color_write(bool on) {
+  submit_batch();
+  state_.color_write = on;
+}
+void Context::stencil_test(bool on) {
+  submit_batch();
+  state_.stencil_test = on;
+}
+void Context::stencil(const StencilFace& front, const StencilFace& back) {
+  submit_batch();
+  state_.stencil_front = front;
+  state_.stencil_back = back;
+}
+void Context::clear_stencil(uint8_t value) {
+  flush();
+  framebuffer_.clear_stencil(value);
+}
 void Context::shading(ShadingModel model) {
   submit_batch();
   shading_ = model;

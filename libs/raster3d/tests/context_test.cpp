@@ -442,6 +442,51 @@ TEST(Context, PainterModeDrawsFarToNear) {
   EXPECT_EQ(render(HiddenSurface::zbuffer, false), glm::u8vec4(0, 255, 0, 255));
 }
 
+TEST(Context, StencilMaskConfinesLaterDrawing) {
+  // A triangle drawn into the stencil buffer only (no color, no depth), then a red full-screen quad where the stencil
+  // holds 1: red exactly where the same triangle drawn in color covers, black elsewhere; the state changes are
+  // pipelined with the draws.
+  auto quad = [](Context& ctx, Vec3f color) {
+    ctx.begin(Primitive::quads);
+    ctx.color(color);
+    for (auto [x, y] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}}) ctx.vertex(x, y, 0);
+    ctx.end();
+  };
+  auto triangle = [](Context& ctx) {
+    ctx.begin(Primitive::triangles);
+    ctx.color({1, 0, 0});
+    for (auto [x, y] : {std::pair{-0.8, -0.7}, {0.9, -0.2}, {-0.1, 0.8}}) ctx.vertex(x, y, 0);
+    ctx.end();
+  };
+  Context masked(32, 32), direct(32, 32);
+  for (Context* ctx : {&masked, &direct}) {
+    ctx->ortho(-1, 1, -1, 1, -1, 1);
+    ctx->clear({0, 0, 0});
+    ctx->depth_test(false);
+  }
+  masked.clear_stencil(0);
+  masked.stencil_test(true);
+  masked.color_write(false);
+  StencilFace write_one{.func = DepthFunc::always, .ref = 1, .zpass = StencilOp::replace};
+  masked.stencil(write_one, write_one);
+  triangle(masked);
+  masked.color_write(true);
+  StencilFace where_one{.func = DepthFunc::equal, .ref = 1};
+  masked.stencil(where_one, where_one);
+  quad(masked, {1, 0, 0});
+  triangle(direct);
+  const Framebuffer& a = masked.framebuffer();
+  const Framebuffer& b = direct.framebuffer();
+  int red = 0;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) {
+      ASSERT_EQ(a.color()(x, y), b.color()(x, y)) << x << ", " << y;
+      ASSERT_EQ(a.stencil()(x, y), b.color()(x, y).x ? 1 : 0) << x << ", " << y;
+      red += a.color()(x, y).x ? 1 : 0;
+    }
+  EXPECT_GT(red, 200);
+}
+
 TEST(Context, GtLayerMisuseThrows) {
   gt::gtMakeCurrent(nullptr);
   EXPECT_THROW(gt::gtVertex(0, 0, 0), InvalidInput);

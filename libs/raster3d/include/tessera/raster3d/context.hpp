@@ -123,6 +123,13 @@ class Context {
   void depth_func(DepthFunc func);
   void depth_write(bool on);
   void cull(CullMode mode);
+  /// glColorMask (all channels), GL_STENCIL_TEST, and the stencil state of front and back faces
+  /// (glStencilFuncSeparate, glStencilOpSeparate, glStencilMaskSeparate; RasterState).
+  void color_write(bool on);
+  void stencil_test(bool on);
+  void stencil(const StencilFace& front, const StencilFace& back);
+  /// Clears the stencil buffer to `value` (after flush()).
+  void clear_stencil(uint8_t value = 0);
   /// Where lighting is evaluated (unlit = lighting off); flat also selects OpenGL's flat shade model.
   void shading(ShadingModel model);
   ShadingModel shading() const { return shading_; }
