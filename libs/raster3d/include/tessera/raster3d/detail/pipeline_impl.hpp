@@ -715,12 +715,31 @@ template <int N, class V, class FS>
   }
 }
 
+/// The rows of a record within GL pixels [x0, x1) x [y0, y1): for each, the covered span [lo, hi) depth-tested at
+/// once (early z, vectorized), then `pixels(j, image row, lo, hi, d, pass)` with the depth and outcome of each pixel
+/// from lo.
+template <DepthFunc F, class Pixels>
+[[gnu::always_inline]] inline void for_each_tested_span(Framebuffer& fb, const TriangleRecord& r, int x0, int x1,
+                                                        int y0, int y1, Pixels&& pixels) {
+  for (int j = y0; j < y1; ++j) {
+    int lo = x0, hi = x1;
+    edge_span(r, j, lo, hi);
+    if (lo >= hi) continue;
+    const int row = fb.height() - 1 - j;
+    uint32_t d[kTileSize];
+    bool pass[kTileSize];
+    test_span<F>(fb.depth().row(row), lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
+    pixels(j, row, lo, hi, d, pass);
+  }
+}
+
 /// Rasterizes one record over GL pixels [x0, x1) x [y0, y1) pixel by pixel, with the stencil test (when on) and the
 /// color write mask: the path of draws that use them (shadow volumes, masks), not of ordinary shading (out of line: it
 /// leaves the ordinary loops' code as it was).
 template <int N, class V, class FS, DepthFunc F>
-[[gnu::noinline]] void raster_record_masked(Framebuffer& fb, const TriangleRecord& r, const float* data, const SetupParams& params,
-                          bool depth_write, int x0, int x1, int y0, int y1, const FS& fs) {
+[[gnu::noinline]] void raster_record_masked(Framebuffer& fb, const TriangleRecord& r, const float* data,
+                                            const SetupParams& params, bool depth_write, int x0, int x1, int y0,
+                                            int y1, const FS& fs) {
   const bool constant = r.constant || N == 0;
   Vec3f constant_color;
   bool constant_kept = false;
@@ -732,17 +751,10 @@ template <int N, class V, class FS, DepthFunc F>
   const StencilFace& face = params.stencil[r.front];
   const float* px = data + (N + 1);
   const float* py = data + 2 * (N + 1);
-  for (int j = y0; j < y1; ++j) {
-    int lo = x0, hi = x1;
-    edge_span(r, j, lo, hi);
-    if (lo >= hi) continue;
-    const int row = fb.height() - 1 - j;
+  const auto shade_span = [&](int j, int row, int lo, int hi, const uint32_t* d, const bool* pass) {
     uint32_t* drow = fb.depth().row(row);
     glm::u8vec4* crow = fb.color().row(row);
     uint8_t* srow = fb.stencil().row(row);
-    uint32_t d[kTileSize];
-    bool pass[kTileSize];
-    test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
     std::array<float, N + 1> base{};
     if (!constant) base = row_planes<N>(r, data, j);
     for (int k = 0; k < hi - lo; ++k) {
@@ -755,7 +767,8 @@ template <int N, class V, class FS, DepthFunc F>
       if (params.color_write) crow[lo + k] = to_color8(c);
       if (depth_write) drow[lo + k] = d[k];
     }
-  }
+  };
+  for_each_tested_span<F>(fb, r, x0, x1, y0, y1, shade_span);
 }
 
 /// Rasterizes the records binned to `tile` of every chunk of the pass, in submission order.
@@ -836,27 +849,19 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
       }
       const float* px = data + (N + 1);
       const float* py = data + 2 * (N + 1);
-      for (int j = y0; j < y1; ++j) {
-        int lo = x0, hi = x1;
-        edge_span(r, j, lo, hi);
-        if (lo >= hi) continue;
-        const int row = height - 1 - j;
+      const auto shade_span = [&](int j, int row, int lo, int hi, const uint32_t* d, const bool* pass) {
         uint32_t* drow = depth.row(row);
         glm::u8vec4* crow = color.row(row);
-        // Depth test of the whole span first (vectorizes), then the fragment shader where it passed.
-        uint32_t d[kTileSize];
-        bool pass[kTileSize];
-        const int n = hi - lo;
-        test_span<F>(drow, lo, hi, r.za, r.zdx, r.zdy, float(row), d, pass);
         const auto base = row_planes<N>(r, data, j);
-        for (int k = 0; k < n; ++k) {
+        for (int k = 0; k < hi - lo; ++k) {
           if (!pass[k]) continue;
           Vec3f c;
           if (!interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c)) continue;
           crow[lo + k] = to_color8(c);
           if (write_depth) drow[lo + k] = d[k];
         }
-      }
+      };
+      for_each_tested_span<F>(fb, r, x0, x1, y0, y1, shade_span);
     }
   }
 }
