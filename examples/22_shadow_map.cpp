@@ -7,40 +7,16 @@
 #include "gallery.hpp"
 #include "mesh_view.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/mesh/convert.hpp"
-#include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
-
-namespace {
 
 using namespace tessera;
 
-struct Object {
-  raster3d::VertexArrays arrays;
-  Mat4 model;
-  Vec3f color;
-};
-
-std::vector<Object> scene() {
-  raster3d::VertexArrays floor = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1)));
-  return {{floor, scale(3, 1, 3), {0.85f, 0.85f, 0.8f}},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(48, 24))), translate(-0.9, 0.6, 0.4) *
-                                                                                       scale(0.6, 0.6, 0.6),
-           {0.8f, 0.3f, 0.25f}},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_torus(0.55, 0.18, 64, 24))),
-           translate(0.9, 0.75, -0.2) * rotate_x(radians(75)), {0.3f, 0.5f, 0.8f}},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(examples::with_face_normals(make_box()))),
-           translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}}};
-}
-
-}  // namespace
-
 TESSERA_EXAMPLE(ex22_shadow_map, "22_shadow_map", "Shadow mapping: the light's depth map, hard and filtered shadows") {
-  const std::vector<Object> objects = scene();
+  const std::vector<examples::SceneObject> objects = examples::shadow_scene();
   const Vec3 to_light = glm::normalize(Vec3(-0.7, 1.0, 0.5));
   const Mat4 light = raster3d::ShadowMap::directional(to_light, {-3, 0, -3}, {3, 1.5, 3});
   raster3d::ShadowMap map(128, light);  // coarse on purpose: its texels show at the shadow edges
-  for (const Object& o : objects) map.draw(o.arrays, o.model);
+  for (const examples::SceneObject& o : objects) map.draw(o.arrays, o.model);
 
   const int w = 300, h = 240, s = 2;
   std::vector<ImageRGB> panels;
@@ -62,7 +38,7 @@ TESSERA_EXAMPLE(ex22_shadow_map, "22_shadow_map", "Shadow mapping: the light's d
   for (const int pcf : {0, 2}) {
     raster3d::Framebuffer fb(w * s, h * s);
     fb.clear({1, 1, 1});
-    for (const Object& o : objects) {
+    for (const examples::SceneObject& o : objects) {
       raster3d::SurfaceUniforms u;
       u.set_camera(projection, view, o.model);
       u.lighting = raster3d::PreparedLighting(examples::surface_lighting(to_light, view, 0.25f));

@@ -7,8 +7,6 @@
 #include "gallery.hpp"
 #include "mesh_view.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/mesh/convert.hpp"
-#include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 
@@ -16,29 +14,12 @@ namespace {
 
 using namespace tessera;
 
-struct Object {
-  raster3d::VertexArrays arrays;
-  Mat4 model;
-  Vec3f color;
-  bool casts;  // closed meshes cast; the floor only receives
-};
-
-std::vector<Object> scene() {
-  return {{raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1))), scale(3, 1, 3), {0.85f, 0.85f, 0.8f},
-           false},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(48, 24))),
-           translate(-0.9, 0.6, 0.4) * scale(0.6, 0.6, 0.6), {0.8f, 0.3f, 0.25f}, true},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_torus(0.55, 0.18, 64, 24))),
-           translate(0.9, 0.75, -0.2) * rotate_x(radians(75)), {0.3f, 0.5f, 0.8f}, true},
-          {raster3d::VertexArrays::from_mesh(to_tri_mesh(examples::with_face_normals(make_box()))),
-           translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}, true}};
-}
-
-/// The shadow volumes of the casters for a light given homogeneously (world space).
-std::vector<raster3d::ShadowVolume> volumes(const std::vector<Object>& objects, const Vec4f& light) {
+/// The shadow volumes of the casters (all but the floor, the first object) for a light given homogeneously (world
+/// space).
+std::vector<raster3d::ShadowVolume> volumes(const std::vector<examples::SceneObject>& objects, const Vec4f& light) {
   std::vector<raster3d::ShadowVolume> out;
-  for (const Object& o : objects) {
-    if (!o.casts) continue;
+  for (const examples::SceneObject& o : objects) {
+    if (&o == &objects.front()) continue;  // the floor only receives
     std::vector<Vec3f> world;
     for (const Vec3f& p : o.arrays.positions) world.push_back(Vec3f(transform_point(o.model, Vec3(p))));
     out.push_back(raster3d::shadow_volume(world, o.arrays.indices, light));
@@ -50,7 +31,7 @@ std::vector<raster3d::ShadowVolume> volumes(const std::vector<Object>& objects, 
 
 TESSERA_EXAMPLE(ex25_shadow_volumes, "25_shadow_volumes",
                 "Shadow volumes: stencil counts, exact shadows, z-pass against z-fail with the eye in shadow") {
-  const std::vector<Object> objects = scene();
+  const std::vector<examples::SceneObject> objects = examples::shadow_scene();
   const Vec3 to_light = glm::normalize(Vec3(-0.7, 1.0, 0.5));
   const std::vector<raster3d::ShadowVolume> shadow = volumes(objects, Vec4f(Vec3f(to_light), 0));
   const int w = 300, h = 240, s = 2;
@@ -62,7 +43,7 @@ TESSERA_EXAMPLE(ex25_shadow_volumes, "25_shadow_volumes",
     fb.clear({1, 1, 1});
     raster3d::draw_with_shadow_volumes(fb, shadow, Mat4f(projection * view), count,
                                        [&](const raster3d::RasterState& state, float light0) {
-                                         for (const Object& o : objects) {
+                                         for (const examples::SceneObject& o : objects) {
                                            raster3d::SurfaceUniforms u;
                                            u.set_camera(projection, view, o.model);
                                            u.lighting = raster3d::PreparedLighting(

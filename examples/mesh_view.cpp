@@ -8,8 +8,10 @@
 #include <cmath>
 
 #include "tessera/math/transform.hpp"
+#include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/normals.hpp"
+#include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/context.hpp"
 
 namespace tessera::examples {
@@ -150,6 +152,16 @@ ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& o) {
       }
   }
   return downsample(ctx.framebuffer().color_rgb(), s);
+}
+
+std::vector<SceneObject> shadow_scene() {
+  const auto arrays = [](const PolyMesh& mesh) { return raster3d::VertexArrays::from_mesh(to_tri_mesh(mesh)); };
+  return {{arrays(make_grid(1, 1)), scale(3, 1, 3), {0.85f, 0.85f, 0.8f}},
+          {arrays(make_uv_sphere(48, 24)), translate(-0.9, 0.6, 0.4) * scale(0.6, 0.6, 0.6), {0.8f, 0.3f, 0.25f}},
+          {arrays(make_torus(0.55, 0.18, 64, 24)), translate(0.9, 0.75, -0.2) * rotate_x(radians(75)),
+           {0.3f, 0.5f, 0.8f}},
+          {arrays(with_face_normals(make_box())),
+           translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}}};
 }
 
 }  // namespace tessera::examples

@@ -9,6 +9,7 @@
 #include "tessera/image/image.hpp"
 #include "tessera/math/camera.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/lighting.hpp"
 
 namespace tessera::examples {
@@ -45,5 +46,15 @@ ImageRGB downsample(const ImageRGB& image, int s);
 /// plastic highlight of strength `specular`.
 raster3d::Lighting surface_lighting(const Vec3& to_light, const Mat4& view, float ambient = 0.2f,
                                     float specular = 0.3f);
+
+/// An object of the shadow examples' scene: its arrays (normals included), model matrix and color.
+struct SceneObject {
+  raster3d::VertexArrays arrays;
+  Mat4 model;
+  Vec3f color;
+};
+
+/// The scene of the shadow examples (22, 25): a 6 x 6 floor at y = 0 (first), then a sphere, a torus and a box over it.
+std::vector<SceneObject> shadow_scene();
 
 }  // namespace tessera::examples
