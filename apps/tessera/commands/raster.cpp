@@ -151,11 +151,7 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   };
   // The map is fitted to the mesh, the only caster: the floor beyond it is shadowed all the same.
   std::optional<raster3d::ShadowMap> shadow;
-  std::vector<raster3d::ShadowVolume> shadow_volumes;
-  if (volumes)
-    shadow_volumes.push_back(raster3d::shadow_volume(raster3d::VertexArrays::from_mesh(mesh).positions, mesh.indices,
-                                                     Vec4f(Vec3f(light), point_light ? 1.0f : 0.0f)));
-  else if (a.shadows)
+  if (a.shadows && !volumes)
     shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(light, box.lo, box.hi)
                                               : raster3d::ShadowMap::directional(light, box.lo, box.hi));
 
@@ -173,6 +169,11 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   u.maps.reflectivity = float(a.reflect);
 
   const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
+  // Shadow volumes: the mesh's own, the only caster (the floor only receives).
+  std::vector<raster3d::ShadowVolume> shadow_volumes;
+  if (volumes)
+    shadow_volumes.push_back(raster3d::shadow_volume(arrays.positions, arrays.indices,
+                                                     Vec4f(Vec3f(light), point_light ? 1.0f : 0.0f)));
   const raster3d::UvTangents tangents =
       bump ? raster3d::uv_tangents(arrays.positions, arrays.uvs, arrays.indices) : raster3d::UvTangents{};
   raster3d::RasterState state;

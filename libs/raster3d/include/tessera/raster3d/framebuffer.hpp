@@ -1,11 +1,12 @@
 #pragma once
-// Framebuffer: the color and depth buffers the 3D pipeline draws into, double buffered (the notes' "Memory 1 used for
+// Framebuffer: the color, depth and stencil buffers the 3D pipeline draws into, double buffered (the notes' "Memory 1 used for
 // display, Memory 2 for creating the next image").
 //
 // Color is 8-bit RGBA, as an OpenGL RGBA8 framebuffer: a fragment's color is clamped to [0, 1] and rounded to
 // nearest when written, so results compare with Mesa pixel for pixel. Depth is a 24-bit unsigned normalized integer
 // per pixel (0 = near plane, 2^24 - 1 = far plane), gl-raster-conventions.md item 7. Stencil is 8 bits per pixel
-// (GL's usual depth 24 / stencil 8). The images keep row 0 at the top (DESIGN.md section 3); the pipeline maps OpenGL's window row j (y up) to image row height - 1 - j.
+// (GL's usual depth 24 / stencil 8). The images keep row 0 at the top (DESIGN.md section 3); the pipeline maps
+// OpenGL's window row j (y up) to image row height - 1 - j.
 #include <cstdint>
 #include <memory>
 

@@ -741,7 +741,7 @@ template <int N, class V, class FS, DepthFunc F>
                                             const SetupParams& params, bool depth_write, int x0, int x1, int y0,
                                             int y1, const FS& fs) {
   const bool constant = r.constant || N == 0;
-  Vec3f constant_color;
+  Vec3f constant_color(0);
   bool constant_kept = false;
   if (constant) {
     V v{};
