@@ -29,6 +29,7 @@
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
+#include "test_util.hpp"
 
 namespace tessera {
 namespace {
@@ -496,23 +497,6 @@ struct StencilDraw {
   raster3d::RasterState state;
 };
 
-// Positions through a float32 P * MV as OpenGL forms and applies it; one constant color.
-struct FlatVertexShader {
-  const Vec3f* positions = nullptr;
-  Mat4f model_view_projection{1.0f};
-  raster3d::VertexOut<raster3d::NoVaryings> operator()(uint32_t i) const {
-    return {raster3d::gl_transform(model_view_projection, positions[i]), {}};
-  }
-};
-
-struct FlatFragmentShader {
-  Vec3f color;
-  bool operator()(const raster3d::NoVaryings&, Vec3f& c) const {
-    c = color;
-    return true;
-  }
-};
-
 // Both renderers start from color kBackground, depth 1 and stencil `clear_stencil`.
 raster3d::Framebuffer draw_tessera_stencil(int width, int height, const Mat4& projection, const Mat4& view,
                                            uint8_t clear_stencil, const std::vector<StencilDraw>& draws) {
@@ -524,7 +508,8 @@ raster3d::Framebuffer draw_tessera_stencil(int width, int height, const Mat4& pr
     std::vector<Vec3f> positions;
     for (const Vec3& p : d.mesh.positions) positions.emplace_back(p);
     raster3d::draw_triangles(fb, d.state, uint32_t(positions.size()), d.mesh.indices,
-                             FlatVertexShader{positions.data(), mvp}, FlatFragmentShader{d.color});
+                             raster3d::testing::FlatVertexShader{positions.data(), mvp},
+                             raster3d::testing::FlatFragmentShader{d.color});
   }
   return fb;
 }
@@ -598,12 +583,8 @@ TriMesh outward(TriMesh mesh) {
 
 // The box [-1, 1]^3 through `m`.
 TriMesh box_volume(const Mat4& m) {
-  TriMesh mesh;
-  for (int k = 0; k < 8; ++k)
-    mesh.positions.push_back(Vec3(m * Vec4(k & 1 ? 1 : -1, k & 2 ? 1 : -1, k & 4 ? 1 : -1, 1)));
-  // Two triangles per face, counterclockwise seen from outside for a proper rotation.
-  mesh.indices = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
-                  2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  TriMesh mesh = to_tri_mesh(make_box());
+  for (Vec3& p : mesh.positions) p = Vec3(m * Vec4(p, 1));
   return outward(std::move(mesh));
 }
 

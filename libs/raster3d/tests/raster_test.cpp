@@ -372,18 +372,12 @@ struct WindowPointShader {
     return {Vec4f(2 * w.x / size - 1, 2 * w.y / size - 1, 2 * w.z - 1, 1), {}};
   }
 };
-struct WhiteShader {
-  bool operator()(const NoVaryings&, Vec3f& c) const {
-    c = Vec3f(1);
-    return true;
-  }
-};
 
 TEST(Raster, LinesCoverOnePixelPerColumnHalfOpen) {
   Framebuffer fb(16, 16);
   const std::vector<WindowVertexIn> v = {{{1.5f, 3.2f, 0.5f}}, {{9.5f, 7.2f, 0.5f}}};
   RasterState state;
-  draw_lines(fb, state, 2, std::vector<uint32_t>{0, 1}, WindowPointShader{&v, 16}, WhiteShader{});
+  draw_lines(fb, state, 2, std::vector<uint32_t>{0, 1}, WindowPointShader{&v, 16}, testing::FlatFragmentShader{});
   int count = 0;
   for (int j = 0; j < 16; ++j)
     for (int i = 0; i < 16; ++i) count += covered_gl(fb, i, j);
@@ -398,7 +392,7 @@ TEST(Raster, PointsCoverTheirPixel) {
   Framebuffer fb(8, 8);
   const std::vector<WindowVertexIn> v = {{{2.7f, 5.1f, 0.5f}}, {{9.0f, 1.0f, 0.5f}}};
   RasterState state;
-  draw_points(fb, state, 2, std::vector<uint32_t>{0, 1}, WindowPointShader{&v, 8}, WhiteShader{});
+  draw_points(fb, state, 2, std::vector<uint32_t>{0, 1}, WindowPointShader{&v, 8}, testing::FlatFragmentShader{});
   EXPECT_TRUE(covered_gl(fb, 2, 5));
   int count = 0;
   for (int p : covered(fb)) count += p;

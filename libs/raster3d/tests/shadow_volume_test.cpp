@@ -12,9 +12,12 @@
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
+#include "test_util.hpp"
 
 using namespace tessera;
 using namespace tessera::raster3d;
+using raster3d::testing::FlatFragmentShader;
+using raster3d::testing::FlatVertexShader;
 
 namespace {
 
@@ -37,20 +40,6 @@ Caster place(const PolyMesh& mesh, double s, const Vec3& center) {
 Caster floor_square(float r) {
   return {{{-r, 0, -r}, {-r, 0, r}, {r, 0, r}, {r, 0, -r}}, {0, 1, 2, 0, 2, 3}};
 }
-
-/// Positions to clip space; the color of the object, dimmed where light 0 is off.
-struct FlatVertexShader {
-  const Vec3f* positions;
-  Mat4f view_projection;
-  VertexOut<NoVaryings> operator()(uint32_t i) const { return {view_projection * Vec4f(positions[i], 1.0f), {}}; }
-};
-struct FlatFragmentShader {
-  Vec3f color;
-  bool operator()(const NoVaryings&, Vec3f& c) const {
-    c = color;
-    return true;
-  }
-};
 
 /// Whether the segment from p to the light crosses a caster triangle (double precision, t in (1e-6, 1)).
 bool ray_blocked(const Vec3& p, const Vec3& light, const std::vector<Caster>& casters) {

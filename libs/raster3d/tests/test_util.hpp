@@ -1,7 +1,9 @@
 #pragma once
-// Shared fixtures of the raster3d tests: shaders that place vertices directly in GL window coordinates.
+// Shared fixtures of the raster3d tests: shaders that place vertices directly in GL window coordinates, or through a
+// matrix with one flat color.
 #include <vector>
 
+#include "tessera/raster3d/lighting.hpp"
 #include "tessera/raster3d/pipeline.hpp"
 
 namespace tessera::raster3d::testing {
@@ -21,6 +23,24 @@ struct WindowShader {
   VertexOut<ColorVaryings> operator()(uint32_t i) const {
     const WindowVertexIn& v = (*vertices)[i];
     return {Vec4f(2 * v.window.x / width - 1, 2 * v.window.y / height - 1, 2 * v.window.z - 1, 1.0f) * w, {v.color}};
+  }
+};
+
+/// Positions through a float32 model-view-projection as OpenGL forms and applies it (gl_transform); no varyings.
+struct FlatVertexShader {
+  const Vec3f* positions = nullptr;
+  Mat4f model_view_projection{1.0f};
+  VertexOut<NoVaryings> operator()(uint32_t i) const {
+    return {gl_transform(model_view_projection, positions[i]), {}};
+  }
+};
+
+/// One constant color for every fragment.
+struct FlatFragmentShader {
+  Vec3f color{1, 1, 1};
+  bool operator()(const NoVaryings&, Vec3f& c) const {
+    c = color;
+    return true;
   }
 };
 
