@@ -155,7 +155,18 @@ void OsmesaContext::begin(const GlState& s) {
   }
   stencil_face(GL_FRONT, s.stencil_front);
   stencil_face(GL_BACK, s.stencil_back);
-  glColor3f(s.color.x, s.color.y, s.color.z);
+  glColor4f(s.color.x, s.color.y, s.color.z, s.alpha);
+  if (s.blend) {
+    static constexpr GLenum kFactors[] = {GL_ZERO,      GL_ONE,       GL_SRC_COLOR,           GL_ONE_MINUS_SRC_COLOR,
+                                          GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
+                                          GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA};
+    static constexpr GLenum kEquations[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
+    glEnable(GL_BLEND);
+    glBlendFunc(kFactors[int(s.blend_src)], kFactors[int(s.blend_dst)]);
+    glBlendEquation(kEquations[int(s.blend_equation)]);
+  } else {
+    glDisable(GL_BLEND);
+  }
   if (s.texture != nullptr) {
     const GlTexture& t = *s.texture;
     if (impl_->texture == 0) glGenTextures(1, &impl_->texture);
@@ -200,7 +211,8 @@ void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
     glBegin(GL_TRIANGLES);
     for (const uint32_t i : mesh.indices) {
       if (normals) glNormal3fv(n + 3 * size_t(i));
-      if (colors) glColor3fv(c + 3 * size_t(i));
+      if (colors && mesh.color_size == 4) glColor4fv(c + 4 * size_t(i));
+      if (colors && mesh.color_size == 3) glColor3fv(c + 3 * size_t(i));
       if (texcoords) glTexCoord2fv(t + 2 * size_t(i));
       glVertex3fv(p + 3 * size_t(i));
     }
@@ -215,7 +227,7 @@ void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
   }
   if (colors) {
     glEnableClientState(GL_COLOR_ARRAY);
-    glColorPointer(3, GL_FLOAT, 0, mesh.colors.data());
+    glColorPointer(mesh.color_size, GL_FLOAT, 0, mesh.colors.data());
   }
   if (texcoords) {
     glEnableClientState(GL_TEXTURE_COORD_ARRAY);
@@ -236,20 +248,23 @@ GlFrame OsmesaContext::read() const {
   frame.width = width_;
   frame.height = height_;
   const size_t w = size_t(width_), h = size_t(height_);
-  std::vector<uint8_t> rgb(w * h * 3);
+  std::vector<uint8_t> rgb(w * h * 3), alpha(w * h);
   std::vector<uint32_t> depth(w * h);
   std::vector<uint8_t> stencil(w * h);
   glReadPixels(0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+  glReadPixels(0, 0, width_, height_, GL_ALPHA, GL_UNSIGNED_BYTE, alpha.data());
   glReadPixels(0, 0, width_, height_, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, depth.data());
   glReadPixels(0, 0, width_, height_, GL_STENCIL_INDEX, GL_UNSIGNED_BYTE, stencil.data());
   if (const GLenum error = glGetError(); error != GL_NO_ERROR) throw Error(fmt::format("OpenGL error 0x{:x}", error));
   frame.rgb.resize(rgb.size());
   frame.depth.resize(depth.size());
   frame.stencil.resize(stencil.size());
+  frame.alpha.resize(alpha.size());
   for (size_t row = 0; row < h; ++row) {  // GL row 0 is the bottom
     const size_t gl_row = h - 1 - row;
     std::copy_n(rgb.begin() + std::ptrdiff_t(gl_row * w * 3), w * 3, frame.rgb.begin() + std::ptrdiff_t(row * w * 3));
     std::copy_n(stencil.begin() + std::ptrdiff_t(gl_row * w), w, frame.stencil.begin() + std::ptrdiff_t(row * w));
+    std::copy_n(alpha.begin() + std::ptrdiff_t(gl_row * w), w, frame.alpha.begin() + std::ptrdiff_t(row * w));
     // GL_UNSIGNED_INT scales depth to 32 bits; the top 24 are the stored value.
     for (size_t x = 0; x < w; ++x) frame.depth[row * w + x] = depth[gl_row * w + x] >> 8;
   }

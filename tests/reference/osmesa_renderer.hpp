@@ -63,6 +63,23 @@ struct GlStencilFace {
   GlStencilOp fail = GlStencilOp::keep, zfail = GlStencilOp::keep, zpass = GlStencilOp::keep;
 };
 
+/// A blend factor (glBlendFunc): raster3d::BlendFactor's values, in its order.
+enum class GlBlendFactor {
+  zero,
+  one,
+  src_color,
+  one_minus_src_color,
+  dst_color,
+  one_minus_dst_color,
+  src_alpha,
+  one_minus_src_alpha,
+  dst_alpha,
+  one_minus_dst_alpha,
+};
+
+/// glBlendEquation: raster3d::BlendEquation's values, in its order.
+enum class GlBlendEquation { add, subtract, reverse_subtract, min, max };
+
 /// The fixed-function state of one drawing.
 struct GlState {
   Mat4f projection{1.0f};  ///< loaded with glMatrixMode(GL_PROJECTION) + glLoadMatrixf
@@ -79,7 +96,11 @@ struct GlState {
   bool stencil_test = false;    ///< GL_STENCIL_TEST
   GlStencilFace stencil_front;  ///< GL_FRONT's stencil state (counterclockwise faces, lines, points)
   GlStencilFace stencil_back;   ///< GL_BACK's
-  Vec3f color{1, 1, 1};         ///< glColor3f when unlit and the mesh has no colors
+  Vec3f color{1, 1, 1};         ///< glColor4f(color, alpha) when unlit and the mesh has no colors
+  float alpha = 1;
+  bool blend = false;           ///< GL_BLEND with glBlendFunc(blend_src, blend_dst), glBlendEquation(blend_equation)
+  GlBlendFactor blend_src = GlBlendFactor::one, blend_dst = GlBlendFactor::zero;
+  GlBlendEquation blend_equation = GlBlendEquation::add;
   Vec3f background{0, 0, 0};
   uint8_t clear_stencil = 0;  ///< glClearStencil
   bool clear = true;  ///< clear color, depth (to 1.0) and stencil (to clear_stencil) before drawing, all write masks on
@@ -90,7 +111,8 @@ struct GlState {
 struct GlMesh {
   std::vector<float> positions;  ///< 3 per vertex
   std::vector<float> normals;    ///< 3 per vertex, or empty
-  std::vector<float> colors;     ///< 3 per vertex, or empty
+  std::vector<float> colors;     ///< color_size per vertex, or empty
+  int color_size = 3;            ///< 3 (RGB) or 4 (RGBA)
   std::vector<float> texcoords;  ///< 2 per vertex, or empty
   std::vector<uint32_t> indices;
 
@@ -103,10 +125,12 @@ struct GlMesh {
 struct GlFrame {
   int width = 0, height = 0;
   std::vector<uint8_t> rgb;      ///< 3 bytes per pixel
+  std::vector<uint8_t> alpha;    ///< 1 byte per pixel
   std::vector<uint32_t> depth;   ///< 24-bit depth per pixel (2^24 - 1 = cleared / far)
   std::vector<uint8_t> stencil;  ///< 8-bit stencil value per pixel
 
   uint8_t channel(int x, int y, int c) const { return rgb[(size_t(y) * size_t(width) + size_t(x)) * 3 + size_t(c)]; }
+  uint8_t alpha_at(int x, int y) const { return alpha[size_t(y) * size_t(width) + size_t(x)]; }
   uint32_t depth_at(int x, int y) const { return depth[size_t(y) * size_t(width) + size_t(x)]; }
   uint8_t stencil_at(int x, int y) const { return stencil[size_t(y) * size_t(width) + size_t(x)]; }
 };

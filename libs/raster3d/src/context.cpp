@@ -62,6 +62,7 @@ void Context::initialize(int width, int height) {
   current_uv_ = Vec2f(0, 0);
   state_ = RasterState();
   shading_ = ShadingModel::unlit;
+  alpha_ = 1;
   hidden_surface_ = HiddenSurface::zbuffer;
   lighting_ = Lighting();
   // OpenGL's defaults: GL_LIGHT0 is white, the other lights are black; all point down -z from the viewer.
@@ -88,6 +89,8 @@ struct Context::DrawShaders {
   FixedFunctionUniforms uniforms;
   PhongFragmentShader phong{&uniforms};
   ColorFragmentShader color;
+  Translucent<PhongFragmentShader> translucent_phong{phong};  // alpha set by the draw (Context::alpha)
+  Translucent<ColorFragmentShader> translucent_color;
 };
 
 Framebuffer& Context::framebuffer() {
@@ -207,6 +210,18 @@ void Context::stencil(const StencilFace& front, const StencilFace& back) {
   submit_batch();
   state_.stencil_front = front;
   state_.stencil_back = back;
+}
+void Context::blend(bool on) {
+  submit_batch();
+  state_.blend = on;
+}
+void Context::blend_function(const BlendFunction& f) {
+  submit_batch();
+  state_.blend_function = f;
+}
+void Context::alpha(float a) {
+  submit_batch();
+  alpha_ = a;
 }
 void Context::clear_stencil(uint8_t value) {
   flush();
@@ -439,12 +454,22 @@ void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t 
   shaders->uniforms = uniforms();
   const FixedFunctionUniforms* u = &shaders->uniforms;
   const RasterState s = raster_state();
+  const auto draw = [&](const auto& vertex_shader, const auto& fragment_shader) {
+    add_stats(stats_, detail::draw_triangles_async(framebuffer_, s, vertex_count, indices, vertex_shader,
+                                                   fragment_shader, shaders));
+  };
+  // Opaque draws keep the plain shaders (and their fast paths: the RGB shaders' alpha is 1).
+  shaders->translucent_phong.alpha = shaders->translucent_color.alpha = alpha_;
   if (shading_ == ShadingModel::phong) {
-    add_stats(stats_, detail::draw_triangles_async(framebuffer_, s, vertex_count, indices,
-                                                   PhongVertexShader{attributes, u}, shaders->phong, shaders));
+    if (alpha_ == 1)
+      draw(PhongVertexShader{attributes, u}, shaders->phong);
+    else
+      draw(PhongVertexShader{attributes, u}, shaders->translucent_phong);
   } else {
-    add_stats(stats_, detail::draw_triangles_async(framebuffer_, s, vertex_count, indices,
-                                                   FixedFunctionVertexShader{attributes, u}, shaders->color, shaders));
+    if (alpha_ == 1)
+      draw(FixedFunctionVertexShader{attributes, u}, shaders->color);
+    else
+      draw(FixedFunctionVertexShader{attributes, u}, shaders->translucent_color);
   }
 }
 
@@ -453,7 +478,7 @@ void Context::draw_line_arrays(const VertexAttributes& attributes, uint32_t vert
   if (indices.empty()) return;
   const FixedFunctionUniforms u = uniforms();
   add_stats(stats_, draw_lines(framebuffer_, raster_state(), vertex_count, indices,
-                               FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+                               FixedFunctionVertexShader{attributes, &u}, Translucent<ColorFragmentShader>{{}, alpha_}));
 }
 
 void Context::draw_point_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
@@ -461,7 +486,7 @@ void Context::draw_point_arrays(const VertexAttributes& attributes, uint32_t ver
   if (indices.empty()) return;
   const FixedFunctionUniforms u = uniforms();
   add_stats(stats_, draw_points(framebuffer_, raster_state(), vertex_count, indices,
-                                FixedFunctionVertexShader{attributes, &u}, ColorFragmentShader{}));
+                                FixedFunctionVertexShader{attributes, &u}, Translucent<ColorFragmentShader>{{}, alpha_}));
 }
 
 }  // namespace tessera::raster3d

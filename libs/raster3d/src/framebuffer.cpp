@@ -35,9 +35,9 @@ Framebuffer& Framebuffer::operator=(Framebuffer&& other) noexcept {
   return *this;
 }
 
-void Framebuffer::clear_color(const Vec3f& color) {
+void Framebuffer::clear_color(const Vec3f& color, float alpha) {
   wait_for_raster();
-  color_.fill(to_color8(color));
+  color_.fill(to_color8(Vec4f(color, alpha)));
 }
 
 void Framebuffer::clear_depth(double depth) {

@@ -370,6 +370,8 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
   p.stencil_test = state.stencil_test;
   p.stencil[0] = state.stencil_back;
   p.stencil[1] = state.stencil_front;
+  p.blend = state.blend;
+  p.blend_function = state.blend_function;
   p.fb_width = fb.width();
   p.fb_height = fb.height();
   const bool whole = state.viewport.width <= 0 || state.viewport.height <= 0;
@@ -410,6 +412,46 @@ void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s) {
     case StencilOp::invert: v = uint8_t(~s); break;
   }
   s = uint8_t((s & ~face.write_mask) | (v & face.write_mask));
+}
+
+glm::u8vec4 blend_colors(const BlendFunction& f, const Vec4f& src, glm::u8vec4 dst) {
+  // In 8-bit fixed point, as GPUs and llvmpipe blend an RGBA8 buffer: the source rounded to unorm8 like a stored
+  // color, each product a b / 255 rounded by (x + (x >> 8) + 128) >> 8 (llvmpipe's lp_build_mul_norm), sums and
+  // differences saturated to [0, 255]. Within 1 of the real-number formula (tested).
+  const glm::u8vec4 s = to_color8(src);
+  const auto factor = [&](BlendFactor b, int c) -> unsigned {
+    switch (b) {
+      case BlendFactor::zero: return 0;
+      case BlendFactor::one: return 255;
+      case BlendFactor::src_color: return s[c];
+      case BlendFactor::one_minus_src_color: return 255u - s[c];
+      case BlendFactor::dst_color: return dst[c];
+      case BlendFactor::one_minus_dst_color: return 255u - dst[c];
+      case BlendFactor::src_alpha: return s.w;
+      case BlendFactor::one_minus_src_alpha: return 255u - s.w;
+      case BlendFactor::dst_alpha: return dst.w;
+      case BlendFactor::one_minus_dst_alpha: return 255u - dst.w;
+    }
+    return 0;
+  };
+  const auto mul = [](unsigned a, unsigned b) {
+    const unsigned x = a * b;
+    return int((x + (x >> 8) + 128) >> 8);
+  };
+  glm::u8vec4 out;
+  for (int c = 0; c < 4; ++c) {
+    const int sw = mul(s[c], factor(f.src, c)), dw = mul(dst[c], factor(f.dst, c));
+    int v = 0;
+    switch (f.equation) {
+      case BlendEquation::add: v = sw + dw; break;
+      case BlendEquation::subtract: v = sw - dw; break;
+      case BlendEquation::reverse_subtract: v = dw - sw; break;
+      case BlendEquation::min: v = std::min(s[c], dst[c]); break;
+      case BlendEquation::max: v = std::max(s[c], dst[c]); break;
+    }
+    out[c] = uint8_t(std::clamp(v, 0, 255));
+  }
+  return out;
 }
 
 FragmentState fragment_state(const RasterState& state) {

@@ -490,32 +490,33 @@ reference::GlStencilFace gl_stencil_face(const raster3d::StencilFace& f) {
           reference::GlStencilOp(int(f.zfail)), reference::GlStencilOp(int(f.zpass))};
 }
 
-// One draw: triangles (counterclockwise = front), their unlit color, the rasterizer state.
-struct StencilDraw {
+// One draw: triangles (counterclockwise = front), their unlit color and alpha, the rasterizer state.
+struct FlatDraw {
   TriMesh mesh;
   Vec3f color{1, 1, 1};
   raster3d::RasterState state;
+  float alpha = 1;
 };
 
 // Both renderers start from color kBackground, depth 1 and stencil `clear_stencil`.
-raster3d::Framebuffer draw_tessera_stencil(int width, int height, const Mat4& projection, const Mat4& view,
-                                           uint8_t clear_stencil, const std::vector<StencilDraw>& draws) {
+raster3d::Framebuffer draw_tessera_flat(int width, int height, const Mat4& projection, const Mat4& view,
+                                           uint8_t clear_stencil, const std::vector<FlatDraw>& draws) {
   raster3d::Framebuffer fb(width, height);
   fb.clear(kBackground);
   fb.clear_stencil(clear_stencil);
   const Mat4f mvp = raster3d::gl_matrix_product(Mat4f(projection), Mat4f(view));
-  for (const StencilDraw& d : draws) {
+  for (const FlatDraw& d : draws) {
     std::vector<Vec3f> positions;
     for (const Vec3& p : d.mesh.positions) positions.emplace_back(p);
     raster3d::draw_triangles(fb, d.state, uint32_t(positions.size()), d.mesh.indices,
                              raster3d::testing::FlatVertexShader{positions.data(), mvp},
-                             raster3d::testing::FlatFragmentShader{d.color});
+                             raster3d::Translucent<raster3d::testing::FlatFragmentShader>{{d.color}, d.alpha});
   }
   return fb;
 }
 
-GlFrame draw_gl_stencil(int width, int height, const Mat4& projection, const Mat4& view, uint8_t clear_stencil,
-                        const std::vector<StencilDraw>& draws) {
+GlFrame draw_gl_flat(int width, int height, const Mat4& projection, const Mat4& view, uint8_t clear_stencil,
+                        const std::vector<FlatDraw>& draws) {
   reference::OsmesaContext gl(width, height);
   for (size_t k = 0; k < draws.size(); ++k) {
     const raster3d::RasterState& r = draws[k].state;
@@ -530,6 +531,11 @@ GlFrame draw_gl_stencil(int width, int height, const Mat4& projection, const Mat
     s.stencil_front = gl_stencil_face(r.stencil_front);
     s.stencil_back = gl_stencil_face(r.stencil_back);
     s.color = draws[k].color;
+    s.alpha = draws[k].alpha;
+    s.blend = r.blend;
+    s.blend_src = reference::GlBlendFactor(int(r.blend_function.src));
+    s.blend_dst = reference::GlBlendFactor(int(r.blend_function.dst));
+    s.blend_equation = reference::GlBlendEquation(int(r.blend_function.equation));
     s.background = kBackground;
     s.clear_stencil = clear_stencil;
     s.clear = k == 0;
@@ -539,13 +545,13 @@ GlFrame draw_gl_stencil(int width, int height, const Mat4& projection, const Mat
   return gl.read();
 }
 
-struct StencilComparison {
-  size_t stencil_diff = 0, color_diff = 0, depth_diff = 0;
+struct BufferComparison {
+  size_t stencil_diff = 0, color_diff = 0, depth_diff = 0, alpha_diff = 0;
   std::string example;  // the first differing pixel
 };
 
-StencilComparison compare_stencil(const raster3d::Framebuffer& t, const GlFrame& g) {
-  StencilComparison c;
+BufferComparison compare_buffers(const raster3d::Framebuffer& t, const GlFrame& g) {
+  BufferComparison c;
   for (int y = 0; y < g.height; ++y)
     for (int x = 0; x < g.width; ++x) {
       const uint8_t st = t.stencil()(x, y), sg = g.stencil_at(x, y);
@@ -555,18 +561,19 @@ StencilComparison compare_stencil(const raster3d::Framebuffer& t, const GlFrame&
       c.stencil_diff += st != sg;
       c.color_diff += !color_same;
       c.depth_diff += !depth_same;
-      if (c.example.empty() && (st != sg || !color_same || !depth_same))
+      c.alpha_diff += ct.w != g.alpha_at(x, y);
+      if (c.example.empty() && (st != sg || !color_same || !depth_same || ct.w != g.alpha_at(x, y)))
         c.example = fmt::format(
-            "pixel ({}, {}): tessera stencil {} rgb {},{},{} depth {}; OpenGL stencil {} rgb {},{},{} depth {}", x, y,
-            st, ct.x, ct.y, ct.z, t.depth()(x, y), sg, g.channel(x, y, 0), g.channel(x, y, 1), g.channel(x, y, 2),
-            g.depth_at(x, y));
+            "pixel ({}, {}): tessera stencil {} rgba {},{},{},{} depth {}; OpenGL stencil {} rgba {},{},{},{} depth {}",
+            x, y, st, ct.x, ct.y, ct.z, ct.w, t.depth()(x, y), sg, g.channel(x, y, 0), g.channel(x, y, 1),
+            g.channel(x, y, 2), g.alpha_at(x, y), g.depth_at(x, y));
     }
   return c;
 }
 
-std::string describe(const StencilComparison& c) {
-  return fmt::format("stencil differs on {} px, color on {}, depth on {}; first: {}", c.stencil_diff, c.color_diff,
-                     c.depth_diff, c.example.empty() ? "none" : c.example);
+std::string describe(const BufferComparison& c) {
+  return fmt::format("stencil differs on {} px, color on {}, alpha on {}, depth on {}; first: {}", c.stencil_diff,
+                     c.color_diff, c.alpha_diff, c.depth_diff, c.example.empty() ? "none" : c.example);
 }
 
 // A closed mesh made consistently outward (counterclockwise seen from outside): flipped when its signed volume is
@@ -600,27 +607,27 @@ TriMesh tetrahedron_volume(const Vec3& a, const Vec3& b, const Vec3& c, const Ve
 // again where the count is 0 (depth equal) and where it is not (depth lequal). `zfail`: Carmack's reverse (back faces
 // incr_wrap, front faces decr_wrap where the depth test fails), else z-pass (front incr_wrap, back decr_wrap where it
 // passes).
-std::vector<StencilDraw> shadow_volume_draws(bool zfail) {
+std::vector<FlatDraw> shadow_volume_draws(bool zfail) {
   Rng rng(11, 77);
   const auto uniform = [&](double lo, double hi) { return lo + (hi - lo) * double(rng.uniform()); };
-  std::vector<StencilDraw> occluders;
+  std::vector<FlatDraw> occluders;
   {  // a floor, then random triangles over it
-    StencilDraw floor{.color = {0.5f, 0.5f, 0.45f}};
+    FlatDraw floor{.color = {0.5f, 0.5f, 0.45f}};
     floor.mesh.positions = {{-5, -1.2, -5}, {5, -1.2, -5}, {5, -1.2, 4}, {-5, -1.2, 4}};
     floor.mesh.indices = {0, 2, 1, 0, 3, 2};
     occluders.push_back(std::move(floor));
   }
   for (int t = 0; t < 9; ++t) {
-    StencilDraw d{.color = {float(uniform(0.2, 1)), float(uniform(0.2, 1)), float(uniform(0.2, 1))}};
+    FlatDraw d{.color = {float(uniform(0.2, 1)), float(uniform(0.2, 1)), float(uniform(0.2, 1))}};
     const Vec3 center(uniform(-2.2, 2.2), uniform(-1.0, 1.2), uniform(-2.0, 1.5));
     for (int k = 0; k < 3; ++k)
       d.mesh.positions.push_back(center + Vec3(uniform(-1.5, 1.5), uniform(-1.2, 1.2), uniform(-1.2, 1.2)));
     d.mesh.indices = {0, 1, 2};
     occluders.push_back(std::move(d));
   }
-  std::vector<StencilDraw> draws = occluders;  // depth less, depth and color written, no stencil test
+  std::vector<FlatDraw> draws = occluders;  // depth less, depth and color written, no stencil test
 
-  StencilDraw volumes;
+  FlatDraw volumes;
   volumes.state.color_write = false;
   volumes.state.depth_write = false;
   volumes.state.depth_func = raster3d::DepthFunc::less;
@@ -651,7 +658,7 @@ std::vector<StencilDraw> shadow_volume_draws(bool zfail) {
   draws.push_back(std::move(volumes));
 
   // Lit where the count is 0 (the same triangles at the same depth: depth equal), shadowed where it is not.
-  for (StencilDraw d : occluders) {
+  for (FlatDraw d : occluders) {
     d.color = d.color * 0.5f + 0.5f;
     d.state.depth_func = raster3d::DepthFunc::equal;
     d.state.depth_write = false;
@@ -659,7 +666,7 @@ std::vector<StencilDraw> shadow_volume_draws(bool zfail) {
     d.state.stencil_front.func = d.state.stencil_back.func = raster3d::DepthFunc::equal;
     draws.push_back(std::move(d));
   }
-  for (StencilDraw d : occluders) {
+  for (FlatDraw d : occluders) {
     d.color *= 0.4f;
     d.state.depth_func = raster3d::DepthFunc::lequal;
     d.state.depth_write = false;
@@ -676,9 +683,9 @@ TEST(OsmesaCompareStencil, StencilTwoSidedCountsMatchOpenGL) {
   const Mat4 projection = persp(50, w, h, 0.5, 20), view = look_at({1.2, 2.4, 6.0}, {0, -0.3, 0}, {0, 1, 0});
   for (const bool zfail : {true, false}) {
     SCOPED_TRACE(zfail ? "z-fail" : "z-pass");
-    const std::vector<StencilDraw> draws = shadow_volume_draws(zfail);
-    const raster3d::Framebuffer t = draw_tessera_stencil(w, h, projection, view, 0, draws);
-    const GlFrame g = draw_gl_stencil(w, h, projection, view, 0, draws);
+    const std::vector<FlatDraw> draws = shadow_volume_draws(zfail);
+    const raster3d::Framebuffer t = draw_tessera_flat(w, h, projection, view, 0, draws);
+    const GlFrame g = draw_gl_flat(w, h, projection, view, 0, draws);
     // The counts are not trivial: overlapping volumes give 2 and more, and a good part of the view is in a volume.
     size_t inside = 0;
     int deepest = 0;
@@ -688,7 +695,7 @@ TEST(OsmesaCompareStencil, StencilTwoSidedCountsMatchOpenGL) {
     }
     EXPECT_GT(inside, size_t(w * h / 10));
     EXPECT_GE(deepest, 2);
-    const StencilComparison c = compare_stencil(t, g);
+    const BufferComparison c = compare_buffers(t, g);
     fmt::print("stencil volumes ({}): {} px inside, up to {} deep; {}\n", zfail ? "z-fail" : "z-pass", inside, deepest,
                describe(c));
     EXPECT_EQ(c.stencil_diff, 0u) << describe(c);
@@ -714,9 +721,9 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
     m.indices = front ? std::vector<uint32_t>{0, 1, 2, 0, 2, 3} : std::vector<uint32_t>{0, 2, 1, 0, 3, 2};
     return m;
   };
-  std::vector<StencilDraw> draws;
+  std::vector<FlatDraw> draws;
   for (int k = 0; k < columns; ++k) {  // the initial values, and the occluder over each column's right half
-    StencilDraw seed{.mesh = rect(k * 8, k * 8 + 8, 0, h - 12, 0.9, k % 2 == 0), .color = {0.2f, 0.2f, 0.2f}};
+    FlatDraw seed{.mesh = rect(k * 8, k * 8 + 8, 0, h - 12, 0.9, k % 2 == 0), .color = {0.2f, 0.2f, 0.2f}};
     seed.state.depth_test = false;
     seed.state.depth_write = false;
     seed.state.stencil_test = true;
@@ -742,7 +749,7 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
   };
   for (int layer = 0; layer < 3; ++layer)
     for (int r = 0; r < rows; ++r) {
-      StencilDraw d{.mesh = rect(0, w, r * 3, r * 3 + 3, 0.0, pick(2) == 0),
+      FlatDraw d{.mesh = rect(0, w, r * 3, r * 3 + 3, 0.0, pick(2) == 0),
                     .color = {float(pick(256)) / 255.0f, float(pick(256)) / 255.0f, float(pick(256)) / 255.0f}};
       d.state.depth_test = pick(4) != 0;
       d.state.depth_write = false;
@@ -754,7 +761,7 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
     }
   // Every function and every operation in every role, on both faces, among the draws with the stencil test on.
   std::vector<int> used(2 * 4 * 8, 0);
-  for (const StencilDraw& d : draws)
+  for (const FlatDraw& d : draws)
     if (d.state.stencil_test)
       for (const int face : {0, 1}) {
         const raster3d::StencilFace& f = face == 0 ? d.state.stencil_front : d.state.stencil_back;
@@ -765,9 +772,9 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
   for (const uint8_t clear : {uint8_t(0), uint8_t(0x3c)}) {
     SCOPED_TRACE(int(clear));
     const Mat4 identity(1.0);
-    const raster3d::Framebuffer t = draw_tessera_stencil(w, h, identity, identity, clear, draws);
-    const GlFrame g = draw_gl_stencil(w, h, identity, identity, clear, draws);
-    const StencilComparison c = compare_stencil(t, g);
+    const raster3d::Framebuffer t = draw_tessera_flat(w, h, identity, identity, clear, draws);
+    const GlFrame g = draw_gl_flat(w, h, identity, identity, clear, draws);
+    const BufferComparison c = compare_buffers(t, g);
     std::vector<bool> seen(256, false);
     for (const uint8_t v : g.stencil) seen[v] = true;
     const auto distinct = std::ranges::count(seen, true);
@@ -777,6 +784,53 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
     EXPECT_EQ(c.color_diff, 0u) << describe(c);
     EXPECT_EQ(c.depth_diff, 0u) << describe(c);
   }
+}
+
+// ---- Blending against OpenGL's glBlendFunc / glBlendEquation
+//
+// 16 columns of flat colors with their own alpha (blending off) under 302 one-pixel rows, each drawn with one blend
+// function over them: every equation with every pair of factors (min and max ignore the factors), random colors and
+// alphas, and the exact values 0, 1/2 and 1 among them. Color and alpha must be OpenGL's on every pixel.
+TEST(OsmesaCompareBlend, EveryBlendFunctionMatchesOpenGL) {
+  const int columns = 16, w = columns * 4;
+  std::vector<raster3d::BlendFunction> functions;
+  for (int e = 0; e < 3; ++e)
+    for (int src = 0; src < 10; ++src)
+      for (int dst = 0; dst < 10; ++dst)
+        functions.push_back({raster3d::BlendFactor(src), raster3d::BlendFactor(dst), raster3d::BlendEquation(e)});
+  functions.push_back({.equation = raster3d::BlendEquation::min});
+  functions.push_back({.equation = raster3d::BlendEquation::max});
+  const int h = int(functions.size());
+  const auto rect = [&](int x0, int x1, int y0, int y1) {  // NDC, pixel-aligned, counterclockwise
+    TriMesh m;
+    const auto nx = [&](int x) { return -1.0 + 2.0 * x / w; };
+    const auto ny = [&](int y) { return 1.0 - 2.0 * y / h; };
+    m.positions = {{nx(x0), ny(y1), 0.0}, {nx(x1), ny(y1), 0.0}, {nx(x1), ny(y0), 0.0}, {nx(x0), ny(y0), 0.0}};
+    m.indices = {0, 1, 2, 0, 2, 3};
+    return m;
+  };
+  Rng rng(9, 17);
+  const auto value = [&] {  // often exact (0, 1/2, 1), else any 8-bit value
+    const uint32_t k = rng.next_u32() % 8;
+    return k == 0 ? 0.0f : k == 1 ? 1.0f : k == 2 ? 0.5f : float(rng.next_u32() >> 24) / 255.0f;
+  };
+  std::vector<FlatDraw> draws;
+  for (int k = 0; k < columns; ++k)
+    draws.push_back({.mesh = rect(k * 4, k * 4 + 4, 0, h), .color = {value(), value(), value()}, .alpha = value()});
+  for (int r = 0; r < h; ++r) {
+    FlatDraw d{.mesh = rect(0, w, r, r + 1), .color = {value(), value(), value()}, .alpha = value()};
+    d.state.depth_test = false;
+    d.state.blend = true;
+    d.state.blend_function = functions[size_t(r)];
+    draws.push_back(std::move(d));
+  }
+  const Mat4 identity(1.0);
+  const raster3d::Framebuffer t = draw_tessera_flat(w, h, identity, identity, 0, draws);
+  const GlFrame g = draw_gl_flat(w, h, identity, identity, 0, draws);
+  const BufferComparison c = compare_buffers(t, g);
+  fmt::print("blending: {}\n", describe(c));
+  EXPECT_EQ(c.color_diff, 0u) << describe(c);
+  EXPECT_EQ(c.alpha_diff, 0u) << describe(c);
 }
 
 }  // namespace

@@ -506,5 +506,91 @@ TEST(Raster, CoversRectangleAgreesWithEveryPixelCenter) {
   EXPECT_LT(covered, 1800);
 }
 
+// Blending against OpenGL's definition in real numbers (the 4.6 spec, 17.3.6): with S the fragment's color rounded to
+// 8 bits and D the stored one, each in [0, 1], add stores S src + D dst (subtract, reverse subtract likewise; min and
+// max ignore the factors), clamped and rounded. The 8-bit fixed-point blend may differ from it by 1, no more; the
+// common "over" cases with alpha 0 and 1 must be exact.
+TEST(Raster, BlendingIsOpenGLsFormulaWithinOneStep) {
+  const std::vector<Vec3f> corners{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  const std::vector<uint32_t> quad{0, 1, 2, 0, 2, 3};
+  Rng rng(4, 2);
+  const auto value = [&] { return float(rng.next_u32() >> 24) / 255.0f; };
+  const auto real_factor = [](BlendFactor b, const Vec4& s, const Vec4& d, int c) {
+    switch (b) {
+      case BlendFactor::zero: return 0.0;
+      case BlendFactor::one: return 1.0;
+      case BlendFactor::src_color: return s[c];
+      case BlendFactor::one_minus_src_color: return 1 - s[c];
+      case BlendFactor::dst_color: return d[c];
+      case BlendFactor::one_minus_dst_color: return 1 - d[c];
+      case BlendFactor::src_alpha: return s.w;
+      case BlendFactor::one_minus_src_alpha: return 1 - s.w;
+      case BlendFactor::dst_alpha: return d.w;
+      case BlendFactor::one_minus_dst_alpha: return 1 - d.w;
+    }
+    return 0.0;
+  };
+  int evaluations = 0;
+  Framebuffer fb(2, 2);
+  for (int e = 0; e < 5; ++e)
+    for (int src = 0; src < 10; ++src)
+      for (int dst = 0; dst < 10; ++dst)
+        for (int trial = 0; trial < 8; ++trial) {
+          const Vec3f background(value(), value(), value());
+          const float background_alpha = value();
+          const Vec4f color(value(), value(), value(), value());
+          fb.clear_color(background, background_alpha);
+          RasterState state;
+          state.depth_test = false;
+          state.blend = true;
+          state.blend_function = {BlendFactor(src), BlendFactor(dst), BlendEquation(e)};
+          draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()},
+                         Translucent<testing::FlatFragmentShader>{{Vec3f(color)}, color.w});
+          const glm::u8vec4 got = fb.color()(0, 0);
+          const Vec4 s = Vec4(to_color8(color)) / 255.0, d = Vec4(to_color8(Vec4f(background, background_alpha))) / 255.0;
+          for (int c = 0; c < 4; ++c) {
+            const double ws = s[c] * real_factor(BlendFactor(src), s, d, c);
+            const double wd = d[c] * real_factor(BlendFactor(dst), s, d, c);
+            const double exact = e == 0 ? ws + wd : e == 1 ? ws - wd : e == 2 ? wd - ws : e == 3 ? std::min(s[c], d[c]) : std::max(s[c], d[c]);
+            const int expected = int(std::lround(std::clamp(exact, 0.0, 1.0) * 255));
+            ++evaluations;
+            ASSERT_LE(std::abs(int(got[c]) - expected), 1) << "equation " << e << " src " << src << " dst " << dst;
+          }
+        }
+  EXPECT_EQ(evaluations, 5 * 100 * 8 * 4);
+  // "Over" with an opaque and a fully transparent source: the source, and the stored color, exactly.
+  for (const float alpha : {0.0f, 1.0f}) {
+    fb.clear_color({0.2f, 0.4f, 0.6f}, 1.0f);
+    RasterState state;
+    state.depth_test = false;
+    state.blend = true;
+    state.blend_function = {BlendFactor::src_alpha, BlendFactor::one_minus_src_alpha};
+    draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()},
+                   Translucent<testing::FlatFragmentShader>{{Vec3f(0.9f, 0.1f, 0.3f)}, alpha});
+    const glm::u8vec4 expected = alpha == 1 ? glm::u8vec4(to_color8(Vec3f(0.9f, 0.1f, 0.3f)))
+                                            : glm::u8vec4(to_color8(Vec3f(0.2f, 0.4f, 0.6f)));
+    EXPECT_EQ(Vec3(fb.color()(1, 1)), Vec3(expected)) << alpha;
+  }
+}
+
+// An RGBA fragment shader's alpha is what the buffer stores (blending off), and Translucent scales it.
+TEST(Raster, RgbaShadersStoreTheirAlpha) {
+  const std::vector<Vec3f> corners{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  const std::vector<uint32_t> quad{0, 1, 2, 0, 2, 3};
+  Framebuffer fb(4, 4);
+  RasterState state;
+  state.depth_test = false;
+  const auto rgba = [](const NoVaryings&, Vec4f& c) {
+    c = Vec4f(0.25f, 0.5f, 0.75f, 0.5f);
+    return true;
+  };
+  draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, rgba);
+  EXPECT_EQ(fb.color()(2, 2), glm::u8vec4(64, 128, 191, 128));
+  draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, Translucent<decltype(rgba)>{rgba, 0.5f});
+  EXPECT_EQ(fb.color()(2, 2).w, 64);
+  draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, testing::FlatFragmentShader{});
+  EXPECT_EQ(fb.color()(2, 2), glm::u8vec4(255, 255, 255, 255));  // an RGB shader's alpha is 1
+}
+
 }  // namespace
 }  // namespace tessera::raster3d

@@ -130,6 +130,12 @@ class Context {
   void stencil(const StencilFace& front, const StencilFace& back);
   /// Clears the stencil buffer to `value` (after flush()).
   void clear_stencil(uint8_t value = 0);
+  /// GL_BLEND, and glBlendFunc + glBlendEquation (RasterState::blend_function).
+  void blend(bool on);
+  void blend_function(const BlendFunction& f);
+  /// The alpha of what the context draws (1, opaque, by default): glColor4's alpha when unlit, the diffuse material's
+  /// alpha when lit; the opacity that blending reads.
+  void alpha(float a);
   /// Where lighting is evaluated (unlit = lighting off); flat also selects OpenGL's flat shade model.
   void shading(ShadingModel model);
   ShadingModel shading() const { return shading_; }
@@ -238,6 +244,7 @@ class Context {
   Vec2f current_uv_{0, 0};
   RasterState state_;
   ShadingModel shading_ = ShadingModel::unlit;
+  float alpha_ = 1;
   HiddenSurface hidden_surface_ = HiddenSurface::zbuffer;
   Lighting lighting_;
   std::array<Light, kMaxLights> lights_{};

@@ -24,17 +24,21 @@ inline uint32_t depth_to_unorm24(double z) {
   return uint32_t(z * double(kDepthMax) + 0.5);
 }
 
-/// A linear float color in [0, 1] to 8-bit RGBA (clamped, NaN to 0, alpha 255), rounded to nearest with ties to even
-/// as Mesa does (0.3 * 255 = 76.5 gives 76): adding and subtracting 1.5 * 2^23 leaves the float rounded to an integer
-/// in the default rounding mode, branch-free and vectorizable.
-inline glm::u8vec4 to_color8(const Vec3f& c) {
-  const auto q = [](float v) {
-    v = v > 0.0f ? v : 0.0f;  // NaN -> 0
-    v = v < 1.0f ? v : 1.0f;
-    constexpr float kRound = 12582912.0f;  // 1.5 * 2^23
-    return uint8_t((v * 255.0f + kRound) - kRound);
-  };
-  return {q(c.x), q(c.y), q(c.z), 255};
+/// A float in [0, 1] to an 8-bit unorm (clamped, NaN to 0), rounded to nearest with ties to even as Mesa does
+/// (0.3 * 255 = 76.5 gives 76): adding and subtracting 1.5 * 2^23 leaves the float rounded to an integer in the
+/// default rounding mode, branch-free and vectorizable.
+inline uint8_t to_unorm8(float v) {
+  v = v > 0.0f ? v : 0.0f;  // NaN -> 0
+  v = v < 1.0f ? v : 1.0f;
+  constexpr float kRound = 12582912.0f;  // 1.5 * 2^23
+  return uint8_t((v * 255.0f + kRound) - kRound);
+}
+
+/// A linear float color in [0, 1] to 8-bit RGBA (to_unorm8 per channel, alpha 255).
+inline glm::u8vec4 to_color8(const Vec3f& c) { return {to_unorm8(c.x), to_unorm8(c.y), to_unorm8(c.z), 255}; }
+/// The same with alpha.
+inline glm::u8vec4 to_color8(const Vec4f& c) {
+  return {to_unorm8(c.x), to_unorm8(c.y), to_unorm8(c.z), to_unorm8(c.w)};
 }
 
 namespace detail {
@@ -68,8 +72,8 @@ class Framebuffer {
   /// The front color buffer: what the last swap() presented.
   const ImageRGBA8& front() const { return front_; }
 
-  /// Clears the back color buffer to `color` (glClearColor + glClear(GL_COLOR_BUFFER_BIT)).
-  void clear_color(const Vec3f& color);
+  /// Clears the back color buffer to `color` and `alpha` (glClearColor + glClear(GL_COLOR_BUFFER_BIT)).
+  void clear_color(const Vec3f& color, float alpha = 1.0f);
   /// Clears the depth buffer to window z `depth` (default the far plane, 1.0).
   void clear_depth(double depth = 1.0);
   /// Clears the stencil buffer to `value` (glClearStencil + glClear(GL_STENCIL_BUFFER_BIT)).

@@ -2,7 +2,7 @@
 // The 3D pipeline as free function templates over a vertex shader and a fragment shader (shaders.hpp):
 // vertex stage -> primitive assembly -> clipping in homogeneous clip space (all six planes, Sutherland-Hodgman) ->
 // perspective divide -> viewport -> 1/256-pixel snapping -> integer edge functions with the tie rule -> stencil test
-// (when on) -> depth test -> fragment shader -> 8-bit color write. The stencil operations are applied by the tests'
+// (when on) -> depth test -> fragment shader -> blending (when on) -> 8-bit color write. The stencil operations are applied by the tests'
 // outcome, before the fragment shader (as GLSL's early_fragment_tests): a discard does not undo them. The rules are
 // gl-raster-conventions.md's (Mesa's), so the output compares with OpenGL pixel for pixel.
 //
@@ -37,6 +37,33 @@ struct StencilFace {
   StencilOp fail = StencilOp::keep, zfail = StencilOp::keep, zpass = StencilOp::keep;
 };
 
+/// A blend factor (glBlendFunc): what the source (the fragment's color, clamped to [0, 1]) or the destination (the
+/// stored color) is multiplied by, channel by channel.
+enum class BlendFactor {
+  zero,
+  one,
+  src_color,
+  one_minus_src_color,
+  dst_color,
+  one_minus_dst_color,
+  src_alpha,
+  one_minus_src_alpha,
+  dst_alpha,
+  one_minus_dst_alpha,
+};
+
+/// How the weighted source and destination combine (glBlendEquation); min and max ignore the factors.
+enum class BlendEquation { add, subtract, reverse_subtract, min, max };
+
+/// The blend function (glBlendFunc + glBlendEquation), for color and alpha alike: with source S and destination D in
+/// [0, 1], add stores S src + D dst, subtract S src - D dst, reverse_subtract D dst - S src, clamped to [0, 1] and
+/// rounded to 8 bits. The default (one, zero, add) stores the source, as with blending off. Transparency "over" what
+/// was drawn before is (src_alpha, one_minus_src_alpha); adding light is (one, one).
+struct BlendFunction {
+  BlendFactor src = BlendFactor::one, dst = BlendFactor::zero;
+  BlendEquation equation = BlendEquation::add;
+};
+
 /// The viewport (glViewport) in OpenGL window coordinates: origin at the bottom-left pixel, y up.
 /// A zero width or height means the whole framebuffer.
 struct Viewport {
@@ -57,6 +84,8 @@ struct RasterState {
   bool stencil_test = false;  ///< the stencil test and its operations (GL_STENCIL_TEST)
   StencilFace stencil_front;  ///< for front faces (counterclockwise on screen), lines and points
   StencilFace stencil_back;   ///< for back faces
+  bool blend = false;         ///< combine the fragment's color with the stored one by `blend_function` (GL_BLEND)
+  BlendFunction blend_function;
 };
 
 /// What a draw did, for statistics.

@@ -5,7 +5,8 @@
 // arrays it captures (positions, normals, ...), uses its uniforms (members) and returns the clip-space position
 // (gl_Position) and a struct V of varyings. A fragment shader is any callable `bool fs(const V& in, Vec3f& color)`:
 // it gets the varyings interpolated perspective-correctly at the pixel center and writes gl_FragColor; returning
-// false discards the fragment. Both are template parameters of the pipeline (pipeline.hpp), so they inline: no
+// false discards the fragment. A shader that writes `Vec4f& color` also gives the fragment's alpha (opacity, which
+// blending reads: RasterState::blend); the Vec3f form's alpha is 1. Both are template parameters of the pipeline (pipeline.hpp), so they inline: no
 // virtual call per vertex or fragment. GLSL's built-ins are GLM's (dot, normalize, reflect, clamp, mix, length).
 //
 // Varyings are a plain struct of floats and float vectors (glm::vec2/3/4): trivially copyable, standard layout, no
@@ -50,29 +51,72 @@ concept VertexShader = requires(const VS& vs, uint32_t i) {
 template <class VS>
 using VaryingsOf = decltype(std::declval<const VS&>()(uint32_t{}).varyings);
 
-/// A fragment shader that reads the varyings' screen-space derivatives (GLSL's dFdx and dFdy): `bool fs(const V& in,
-/// const V& ddx, const V& ddy, Vec3f& color)`. ddx and ddy are the exact derivatives of the perspective-correct
-/// interpolation at the pixel center, per window pixel to the right and up (not 2 x 2 finite differences, as GPUs
-/// take them): what a texture's level of detail needs. They are zero for lines, points and flat-shaded triangles.
-template <class FS, class V>
-concept DerivativeFragmentShader = requires(const FS& fs, const V& v, Vec3f& color) {
-  { fs(v, v, v, color) } -> std::convertible_to<bool>;
-};
-
-/// A fragment shader consuming varyings V: `bool fs(const V& in, Vec3f& color)`, or a DerivativeFragmentShader.
-template <class FS, class V>
-concept FragmentShader = DerivativeFragmentShader<FS, V> || requires(const FS& fs, const V& v, Vec3f& color) {
+/// A plain fragment shader writing color type C (Vec3f: RGB; Vec4f: RGBA): `bool fs(const V& in, C& color)`.
+template <class FS, class V, class C>
+concept PlainFragmentShaderWriting = requires(const FS& fs, const V& v, C& color) {
   { fs(v, color) } -> std::convertible_to<bool>;
 };
 
-/// Calls fs in whichever form it has (the derivatives are ignored by the plain form).
+/// A fragment shader that reads the varyings' screen-space derivatives (GLSL's dFdx and dFdy), writing color type C:
+/// `bool fs(const V& in, const V& ddx, const V& ddy, C& color)`.
+template <class FS, class V, class C>
+concept DerivativeFragmentShaderWriting = requires(const FS& fs, const V& v, C& color) {
+  { fs(v, v, v, color) } -> std::convertible_to<bool>;
+};
+
+/// A fragment shader that reads the varyings' screen-space derivatives (GLSL's dFdx and dFdy): `bool fs(const V& in,
+/// const V& ddx, const V& ddy, Vec3f& color)` (or `Vec4f& color`, RGBA). ddx and ddy are the exact derivatives of the
+/// perspective-correct interpolation at the pixel center, per window pixel to the right and up (not 2 x 2 finite
+/// differences, as GPUs take them): what a texture's level of detail needs. They are zero for lines, points and
+/// flat-shaded triangles.
+template <class FS, class V>
+concept DerivativeFragmentShader =
+    DerivativeFragmentShaderWriting<FS, V, Vec3f> || DerivativeFragmentShaderWriting<FS, V, Vec4f>;
+
+/// A fragment shader consuming varyings V: `bool fs(const V& in, Vec3f& color)`, `bool fs(const V& in, Vec4f&
+/// color)` (RGBA), or a DerivativeFragmentShader.
+template <class FS, class V>
+concept FragmentShader = DerivativeFragmentShader<FS, V> || PlainFragmentShaderWriting<FS, V, Vec3f> ||
+                         PlainFragmentShaderWriting<FS, V, Vec4f>;
+
+/// Calls fs in whichever form it has (the derivatives are ignored by the plain forms); an RGB shader's alpha is 1.
+/// A shader callable with both Vec3f and Vec4f is called with Vec3f.
 template <class V, FragmentShader<V> FS>
-bool run_fragment_shader(const FS& fs, const V& in, const V& ddx, const V& ddy, Vec3f& color) {
-  if constexpr (DerivativeFragmentShader<FS, V>)
+bool run_fragment_shader(const FS& fs, const V& in, const V& ddx, const V& ddy, Vec4f& color) {
+  if constexpr (DerivativeFragmentShaderWriting<FS, V, Vec3f> || PlainFragmentShaderWriting<FS, V, Vec3f>) {
+    Vec3f rgb;
+    bool kept;
+    if constexpr (DerivativeFragmentShaderWriting<FS, V, Vec3f>)
+      kept = fs(in, ddx, ddy, rgb);
+    else
+      kept = fs(in, rgb);
+    color = Vec4f(rgb, 1.0f);
+    return kept;
+  } else if constexpr (DerivativeFragmentShaderWriting<FS, V, Vec4f>) {
     return fs(in, ddx, ddy, color);
-  else
+  } else {
     return fs(in, color);
+  }
 }
+
+/// Fragment shader FS made translucent: FS's color with its alpha (1 for an RGB shader) multiplied by `alpha`, the
+/// opacity that blending reads (RasterState::blend). The derivatives reach FS when it reads them.
+template <class FS>
+struct Translucent {
+  FS shader;
+  float alpha = 1;
+
+  template <class V>
+    requires(FragmentShader<FS, V> && !DerivativeFragmentShader<FS, V>)
+  bool operator()(const V& in, Vec4f& color) const {
+    return run_fragment_shader(shader, in, in, in, color) && (color.w *= alpha, true);
+  }
+  template <class V>
+    requires DerivativeFragmentShader<FS, V>
+  bool operator()(const V& in, const V& ddx, const V& ddy, Vec4f& color) const {
+    return run_fragment_shader(shader, in, ddx, ddy, color) && (color.w *= alpha, true);
+  }
+};
 
 // ---- Vertex attribute arrays
 // -----------------------------------------------------------------------------------------

@@ -157,8 +157,9 @@ struct SetupParams {
   int varying_count;      // N
   bool flat, painter;
   int cull;  // 0 none, 1 back, 2 front
-  bool color_write, stencil_test;
+  bool color_write, stencil_test, blend;
   StencilFace stencil[2];  // back, front (indexed by TriangleRecord::front)
+  BlendFunction blend_function;
   int fb_width, fb_height;
   int vx, vy, vw, vh;  // the viewport
   int tiles_x, tiles_y;
@@ -275,6 +276,15 @@ inline bool depth_passes(uint32_t d, uint32_t s) {
 bool stencil_passes(const StencilFace& face, uint8_t s);
 /// Applies `op` of `face` to the stored value s (through its write mask).
 void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s);
+
+/// The blend of fragment color `src` over the stored `dst` by `f` (BlendFunction).
+glm::u8vec4 blend_colors(const BlendFunction& f, const Vec4f& src, glm::u8vec4 dst);
+
+/// Writes fragment color c to the stored color: masked (params.color_write off), blended (params.blend) or stored.
+inline void write_color(const SetupParams& params, const Vec4f& c, glm::u8vec4& stored) {
+  if (!params.color_write) return;
+  stored = params.blend ? blend_colors(params.blend_function, c, stored) : to_color8(c);
+}
 
 /// The stencil test and the depth test outcome `depth_pass` of a fragment, with their stencil operations on s
 /// (params.stencil_test on): whether the fragment goes on to the fragment shader.
@@ -692,7 +702,7 @@ template <int N>
 /// px and py the planes' slopes) and runs the fragment shader; false when it discards.
 template <int N, class V, class FS>
 [[gnu::always_inline]] inline bool interpolated_fragment(const FS& fs, const float* base, const float* px,
-                                                         const float* py, float dx, Vec3f& c) {
+                                                         const float* py, float dx, Vec4f& c) {
   const float w = 1.0f / (base[0] + px[0] * dx);
   std::array<float, N> values;
   for (int q = 0; q < N; ++q) values[q] = (base[q + 1] + px[q + 1] * dx) * w;
@@ -709,7 +719,7 @@ template <int N, class V, class FS>
     V vx, vy;
     std::memcpy(&vx, ddx.data(), sizeof(float) * N);
     std::memcpy(&vy, ddy.data(), sizeof(float) * N);
-    return fs(v, vx, vy, c);
+    return run_fragment_shader(fs, v, vx, vy, c);
   } else {
     return run_fragment_shader(fs, v, V{}, V{}, c);
   }
@@ -733,15 +743,15 @@ template <DepthFunc F, class Pixels>
   }
 }
 
-/// Rasterizes one record over GL pixels [x0, x1) x [y0, y1) pixel by pixel, with the stencil test (when on) and the
-/// color write mask: the path of draws that use them (shadow volumes, masks), not of ordinary shading (out of line: it
-/// leaves the ordinary loops' code as it was).
+/// Rasterizes one record over GL pixels [x0, x1) x [y0, y1) pixel by pixel, with the stencil test (when on), the
+/// color write mask and blending: the path of draws that use them (shadow volumes, masks, transparency), not of
+/// ordinary shading (out of line: it leaves the ordinary loops' code as it was).
 template <int N, class V, class FS, DepthFunc F>
 [[gnu::noinline]] void raster_record_masked(Framebuffer& fb, const TriangleRecord& r, const float* data,
                                             const SetupParams& params, bool depth_write, int x0, int x1, int y0,
                                             int y1, const FS& fs) {
   const bool constant = r.constant || N == 0;
-  Vec3f constant_color(0);
+  Vec4f constant_color(0);
   bool constant_kept = false;
   if (constant) {
     V v{};
@@ -760,11 +770,11 @@ template <int N, class V, class FS, DepthFunc F>
     for (int k = 0; k < hi - lo; ++k) {
       const bool go = params.stencil_test ? stencil_and_depth(face, pass[k], srow[lo + k]) : pass[k];
       if (!go) continue;
-      Vec3f c = constant_color;
+      Vec4f c = constant_color;
       if (constant ? !constant_kept
                    : !interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c))
         continue;
-      if (params.color_write) crow[lo + k] = to_color8(c);
+      write_color(params, c, crow[lo + k]);
       if (depth_write) drow[lo + k] = d[k];
     }
   };
@@ -783,7 +793,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
   auto& color = fb.color();
   auto& depth = fb.depth();
   const bool write_depth = depth_write;
-  const bool masked = params.stencil_test || !params.color_write;  // (raster_record_masked)
+  const bool masked = params.stencil_test || !params.color_write || params.blend;  // (raster_record_masked)
   // Small triangles land anywhere in the tile: fetch its depth and color rows at once rather than miss on each.
   // The same for the tile's first records (each spans two cache lines), scattered over the chunks.
   size_t records = 0;
@@ -816,7 +826,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
         // Constant varyings: the fragment shader's answer is the same at every pixel.
         V v{};
         if constexpr (N > 0) std::memcpy(&v, data, sizeof(float) * N);
-        Vec3f c;
+        Vec4f c;
         if (!run_fragment_shader(fs, v, V{}, V{}, c)) continue;
         const glm::u8vec4 c8 = to_color8(c);
         uint32_t c32;
@@ -855,7 +865,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
         const auto base = row_planes<N>(r, data, j);
         for (int k = 0; k < hi - lo; ++k) {
           if (!pass[k]) continue;
-          Vec3f c;
+          Vec4f c;
           if (!interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c)) continue;
           crow[lo + k] = to_color8(c);
           if (write_depth) drow[lo + k] = d[k];
@@ -878,9 +888,9 @@ void shade_fragment(Framebuffer& fb, const SetupParams& params, int i, int j, ui
     return;
   V v{};
   if constexpr (N > 0) std::memcpy(&v, values, sizeof(float) * N);
-  Vec3f c;
+  Vec4f c;
   if (!run_fragment_shader(fs, v, V{}, V{}, c)) return;
-  if (params.color_write) fb.color()(i, row) = to_color8(c);
+  write_color(params, c, fb.color()(i, row));
   if (depth_write) stored = d;
 }
 
