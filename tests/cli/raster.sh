@@ -170,6 +170,21 @@ for method in ('zpass', 'zfail'):
     assert differ < darker / 10, (method, differ, darker)
 PY
 
+# --opacity: an unlit white cube at alpha 0.5 over black, its triangles sorted far to near, is two layers deep inside
+# its outline: 0.5 (front) + 0.5 x 0.5 (back, blended first) = 0.75 of white (191); opacity 0 leaves the background.
+"$tessera" raster cube.obj -o opaque.png --size 64x64 --shading unlit --color 1,1,1 --quiet
+"$tessera" raster cube.obj -o half.png --size 64x64 --shading unlit --color 1,1,1 --opacity 0.5 --quiet
+"$tessera" raster cube.obj -o clear.png --size 64x64 --shading unlit --color 1,1,1 --opacity 0 --quiet
+"$py" - <<'PY'
+import numpy as np
+from PIL import Image
+opaque, half, clear = (np.asarray(Image.open(f).convert("L"), dtype=int) for f in ("opaque.png", "half.png", "clear.png"))
+inside = opaque == 255
+assert inside.sum() > 500, inside.sum()
+assert (abs(half[inside] - 191) <= 1).mean() > 0.95, np.unique(half[inside], return_counts=True)
+assert (half[~inside] == 0).all() and (clear == 0).all()
+PY
+
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
 expect_error() {
   local status="$1" pattern="$2"
@@ -205,5 +220,7 @@ expect_error 1 "env-cube" tquad.obj -o bad.png --env-cube
 expect_error 1 "add --shadows" cube.obj -o bad.png --shadow-method zfail
 expect_error 2 "shadow-method" cube.obj -o bad.png --shadows --shadow-method volume
 expect_error 2 "filter" tquad.obj -o bad.png --texture halves.png --filter cubic
+expect_error 1 "opacity" cube.obj -o bad.png --opacity 0.5 --floor
+expect_error 2 "opacity" cube.obj -o bad.png --opacity 1.5
 expect_error 2 "reflect" tquad.obj -o bad.png --env green.png --reflect 2
 echo "raster CLI ok"

@@ -1,4 +1,5 @@
 // tessera raster MESH -o IMG: z-buffered rasterization of a mesh file through raster3d's fixed-function pipeline.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
@@ -6,6 +7,7 @@
 #include <optional>
 #include <set>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -33,7 +35,7 @@ struct RasterArgs {
   CameraOptions camera;
   // The maps (drawn per pixel by raster3d's surface shaders).
   std::string texture, filter = "trilinear", bump, env, shadow_method = "map";
-  double bump_scale = 0.01, reflect = 0.6;
+  double bump_scale = 0.01, reflect = 0.6, opacity = 1;
   bool shadows = false, floor = false, env_cube = false, shading_given = false;
   int shadow_size = 2048;
 
@@ -269,6 +271,8 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     throw InvalidInput(fmt::format("--shadow-method {}: shadows are off; add --shadows", a.shadow_method));
   if (a.maps() && a.wireframe)
     throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
+  if (a.maps() && a.opacity < 1)
+    throw InvalidInput("--opacity does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
 
   PolyMesh poly = read_mesh(a.mesh);
   if (poly.face_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to draw", a.mesh));
@@ -302,7 +306,16 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   ctx.color(surface);
   ctx.shading(shading);
   ctx.cull(a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none);
-  const raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
+  raster3d::VertexArrays arrays = raster3d::VertexArrays::from_mesh(mesh);
+  if (a.opacity < 1) {
+    // Transparency: "over" blending of the triangles sorted far to near, the z-buffer still on (for --depth-out and
+    // the pixel count) and passing them in that order.
+    raster3d::sort_back_to_front(arrays, look_at(camera.eye, camera.center, camera.up));
+    ctx.alpha(float(a.opacity));
+    ctx.blend(true);
+    ctx.blend_function({raster3d::BlendFactor::src_alpha, raster3d::BlendFactor::one_minus_src_alpha});
+    ctx.depth_func(raster3d::DepthFunc::lequal);
+  }
   const auto edges = a.wireframe ? polygon_edges(poly) : std::vector<std::pair<uint32_t, uint32_t>>{};
   // Edges dark on a light background, light on a dark one.
   const Vec3f wire_color = (bg.x + bg.y + bg.z) > 1.5f ? Vec3f(0.1f, 0.1f, 0.15f) : Vec3f(0.9f, 0.9f, 0.8f);
@@ -321,6 +334,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
       const raster3d::ShadingModel saved = ctx.shading();
       ctx.shading(raster3d::ShadingModel::unlit);
       ctx.color(wire_color);
+      ctx.alpha(1);
       ctx.begin(raster3d::Primitive::lines);
       for (const auto& [u, v] : edges) {
         ctx.vertex(poly.positions[u].x, poly.positions[u].y, poly.positions[u].z);
@@ -329,6 +343,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
       ctx.end();
       ctx.shading(saved);
       ctx.color(surface);
+      ctx.alpha(float(a.opacity));
       ctx.matrix_mode(raster3d::MatrixMode::projection);
       ctx.pop_matrix();
       ctx.matrix_mode(raster3d::MatrixMode::model_view);
@@ -389,6 +404,11 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->capture_default_str();
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
       ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd.add_option("--opacity", a->opacity,
+                 "Surface opacity in [0,1]: below 1 the triangles are sorted far to near and blended over what lies "
+                 "behind them (alpha blending)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd.add_flag("--floor", a->floor, "Add a light gray floor under the mesh (y up), to receive its shadow");
   cmd.callback([a, &common, &cmd] {

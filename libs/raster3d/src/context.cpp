@@ -50,6 +50,22 @@ VertexAttributes VertexArrays::attributes() const {
           uvs.empty() ? nullptr : uvs.data()};
 }
 
+void sort_back_to_front(VertexArrays& arrays, const Mat4& model_view) {
+  const size_t n = arrays.indices.size() / 3;
+  std::vector<std::pair<double, size_t>> order(n);
+  for (size_t t = 0; t < n; ++t) {
+    const uint32_t* v = &arrays.indices[3 * t];
+    const Vec3 centroid =
+        (Vec3(arrays.positions[v[0]]) + Vec3(arrays.positions[v[1]]) + Vec3(arrays.positions[v[2]])) / 3.0;
+    order[t] = {(model_view * Vec4(centroid, 1)).z, t};  // the eye looks down -z: the most negative is the farthest
+  }
+  std::stable_sort(order.begin(), order.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<uint32_t> sorted;
+  sorted.reserve(arrays.indices.size());
+  for (const auto& [z, t] : order) sorted.insert(sorted.end(), &arrays.indices[3 * t], &arrays.indices[3 * t + 3]);
+  arrays.indices = std::move(sorted);
+}
+
 Context::Context(int width, int height) : framebuffer_(width, height) { initialize(width, height); }
 
 void Context::initialize(int width, int height) {

@@ -511,5 +511,53 @@ TEST(Context, MeshWithMismatchedAttributesThrows) {
   EXPECT_THROW(ctx.draw(mesh), InvalidInput);
 }
 
+// Triangles far to near through the model-view: three quads at z = -1, -3, -2 (in that order in the arrays) come out
+// -3, -2, -1; a rotation that turns the scene around reverses the order.
+TEST(Context, SortBackToFrontOrdersByEyeDepth) {
+  VertexArrays arrays;
+  for (const float z : {-1.0f, -3.0f, -2.0f}) {
+    const auto base = uint32_t(arrays.positions.size());
+    for (const Vec3f& p : {Vec3f(0, 0, z), Vec3f(1, 0, z), Vec3f(1, 1, z), Vec3f(0, 1, z)}) arrays.positions.push_back(p);
+    arrays.indices.insert(arrays.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  const auto depths = [&] {
+    std::vector<float> z;
+    for (size_t t = 0; t < arrays.indices.size(); t += 3) z.push_back(arrays.positions[arrays.indices[t]].z);
+    return z;
+  };
+  sort_back_to_front(arrays, Mat4(1.0));
+  EXPECT_EQ(depths(), (std::vector<float>{-3, -3, -2, -2, -1, -1}));
+  sort_back_to_front(arrays, rotate_y(kPi));  // now z = -1 is the farthest
+  EXPECT_EQ(depths(), (std::vector<float>{-1, -1, -2, -2, -3, -3}));
+}
+
+// Context::alpha and blend: a white unlit quad at alpha 0.5 "over" black stores round(0.5 * 255) = 128 (the alpha
+// rounded to 8 bits first, then the product rounded); over a red layer, the two mix; with blending off, the quad
+// replaces the layer and its alpha is stored.
+TEST(Context, AlphaBlendsOver) {
+  Context ctx(8, 8);
+  ctx.clear({0, 0, 0});
+  const auto quad = [&] {
+    ctx.begin(Primitive::quads);
+    ctx.vertex(-1, -1, 0);
+    ctx.vertex(1, -1, 0);
+    ctx.vertex(1, 1, 0);
+    ctx.vertex(-1, 1, 0);
+    ctx.end();
+  };
+  ctx.depth_test(false);
+  ctx.alpha(0.5f);
+  ctx.blend(true);
+  ctx.blend_function({BlendFactor::src_alpha, BlendFactor::one_minus_src_alpha});
+  quad();
+  EXPECT_EQ(ctx.framebuffer().color()(4, 4), glm::u8vec4(128, 128, 128, 191));  // alpha: 0.5 + 0.5 * (1 - 0.5)
+  ctx.clear({1, 0, 0});
+  quad();
+  EXPECT_EQ(Vec3(ctx.framebuffer().color()(4, 4)), Vec3(255, 128, 128));
+  ctx.blend(false);
+  quad();
+  EXPECT_EQ(ctx.framebuffer().color()(4, 4), glm::u8vec4(255, 255, 255, 128));
+}
+
 }  // namespace
 }  // namespace tessera::raster3d

@@ -50,6 +50,11 @@ struct VertexArrays {
   VertexAttributes attributes() const;
 };
 
+/// Reorders the triangles of `arrays` far to near as seen through `model_view` (by their centroids' eye-space z;
+/// ties keep their order), so that blending each over what was drawn before gives order-dependent transparency.
+/// Exact where the triangles' depth ranges do not interleave, as for the painter's algorithm.
+void sort_back_to_front(VertexArrays& arrays, const Mat4& model_view);
+
 /// An OpenGL 1.x-style rendering context with its own framebuffer.
 class Context {
   struct DrawShaders;
