@@ -7,33 +7,15 @@
 #include "gallery.hpp"
 #include "mesh_view.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 
-namespace {
-
 using namespace tessera;
-
-/// The shadow volumes of the casters (all but the floor, the first object) for a light given homogeneously (world
-/// space).
-std::vector<raster3d::ShadowVolume> volumes(const std::vector<examples::SceneObject>& objects, const Vec4f& light) {
-  std::vector<raster3d::ShadowVolume> out;
-  for (const examples::SceneObject& o : objects) {
-    if (&o == &objects.front()) continue;  // the floor only receives
-    std::vector<Vec3f> world;
-    for (const Vec3f& p : o.arrays.positions) world.push_back(Vec3f(transform_point(o.model, Vec3(p))));
-    out.push_back(raster3d::shadow_volume(world, o.arrays.indices, light));
-  }
-  return out;
-}
-
-}  // namespace
 
 TESSERA_EXAMPLE(ex25_shadow_volumes, "25_shadow_volumes",
                 "Shadow volumes: stencil counts, exact shadows, z-pass against z-fail with the eye in shadow") {
   const std::vector<examples::SceneObject> objects = examples::shadow_scene();
   const Vec3 to_light = glm::normalize(Vec3(-0.7, 1.0, 0.5));
-  const std::vector<raster3d::ShadowVolume> shadow = volumes(objects, Vec4f(Vec3f(to_light), 0));
+  const std::vector<raster3d::ShadowVolume> shadow = examples::caster_volumes(objects, Vec4f(Vec3f(to_light), 0));
   const int w = 300, h = 240, s = 2;
   // Renders the scene from `eye` with the volumes counted by `count`; the stencil counts come back too.
   const auto render = [&](const Vec3& eye, const Vec3& center, raster3d::ShadowCount count, Image<uint8_t>* counts) {

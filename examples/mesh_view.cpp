@@ -164,4 +164,15 @@ std::vector<SceneObject> shadow_scene() {
            translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}}};
 }
 
+std::vector<raster3d::ShadowVolume> caster_volumes(const std::vector<SceneObject>& objects, const Vec4f& light) {
+  std::vector<raster3d::ShadowVolume> out;
+  for (size_t k = 1; k < objects.size(); ++k) {
+    std::vector<Vec3f> world;
+    for (const Vec3f& p : objects[k].arrays.positions)
+      world.push_back(Vec3f(transform_point(objects[k].model, Vec3(p))));
+    out.push_back(raster3d::shadow_volume(world, objects[k].arrays.indices, light));
+  }
+  return out;
+}
+
 }  // namespace tessera::examples

@@ -11,6 +11,7 @@
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/lighting.hpp"
+#include "tessera/raster3d/shadow_volume.hpp"
 
 namespace tessera::examples {
 
@@ -56,5 +57,9 @@ struct SceneObject {
 
 /// The scene of the shadow examples (22, 25): a 6 x 6 floor at y = 0 (first), then a sphere, a torus and a box over it.
 std::vector<SceneObject> shadow_scene();
+
+/// The shadow volumes of shadow_scene()'s casters (all but the floor, which only receives) for a light given
+/// homogeneously in world space ((p, 1) a point light, (d, 0) a directional light shining along -d).
+std::vector<raster3d::ShadowVolume> caster_volumes(const std::vector<SceneObject>& objects, const Vec4f& light);
 
 }  // namespace tessera::examples

@@ -125,18 +125,48 @@ DrawStats draw_shadow_volume(Framebuffer& framebuffer, const RasterState& state,
   return stats;
 }
 
+namespace {
+
+/// Counts `volumes` into the stencil buffer, cleared to 0 first.
+void count_volumes(Framebuffer& framebuffer, const RasterState& state, std::span<const ShadowVolume> volumes,
+                   const Mat4f& view_projection, ShadowCount count) {
+  framebuffer.clear_stencil(0);
+  for (const ShadowVolume& volume : volumes) draw_shadow_volume(framebuffer, state, volume, view_projection, count);
+}
+
+/// The state of a lit pass: exactly the visible surface drawn again (depth func equal), where no volume holds it
+/// (stencil equal to ref 0).
+RasterState unshadowed(const RasterState& base) {
+  RasterState lit = base;
+  lit.depth_func = DepthFunc::equal;
+  lit.stencil_test = true;
+  lit.stencil_front.func = lit.stencil_back.func = DepthFunc::equal;
+  return lit;
+}
+
+}  // namespace
+
 void draw_with_shadow_volumes(Framebuffer& framebuffer, std::span<const ShadowVolume> volumes,
                               const Mat4f& view_projection, ShadowCount count,
                               const std::function<void(const RasterState& state, float light0)>& draw) {
   const RasterState base;
   draw(base, 0.0f);
-  framebuffer.clear_stencil(0);
-  for (const ShadowVolume& volume : volumes) draw_shadow_volume(framebuffer, base, volume, view_projection, count);
-  RasterState lit = base;
-  lit.depth_func = DepthFunc::equal;
-  lit.stencil_test = true;
-  lit.stencil_front.func = lit.stencil_back.func = DepthFunc::equal;  // ref 0: where no volume holds the surface
-  draw(lit, 1.0f);
+  count_volumes(framebuffer, base, volumes, view_projection, count);
+  draw(unshadowed(base), 1.0f);
+}
+
+void draw_lights_with_shadow_volumes(Framebuffer& framebuffer, std::span<const std::vector<ShadowVolume>> volumes,
+                                     const Mat4f& view_projection, ShadowCount count,
+                                     const std::function<void(const RasterState& state, int light)>& draw) {
+  const RasterState base;
+  draw(base, -1);
+  RasterState add = unshadowed(base);
+  add.blend = true;
+  add.blend_function = {BlendFactor::one, BlendFactor::one};
+  for (size_t i = 0; i < volumes.size(); ++i) {
+    count_volumes(framebuffer, base, volumes[i], view_projection, count);
+    draw(add, int(i));
+  }
 }
 
 }  // namespace tessera::raster3d

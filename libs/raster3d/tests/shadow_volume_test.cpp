@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -62,54 +63,67 @@ bool ray_blocked(const Vec3& p, const Vec3& light, const std::vector<Caster>& ca
 constexpr int kWidth = 200, kHeight = 150;
 const Vec3f kFloorColor(0, 0, 1), kCasterColor(1, 0, 0);
 
-/// A picture of casters over a floor with shadow volumes, and the reference shadow of every visible floor pixel.
-struct ShadowPicture {
-  Framebuffer fb{kWidth, kHeight};
+/// Casters over a floor, seen from an eye: what the pictures draw and the reference casts rays through.
+struct Scene {
+  std::vector<Caster> casters = {place(make_cube(), 0.9, {0, 1.2, 0}),
+                                 place(make_uv_sphere(24, 12), 0.6, {-1.3, 0.8, 0.6})};
+  Caster floor = floor_square(6);
+  Mat4 vp;
+
+  Scene(const Vec3& eye, const Vec3& center, ShadowCount count) {
+    const Mat4 projection = count == ShadowCount::zfail
+                                ? infinite_perspective(radians(60), double(kWidth) / kHeight, 0.05)
+                                : perspective(radians(60), double(kWidth) / kHeight, 0.05, 100);
+    vp = projection * look_at(eye, center, {0, 1, 0});
+  }
+
+  /// The casters' shadow volumes for a point light.
+  std::vector<ShadowVolume> volumes(const Vec3& light) const {
+    std::vector<ShadowVolume> out;
+    for (const Caster& c : casters) out.push_back(shadow_volume(c.positions, c.indices, Vec4f(Vec3f(light), 1)));
+    return out;
+  }
+
+  /// Draws the casters and the floor, flat colored.
+  void draw(Framebuffer& fb, const RasterState& state, const Vec3f& caster_color, const Vec3f& floor_color) const {
+    for (const Caster& c : casters)
+      draw_triangles(fb, state, uint32_t(c.positions.size()), c.indices,
+                     FlatVertexShader{c.positions.data(), Mat4f(vp)}, FlatFragmentShader{caster_color});
+    draw_triangles(fb, state, 4, floor.indices, FlatVertexShader{floor.positions.data(), Mat4f(vp)},
+                   FlatFragmentShader{floor_color});
+  }
+};
+
+/// A picture's shadow of one light against the reference shadow of every visible floor pixel.
+struct ShadowCheck {
   int floor_pixels = 0, shadowed = 0, mismatches = 0, off_edge = 0;
 };
 
-ShadowPicture render(const Vec3& eye, const Vec3& center, const Vec3& light, ShadowCount count) {
-  std::vector<Caster> casters = {place(make_cube(), 0.9, {0, 1.2, 0}),
-                                 place(make_uv_sphere(24, 12), 0.6, {-1.3, 0.8, 0.6})};
-  const Caster floor = floor_square(6);
-  const Mat4 projection = count == ShadowCount::zfail
-                              ? infinite_perspective(radians(60), double(kWidth) / kHeight, 0.05)
-                              : perspective(radians(60), double(kWidth) / kHeight, 0.05, 100);
-  const Mat4 vp = projection * look_at(eye, center, {0, 1, 0});
-  std::vector<ShadowVolume> volumes;
-  for (const Caster& c : casters) volumes.push_back(shadow_volume(c.positions, c.indices, Vec4f(Vec3f(light), 1)));
-  ShadowPicture pic;
-  pic.fb.clear({0, 0, 0});
-  draw_with_shadow_volumes(pic.fb, volumes, Mat4f(vp), count, [&](const RasterState& state, float light0) {
-    const float k = 0.4f + 0.6f * light0;
-    for (const Caster& c : casters)
-      draw_triangles(pic.fb, state, uint32_t(c.positions.size()), c.indices,
-                     FlatVertexShader{c.positions.data(), Mat4f(vp)}, FlatFragmentShader{k * kCasterColor});
-    draw_triangles(pic.fb, state, 4, floor.indices, FlatVertexShader{floor.positions.data(), Mat4f(vp)},
-                   FlatFragmentShader{k * kFloorColor});
-  });
-  // The reference: each floor pixel's point, from its depth, against the rays to the light.
-  const Mat4 to_world = glm::inverse(vp);
+/// Compares the floor pixels of fb (those with blue; the casters have none) that `lit` calls lit with rays cast from
+/// each one's point, from its depth, to the light.
+template <class Lit>
+ShadowCheck check_shadow(const Framebuffer& fb, const Scene& scene, const Vec3& light, Lit lit) {
+  const Mat4 to_world = glm::inverse(scene.vp);
   std::vector<int> reference(size_t(kWidth) * kHeight, -1);  // -1 not floor, 0 lit, 1 shadowed
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
-      if (pic.fb.color()(x, y).z == 0) continue;
-      const double z = 2.0 * pic.fb.depth()(x, y) / kDepthMax - 1;
+      if (fb.color()(x, y).z == 0) continue;
+      const double z = 2.0 * fb.depth()(x, y) / kDepthMax - 1;
       const Vec4 ndc((x + 0.5) / kWidth * 2 - 1, 1 - (y + 0.5) / kHeight * 2, z, 1);
       const Vec4 w = to_world * ndc;
       Vec3 p = Vec3(w) / w.w;
       p.y = 0;  // on the floor (the depth's rounding moves it by a little)
-      reference[size_t(y) * kWidth + x] = ray_blocked(p, light, casters) ? 1 : 0;
+      reference[size_t(y) * kWidth + x] = ray_blocked(p, light, scene.casters) ? 1 : 0;
     }
+  ShadowCheck check;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       const int ref = reference[size_t(y) * kWidth + x];
       if (ref < 0) continue;
-      ++pic.floor_pixels;
-      pic.shadowed += ref;
-      const bool dark = pic.fb.color()(x, y).z < 200;
-      if (dark == (ref == 1)) continue;
-      ++pic.mismatches;
+      ++check.floor_pixels;
+      check.shadowed += ref;
+      if (lit(fb.color()(x, y)) == (ref == 0)) continue;
+      ++check.mismatches;
       // A pixel whose center lies within a pixel of the shadow's outline may go either way.
       bool edge = false;
       for (int dy = -1; dy <= 1; ++dy)
@@ -119,9 +133,22 @@ ShadowPicture render(const Vec3& eye, const Vec3& center, const Vec3& light, Sha
           const int other = reference[size_t(yy) * kWidth + xx];
           edge = edge || (other >= 0 && other != ref) || other < 0;
         }
-      if (!edge) ++pic.off_edge;
+      if (!edge) ++check.off_edge;
     }
-  return pic;
+  return check;
+}
+
+/// The casters and floor with shadow volumes for one light (the floor blue, 40% dark in shadow), checked.
+ShadowCheck render(const Vec3& eye, const Vec3& center, const Vec3& light, ShadowCount count) {
+  const Scene scene(eye, center, count);
+  Framebuffer fb(kWidth, kHeight);
+  fb.clear({0, 0, 0});
+  draw_with_shadow_volumes(fb, scene.volumes(light), Mat4f(scene.vp), count,
+                           [&](const RasterState& state, float light0) {
+                             const float k = 0.4f + 0.6f * light0;
+                             scene.draw(fb, state, k * kCasterColor, k * kFloorColor);
+                           });
+  return check_shadow(fb, scene, light, [](const glm::u8vec4& c) { return c.z >= 200; });
 }
 
 /// Whether every directed edge of the volume's triangles has its reverse: a closed, consistently oriented surface.
@@ -182,7 +209,7 @@ TEST(ShadowVolume, OpenAndNonManifoldMeshesGiveClosedVolumes) {
 
 TEST(ShadowVolume, ShadowsAreTheRayCastShadows) {
   for (const ShadowCount count : {ShadowCount::zpass, ShadowCount::zfail}) {
-    const ShadowPicture pic = render({1.5, 3.5, 4}, {-0.5, 0, -0.5}, {3, 3, 2}, count);
+    const ShadowCheck pic = render({1.5, 3.5, 4}, {-0.5, 0, -0.5}, {3, 3, 2}, count);
     EXPECT_GT(pic.floor_pixels, 10000);
     EXPECT_GT(pic.shadowed, 1500);
     // Only pixels on the outline may differ, and few do.
@@ -194,14 +221,60 @@ TEST(ShadowVolume, ShadowsAreTheRayCastShadows) {
 TEST(ShadowVolume, ZFailIsRightWithTheEyeInShadowAndZPassIsNot) {
   // The eye low, in the cube's shadow (light straight above it), looking across the floor.
   const Vec3 eye(0.1, 0.3, 0.2), center(3, 0, 2), light(0, 8, 0);
-  const ShadowPicture zfail = render(eye, center, light, ShadowCount::zfail);
+  const ShadowCheck zfail = render(eye, center, light, ShadowCount::zfail);
   EXPECT_GT(zfail.floor_pixels, 10000);
   EXPECT_GT(zfail.shadowed, 1000);
   EXPECT_EQ(zfail.off_edge, 0);
   EXPECT_LT(zfail.mismatches, zfail.floor_pixels / 200);
   // z-pass misses the volume's faces cut off by the near plane: its counts are off by one over most of the floor.
-  const ShadowPicture zpass = render(eye, center, light, ShadowCount::zpass);
+  const ShadowCheck zpass = render(eye, center, light, ShadowCount::zpass);
   EXPECT_GT(zpass.mismatches, zpass.floor_pixels / 4);
+}
+
+TEST(ShadowVolume, SeveralLightsAddTheirPassesWhereEachIsUnshadowed) {
+  // Two lights, one red and one green, over a floor and casters that reflect each fully: a floor pixel has red
+  // exactly where the ray to the red light is free, and green where the ray to the green light is.
+  const Vec3 eye(1.5, 3.5, 4), center(-0.5, 0, -0.5);
+  const std::array<Vec3, 2> lights = {Vec3(3, 3, 2), Vec3(-2, 4, -1)};
+  const std::array<Vec3f, 2> light_colors = {Vec3f(0.8f, 0, 0), Vec3f(0, 0.8f, 0)};
+  for (const ShadowCount count : {ShadowCount::zpass, ShadowCount::zfail}) {
+    const Scene scene(eye, center, count);
+    const std::vector<std::vector<ShadowVolume>> volumes = {scene.volumes(lights[0]), scene.volumes(lights[1])};
+    Framebuffer fb(kWidth, kHeight);
+    fb.clear({0, 0, 0});
+    std::vector<int> passes;
+    draw_lights_with_shadow_volumes(fb, volumes, Mat4f(scene.vp), count, [&](const RasterState& state, int light) {
+      passes.push_back(light);
+      if (light < 0)
+        scene.draw(fb, state, {0.1f, 0.1f, 0}, {0.1f, 0.1f, 0.5f});  // the ambient pass
+      else
+        scene.draw(fb, state, light_colors[size_t(light)], light_colors[size_t(light)]);
+    });
+    EXPECT_EQ(passes, (std::vector<int>{-1, 0, 1}));
+    for (int i = 0; i < 2; ++i) {
+      const ShadowCheck check =
+          check_shadow(fb, scene, lights[size_t(i)], [i](const glm::u8vec4& c) { return c[i] > 128; });
+      EXPECT_GT(check.floor_pixels, 10000);
+      EXPECT_GT(check.shadowed, 1000) << "light " << i;
+      EXPECT_EQ(check.off_edge, 0) << "light " << i;
+      EXPECT_LT(check.mismatches, check.floor_pixels / 200) << "light " << i;
+    }
+    // The passes sum, exactly: a floor pixel's red and green are the ambient's 0.1 (26 of 255) or that plus the
+    // light's 0.8 (204), its blue the ambient's 0.5. Each combination of lit and shadowed occurs.
+    std::map<std::pair<int, int>, int> classes;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const glm::u8vec4 c = fb.color()(x, y);
+        if (c.z == 0) continue;  // a caster
+        ASSERT_EQ(c.z, 128);
+        ASSERT_TRUE(c.x == 26 || c.x == 230) << int(c.x);
+        ASSERT_TRUE(c.y == 26 || c.y == 230) << int(c.y);
+        ++classes[{c.x, c.y}];
+      }
+    EXPECT_GT((classes[{230, 230}]), 5000);
+    EXPECT_GT((classes[{26, 230}]), 500);
+    EXPECT_GT((classes[{230, 26}]), 500);
+  }
 }
 
 TEST(ShadowVolume, BadInputIsReported) {

@@ -67,4 +67,14 @@ void draw_with_shadow_volumes(Framebuffer& framebuffer, std::span<const ShadowVo
                               const Mat4f& view_projection, ShadowCount count,
                               const std::function<void(const RasterState& state, float light0)>& draw);
 
+/// Shadow volumes for several lights, as GPUs draw them (one stencil count and one additive pass per light):
+/// `draw(state, -1)` draws the scene lit by what casts no shadow (ambient, emission, lights without volumes), writing
+/// depth; then for each light i, its casters' volumes `volumes[i]` are counted into the stencil buffer (cleared to 0
+/// first) and `draw(state, i)` adds light i's own contribution (its diffuse and specular terms alone) where the count
+/// is 0: depth func equal, blending (one, one), so that the passes sum (in 8 bits, saturating, as on a GPU). `draw`
+/// must use the state it gets and draw the same geometry in every pass.
+void draw_lights_with_shadow_volumes(Framebuffer& framebuffer, std::span<const std::vector<ShadowVolume>> volumes,
+                                     const Mat4f& view_projection, ShadowCount count,
+                                     const std::function<void(const RasterState& state, int light)>& draw);
+
 }  // namespace tessera::raster3d
