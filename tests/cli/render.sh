@@ -31,6 +31,8 @@ JSON
 # The rasterizer backend: same scene, local shading and shadow maps.
 "$tessera" render shapes -o r.png --backend raster --size 80x40 --stats > rstats.txt
 grep -q '^seconds=' rstats.txt && test -s r.png
+# ... and with shadow volumes, every light's shadows.
+"$tessera" render cornell -o rv.png --backend raster --shadow-method volumes --size 64x64 --quiet && test -s rv.png
 
 # Identical pictures for any thread count (per-pixel seeded sampling).
 "$tessera" render motion-blur -o t1.ppm --size 48x32 --spp 4 --threads 1 --quiet
@@ -58,4 +60,6 @@ expect_error 1 "size" bad5.png render whitted -o bad5.png --size 0x8
 expect_error 2 "backend" bad6.png render whitted -o bad6.png --backend vulkan
 expect_error 1 "positive number" bad8.png render bad.json -o bad8.png --backend raster
 expect_error 2 "required" bad7.png render -o bad7.png
+expect_error 1 "add --backend raster" bad9.png render whitted -o bad9.png --shadow-method volumes
+expect_error 2 "shadow-method" bad10.png render whitted -o bad10.png --backend raster --shadow-method zpass
 echo "render CLI ok"

@@ -20,7 +20,7 @@ namespace tessera::cli {
 namespace {
 
 struct RenderArgs {
-  std::string scene, output, size, backend = "raytrace";
+  std::string scene, output, size, backend = "raytrace", shadow_method;
   int spp = 0, depth = 0;
   uint64_t seed = 0;
 };
@@ -44,6 +44,9 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   if (!kFormats.count(lower))
     throw InvalidInput(
         fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
+  if (!a.shadow_method.empty() && a.backend != "raster")
+    throw InvalidInput(fmt::format("--shadow-method {}: only the raster backend has shadow methods; add --backend raster",
+                                   a.shadow_method));
   const Scene scene = load_scene_or_builtin(a.scene);
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
@@ -59,7 +62,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   if (a.backend == "raster") {
     // Local shading only: samples and depth do not apply.
     const auto start = std::chrono::steady_clock::now();
-    const ImageRGB image = rasterize_scene(scene, settings.width, settings.height);
+    const ImageRGB image = rasterize_scene(scene, settings.width, settings.height,
+                                           a.shadow_method == "volumes" ? RasterShadows::volumes : RasterShadows::map);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     write_image(a.output, image);
     figures.emplace_back("seconds", stat_value(seconds));
@@ -88,8 +92,13 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)");
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
-  cmd.add_option("--backend", a->backend, "Renderer: raytrace (everything) or raster (z-buffer, local shading, shadow-mapped shadows of the first light)")
+  cmd.add_option("--backend", a->backend,
+                 "Renderer: raytrace (everything) or raster (z-buffer, local shading, hard shadows)")
       ->check(CLI::IsMember({"raytrace", "raster"}));
+  cmd.add_option("--shadow-method", a->shadow_method,
+                 "Raster shadows: map (the first light's, a shadow map; the default) or volumes (every light's, "
+                 "stencil shadow volumes)")
+      ->check(CLI::IsMember({"map", "volumes"}));
   cmd.callback([a, &common] { run_render(*a, common); });
 }
 

@@ -12,6 +12,7 @@
 #include "tessera/mesh/primitives.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
+#include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 
 namespace tessera {
@@ -121,6 +122,13 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
 
 namespace {
 
+/// Where the rasterizer puts a light that is not directional: a point light's position, an area light's center.
+Vec3 light_center(const Light& light) {
+  Vec3 position(light.position);
+  if (light.type == LightType::rect) position += 0.5 * Vec3(light.edge_u + light.edge_v);
+  return position;
+}
+
 /// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, a
 /// perspective from the position of the others (an area light's center); none for a light inside the casters'
 /// bounding sphere, which one map cannot see all around.
@@ -128,17 +136,19 @@ std::optional<raster3d::ShadowMap> shadow_map(const Light& light, const Vec3& lo
   constexpr int kSize = 2048;
   if (light.type == LightType::directional)
     return raster3d::ShadowMap(kSize, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
-  Vec3 position(light.position);
-  if (light.type == LightType::rect) position += 0.5 * Vec3(light.edge_u + light.edge_v);
+  const Vec3 position = light_center(light);
   if (glm::length(position - 0.5 * (lo + hi)) <= 1.02 * 0.5 * glm::length(hi - lo)) return std::nullopt;
   return raster3d::ShadowMap(kSize, raster3d::ShadowMap::spot(position, lo, hi));
 }
 
 }  // namespace
 
-ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
+ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows) {
   if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
-  const Mat4 projection = perspective(radians(scene.camera.fovy), double(width) / height, 0.05, 4000);
+  const double aspect = double(width) / height, fovy = radians(scene.camera.fovy);
+  // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity.
+  const Mat4 projection = shadows == RasterShadows::volumes ? infinite_perspective(fovy, aspect, 0.05)
+                                                            : perspective(fovy, aspect, 0.05, 4000);
   const Mat4 view = look_at(scene.camera.eye, scene.camera.center, scene.camera.up);
   const Mat3 view_linear(view);
 
@@ -150,17 +160,9 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
     const Light& l = scene.lights[size_t(i)];
     raster3d::Light& gl = lighting.lights[size_t(i)];
     gl.diffuse = gl.specular = l.color;
-    switch (l.type) {
-      case LightType::directional:
-        gl.position = Vec4f(Vec3f(view_linear * -glm::normalize(Vec3(l.direction))), 0.0f);
-        break;
-      case LightType::rect:
-        gl.position = Vec4f(Vec3f(view * glm::dvec4(Vec3(l.position + 0.5f * (l.edge_u + l.edge_v)), 1.0)), 1.0f);
-        break;
-      default:  // point, disk and sphere centers
-        gl.position = Vec4f(Vec3f(view * glm::dvec4(Vec3(l.position), 1.0)), 1.0f);
-        break;
-    }
+    gl.position = l.type == LightType::directional
+                      ? Vec4f(Vec3f(view_linear * -glm::normalize(Vec3(l.direction))), 0.0f)
+                      : Vec4f(Vec3f(view * glm::dvec4(light_center(l), 1.0)), 1.0f);
   }
 
   // Every object tessellated once; the shadow casters' world box (planes are infinite: they receive shadows only).
@@ -183,29 +185,67 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height) {
   }
   // The notes' pass 1 for light 0 (the one PreparedLighting's visibility scales).
   std::optional<raster3d::ShadowMap> shadow;
-  if (lighting.light_count > 0 && lo.x <= hi.x) shadow = shadow_map(scene.lights[0], lo, hi);
+  if (shadows == RasterShadows::map && lighting.light_count > 0 && lo.x <= hi.x)
+    shadow = shadow_map(scene.lights[0], lo, hi);
   if (shadow)
     for (size_t k = 0; k < scene.objects.size(); ++k)
       if (casts(scene.objects[k])) shadow->draw(arrays[k], scene.objects[k].transform);
 
   raster3d::Framebuffer fb(width, height);
   fb.clear(scene.image.background);
-  for (size_t k = 0; k < scene.objects.size(); ++k) {
-    const SceneObject& o = scene.objects[k];
-    const Material& m = scene.materials.at(o.material);
-    raster3d::Lighting l = lighting;
-    l.material.diffuse = m.diffuse;
-    l.material.ambient = m.diffuse * m.ambient;
-    l.material.specular = m.specular;
-    l.material.shininess = m.shininess;
-    l.material.emission = m.emission;
-    l.specular_model = m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
-    raster3d::SurfaceUniforms u;
-    u.set_camera(projection, view, o.transform);
-    u.lighting = raster3d::PreparedLighting(l);
-    u.maps.shadow = shadow ? &*shadow : nullptr;
-    raster3d::draw_surface(fb, raster3d::RasterState{}, arrays[k], u);
+  // Draws every object under `lights` (the scene's, or one pass's) with the materials' terms; the emission only when
+  // `emission` (a light's pass adds that light alone).
+  const auto draw_objects = [&](const raster3d::RasterState& state, const raster3d::Lighting& lights, bool emission) {
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+      const SceneObject& o = scene.objects[k];
+      const Material& m = scene.materials.at(o.material);
+      raster3d::Lighting l = lights;
+      l.material.diffuse = m.diffuse;
+      l.material.ambient = m.diffuse * m.ambient;
+      l.material.specular = m.specular;
+      l.material.shininess = m.shininess;
+      l.material.emission = emission ? m.emission : Vec3f(0);
+      l.specular_model =
+          m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
+      raster3d::SurfaceUniforms u;
+      u.set_camera(projection, view, o.transform);
+      u.lighting = raster3d::PreparedLighting(l);
+      u.maps.shadow = shadow ? &*shadow : nullptr;
+      raster3d::draw_surface(fb, state, arrays[k], u);
+    }
+  };
+  if (shadows == RasterShadows::map) {
+    draw_objects(raster3d::RasterState{}, lighting, true);
+    return fb.color_rgb();
   }
+  // Shadow volumes: the casters' volumes for each light, then an ambient pass (ambient and emission) and one pass per
+  // light adding its own diffuse and specular terms where no volume holds the surface.
+  std::vector<std::vector<raster3d::ShadowVolume>> volumes(size_t(lighting.light_count));
+  for (size_t k = 0; k < scene.objects.size(); ++k) {
+    if (!casts(scene.objects[k])) continue;
+    std::vector<Vec3f> world;
+    for (const Vec3f& p : arrays[k].positions)
+      world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
+    for (int i = 0; i < lighting.light_count; ++i) {
+      const Light& l = scene.lights[size_t(i)];
+      const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
+                                                           : Vec4f(Vec3f(light_center(l)), 1);
+      volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
+    }
+  }
+  raster3d::draw_lights_with_shadow_volumes(
+      fb, volumes, Mat4f(projection * view), raster3d::ShadowCount::zfail,
+      [&](const raster3d::RasterState& state, int light) {
+        raster3d::Lighting pass = lighting;
+        if (light < 0) {
+          pass.light_count = 0;
+        } else {
+          pass.lights[0] = lighting.lights[size_t(light)];
+          pass.light_count = 1;
+          pass.model_ambient = Vec3f(0);
+        }
+        draw_objects(state, pass, light < 0);
+      });
   return fb.color_rgb();
 }
 

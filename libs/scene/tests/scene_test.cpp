@@ -201,31 +201,16 @@ TEST(Scene, RasterizerAndRayTracerSeeTheSameSilhouettes) {
   EXPECT_LT(differ, w * h / 100);
 }
 
-TEST(Scene, RasterizedShadowsAreTheRayTracersHardShadows) {
-  // A sphere and a box over a floor under one point light, no reflections: the ray tracer's shadow rays and the
-  // rasterizer's shadow map must darken the same floor pixels, except along the shadows' outlines. Two lights: only
-  // the first casts shadows in the rasterizer, so the second is off here.
-  const std::string json = R"({"image": {"size": [160, 120], "background": [0, 0, 0]}, "ambient": 0.1,
-      "camera": {"eye": [0, 6, 7], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 45},
-      "lights": [{"type": "point", "position": [3, 7, 2], "color": 1}],
-      "materials": {"floor": {"diffuse": 0.8}, "m": {"diffuse": 0.6}},
-      "objects": [{"type": "plane", "material": "floor"},
-                  {"type": "sphere", "center": [-1, 1, 0], "radius": 1, "material": "m"},
-                  {"type": "box", "min": [1, 0, -1.5], "max": [2, 1.5, -0.5], "material": "m"}]})";
-  const Scene scene = parse_scene(json, "shadows.json", ".");
-  const int w = 160, h = 120;
-  const ImageRGB raster = rasterize_scene(scene, w, h);
-  RenderSettings settings = render_settings(scene);
-  settings.samples = 1;
-  settings.progress = false;
-  const ImageRGB traced = render(to_ray_scene(scene), settings);
-  // The floor's shadowed pixels: ambient only, 0.8 * 0.1 (both renderers' floor is exactly that there).
-  const auto shadowed = [](const Vec3f& c) { return c.x < 0.12f; };
-  int floor_shadow = 0, differ = 0;
+/// Pixels where `shadowed` differs between the rasterized and the ray-traced pictures away from the ray-traced
+/// shadows' outlines (first), and the ray-traced picture's shadowed pixels (second).
+template <class Shadowed>
+std::pair<int, int> shadow_differences(const ImageRGB& raster, const ImageRGB& traced, Shadowed shadowed) {
+  const int w = traced.width(), h = traced.height();
+  int differ = 0, in_shadow = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const bool a = shadowed(raster(x, y)), b = shadowed(traced(x, y));
-      floor_shadow += b;
+      in_shadow += b;
       if (a == b) continue;
       // A difference must lie on an outline: a neighbour of the ray-traced picture disagrees with this pixel.
       bool outline = false;
@@ -236,8 +221,61 @@ TEST(Scene, RasterizedShadowsAreTheRayTracersHardShadows) {
         }
       differ += outline ? 0 : 1;
     }
-  EXPECT_GT(floor_shadow, w * h / 30);  // the shadows are in view
-  EXPECT_LT(differ, w * h / 500);
+  return {differ, in_shadow};
+}
+
+/// A sphere and a box over a floor under `lights` (JSON), ambient 0.1, no reflections.
+Scene shadow_scene(const std::string& lights) {
+  const std::string json = R"({"image": {"size": [160, 120], "background": [0, 0, 0]}, "ambient": 0.1,
+      "camera": {"eye": [0, 6, 7], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 45},
+      "lights": )" + lights + R"(,
+      "materials": {"floor": {"diffuse": 0.8}, "m": {"diffuse": 0.6}},
+      "objects": [{"type": "plane", "material": "floor"},
+                  {"type": "sphere", "center": [-1, 1, 0], "radius": 1, "material": "m"},
+                  {"type": "box", "min": [1, 0, -1.5], "max": [2, 1.5, -0.5], "material": "m"}]})";
+  return parse_scene(json, "shadows.json", ".");
+}
+
+ImageRGB trace_once(const Scene& scene) {
+  RenderSettings settings = render_settings(scene);
+  settings.samples = 1;
+  settings.progress = false;
+  return render(to_ray_scene(scene), settings);
+}
+
+TEST(Scene, RasterizedShadowsAreTheRayTracersHardShadows) {
+  // One point light: the ray tracer's shadow rays and the rasterizer's shadow map, or its shadow volumes, must darken
+  // the same floor pixels, except along the shadows' outlines.
+  const Scene scene = shadow_scene(R"([{"type": "point", "position": [3, 7, 2], "color": 1}])");
+  const ImageRGB traced = trace_once(scene);
+  const int w = traced.width(), h = traced.height();
+  for (const RasterShadows method : {RasterShadows::map, RasterShadows::volumes}) {
+    const ImageRGB raster = rasterize_scene(scene, w, h, method);
+    // The floor's shadowed pixels: ambient only, 0.8 * 0.1 (both renderers' floor is exactly that there).
+    const auto [differ, in_shadow] = shadow_differences(raster, traced, [](const Vec3f& c) { return c.x < 0.12f; });
+    EXPECT_GT(in_shadow, w * h / 30);  // the shadows are in view
+    EXPECT_LT(differ, w * h / 500) << int(method);
+  }
+}
+
+TEST(Scene, ShadowVolumesShadowEveryLight) {
+  // A red light high above and a green one low between the casters (inside their bounding sphere, where one shadow
+  // map cannot see all around): with shadow volumes each light's shadows, seen in its own channel, are the ray
+  // tracer's. The shadow map shadows only the first light, so the green shadows are missing there.
+  const Scene scene = shadow_scene(R"([{"type": "point", "position": [3, 7, 2], "color": [1, 0, 0]},
+                                       {"type": "point", "position": [0, 3, 0.5], "color": [0, 1, 0]}])");
+  const ImageRGB traced = trace_once(scene);
+  const int w = traced.width(), h = traced.height();
+  const ImageRGB volumes = rasterize_scene(scene, w, h, RasterShadows::volumes);
+  const ImageRGB map = rasterize_scene(scene, w, h, RasterShadows::map);
+  for (int channel = 0; channel < 2; ++channel) {
+    const auto shadowed = [channel](const Vec3f& c) { return c[channel] < 0.12f; };
+    const auto [differ, in_shadow] = shadow_differences(volumes, traced, shadowed);
+    EXPECT_GT(in_shadow, w * h / 30) << channel;
+    EXPECT_LT(differ, w * h / 500) << channel;
+  }
+  const auto green_shadowed = [](const Vec3f& c) { return c.y < 0.12f; };
+  EXPECT_GT(shadow_differences(map, traced, green_shadowed).first, w * h / 30);
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 #pragma once
 // Driving the rasterizer (raster3d) from a scene description: every object tessellated into triangles and drawn with
-// the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with the first light's shadows from a shadow map
-// (the notes' 2-pass z-buffer). No reflections, refraction or distribution effects (those need the ray tracer).
+// the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with hard shadows from a shadow map (the notes'
+// 2-pass z-buffer, the first light) or from shadow volumes (every light). No reflections, refraction or distribution
+// effects (those need the ray tracer).
 #include "tessera/image/image.hpp"
 #include "tessera/scene/scene.hpp"
 
@@ -11,11 +12,20 @@ namespace tessera {
 /// a square of side `plane_size` about its point). Flat faces carry their face normal, curved surfaces smooth normals.
 TriMesh tessellate(const Shape& shape, int segments = 48, double plane_size = 3000);
 
-/// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000), its lights (area lights as
-/// point lights at their centers; at most 8), each material's color, ambient, highlight and emission (a checkerboard
-/// shows its first color), the background as the clear color. The first light casts hard shadows through a
-/// 2048 x 2048 shadow map fitted to the objects that cast shadows (planes, being infinite, only receive them); a
-/// point light inside those objects' bounding sphere casts none.
-ImageRGB rasterize_scene(const Scene& scene, int width, int height);
+/// How the rasterizer draws shadows.
+enum class RasterShadows {
+  /// The first light's, through a 2048 x 2048 shadow map fitted to the objects that cast shadows (the notes' 2-pass
+  /// z-buffer); a point light inside those objects' bounding sphere casts none.
+  map,
+  /// Every light's, exact to the pixel, through shadow volumes counted z-fail in the stencil buffer (one additive
+  /// pass per light; raster3d's draw_lights_with_shadow_volumes), for lights anywhere.
+  volumes,
+};
+
+/// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
+/// volumes), its lights (area lights as point lights at their centers; at most 8), each material's color, ambient,
+/// highlight and emission (a checkerboard shows its first color), the background as the clear color. Shadows are
+/// hard, cast by the objects marked so (planes, being infinite, only receive them), as `shadows` says.
+ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map);
 
 }  // namespace tessera
