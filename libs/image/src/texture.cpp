@@ -17,10 +17,17 @@ struct Split {
   float fraction;
 };
 
+// floor(x) for |x| <= 1e15 by truncation: the x86-64 baseline has no rounding instruction, and std::floor's
+// emulation was a good part of a bilinear sample.
+double floor_small(double x) {
+  const double t = double((long long)x);
+  return t > x ? t - 1 : t;
+}
+
 Split split(double x) {
   if (!(x == x)) return {0, 0.f};
   x = std::clamp(x, -1e15, 1e15);
-  const double f = std::floor(x);
+  const double f = floor_small(x);
   return {(long long)f, float(x - f)};
 }
 
@@ -51,8 +58,22 @@ IndexPair wrap_pair(long long i, int n, Wrap wrap) {
 // first, so that the integer wrapping (two divisions per index) is left for the last column only.
 double bilinear_coordinate(float t, int n, Wrap wrap) {
   double x = double(t) * n - 0.5;
-  if (wrap == Wrap::repeat && !(x >= -0.5 && x < n - 0.5) && std::abs(x) < 1e15) x -= n * std::floor((x + 0.5) / n);
+  if (wrap == Wrap::repeat && !(x >= -0.5 && x < n - 0.5) && std::abs(x) < 1e15) x -= n * floor_small((x + 0.5) / n);
   return x;
+}
+
+// The notes' bilinear interpolation on one level (Texture2D::bilinear).
+[[gnu::always_inline]] inline glm::vec4 bilinear_sample(const ImageRGBA& image, const Sampler& sampler, glm::vec2 uv) {
+  const int w = image.width(), h = image.height();
+  // Texel centers sit at integer + 0.5: (i, j) is the bottom-left texel of the four, (a, b) the offset from it.
+  const auto [i, a] = split(bilinear_coordinate(uv.x, w, sampler.wrap_u));
+  const auto [j, b] = split(bilinear_coordinate(uv.y, h, sampler.wrap_v));
+  const IndexPair x = wrap_pair(i, w, sampler.wrap_u), y = wrap_pair(j, h, sampler.wrap_v);
+  const glm::vec4* lower = image.row(h - 1 - y.lo);  // texel rows count from the bottom
+  const glm::vec4* upper = image.row(h - 1 - y.hi);
+  const glm::vec4 bottom = glm::mix(lower[x.lo], lower[x.hi], a);
+  const glm::vec4 top = glm::mix(upper[x.lo], upper[x.hi], a);
+  return glm::mix(bottom, top, b);
 }
 
 // One output sample of a 1D reduction: up to three source indices and their weights.
@@ -134,17 +155,7 @@ glm::vec4 Texture2D::nearest(glm::vec2 uv, int level) const {
 }
 
 glm::vec4 Texture2D::bilinear(glm::vec2 uv, int level) const {
-  const ImageRGBA& image = levels_[size_t(level)];
-  const int w = image.width(), h = image.height();
-  // Texel centers sit at integer + 0.5: (i, j) is the bottom-left texel of the four, (a, b) the offset from it.
-  const auto [i, a] = split(bilinear_coordinate(uv.x, w, sampler_.wrap_u));
-  const auto [j, b] = split(bilinear_coordinate(uv.y, h, sampler_.wrap_v));
-  const IndexPair x = wrap_pair(i, w, sampler_.wrap_u), y = wrap_pair(j, h, sampler_.wrap_v);
-  const glm::vec4* lower = image.row(h - 1 - y.lo);  // texel rows count from the bottom
-  const glm::vec4* upper = image.row(h - 1 - y.hi);
-  const glm::vec4 bottom = glm::mix(lower[x.lo], lower[x.hi], a);
-  const glm::vec4 top = glm::mix(upper[x.lo], upper[x.hi], a);
-  return glm::mix(bottom, top, b);
+  return bilinear_sample(levels_[size_t(level)], sampler_, uv);
 }
 
 glm::vec4 Texture2D::sample(glm::vec2 uv, float lod) const {
@@ -157,8 +168,10 @@ glm::vec4 Texture2D::sample(glm::vec2 uv, float lod) const {
   const float clamped = lod > 0.f ? std::min(lod, last) : 0.f;  // NaN and -infinity read level 0
   const int lower = int(clamped);
   const float blend = clamped - float(lower);
-  if (blend == 0.f) return bilinear(uv, lower);
-  return glm::mix(bilinear(uv, lower), bilinear(uv, lower + 1), blend);
+  // The two levels' samples inlined here: as calls, their results went through memory.
+  const glm::vec4 near = bilinear_sample(levels_[size_t(lower)], sampler_, uv);
+  if (blend == 0.f) return near;
+  return glm::mix(near, bilinear_sample(levels_[size_t(lower) + 1], sampler_, uv), blend);
 }
 
 float Texture2D::lod(glm::vec2 duv_dx, glm::vec2 duv_dy) const {
