@@ -78,7 +78,8 @@ ImageRGB additive_spheres() {
 
 }  // namespace
 
-TESSERA_EXAMPLE(ex26_transparency, "26_transparency", "Transparency by blending: drawing order, and additive blending") {
+TESSERA_EXAMPLE(ex26_transparency, "26_transparency",
+                "Transparency by blending: drawing order, and additive blending") {
   gallery.add("26_transparency.png",
               examples::side_by_side({translucent_torus(false), translucent_torus(true), additive_spheres()}),
               "A translucent torus (alpha 0.45, blended over) in front of opaque objects: drawn in mesh order with "

@@ -178,7 +178,8 @@ PY
 "$py" - <<'PY'
 import numpy as np
 from PIL import Image
-opaque, half, clear = (np.asarray(Image.open(f).convert("L"), dtype=int) for f in ("opaque.png", "half.png", "clear.png"))
+opaque, half, clear = (np.asarray(Image.open(f).convert("L"), dtype=int)
+                       for f in ("opaque.png", "half.png", "clear.png"))
 inside = opaque == 255
 assert inside.sum() > 500, inside.sum()
 assert (abs(half[inside] - 191) <= 1).mean() > 0.95, np.unique(half[inside], return_counts=True)

@@ -45,8 +45,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
     throw InvalidInput(
         fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
   if (!a.shadow_method.empty() && a.backend != "raster")
-    throw InvalidInput(fmt::format("--shadow-method {}: only the raster backend has shadow methods; add --backend raster",
-                                   a.shadow_method));
+    throw InvalidInput(fmt::format(
+        "--shadow-method {}: only the raster backend has shadow methods; add --backend raster", a.shadow_method));
   const Scene scene = load_scene_or_builtin(a.scene);
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;

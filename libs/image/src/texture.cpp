@@ -161,7 +161,7 @@ glm::vec4 Texture2D::bilinear(glm::vec2 uv, int level) const {
 glm::vec4 Texture2D::sample(glm::vec2 uv, float lod) const {
   switch (sampler_.filter) {
     case Filter::nearest: return nearest(uv, 0);
-    case Filter::bilinear: return bilinear(uv, 0);
+    case Filter::bilinear: return bilinear_sample(levels_.front(), sampler_, uv);
     case Filter::trilinear: break;
   }
   const float last = float(levels() - 1);

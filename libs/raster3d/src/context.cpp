@@ -493,16 +493,18 @@ void Context::draw_line_arrays(const VertexAttributes& attributes, uint32_t vert
                                std::span<const uint32_t> indices) {
   if (indices.empty()) return;
   const FixedFunctionUniforms u = uniforms();
+  const Translucent<ColorFragmentShader> color{{}, alpha_};
   add_stats(stats_, draw_lines(framebuffer_, raster_state(), vertex_count, indices,
-                               FixedFunctionVertexShader{attributes, &u}, Translucent<ColorFragmentShader>{{}, alpha_}));
+                               FixedFunctionVertexShader{attributes, &u}, color));
 }
 
 void Context::draw_point_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
                                 std::span<const uint32_t> indices) {
   if (indices.empty()) return;
   const FixedFunctionUniforms u = uniforms();
+  const Translucent<ColorFragmentShader> color{{}, alpha_};
   add_stats(stats_, draw_points(framebuffer_, raster_state(), vertex_count, indices,
-                                FixedFunctionVertexShader{attributes, &u}, Translucent<ColorFragmentShader>{{}, alpha_}));
+                                FixedFunctionVertexShader{attributes, &u}, color));
 }
 
 }  // namespace tessera::raster3d

@@ -517,7 +517,8 @@ TEST(Context, SortBackToFrontOrdersByEyeDepth) {
   VertexArrays arrays;
   for (const float z : {-1.0f, -3.0f, -2.0f}) {
     const auto base = uint32_t(arrays.positions.size());
-    for (const Vec3f& p : {Vec3f(0, 0, z), Vec3f(1, 0, z), Vec3f(1, 1, z), Vec3f(0, 1, z)}) arrays.positions.push_back(p);
+    for (const Vec3f& p : {Vec3f(0, 0, z), Vec3f(1, 0, z), Vec3f(1, 1, z), Vec3f(0, 1, z)})
+      arrays.positions.push_back(p);
     arrays.indices.insert(arrays.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
   const auto depths = [&] {

@@ -547,11 +547,16 @@ TEST(Raster, BlendingIsOpenGLsFormulaWithinOneStep) {
           draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()},
                          Translucent<testing::FlatFragmentShader>{{Vec3f(color)}, color.w});
           const glm::u8vec4 got = fb.color()(0, 0);
-          const Vec4 s = Vec4(to_color8(color)) / 255.0, d = Vec4(to_color8(Vec4f(background, background_alpha))) / 255.0;
+          const Vec4 s = Vec4(to_color8(color)) / 255.0;
+          const Vec4 d = Vec4(to_color8(Vec4f(background, background_alpha))) / 255.0;
           for (int c = 0; c < 4; ++c) {
             const double ws = s[c] * real_factor(BlendFactor(src), s, d, c);
             const double wd = d[c] * real_factor(BlendFactor(dst), s, d, c);
-            const double exact = e == 0 ? ws + wd : e == 1 ? ws - wd : e == 2 ? wd - ws : e == 3 ? std::min(s[c], d[c]) : std::max(s[c], d[c]);
+            const double exact = e == 0   ? ws + wd
+                                 : e == 1 ? ws - wd
+                                 : e == 2 ? wd - ws
+                                 : e == 3 ? std::min(s[c], d[c])
+                                          : std::max(s[c], d[c]);
             const int expected = int(std::lround(std::clamp(exact, 0.0, 1.0) * 255));
             ++evaluations;
             ASSERT_LE(std::abs(int(got[c]) - expected), 1) << "equation " << e << " src " << src << " dst " << dst;
@@ -586,7 +591,8 @@ TEST(Raster, RgbaShadersStoreTheirAlpha) {
   };
   draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, rgba);
   EXPECT_EQ(fb.color()(2, 2), glm::u8vec4(64, 128, 191, 128));
-  draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, Translucent<decltype(rgba)>{rgba, 0.5f});
+  draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()},
+                 Translucent<decltype(rgba)>{rgba, 0.5f});
   EXPECT_EQ(fb.color()(2, 2).w, 64);
   draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()}, testing::FlatFragmentShader{});
   EXPECT_EQ(fb.color()(2, 2), glm::u8vec4(255, 255, 255, 255));  // an RGB shader's alpha is 1

@@ -165,7 +165,7 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
                       : Vec4f(Vec3f(view * glm::dvec4(light_center(l), 1.0)), 1.0f);
   }
 
-  // Every object tessellated once; the shadow casters' world box (planes are infinite: they receive shadows only).
+  // Every object tessellated once; for a shadow map, the casters' world box (planes are infinite: they only receive).
   const auto casts = [](const SceneObject& o) {
     return o.casts_shadows && !(o.shape && std::holds_alternative<Plane>(*o.shape));
   };
@@ -176,7 +176,7 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
     arrays.push_back(raster3d::VertexArrays::from_mesh(o.shape                ? tessellate(*o.shape)
                                                        : o.mesh->normals.empty() ? faceted(*o.mesh)
                                                                                  : *o.mesh));
-    if (!casts(o)) continue;
+    if (!casts(o) || shadows != RasterShadows::map) continue;
     for (const Vec3f& p : arrays.back().positions) {
       const Vec3 w = transform_point(o.transform, Vec3(p));
       lo = glm::min(lo, w);

@@ -2,9 +2,9 @@
 // The 3D pipeline as free function templates over a vertex shader and a fragment shader (shaders.hpp):
 // vertex stage -> primitive assembly -> clipping in homogeneous clip space (all six planes, Sutherland-Hodgman) ->
 // perspective divide -> viewport -> 1/256-pixel snapping -> integer edge functions with the tie rule -> stencil test
-// (when on) -> depth test -> fragment shader -> blending (when on) -> 8-bit color write. The stencil operations are applied by the tests'
-// outcome, before the fragment shader (as GLSL's early_fragment_tests): a discard does not undo them. The rules are
-// gl-raster-conventions.md's (Mesa's), so the output compares with OpenGL pixel for pixel.
+// (when on) -> depth test -> fragment shader -> blending (when on) -> 8-bit color write. The stencil operations are
+// applied by the tests' outcome, before the fragment shader (as GLSL's early_fragment_tests): a discard does not undo
+// them. The rules are gl-raster-conventions.md's (Mesa's), so the output compares with OpenGL pixel for pixel.
 //
 // Triangles are binned to 64 x 64 screen tiles and the tiles rasterized in parallel (oneTBB), each in submission order,
 // so the output is identical for any thread count. The shaders are called from several threads at once: they must be

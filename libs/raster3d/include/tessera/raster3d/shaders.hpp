@@ -6,8 +6,9 @@
 // (gl_Position) and a struct V of varyings. A fragment shader is any callable `bool fs(const V& in, Vec3f& color)`:
 // it gets the varyings interpolated perspective-correctly at the pixel center and writes gl_FragColor; returning
 // false discards the fragment. A shader that writes `Vec4f& color` also gives the fragment's alpha (opacity, which
-// blending reads: RasterState::blend); the Vec3f form's alpha is 1. Both are template parameters of the pipeline (pipeline.hpp), so they inline: no
-// virtual call per vertex or fragment. GLSL's built-ins are GLM's (dot, normalize, reflect, clamp, mix, length).
+// blending reads: RasterState::blend); the Vec3f form's alpha is 1. Both are template parameters of the pipeline
+// (pipeline.hpp), so they inline: no virtual call per vertex or fragment. GLSL's built-ins are GLM's (dot, normalize,
+// reflect, clamp, mix, length).
 //
 // Varyings are a plain struct of floats and float vectors (glm::vec2/3/4): trivially copyable, standard layout, no
 // padding. The pipeline interpolates it as an array of sizeof(V) / 4 floats; NoVaryings interpolates nothing.
