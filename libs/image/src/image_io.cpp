@@ -364,8 +364,12 @@ glm::u8vec4 encode_pixel(const glm::vec4& p, bool srgb) {
 }  // namespace
 
 ImageRGBA read_image(const std::filesystem::path& path) {
+  format_of(path, false);  // an unknown extension fails before the file is read
+  return decode_image(read_file(path), path);
+}
+
+ImageRGBA decode_image(std::string_view data, const std::filesystem::path& path) {
   const Format format = format_of(path, false);
-  const std::string data = read_file(path);
   const std::string name = name_of(path);
   switch (format) {
     case Format::ppm: return to_rgba_image(read_netpbm(data, name));

@@ -20,6 +20,19 @@ namespace {
 
 using Json = nlohmann::json;
 
+/// nlohmann's DOM parser, also remembering the byte where parsing failed: a parse_error carries its byte, but a number
+/// out of range ("1e999") is reported as an out_of_range exception without one. The parser calls parse_error on this
+/// type, so the member below is the one it calls.
+struct LocatingParser : nlohmann::detail::json_sax_dom_parser<Json> {
+  using json_sax_dom_parser::json_sax_dom_parser;
+  size_t error_byte = 0;
+  template <class Exception>
+  bool parse_error(size_t byte, const std::string& token, const Exception& e) {
+    error_byte = byte;
+    return json_sax_dom_parser::parse_error(byte, token, e);
+  }
+};
+
 /// A JSON value and its path in the document ("objects[3].radius"), with typed, checked accessors.
 class Node {
  public:
@@ -393,15 +406,16 @@ SceneObject read_object(const Node& n, const Scene& scene, const std::filesystem
 
 Scene parse_scene(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
   Json doc;
+  LocatingParser parser(doc);
   try {
-    doc = Json::parse(text.begin(), text.end());
-  } catch (const Json::parse_error& e) {
-    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."; keep the part after
-    // the bracket.
+    Json::sax_parse(text.begin(), text.end(), &parser);
+  } catch (const Json::exception& e) {
+    // e.what() reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..." or
+    // "[json.exception.out_of_range.406] number overflow parsing '1e999'"; keep the part after the bracket.
     std::string what = e.what();
     const auto bracket = what.find("] ");
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
-    throw InvalidInput(located(at_byte(name, static_cast<long long>(e.byte)), what));
+    throw InvalidInput(located(at_byte(name, static_cast<long long>(parser.error_byte)), what));
   }
   Scene scene;
   scene.name = name;

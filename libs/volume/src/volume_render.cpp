@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -19,8 +20,13 @@ namespace tessera {
 
 TransferFunction::TransferFunction(std::vector<Point> points) : points_(std::move(points)) {
   if (points_.empty()) throw InvalidInput("a transfer function needs at least one point");
-  for (const auto& p : points_)
+  for (const auto& p : points_) {
+    if (!std::isfinite(p.value)) throw InvalidInput(fmt::format("point value {} is not finite", p.value));
+    for (int k = 0; k < 3; ++k)
+      if (!(p.color[k] >= 0 && p.color[k] <= kMaxColor))
+        throw InvalidInput(fmt::format("color component {} is outside [0, {}]", p.color[k], kMaxColor));
     if (!(p.opacity >= 0 && p.opacity <= 1)) throw InvalidInput(fmt::format("opacity {} is outside [0, 1]", p.opacity));
+  }
   std::stable_sort(points_.begin(), points_.end(), [](const Point& a, const Point& b) { return a.value < b.value; });
 }
 
@@ -30,7 +36,8 @@ Vec4f TransferFunction::operator()(float v) const {
   if (v >= points_.back().value) return Vec4f(points_.back().color, points_.back().opacity);
   const auto hi = std::upper_bound(points_.begin(), points_.end(), v, [](float x, const Point& p) { return x < p.value; });
   const auto lo = hi - 1;
-  const float t = (v - lo->value) / (hi->value - lo->value);
+  // In double: the difference of two finite floats can overflow a float (values of both signs near its limit).
+  const float t = float((double(v) - lo->value) / (double(hi->value) - lo->value));
   return Vec4f(glm::mix(lo->color, hi->color, t), lo->opacity + t * (hi->opacity - lo->opacity));
 }
 
@@ -54,13 +61,28 @@ TransferFunction TransferFunction::preset(const std::string& name) {
   throw InvalidInput(fmt::format("unknown transfer-function preset '{}' (ct-bone, ct-skin, mri)", name));
 }
 
+namespace {
+
+/// A point from its five numbers (value, r, g, b, opacity) as parsed, refusing a value beyond float's range (its
+/// conversion would be undefined) with a message naming `where`; the constructor checks the rest.
+TransferFunction::Point point_of(const double (&v)[5], const std::string& where) {
+  for (int k = 0; k < 5; ++k)
+    if (!(std::fabs(v[k]) <= std::numeric_limits<float>::max()))
+      throw InvalidInput(fmt::format("{}: {} does not fit a float", where, v[k]));
+  return {float(v[0]), {float(v[1]), float(v[2]), float(v[3])}, float(v[4])};
+}
+
+}  // namespace
+
 TransferFunction TransferFunction::from_json(const std::string& text, const std::string& name) {
   try {
     const auto j = nlohmann::json::parse(text);
     std::vector<Point> points;
     for (const auto& p : j.at("points")) {
       if (!p.is_array() || p.size() != 5) throw InvalidInput(fmt::format("{}: each point is [value, r, g, b, opacity]", name));
-      points.push_back({p[0].get<float>(), {p[1].get<float>(), p[2].get<float>(), p[3].get<float>()}, p[4].get<float>()});
+      const double v[5] = {p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), p[3].get<double>(),
+                           p[4].get<double>()};
+      points.push_back(point_of(v, name));
     }
     return TransferFunction(std::move(points));
   } catch (const nlohmann::json::exception& e) {
@@ -76,8 +98,9 @@ TransferFunction TransferFunction::from_csv(const std::string& text, const std::
     ++line_no;
     const auto t = trim(line);
     if (t.empty() || t[0] == '#') continue;
-    const auto v = parse_doubles(t, 5, at_line(name, line_no));
-    points.push_back({float(v[0]), {float(v[1]), float(v[2]), float(v[3])}, float(v[4])});
+    const std::string where = at_line(name, line_no);
+    const auto v = parse_doubles(t, 5, where);
+    points.push_back(point_of({v[0], v[1], v[2], v[3], v[4]}, where));
   }
   return TransferFunction(std::move(points));
 }

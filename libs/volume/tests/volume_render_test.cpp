@@ -196,5 +196,28 @@ TEST(TransferFunction, InterpolatesAndParses) {
   EXPECT_NO_THROW(TransferFunction::preset("ct-bone"));
 }
 
+// Found by fuzz/transfer_fuzz.cpp: a number beyond float's range was converted anyway (undefined behaviour; an infinite
+// color in practice), and points near both ends of float's range made the interpolation NaN.
+TEST(TransferFunction, RefusesNumbersBeyondFloatAndInterpolatesExtremePoints) {
+  const auto message = [](const auto& load) {
+    try {
+      load();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(message([] { TransferFunction::from_csv("0,0,0,0,0\n1, 2.6e116, 0, 0, 0.5\n", "t.csv"); }),
+            "t.csv:2: 2.6e+116 does not fit a float");
+  EXPECT_EQ(message([] { TransferFunction::from_json(R"({"points": [[1e300, 0, 0, 0, 0]]})", "t.json"); }),
+            "t.json: 1e+300 does not fit a float");
+  EXPECT_EQ(message([] { TransferFunction({{0, {0, -1, 0}, 0}}); }), "color component -1 is outside [0, 1000000]");
+  EXPECT_EQ(message([] { TransferFunction({{0, {2e6f, 0, 0}, 0}}); }), "color component 2000000 is outside [0, 1000000]");
+  EXPECT_EQ(message([] { TransferFunction({{INFINITY, {0, 0, 0}, 0}}); }), "point value inf is not finite");
+  const auto tf = TransferFunction::from_json(R"({"points": [[-3e38, 0, 0, 0, 0], [3e38, 1, 1, 1, 1]]})", "t.json");
+  EXPECT_FLOAT_EQ(tf(0).w, 0.5f);
+  EXPECT_FLOAT_EQ(tf(0).x, 0.5f);
+}
+
 }  // namespace
 }  // namespace tessera

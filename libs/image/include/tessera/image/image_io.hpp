@@ -8,6 +8,7 @@
 // renamed on success), so a failure never leaves a partial file. Errors are IoError (cannot open/write) or
 // InvalidInput (malformed file, unknown extension), naming the file.
 #include <filesystem>
+#include <string_view>
 
 #include "tessera/image/image.hpp"
 
@@ -28,6 +29,9 @@ struct WriteOptions {
 /// to RGB; missing alpha is 1. PPM/PGM: P2, P3, P5, P6 with maxval up to 65535. Throws IoError (cannot read) or
 /// InvalidInput (unknown extension, malformed or truncated file, more than kMaxReadPixels), naming the file.
 ImageRGBA read_image(const std::filesystem::path& path);
+/// read_image on bytes already in memory: `name`'s extension picks the format and names the data in messages (for
+/// data that does not come from a file, and for fuzzing).
+ImageRGBA decode_image(std::string_view data, const std::filesystem::path& name);
 
 /// Writes float RGB to PNG, PPM (P6), PFM, HDR, JPG, BMP or TGA by extension. Throws InvalidInput (unknown
 /// extension, empty image) before creating anything, IoError when the file cannot be written.

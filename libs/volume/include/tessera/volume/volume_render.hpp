@@ -22,8 +22,11 @@ class TransferFunction {
     Vec3f color;
     float opacity;
   };
+  /// The largest color component a point may have (colors may exceed 1, for emission brighter than white).
+  static constexpr float kMaxColor = 1e6f;
   TransferFunction() = default;
-  /// Control points; they are sorted by value. Throws InvalidInput when empty or an opacity is outside [0, 1].
+  /// Control points; they are sorted by value. Throws InvalidInput when empty, or for a value that is not finite, a
+  /// color component outside [0, kMaxColor] or an opacity outside [0, 1].
   explicit TransferFunction(std::vector<Point> points);
   /// Color and opacity at v (clamped to the first and last points).
   Vec4f operator()(float v) const;

@@ -759,8 +759,9 @@ template <int N, class V, class FS, DepthFunc F>
     constant_kept = run_fragment_shader(fs, v, V{}, V{}, constant_color);
   }
   const StencilFace& face = params.stencil[r.front];
-  const float* px = data + (N + 1);
-  const float* py = data + 2 * (N + 1);
+  // A constant record may come without planes (data null): no arithmetic on that pointer.
+  const float* px = constant ? nullptr : data + (N + 1);
+  const float* py = constant ? nullptr : data + 2 * (N + 1);
   const auto shade_span = [&](int j, int row, int lo, int hi, const uint32_t* d, const bool* pass) {
     uint32_t* drow = fb.depth().row(row);
     glm::u8vec4* crow = fb.color().row(row);
