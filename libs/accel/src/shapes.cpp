@@ -470,7 +470,7 @@ AABB bounds(const Shape& shape) {
 Instance::Instance(Shape shape, const Mat4& to_world) : shape_(std::move(shape)), to_world_(to_world) {
   const double det = glm::determinant(Mat3(to_world));
   if (!(std::abs(det) > 1e-12))
-    throw InvalidInput("Instance: the transform is singular (determinant " + std::to_string(det) + ")");
+    throw InvalidInput(fmt::format("Instance: the transform is singular (determinant {:g})", det));
   const Mat4 inv = glm::inverse(to_world);
   to_object_ = Mat4f(inv);
   normal_to_world_ = Mat3f(glm::transpose(Mat3(inv)));

@@ -17,9 +17,14 @@ RayScene to_ray_scene(const Scene& scene) {
     const auto m = index.find(o.material);
     if (m == index.end())
       throw InvalidInput(fmt::format("{}: objects[{}]: no material named '{}'", scene.name, i, o.material));
-    const int id = o.shape ? rs.world.add_shape(*o.shape, o.transform, m->second, o.motion)
-                           : rs.world.add_mesh(*o.mesh, o.transform, m->second, o.motion);
-    rs.world.set_casts_shadows(id, o.casts_shadows);
+    try {
+      const int id = o.shape ? rs.world.add_shape(*o.shape, o.transform, m->second, o.motion)
+                             : rs.world.add_mesh(*o.mesh, o.transform, m->second, o.motion);
+      rs.world.set_casts_shadows(id, o.casts_shadows);
+    } catch (const InvalidInput& e) {
+      // The world's own checks (a transform too close to singular to invert, say) know no JSON paths: name the object.
+      throw InvalidInput(fmt::format("{}: objects[{}]: {}", scene.name, i, e.what()));
+    }
   }
   rs.lights = scene.lights;
   add_light_surfaces(rs);

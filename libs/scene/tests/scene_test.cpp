@@ -100,6 +100,14 @@ TEST(Scene, ErrorsNameTheJsonPath) {
   // A number beyond double's range is an out_of_range error inside the JSON library (found by fuzz/scene_fuzz.cpp: it
   // escaped as a foreign exception); it is located like a syntax error.
   EXPECT_EQ(error_of(R"({"ambient": 1e999})"), "test.json: byte offset 17: number overflow parsing '1e999'");
+  // A transform the parser accepts (no zero factor) but the ray tracer cannot invert: the error names the object.
+  try {
+    to_ray_scene(parse_scene(with_objects(R"([{"type": "sphere", "material": "m"},
+        {"type": "sphere", "material": "m", "transform": [{"scale": [1e-30, 1, 1]}]}])"), "test.json", "."));
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "test.json: objects[1]: Instance: the transform is singular (determinant 1e-30)");
+  }
 }
 
 TEST(Scene, TransformListComposesLikeTheNotesCalls) {
