@@ -10,7 +10,7 @@ namespace tessera::cli {
 
 void add_common_options(CLI::App& command, CommonOptions& common) {
   if (command.get_option_no_throw("--threads") == nullptr)
-    command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
+    command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
   if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress bar");
   if (command.get_option_no_throw("--stats") == nullptr)
     command.add_flag("--stats", common.stats, "Print key=value figures on stdout");

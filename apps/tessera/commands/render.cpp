@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "command.hpp"
@@ -19,9 +20,11 @@
 namespace tessera::cli {
 namespace {
 
+constexpr int kMaxSamples = 1 << 16;  // as in scene files
+
 struct RenderArgs {
   std::string scene, output, size, backend = "raytrace", shadow_method;
-  int spp = 0, depth = 0;
+  std::optional<int> spp, depth;
   uint64_t seed = 0;
 };
 
@@ -35,8 +38,11 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   // Every option and the output format are checked before the scene is built or anything is written.
   Size2 size{0, 0};
   if (!a.size.empty()) size = parse_size(a.size, "--size");
-  if (a.spp < 0) throw InvalidInput("--spp: expected a positive number of samples");
-  if (a.depth < 0) throw InvalidInput("--depth: expected a positive recursion depth");
+  if (a.spp && (*a.spp < 1 || *a.spp > kMaxSamples))
+    throw InvalidInput(fmt::format("--spp: expected a number of samples in [1, {}], got {}", kMaxSamples, *a.spp));
+  if (a.depth && (*a.depth < 1 || *a.depth > RenderSettings::kMaxDepth))
+    throw InvalidInput(
+        fmt::format("--depth: expected a recursion depth in [1, {}], got {}", RenderSettings::kMaxDepth, *a.depth));
   const std::string ext = std::filesystem::path(a.output).extension().string();
   static const std::set<std::string> kFormats = {".png", ".ppm", ".pfm", ".hdr", ".jpg", ".jpeg", ".bmp", ".tga"};
   std::string lower(ext.size(), ' ');
@@ -50,8 +56,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   const Scene scene = load_scene_or_builtin(a.scene);
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
-  if (a.spp > 0) settings.samples = a.spp;
-  if (a.depth > 0) settings.max_depth = a.depth;
+  if (a.spp) settings.samples = *a.spp;
+  if (a.depth) settings.max_depth = *a.depth;
   settings.seed = a.seed;
   settings.progress = !common.quiet;
   const ThreadLimit limit(common.threads);

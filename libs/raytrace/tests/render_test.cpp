@@ -92,7 +92,7 @@ TEST(Render, FurnaceThroughMirrorsGlossAndGlass) {
   alone.materials = {glass};
   alone.world.add_shape(Sphere{{0, 0, 0}, 1.5f}, Mat4(1.0), 0, moving);
   alone.world.build();
-  s.max_depth = 100;
+  s.max_depth = RenderSettings::kMaxDepth;
   const ImageRGB fresnel = render(alone, s);
   for (const Vec3f& p : fresnel.pixels()) {
     ASSERT_LE(p.y, 1.0f + 1e-5f);
@@ -353,6 +353,14 @@ TEST(Render, RejectsBadSettings) {
   s.samples = 0;
   EXPECT_THROW(render(scene, s), InvalidInput);
   s.samples = 1;
+  // Recursion deeper than kMaxDepth is refused: two facing mirrors would recurse until the stack overflowed.
+  s.max_depth = RenderSettings::kMaxDepth + 1;
+  EXPECT_THROW(render(scene, s), InvalidInput);
+  EXPECT_THROW(trace_ray(scene, s, Ray{{0, 0, 5}, {0, 0, -1}}), InvalidInput);
+  s.max_depth = 0;
+  EXPECT_THROW(render(scene, s), InvalidInput);
+  s.max_depth = RenderSettings::kMaxDepth;
+  EXPECT_NO_THROW(trace_ray(scene, s, Ray{{0, 0, 5}, {0, 0, -1}}));
   scene.materials.resize(1);
   EXPECT_THROW(render(scene, s), InvalidInput);
 }

@@ -35,11 +35,14 @@ struct RayScene {
 struct RenderSettings {
   int width = 512, height = 512;
   int samples = 1;                 ///< samples per pixel (stratified); each also samples time, lens, lights, gloss
-  int max_depth = 5;               ///< eye ray = depth 1; no reflected or refracted ray beyond this depth
+  int max_depth = 5;               ///< eye ray = depth 1; no reflected or refracted ray beyond this depth (<= kMaxDepth)
   float min_contribution = 1e-3f;  ///< stop a path whose weight (product of K's) is below this in every channel
   uint64_t seed = 0;               ///< the same seed gives the same picture for any thread count
   int tile_size = 16;              ///< pixels per tile side (parallel work unit)
   bool progress = true;            ///< progress bar with ETA on stderr (when it is a terminal)
+  /// The deepest recursion allowed (as in scene files): each level is a stack frame, and two facing mirrors would
+  /// otherwise recurse until the stack overflows.
+  static constexpr int kMaxDepth = 64;
 };
 
 /// What a render did.
@@ -64,8 +67,8 @@ Ray eye_ray(const RayScene& scene, int width, int height, int x, int y, const Ve
 float visible_fraction(const RayScene& scene, const Vec3f& p, const Light& light, int n, uint32_t pattern);
 
 /// Renders the scene. Pixel (x, y)'s samples depend only on (x, y), the settings and the seed, so the image is
-/// identical for any thread count. Throws InvalidInput for a non-positive size or sample count, or for an object whose
-/// material index is out of range.
+/// identical for any thread count. Throws InvalidInput for a non-positive size or sample count, a max_depth outside
+/// [1, kMaxDepth], or an object whose material index is out of range.
 ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderStats* stats = nullptr);
 
 /// The color seen along one ray (recursion and all), with `rng_sequence` selecting the random stream of the
