@@ -107,6 +107,8 @@ expect_error 1 "no faces" bad.png trace empty.obj -o bad.png
 expect_error 1 "size" bad.png trace sphere.obj -o bad.png --size 0x10
 expect_error 2 "shade" bad.png trace sphere.obj -o bad.png --shade glow
 expect_error 1 "random-rays" bad_hits.txt bench raycast sphere.obj --random-rays -5 --hits-out bad_hits.txt
+expect_error 1 "expected N in \[0, 134217728\]" bad_hits.txt bench raycast sphere.obj --random-rays 100000000000 \
+  --hits-out bad_hits.txt
 expect_error 1 "no faces" bad_hits.txt bench raycast empty.obj --hits-out bad_hits.txt
 expect_error 2 "subcommand is required" none bench
 echo "trace CLI ok"

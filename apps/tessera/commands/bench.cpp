@@ -61,7 +61,11 @@ int64_t cast_all(const MeshAccel& accel, const std::vector<Ray>& rays, bool stre
 
 void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
-  if (a.random_rays < 0) throw InvalidInput(fmt::format("--random-rays: expected N >= 0, got {}", a.random_rays));
+  // The rays are made up front (36 bytes each): 2^27 of them take 4.5 GiB.
+  constexpr long long kMaxRandomRays = 1LL << 27;
+  if (a.random_rays < 0 || a.random_rays > kMaxRandomRays)
+    throw InvalidInput(
+        fmt::format("--random-rays: expected N in [0, {}], got {}", kMaxRandomRays, a.random_rays));
   const PolyMesh poly = read_mesh(a.mesh);
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to cast rays at", a.mesh));
