@@ -1,6 +1,8 @@
 #include "command.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -8,7 +10,21 @@
 
 namespace tessera::cli {
 
+namespace {
+
+/// Refuses a number that parses as NaN or an infinity; anything else is left to the option's own conversion.
+std::string finite_number(std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() && *end == '\0' && !std::isfinite(v)) return "expected a finite number, got '" + text + "'";
+  return "";
+}
+
+}  // namespace
+
 void add_common_options(CLI::App& command, CommonOptions& common) {
+  for (CLI::Option* option : command.get_options())
+    if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(CLI::Validator(finite_number, ""));
   if (command.get_option_no_throw("--threads") == nullptr)
     command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
   if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress bar");

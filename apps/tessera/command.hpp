@@ -27,7 +27,8 @@ struct Command {
   void (*setup)(CLI::App& command, CommonOptions& common);
 };
 
-/// Adds --threads, --quiet and --stats to a command and to each of its nested subcommands.
+/// Adds --threads, --quiet and --stats to a command and to each of its nested subcommands, and makes their
+/// floating-point options refuse "nan" and "inf" (CLI11 parses them, and its range checks let NaN through).
 void add_common_options(CLI::App& command, CommonOptions& common);
 
 /// Prints `key=value` lines on stdout (the --stats contract of DESIGN.md section 4).

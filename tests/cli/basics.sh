@@ -22,6 +22,10 @@ expect_exit 2 "" "$tessera"
 expect_exit 2 "" "$tessera" no-such-command
 expect_exit 2 "" "$tessera" gallery --no-such-option
 expect_exit 2 "" "$tessera" gallery --threads -3
+# Floating-point options refuse NaN and infinities (CLI11's range checks let NaN through).
+expect_exit 2 "expected a finite number, got 'nan'" "$tessera" volume render sphere:8 -o "$scratch/nan.png" --fovy nan
+expect_exit 2 "expected a finite number, got 'inf'" "$tessera" volume render sphere:8 -o "$scratch/inf.png" --far inf
+[ ! -e "$scratch/nan.png" ] && [ ! -e "$scratch/inf.png" ] || { echo "a picture was written"; exit 1; }
 expect_exit 1 "tessera: error:" "$tessera" gallery -o /proc/forbidden/gallery
 
 "$tessera" gallery --only 01 -o "$scratch/gallery" >/dev/null
