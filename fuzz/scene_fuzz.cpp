@@ -1,8 +1,9 @@
 // libFuzzer target for scene files and the two renderers behind them: parses the input as scene JSON (files named in it
 // are looked up in a folder that does not exist), then ray traces it and rasterizes it (with shadow volumes: the shadow
-// map's fixed 2048 x 2048 pass would take most of each run) at 8 x 6 pixels with at most 4 samples and depth 4. tessera::Error is the expected outcome for a bad scene; anything else (a crash, another
-// exception, a sanitizer report, a hang) is a bug, and so is a pixel that is NaN or negative (colors in a scene are
-// non-negative; an absurdly bright one may overflow to infinity).
+// map's fixed 2048 x 2048 pass would take most of each run) at 8 x 6 pixels with at most 4 samples and depth 4.
+// tessera::Error is the expected outcome for a bad scene; anything else (a crash, another exception, a sanitizer
+// report, a hang) is a bug, and so is a pixel that is NaN or negative (colors in a scene are non-negative; an absurdly
+// bright one may overflow to infinity). Seeds: fuzz/corpus/scene/ and the built-in scenes (scenes/).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>

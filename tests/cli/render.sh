@@ -62,7 +62,8 @@ expect_error 1 "positive number" bad8.png render bad.json -o bad8.png --backend 
 expect_error 2 "required" bad7.png render -o bad7.png
 expect_error 1 "add --backend raster" bad9.png render whitted -o bad9.png --shadow-method volumes
 # Recursion depth and samples within the scene format's limits (--depth 100000 overflowed the stack on two mirrors).
-expect_error 1 "recursion depth in \[1, 64\], got 100000" bad10.png render whitted -o bad10.png --size 8x8 --depth 100000
+expect_error 1 "recursion depth in \[1, 64\], got 100000" bad10.png \
+  render whitted -o bad10.png --size 8x8 --depth 100000
 expect_error 1 "samples in \[1, 65536\], got 0" bad11.png render whitted -o bad11.png --size 8x8 --spp 0
 expect_error 2 "shadow-method" bad10.png render whitted -o bad10.png --backend raster --shadow-method zpass
 echo "render CLI ok"

@@ -305,7 +305,8 @@ void check_settings(const RayScene& scene, const RenderSettings& s) {
   if (s.width <= 0 || s.height <= 0) throw InvalidInput(fmt::format("render: bad image size {}x{}", s.width, s.height));
   if (s.samples <= 0) throw InvalidInput(fmt::format("render: samples must be positive, got {}", s.samples));
   if (s.max_depth < 1 || s.max_depth > RenderSettings::kMaxDepth)
-    throw InvalidInput(fmt::format("render: max depth must be in [1, {}], got {}", RenderSettings::kMaxDepth, s.max_depth));
+    throw InvalidInput(
+        fmt::format("render: max depth must be in [1, {}], got {}", RenderSettings::kMaxDepth, s.max_depth));
   if (s.tile_size <= 0) throw InvalidInput("render: tile size must be positive");
   for (int i = 0; i < scene.world.size(); ++i)
     if (scene.world.material(i) < 0 || size_t(scene.world.material(i)) >= scene.materials.size())

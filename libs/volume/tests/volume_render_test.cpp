@@ -212,7 +212,8 @@ TEST(TransferFunction, RefusesNumbersBeyondFloatAndInterpolatesExtremePoints) {
   EXPECT_EQ(message([] { TransferFunction::from_json(R"({"points": [[1e300, 0, 0, 0, 0]]})", "t.json"); }),
             "t.json: 1e+300 does not fit a float");
   EXPECT_EQ(message([] { TransferFunction({{0, {0, -1, 0}, 0}}); }), "color component -1 is outside [0, 1000000]");
-  EXPECT_EQ(message([] { TransferFunction({{0, {2e6f, 0, 0}, 0}}); }), "color component 2000000 is outside [0, 1000000]");
+  EXPECT_EQ(message([] { TransferFunction({{0, {2e6f, 0, 0}, 0}}); }),
+            "color component 2000000 is outside [0, 1000000]");
   EXPECT_EQ(message([] { TransferFunction({{INFINITY, {0, 0, 0}, 0}}); }), "point value inf is not finite");
   const auto tf = TransferFunction::from_json(R"({"points": [[-3e38, 0, 0, 0, 0], [3e38, 1, 1, 1, 1]]})", "t.json");
   EXPECT_FLOAT_EQ(tf(0).w, 0.5f);

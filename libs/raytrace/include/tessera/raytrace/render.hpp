@@ -35,7 +35,7 @@ struct RayScene {
 struct RenderSettings {
   int width = 512, height = 512;
   int samples = 1;                 ///< samples per pixel (stratified); each also samples time, lens, lights, gloss
-  int max_depth = 5;               ///< eye ray = depth 1; no reflected or refracted ray beyond this depth (<= kMaxDepth)
+  int max_depth = 5;               ///< eye ray = depth 1; no reflected or refracted ray beyond it; at most kMaxDepth
   float min_contribution = 1e-3f;  ///< stop a path whose weight (product of K's) is below this in every channel
   uint64_t seed = 0;               ///< the same seed gives the same picture for any thread count
   int tile_size = 16;              ///< pixels per tile side (parallel work unit)
