@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
@@ -12,15 +13,31 @@ namespace tessera::cli {
 
 namespace {
 
-/// Refuses a number that parses as NaN or an infinity; anything else is left to the option's own conversion.
-std::string finite_number(std::string& text) {
+/// The number a whole option value spells, if it is one (the validators below leave anything else to the option's own
+/// conversion and its error).
+std::optional<double> number_in(const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() && *end == '\0' && !std::isfinite(v)) return "expected a finite number, got '" + text + "'";
-  return "";
+  if (end == text.c_str() || *end != '\0') return std::nullopt;
+  return v;
+}
+
+/// Refuses a number that parses as NaN or an infinity.
+std::string finite_number(std::string& text) {
+  const auto v = number_in(text);
+  return v && !std::isfinite(*v) ? "expected a finite number, got '" + text + "'" : "";
 }
 
 }  // namespace
+
+CLI::Validator non_negative() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const auto v = number_in(text);
+        return v && *v < 0 ? "expected a number >= 0, got " + text : std::string();
+      },
+      "NONNEGATIVE");
+}
 
 void add_common_options(CLI::App& command, CommonOptions& common) {
   for (CLI::Option* option : command.get_options())

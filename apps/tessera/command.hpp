@@ -20,6 +20,10 @@ struct CommonOptions {
   bool stats = false;  ///< --stats: machine-readable key=value figures on stdout
 };
 
+/// Checks that a number option is >= 0 ("expected a number >= 0, got -1"; CLI::NonNegativeNumber's message lists its
+/// range up to the largest double, digit by digit).
+CLI::Validator non_negative();
+
 /// A command: its name, one-line summary and the function that adds its subcommand (options and callback) to the app.
 struct Command {
   const char* name;

@@ -210,6 +210,8 @@ expect_error 1 "xyz" cube.obj -o bad.xyz
 expect_error 1 "" cube.obj -o bad.png --depth-out no_such_dir/bad.pfm
 expect_error 2 "shading" cube.obj -o bad.png --shading toon
 expect_error 2 "repeat" cube.obj -o bad.png --repeat 0
+expect_error 2 "bump-scale: expected a number >= 0, got -1" cube.obj -o bad.png --bump-scale -1
+expect_error 2 "opacity: expected a finite number, got 'nan'" cube.obj -o bad.png --opacity nan
 expect_error 2 "cull" cube.obj -o bad.png --cull front
 expect_error 2 "output" cube.obj
 expect_error 1 "texture coordinates" cube.obj -o bad.png --texture halves.png

@@ -113,7 +113,7 @@ void setup_smooth(CLI::App& mesh) {
       ->required();
   cmd->add_option("--iterations", options->iterations, "Smoothing steps (Taubin: lambda/mu pairs)")
       ->required()
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   cmd->add_option("--lambda", options->lambda, "Step toward the neighbours' average, in (0, 1]")->capture_default_str();
   cmd->add_option("--mu", options->mu, "Taubin's inflating step, < -lambda")->capture_default_str();
   cmd->add_flag("!--move-boundary", options->fix_boundary, "Smooth boundary vertices too (default: they stay)");

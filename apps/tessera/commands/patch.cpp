@@ -52,7 +52,7 @@ void setup_patch(CLI::App& patch, CommonOptions& common) {
   patch
       .add_option("--tolerance", opt->tolerance,
                   "Adaptive: per patch the fewest steps (at most --tess) keeping the mesh within this distance")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative());
   patch
       .add_option("--orient", opt->orient,
                   "Normals as du x dv (given), reversed (flip), or whichever points out of the model (outward)")

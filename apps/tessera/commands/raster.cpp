@@ -388,7 +388,7 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->capture_default_str();
   cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
   cmd.add_option("--bump-scale", a->bump_scale, "Height of a white bump texel, as a fraction of the mesh's size")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative())
       ->capture_default_str();
   cmd.add_option("--env", a->env, "Environment map: a lat-long (equirectangular) image the surface reflects");
   cmd.add_option("--reflect", a->reflect, "How much of the environment the surface reflects, in [0,1]")

@@ -33,7 +33,7 @@ struct VolumeInput {
     app.add_option("--dtype", dtype, "Raw voxel type: uint8|uint16|int16|float32");
     app.add_option("--endian", endian, "Raw byte order: little|big");
     app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz");
-    app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(CLI::NonNegativeNumber);
+    app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(non_negative());
   }
 
   AnyVolume read() const {
