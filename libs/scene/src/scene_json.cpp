@@ -53,8 +53,11 @@ class Node {
   size_t size() const { return v_.size(); }
 
   /// Fails on a key that is not in `allowed` (a misspelt key would otherwise be silently ignored).
-  void only(std::initializer_list<const char*> allowed) const {
+  void expect_object() const {
     if (!v_.is_object()) fail("expected an object");
+  }
+  void only(std::initializer_list<const char*> allowed) const {
+    expect_object();
     const std::set<std::string> keys(allowed.begin(), allowed.end());
     for (const auto& [key, value] : v_.items())
       if (!keys.count(key)) Node(value, join(key.c_str()), file_).fail("unknown key");
@@ -144,6 +147,7 @@ void read_camera(const Node& n, SceneCamera& c) {
 
 Light read_light(const Node& n) {
   Light l;
+  n.expect_object();  // before its type is read, so that [1] is not reported as a missing type
   const std::string type = n["type"].string();
   if (type == "point") {
     n.only({"type", "position", "color"});
@@ -365,6 +369,7 @@ Shape read_shape(const Node& n, const std::string& type) {
 }
 
 SceneObject read_object(const Node& n, const Scene& scene, const std::filesystem::path& base_dir) {
+  n.expect_object();  // before its type is read, so that [1] is not reported as a missing type
   const std::string type = n["type"].string();
   static const std::map<std::string, std::vector<const char*>> shape_keys = {
       {"sphere", {"center", "radius"}},

@@ -84,6 +84,9 @@ TEST(Scene, ErrorsNameTheJsonPath) {
                                       "material": "m"}])")),
             "test.json: objects[0].vertices: the vertices enclose no area");
   EXPECT_EQ(error_of(with_objects("[]")), "test.json: objects: expected at least 1 elements");
+  EXPECT_EQ(error_of(with_objects("[1]")), "test.json: objects[0]: expected an object");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])", R"("lights": [[]], )")),
+            "test.json: lights[0]: expected an object");
   EXPECT_EQ(error_of(R"({"materials": {}})"), "test.json: objects: missing");
   EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"}])", R"("image": {"size": [0, 10]}, )")),
             "test.json: image.size[0]: expected an integer in [1, 65536]");
