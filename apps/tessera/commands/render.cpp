@@ -20,8 +20,6 @@
 namespace tessera::cli {
 namespace {
 
-constexpr int kMaxSamples = 1 << 16;  // as in scene files
-
 struct RenderArgs {
   std::string scene, output, size, backend = "raytrace", shadow_method;
   std::optional<int> spp, depth;
@@ -38,8 +36,9 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   // Every option and the output format are checked before the scene is built or anything is written.
   Size2 size{0, 0};
   if (!a.size.empty()) size = parse_size(a.size, "--size");
-  if (a.spp && (*a.spp < 1 || *a.spp > kMaxSamples))
-    throw InvalidInput(fmt::format("--spp: expected a number of samples in [1, {}], got {}", kMaxSamples, *a.spp));
+  if (a.spp && (*a.spp < 1 || *a.spp > SceneImage::kMaxSamples))
+    throw InvalidInput(
+        fmt::format("--spp: expected a number of samples in [1, {}], got {}", SceneImage::kMaxSamples, *a.spp));
   if (a.depth && (*a.depth < 1 || *a.depth > RenderSettings::kMaxDepth))
     throw InvalidInput(
         fmt::format("--depth: expected a recursion depth in [1, {}], got {}", RenderSettings::kMaxDepth, *a.depth));

@@ -13,6 +13,7 @@
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/mesh/primitives.hpp"
+#include "tessera/raytrace/render.hpp"
 #include "tessera/scene/scene.hpp"
 
 namespace tessera {
@@ -125,8 +126,8 @@ void read_image_settings(const Node& n, SceneImage& image) {
     image.width = size.item(0).integer(1, 65536);
     image.height = size.item(1).integer(1, 65536);
   }
-  if (n.has("samples")) image.samples = n["samples"].integer(1, 1 << 16);
-  if (n.has("depth")) image.max_depth = n["depth"].integer(1, 64);
+  if (n.has("samples")) image.samples = n["samples"].integer(1, SceneImage::kMaxSamples);
+  if (n.has("depth")) image.max_depth = n["depth"].integer(1, RenderSettings::kMaxDepth);
   if (n.has("background")) image.background = n["background"].color();
 }
 
