@@ -34,9 +34,13 @@ endfunction()
 # tessera_share_pch(<target> <group> <header>...)
 #
 # One precompiled header for a group of targets: the group's first target makes it from the headers, the others
-# reuse it. GCC uses it where the flags that matter agree (those of one build are the same for all the group's
-# targets) and otherwise silently parses the headers as before.
+# reuse it. GCC uses it where the macros and target flags agree (those of one build are the same for all the group's
+# targets) and otherwise silently parses the headers as before. But where it uses it, GCC also restores the
+# optimization options the header was made with: -ffp-contract among them, which raster3d's users need off (its
+# templates are instantiated in their files; with contraction its AVX2 paths fuse and differ from the SSE ones).
+# So every target of a group compiles with -ffp-contract=off (a no-op outside code compiled for FMA).
 function(tessera_share_pch target group)
+  target_compile_options(${target} PRIVATE -ffp-contract=off)
   get_property(donor GLOBAL PROPERTY TESSERA_PCH_${group})
   if(donor)
     target_precompile_headers(${target} REUSE_FROM ${donor})
