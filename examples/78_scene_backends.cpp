@@ -1,8 +1,7 @@
 // One scene description, two renderers (the scene module drives both): the whitted scene ray traced (reflection,
 // refraction, the checkerboard, every light's shadows by shadow rays), then rasterized with local shading only: with
-// the first light's shadows from a shadow map (the notes' 2-pass z-buffer), and with every light's shadows from
-// stencil shadow volumes (one additive pass per light). The scene has two lights: the second casts the fainter
-// shadows, which the shadow map leaves out.
+// every light's shadows from a shadow map per light (the notes' 2-pass z-buffer), and from stencil shadow volumes
+// (one additive pass per light). The scene has two lights: the second casts the fainter shadows.
 #include "gallery.hpp"
 #include "tessera/scene/raster.hpp"
 #include "tessera/scene/trace.hpp"
@@ -19,6 +18,6 @@ TESSERA_EXAMPLE(ex78_scene_backends, "78_scene_backends",
               examples::side_by_side({render(to_ray_scene(scene), s),
                                       rasterize_scene(scene, s.width, s.height, RasterShadows::map),
                                       rasterize_scene(scene, s.width, s.height, RasterShadows::volumes)}),
-              "The built-in whitted scene ray traced; rasterized with the first light's shadow map; rasterized with "
-              "both lights' shadow volumes (the second light's fainter shadows appear).");
+              "The built-in whitted scene ray traced; rasterized with a shadow map per light; rasterized with "
+              "shadow volumes (the second light casts the fainter shadows).");
 }

@@ -154,14 +154,15 @@ raster3d::Framebuffer render_with_maps(const RasterArgs& a, const TriMesh& mesh,
   // The map is fitted to the mesh, the only caster: the floor beyond it is shadowed all the same.
   std::optional<raster3d::ShadowMap> shadow;
   if (a.shadows && !volumes)
-    shadow.emplace(a.shadow_size, point_light ? raster3d::ShadowMap::spot(light, box.lo, box.hi)
-                                              : raster3d::ShadowMap::directional(light, box.lo, box.hi));
+    shadow.emplace(point_light ? raster3d::ShadowMap::point(a.shadow_size, light, box.lo, box.hi)
+                               : raster3d::ShadowMap(a.shadow_size,
+                                                     raster3d::ShadowMap::directional(light, box.lo, box.hi)));
 
   raster3d::SurfaceUniforms u;
   u.set_camera(projection, view);
   u.lighting = lighting_under(view);
   u.color = surface;
-  u.maps.shadow = shadow ? &*shadow : nullptr;
+  u.maps.shadows[0] = shadow ? &*shadow : nullptr;
   raster3d::SurfaceUniforms floor_uniforms = u;  // the floor: light gray, shadows only
   floor_uniforms.color = Vec3f(0.85f);
   u.maps.texture = texture ? &*texture : nullptr;

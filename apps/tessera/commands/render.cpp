@@ -101,8 +101,8 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
                  "Renderer: raytrace (everything) or raster (z-buffer, local shading, hard shadows)")
       ->check(CLI::IsMember({"raytrace", "raster"}));
   cmd.add_option("--shadow-method", a->shadow_method,
-                 "Raster shadows: map (the first light's, a shadow map; the default) or volumes (every light's, "
-                 "stencil shadow volumes)")
+                 "Raster shadows of every light: map (a shadow map per light; the default) or volumes (stencil "
+                 "shadow volumes)")
       ->check(CLI::IsMember({"map", "volumes"}));
   cmd.callback([a, &common] { run_render(*a, common); });
 }

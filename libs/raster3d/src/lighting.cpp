@@ -58,7 +58,8 @@ PreparedLighting::PreparedLighting(const Lighting& lighting)
   }
 }
 
-Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, float light0_visibility) const {
+Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color,
+                               std::span<const float> visibility) const {
   const Vec3f ambient_m = color_material_ ? color : ambient_m_;
   Vec3f c = emission_ + ambient_m * ambient_sum_;
   const Vec3f eye = local_viewer_ ? glm::normalize(-p) : Vec3f(0, 0, 1);
@@ -66,7 +67,7 @@ Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color
     const PreparedLight& light = lights_[size_t(i)];
     const Vec3f l = light.directional ? light.direction : glm::normalize(Vec3f(light.position) - p);
     const float n_dot_l = glm::dot(n, l);
-    const float visible = i == 0 ? light0_visibility : 1.0f;
+    const float visible = size_t(i) < visibility.size() ? visibility[size_t(i)] : 1.0f;
     if (n_dot_l <= 0 || visible <= 0) continue;
     // Times 1 unless in shadow: exactly the unshadowed sums then.
     c += visible * (n_dot_l * (color_material_ ? color * light.diffuse : light.diffuse));

@@ -1,5 +1,6 @@
 #include "tessera/raster3d/shadow_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -48,8 +49,9 @@ struct DepthFragmentShader {
 
 }  // namespace
 
-ShadowMap::ShadowMap(int size, const Mat4& light_view_projection)
-    : depth_(checked_size(size), size), light_(light_view_projection) {}
+ShadowMap::ShadowMap(int size, const Mat4& light_view_projection) {
+  faces_.push_back(Face{Framebuffer(checked_size(size), size), Mat4f(light_view_projection)});
+}
 
 Mat4 ShadowMap::directional(const Vec3& to_light, const Vec3& lo, const Vec3& hi) {
   if (glm::length(to_light) == 0) throw InvalidInput("ShadowMap::directional: the light direction is zero");
@@ -71,27 +73,62 @@ Mat4 ShadowMap::spot(const Vec3& position, const Vec3& lo, const Vec3& hi) {
          look_at(position, center, up_for(center - position));
 }
 
-void ShadowMap::draw(const VertexArrays& arrays, const Mat4& model) {
-  const DepthVertexShader vs{arrays.positions.data(), Mat4f(Mat4(light_) * model)};
-  draw_triangles(depth_, RasterState{}, uint32_t(arrays.positions.size()), arrays.indices, vs, DepthFragmentShader{});
+ShadowMap ShadowMap::point(int size, const Vec3& position, const Vec3& lo, const Vec3& hi) {
+  const auto [center, radius] = bounding_sphere(lo, hi, "point");
+  if (glm::length(center - position) > 1.01 * radius) return ShadowMap(size, spot(position, lo, hi));
+  // Six faces, each a perspective around one axis reaching past the cube's edge by kGuard texels: a point's face is
+  // that of its largest coordinate, where it lies at least kGuard texels inside, so its filter taps stay in the map.
+  constexpr double kGuard = 4;
+  const int face_size = std::max(1, checked_size(size) / 2);
+  const double reach = 1 + 2 * kGuard / face_size;
+  const double far = glm::length(center - position) + radius;
+  const Mat4 projection = perspective(2 * std::atan(reach), 1, 0.01 * radius, 1.01 * far);
+  // The faces of an environment cube map (OpenGL's order and up vectors).
+  static constexpr double kAxes[6][2][3] = {{{1, 0, 0}, {0, -1, 0}},  {{-1, 0, 0}, {0, -1, 0}}, {{0, 1, 0}, {0, 0, 1}},
+                                            {{0, -1, 0}, {0, 0, -1}}, {{0, 0, 1}, {0, -1, 0}},  {{0, 0, -1}, {0, -1, 0}}};
+  ShadowMap map;
+  map.center_ = Vec3f(position);
+  for (const auto& [axis, up] : kAxes) {
+    const Mat4 view = look_at(position, position + Vec3(axis[0], axis[1], axis[2]), Vec3(up[0], up[1], up[2]));
+    map.faces_.push_back(Face{Framebuffer(face_size, face_size), Mat4f(projection * view)});
+  }
+  return map;
 }
 
-void ShadowMap::clear() { depth_.clear_depth(); }
+void ShadowMap::draw(const VertexArrays& arrays, const Mat4& model) {
+  for (Face& face : faces_) {
+    const DepthVertexShader vs{arrays.positions.data(), Mat4f(Mat4(face.light) * model)};
+    draw_triangles(face.depth, RasterState{}, uint32_t(arrays.positions.size()), arrays.indices, vs,
+                   DepthFragmentShader{});
+  }
+}
+
+void ShadowMap::clear() {
+  for (Face& face : faces_) face.depth.clear_depth();
+}
 
 float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   if (pcf < 0) throw InvalidInput(fmt::format("ShadowMap::visibility: negative filter radius {}", pcf));
-  const Vec4f q = light_ * Vec4f(p, 1.0f);
+  if (faces_.size() == 1) return visibility(faces_[0], p, n, pcf);
+  const Vec3f d = p - center_, a = glm::abs(d);
+  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
+  return visibility(faces_[size_t(2 * axis + (d[axis] < 0))], p, n, pcf);
+}
+
+float ShadowMap::visibility(const Face& face, const Vec3f& p, const Vec3f& n, int pcf) {
+  const Mat4f& light = face.light;
+  const Vec4f q = light * Vec4f(p, 1.0f);
   if (!(q.w > 0)) return 1;  // behind a spot light
   const float inv_w = 1 / q.w;
   const Vec3f ndc = Vec3f(q) * inv_w;
   // Outside the light's view, or nearer to it than its near plane: nothing the map holds can block the light.
   if (!(std::abs(ndc.x) <= 1 && std::abs(ndc.y) <= 1 && ndc.z >= -1)) return 1;
-  const int size = this->size();
+  const int size = face.depth.width();
   const float half = 0.5f * float(size);
   const int ci = int(std::floor((ndc.x + 1) * half)), cj = int(std::floor((ndc.y + 1) * half));
   // The fraction of the (2 pcf + 1)^2 texels around P' that let the light through: texels outside the map or
   // holding nothing (the cleared depth) do, the others when `passes(i, j, stored depth)` says so.
-  const auto& depth = depth_.depth();
+  const auto& depth = face.depth.depth();
   const auto filtered = [&](auto passes) {
     int lit = 0, taps = 0;
     for (int j = cj - pcf; j <= cj + pcf; ++j)
@@ -114,7 +151,7 @@ float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   const Vec3f a = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0)));
   const Vec3f b = glm::cross(n, a);
   const auto window_step = [&](const Vec3f& t) {
-    const Vec4f dq = light_ * Vec4f(t, 0.0f);
+    const Vec4f dq = light * Vec4f(t, 0.0f);
     const Vec3f d = (Vec3f(dq) - ndc * dq.w) * inv_w;
     return Vec3f(d.x * half, d.y * half, 0.5f * d.z);
   };

@@ -97,16 +97,27 @@ bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceV
   Vec3f surface = in.color;
   if (maps.texture) surface *= Vec3f(maps.texture->sample(in.uv, ddx.uv, ddy.uv));
   const Mat3f to_world(u.eye_to_world);
-  float visible = u.light0;
-  if (maps.shadow && visible > 0) {
-    // The shadow test needs the surface's true plane, the facet's, not the interpolated normal: it is the cross
-    // product of the position's screen derivatives.
-    const Vec3f facet = glm::cross(ddx.position, ddy.position);
-    const Vec3f plane = glm::dot(facet, facet) > 0 ? facet : n;
-    visible *= maps.shadow->visibility(Vec3f(u.eye_to_world * Vec4f(in.position, 1.0f)),
-                                      glm::normalize(to_world * plane), maps.shadow_pcf);
+  // Each light's visibility: light 0's pass factor (shadow volumes), times what its shadow map says.
+  std::array<float, kMaxLights> visible;
+  visible.fill(1.0f);
+  visible[0] = u.light0;
+  size_t used = u.light0 != 1.0f;  // the lights whose visibility shade() reads: none while all are lit
+  bool have_plane = false;
+  Vec3f world, world_plane;
+  for (size_t i = 0; i < size_t(u.lighting.light_count()); ++i) {
+    if (!maps.shadows[i] || visible[i] <= 0) continue;
+    if (!have_plane) {
+      have_plane = true;
+      // The shadow test needs the surface's true plane, the facet's, not the interpolated normal: it is the cross
+      // product of the position's screen derivatives.
+      const Vec3f facet = glm::cross(ddx.position, ddy.position);
+      world = Vec3f(u.eye_to_world * Vec4f(in.position, 1.0f));
+      world_plane = glm::normalize(to_world * (glm::dot(facet, facet) > 0 ? facet : n));
+    }
+    visible[i] *= maps.shadows[i]->visibility(world, world_plane, maps.shadow_pcf);
+    used = i + 1;
   }
-  Vec3f c = u.lighting.shade(n, in.position, surface, visible);
+  Vec3f c = u.lighting.shade(n, in.position, surface, std::span<const float>(visible.data(), used));
   if (maps.environment || maps.cube) {
     // The notes: R from N and the view vector, R = 2 (N.E) N - E with E toward the eye; looked up in world space.
     const Vec3f e = glm::normalize(Vec3f(u.viewer) - in.position * u.viewer.w);

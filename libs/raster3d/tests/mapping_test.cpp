@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <random>
+#include <span>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
@@ -426,7 +428,7 @@ TEST(ShadowMap, ASquaresShadowIsItsProjectionAlongTheLight) {
   l.lights[0].position = Vec4f(Vec3f(Mat3(view) * to_light), 0);
   SurfaceUniforms u = unlit_uniforms(ortho(-2, 2, -2, 2, 1, 10), view);
   u.lighting = PreparedLighting(l);
-  u.maps.shadow = &map;
+  u.maps.shadows[0] = &map;
   u.maps.shadow_pcf = 0;
   Framebuffer fb(w, w);
   draw_surface(fb, RasterState{}, ground, u);
@@ -516,6 +518,88 @@ TEST(ShadowMap, AMapFittedToTheCastersShadowsReceiversBeyondIt) {
   EXPECT_EQ(map.visibility({0.1f, 1, 0.2f}, {0, 1, 0}, 1), 1.0f);
 }
 
+/// A square tile of half-size `half` at unit distance from `light` in direction `dir`, facing the light.
+struct Tile {
+  Vec3 center, u, v;
+  double half;
+  /// Where the ray from the light along unit w crosses the tile's plane, in the tile's coordinates (|x|, |y| <= half
+  /// inside); nothing when it points away.
+  std::optional<glm::dvec2> crossing(const Vec3& light, const Vec3& w) const {
+    const Vec3 n = center - light;
+    if (glm::dot(w, n) <= 0) return std::nullopt;
+    const Vec3 h = light + w * (glm::dot(n, n) / glm::dot(w, n)) - center;
+    return glm::dvec2(glm::dot(h, u), glm::dot(h, v));
+  }
+  VertexArrays arrays() const {
+    VertexArrays a;
+    for (const auto& [s, t] : {std::pair{-1.0, -1.0}, {1.0, -1.0}, {1.0, 1.0}, {-1.0, 1.0}})
+      a.positions.push_back(Vec3f(center + half * (s * u + t * v)));
+    a.normals.assign(4, Vec3f(glm::cross(u, v)));
+    a.indices = {0, 1, 2, 0, 2, 3};
+    return a;
+  }
+};
+
+TEST(ShadowMap, APointLightAmongTheCastersShadowsAllAround) {
+  // Tiles around a point light in the 26 directions of a 3 x 3 x 3 grid: toward the middles of the faces of the cube
+  // around the light, of its edges and of its corners, where two and three of the omnidirectional map's faces meet.
+  // A point on a sphere around them is in shadow exactly when the segment to the light crosses a tile.
+  const Vec3 light(0.2, 0.1, -0.15);
+  std::vector<Tile> tiles;
+  for (int x = -1; x <= 1; ++x)
+    for (int y = -1; y <= 1; ++y)
+      for (int z = -1; z <= 1; ++z) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const Vec3 d = glm::normalize(Vec3(x, y, z));
+        const Vec3 u = glm::normalize(glm::cross(d, std::abs(d.y) < 0.9 ? Vec3(0, 1, 0) : Vec3(1, 0, 0)));
+        tiles.push_back({light + d, u, glm::cross(d, u), 0.2});
+      }
+  ShadowMap map = ShadowMap::point(1024, light, light - Vec3(1.2), light + Vec3(1.2));
+  ASSERT_EQ(map.face_count(), 6);
+  EXPECT_EQ(map.size(), 512);
+  for (const Tile& t : tiles) map.draw(t.arrays());
+  std::mt19937 rng(3);
+  std::normal_distribution<double> gauss;
+  for (const int pcf : {0, 1, 3}) {
+    int shadowed = 0, checked = 0;
+    for (int k = 0; k < 6000; ++k) {
+      // Half the points uniform on the sphere, half near the directions where faces meet.
+      Vec3 w = glm::normalize(Vec3(gauss(rng), gauss(rng), gauss(rng)));
+      if (k % 2) {
+        const Tile& t = tiles[size_t(k / 2) % tiles.size()];
+        w = glm::normalize(t.center - light + 0.25 * w);
+      }
+      bool inside = false, near_edge = false;
+      for (const Tile& t : tiles)
+        if (const auto c = t.crossing(light, w)) {
+          const double edge = std::max(std::abs(c->x), std::abs(c->y));
+          inside |= edge < t.half;
+          near_edge |= std::abs(edge - t.half) < 0.02;
+        }
+      if (near_edge) continue;
+      ++checked;
+      shadowed += inside;
+      const Vec3 p = light + 3.0 * w;
+      EXPECT_EQ(map.visibility(Vec3f(p), Vec3f(-w), pcf), inside ? 0.0f : 1.0f) << pcf << " " << w.x << " " << w.y
+                                                                                  << " " << w.z;
+    }
+    EXPECT_GT(shadowed, checked / 5) << pcf;
+    EXPECT_LT(shadowed, checked * 4 / 5) << pcf;
+  }
+  // The tiles themselves, facing the light, are lit.
+  for (const Tile& t : tiles)
+    EXPECT_EQ(map.visibility(Vec3f(t.center + 0.1 * t.u), Vec3f(glm::normalize(light - t.center)), 1), 1.0f);
+}
+
+TEST(ShadowMap, APointLightOutsideTheCastersGetsOneView) {
+  const ShadowMap outside = ShadowMap::point(64, {0, 5, 0}, {-1, 0, -1}, {1, 1, 1});
+  EXPECT_EQ(outside.face_count(), 1);
+  EXPECT_EQ(outside.size(), 64);
+  EXPECT_EQ(ShadowMap::point(64, {0, 0.5, 0}, {-1, 0, -1}, {1, 1, 1}).face_count(), 6);
+  EXPECT_THROW(ShadowMap::point(0, {0, 0.5, 0}, {-1, 0, -1}, {1, 1, 1}), InvalidInput);
+  EXPECT_THROW(ShadowMap::point(64, {0, 0.5, 0}, {1, 1, 1}, {-1, 0, -1}), InvalidInput);
+}
+
 TEST(ShadowMap, RejectsBadInput) {
   EXPECT_THROW(ShadowMap(0, Mat4(1.0)), InvalidInput);
   EXPECT_THROW(ShadowMap(20000, Mat4(1.0)), InvalidInput);
@@ -552,7 +636,7 @@ TEST(ShadowMap, ASpotLightsShadowFollowsItsRays) {
   EXPECT_GT(inside, 50);
 }
 
-TEST(Lighting, VisibilityScalesOnlyLightZerosDirectTerms) {
+TEST(Lighting, VisibilityScalesEachLightsDirectTerms) {
   Lighting l;
   l.material = Material::plastic({0.2f, 0.2f, 0.2f}, 8, 0.2f);  // sums below 1: nothing clamped
   l.light_count = 2;
@@ -561,13 +645,23 @@ TEST(Lighting, VisibilityScalesOnlyLightZerosDirectTerms) {
   l.model_ambient = Vec3f(0.1f);
   const PreparedLighting prepared(l);
   const Vec3f n(0, 0, 1), p(0, 0, -2), c(1);
-  const Vec3f both = prepared.shade(n, p, c), half = prepared.shade(n, p, c, 0.5f), none = prepared.shade(n, p, c, 0);
-  Lighting only1 = l;
-  only1.lights[0] = only1.lights[1];
-  only1.light_count = 1;
-  EXPECT_EQ(none, PreparedLighting(only1).shade(n, p, c));  // light 1 and the ambient stay
+  const auto shade = [&](std::initializer_list<float> visibility) {
+    return prepared.shade(n, p, c, std::span<const float>(visibility.begin(), visibility.size()));
+  };
+  const Vec3f both = prepared.shade(n, p, c), half = shade({0.5f}), none = shade({0});
+  // Without light 0, or without light 1: the other light and the ambient stay.
+  for (int off = 0; off < 2; ++off) {
+    Lighting other = l;
+    other.lights[0] = other.lights[size_t(1 - off)];
+    other.light_count = 1;
+    EXPECT_EQ(off == 0 ? none : shade({1, 0}), PreparedLighting(other).shade(n, p, c)) << off;
+  }
   EXPECT_NEAR(glm::length(half - 0.5f * (both + none)), 0, 1e-6f);
-  EXPECT_EQ(prepared.shade(n, p, c, 1), both);
+  EXPECT_EQ(shade({1}), both);
+  EXPECT_EQ(shade({1, 1, 0}), both);  // entries past the lights are not read
+  Lighting dark = l;
+  dark.light_count = 0;
+  EXPECT_EQ(shade({0, 0}), PreparedLighting(dark).shade(n, p, c));
 }
 
 }  // namespace

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <optional>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/frame.hpp"
@@ -129,16 +128,13 @@ Vec3 light_center(const Light& light) {
   return position;
 }
 
-/// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, a
-/// perspective from the position of the others (an area light's center); none for a light inside the casters'
-/// bounding sphere, which one map cannot see all around.
-std::optional<raster3d::ShadowMap> shadow_map(const Light& light, const Vec3& lo, const Vec3& hi) {
+/// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, else
+/// from the light's position (an area light's center): one perspective view, or six around a light among the casters.
+raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& hi) {
   constexpr int kSize = 2048;
   if (light.type == LightType::directional)
     return raster3d::ShadowMap(kSize, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
-  const Vec3 position = light_center(light);
-  if (glm::length(position - 0.5 * (lo + hi)) <= 1.02 * 0.5 * glm::length(hi - lo)) return std::nullopt;
-  return raster3d::ShadowMap(kSize, raster3d::ShadowMap::spot(position, lo, hi));
+  return raster3d::ShadowMap::point(kSize, light_center(light), lo, hi);
 }
 
 }  // namespace
@@ -183,13 +179,14 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
       hi = glm::max(hi, w);
     }
   }
-  // The notes' pass 1 for light 0 (the one PreparedLighting's visibility scales).
-  std::optional<raster3d::ShadowMap> shadow;
-  if (shadows == RasterShadows::map && lighting.light_count > 0 && lo.x <= hi.x)
-    shadow = shadow_map(scene.lights[0], lo, hi);
-  if (shadow)
-    for (size_t k = 0; k < scene.objects.size(); ++k)
-      if (casts(scene.objects[k])) shadow->draw(arrays[k], scene.objects[k].transform);
+  // The notes' pass 1, for every light.
+  std::vector<raster3d::ShadowMap> maps;
+  if (shadows == RasterShadows::map && lo.x <= hi.x)
+    for (int i = 0; i < lighting.light_count; ++i) {
+      maps.push_back(shadow_map(scene.lights[size_t(i)], lo, hi));
+      for (size_t k = 0; k < scene.objects.size(); ++k)
+        if (casts(scene.objects[k])) maps.back().draw(arrays[k], scene.objects[k].transform);
+    }
 
   raster3d::Framebuffer fb(width, height);
   fb.clear(scene.image.background);
@@ -210,7 +207,7 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
       raster3d::SurfaceUniforms u;
       u.set_camera(projection, view, o.transform);
       u.lighting = raster3d::PreparedLighting(l);
-      u.maps.shadow = shadow ? &*shadow : nullptr;
+      for (size_t i = 0; i < maps.size(); ++i) u.maps.shadows[i] = &maps[i];
       raster3d::draw_surface(fb, state, arrays[k], u);
     }
   };

@@ -11,6 +11,7 @@
 // viewer (as OpenGL's default), clamped to [0, 1]. All vectors are in eye space.
 #include <array>
 #include <cstdint>
+#include <span>
 
 #include "tessera/math/types.hpp"
 #include "tessera/raster3d/shaders.hpp"
@@ -82,9 +83,11 @@ class PreparedLighting {
   explicit PreparedLighting(const Lighting& lighting);
 
   /// The shading equation at eye-space point p with unit normal n (vertex color `color`), clamped to [0, 1].
-  /// light0_visibility scales light 0's diffuse and specular terms: the notes' visible(P, L), 0 in its shadow (see
-  /// ShadowMap), fractions at a filtered shadow's edge.
-  Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, float light0_visibility = 1.0f) const;
+  /// visibility[i] scales light i's diffuse and specular terms: the notes' visible(P, L), 0 in its shadow (see
+  /// ShadowMap), fractions at a filtered shadow's edge; the lights past the span's end are fully visible.
+  Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, std::span<const float> visibility = {}) const;
+  /// The lights that are on: lights[0, light_count()).
+  int light_count() const { return light_count_; }
 
  private:
   struct PreparedLight {

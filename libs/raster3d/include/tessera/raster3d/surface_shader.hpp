@@ -2,8 +2,8 @@
 // The notes' mapping techniques as one per-pixel shader pair: texture mapping (the texture colors the surface,
 // C_r = color x texture(s, t), filtered with MIPmaps at the level of detail of the pixel's footprint), bump mapping
 // (Blinn 1978: the normal tilted by the height map's slopes), environment mapping (Blinn and Newell 1976: the
-// reflected view direction looks up a lat-long image) and shadow mapping (ShadowMap: light 0 is blocked where the
-// light saw something nearer). Lighting is PreparedLighting's equation, evaluated at every pixel (Phong
+// reflected view direction looks up a lat-long image) and shadow mapping (ShadowMap, one per light: a light is
+// blocked where it saw something nearer). Lighting is PreparedLighting's equation, evaluated at every pixel (Phong
 // interpolation). Each map is optional.
 //
 // Texture coordinates are interpolated perspective-correctly by the pipeline (the notes: s/|z|, t/|z| and 1/|z|
@@ -61,8 +61,8 @@ struct SurfaceMaps {
   const EnvironmentMap* environment = nullptr;  ///< lat-long radiance around the scene (world space)
   const CubeMap* cube = nullptr;                ///< or a cube map (render_cube_map); used when set
   float reflectivity = 0;                       ///< adds reflectivity x environment(R)
-  const ShadowMap* shadow = nullptr;            ///< light 0's shadow map (world space)
-  int shadow_pcf = 1;                           ///< its filter radius in texels
+  std::array<const ShadowMap*, kMaxLights> shadows{};  ///< light i's shadow map (world space), or null (unshadowed)
+  int shadow_pcf = 1;                                   ///< their filter radius in texels
 };
 
 /// The uniforms of the surface shaders.

@@ -1,8 +1,8 @@
 #pragma once
 // Driving the rasterizer (raster3d) from a scene description: every object tessellated into triangles and drawn with
-// the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with hard shadows from a shadow map (the notes'
-// 2-pass z-buffer, the first light) or from shadow volumes (every light). No reflections, refraction or distribution
-// effects (those need the ray tracer).
+// the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with every light's hard shadows from shadow maps
+// (the notes' 2-pass z-buffer) or from shadow volumes. No reflections, refraction or distribution effects (those need
+// the ray tracer).
 #include "tessera/image/image.hpp"
 #include "tessera/scene/scene.hpp"
 
@@ -14,8 +14,9 @@ TriMesh tessellate(const Shape& shape, int segments = 48, double plane_size = 30
 
 /// How the rasterizer draws shadows.
 enum class RasterShadows {
-  /// The first light's, through a 2048 x 2048 shadow map fitted to the objects that cast shadows (the notes' 2-pass
-  /// z-buffer); a point light inside those objects' bounding sphere casts none.
+  /// Every light's, through a shadow map per light fitted to the objects that cast shadows (the notes' 2-pass
+  /// z-buffer): 2048 x 2048, or six faces of 1024 x 1024 around a light inside those objects' bounding sphere
+  /// (ShadowMap::point).
   map,
   /// Every light's, exact to the pixel, through shadow volumes counted z-fail in the stencil buffer (one additive
   /// pass per light; raster3d's draw_lights_with_shadow_volumes), for lights anywhere.
