@@ -6,11 +6,16 @@
 
 namespace tessera::raster3d {
 
-Framebuffer::Framebuffer(int width, int height) : scratch_(std::make_unique<detail::RasterScratch>()) {
+Framebuffer::Framebuffer(int width, int height) : Framebuffer(width, height, true) {}
+
+Framebuffer Framebuffer::depth_only(int width, int height) { return Framebuffer(width, height, false); }
+
+Framebuffer::Framebuffer(int width, int height, bool color) : scratch_(std::make_unique<detail::RasterScratch>()) {
   if (width < 1 || height < 1) throw InvalidInput(fmt::format("framebuffer size {}x{} is invalid", width, height));
+  depth_ = Image<uint32_t>(width, height, kDepthMax);
+  if (!color) return;
   color_ = ImageRGBA8(width, height, glm::u8vec4(0, 0, 0, 255));
   front_ = color_;
-  depth_ = Image<uint32_t>(width, height, kDepthMax);
   stencil_ = Image<uint8_t>(width, height, 0);
 }
 
@@ -56,9 +61,9 @@ void Framebuffer::swap() {
 }
 
 ImageRGB Framebuffer::color_rgb() const {
-  ImageRGB out(width(), height());
-  for (int y = 0; y < height(); ++y)
-    for (int x = 0; x < width(); ++x) out(x, y) = Vec3f(color_(x, y)) / 255.0f;
+  ImageRGB out(color_.width(), color_.height());
+  for (int y = 0; y < out.height(); ++y)
+    for (int x = 0; x < out.width(); ++x) out(x, y) = Vec3f(color_(x, y)) / 255.0f;
   return out;
 }
 

@@ -366,7 +366,7 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
   p.flat = state.flat;
   p.painter = state.painter;
   p.cull = state.cull == CullMode::back ? 1 : state.cull == CullMode::front ? 2 : 0;
-  p.color_write = state.color_write;
+  p.color_write = state.color_write && fb.has_color();  // a depth_only framebuffer: depth alone
   p.stencil_test = state.stencil_test;
   p.stencil[0] = state.stencil_back;
   p.stencil[1] = state.stencil_front;
@@ -696,7 +696,11 @@ bool clip_segment(float* a, float* b, int varying_count) {
   return true;
 }
 
-void check_indices(std::span<const uint32_t> indices, uint32_t vertex_count, int arity, const char* what) {
+void check_draw(const Framebuffer& fb, const RasterState& state, std::span<const uint32_t> indices,
+                uint32_t vertex_count, int arity, const char* what) {
+  if (state.stencil_test && !fb.has_color())
+    throw InvalidInput(fmt::format("{}s: the stencil test is on, but a depth-only framebuffer has no stencil buffer",
+                                   what));
   if (indices.size() % size_t(arity) != 0)
     throw InvalidInput(fmt::format("{} indices: {} is not a multiple of {}", what, indices.size(), arity));
   const auto bad = std::find_if(indices.begin(), indices.end(), [&](uint32_t i) { return i >= vertex_count; });

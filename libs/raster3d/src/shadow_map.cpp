@@ -50,7 +50,7 @@ struct DepthFragmentShader {
 }  // namespace
 
 ShadowMap::ShadowMap(int size, const Mat4& light_view_projection) {
-  faces_.push_back(Face{Framebuffer(checked_size(size), size), Mat4f(light_view_projection)});
+  faces_.push_back(Face{Framebuffer::depth_only(checked_size(size), size), Mat4f(light_view_projection)});
 }
 
 Mat4 ShadowMap::directional(const Vec3& to_light, const Vec3& lo, const Vec3& hi) {
@@ -90,7 +90,7 @@ ShadowMap ShadowMap::point(int size, const Vec3& position, const Vec3& lo, const
   map.center_ = Vec3f(position);
   for (const auto& [axis, up] : kAxes) {
     const Mat4 view = look_at(position, position + Vec3(axis[0], axis[1], axis[2]), Vec3(up[0], up[1], up[2]));
-    map.faces_.push_back(Face{Framebuffer(face_size, face_size), Mat4f(projection * view)});
+    map.faces_.push_back(Face{Framebuffer::depth_only(face_size, face_size), Mat4f(projection * view)});
   }
   return map;
 }

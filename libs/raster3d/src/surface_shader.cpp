@@ -171,6 +171,7 @@ CubeMap render_cube_map(const Vec3& center, int size,
 }
 
 void fill_background(Framebuffer& framebuffer, const EnvironmentMap& environment, const Mat4& view_projection) {
+  if (!framebuffer.has_color()) throw InvalidInput("fill_background: a depth-only framebuffer has no color");
   const Mat4 to_world = glm::inverse(view_projection);
   const int width = framebuffer.width(), height = framebuffer.height();
   for (int y = 0; y < height; ++y)

@@ -1,8 +1,10 @@
 // Coverage rules of the triangle rasterizer: tie rule, abutting triangles, clipping, depth, varyings, parallelism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
@@ -423,6 +425,41 @@ TEST(Raster, BadIndicesThrow) {
   EXPECT_THROW(draw_triangles(fb, state, 3, std::vector<uint32_t>{0, 1}, shader, ColorFragmentShader{}), InvalidInput);
   EXPECT_THROW(draw_triangles(fb, state, 3, std::vector<uint32_t>{0, 1, 3}, shader, ColorFragmentShader{}),
                InvalidInput);
+}
+
+TEST(Raster, ADepthOnlyFramebufferStoresTheSameDepth) {
+  // Overlapping random triangles, lines and points, drawn into a full framebuffer and into a depth-only one: the
+  // depth buffers are identical, the depth-only one has no color or stencil, and a stencil test on it throws.
+  const int size = 64;
+  Rng rng(11);
+  std::vector<WindowVertexIn> v;
+  for (int k = 0; k < 90; ++k)
+    v.push_back({{float(rng.uniform(-8, 72)), float(rng.uniform(-8, 72)), float(rng.uniform(0.05, 0.95))}});
+  std::vector<uint32_t> all(v.size());
+  for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
+  const testing::WindowShader shader{&v, size, size};
+  Framebuffer full(size, size), depth = Framebuffer::depth_only(size, size);
+  for (Framebuffer* fb : {&full, &depth}) {
+    RasterState state;
+    draw_triangles(*fb, state, uint32_t(v.size()), all, shader, ColorFragmentShader{});
+    state.depth_func = DepthFunc::lequal;
+    draw_lines(*fb, state, uint32_t(v.size()), std::span(all).first(40), shader, ColorFragmentShader{});
+    draw_points(*fb, state, uint32_t(v.size()), all, shader, ColorFragmentShader{});
+  }
+  EXPECT_EQ(depth.width(), size);
+  EXPECT_EQ(depth.height(), size);
+  EXPECT_TRUE(full.has_color());
+  EXPECT_FALSE(depth.has_color());
+  EXPECT_TRUE(depth.color().empty() && depth.stencil().empty() && depth.color_rgb().empty());
+  EXPECT_TRUE(std::ranges::equal(depth.depth().pixels(), full.depth().pixels()));
+  int drawn = 0;
+  for (const uint32_t d : depth.depth().pixels()) drawn += d < kDepthMax;
+  EXPECT_GT(drawn, size * size / 2);
+  RasterState stencil;
+  stencil.stencil_test = true;
+  EXPECT_THROW(draw_triangles(depth, stencil, uint32_t(v.size()), all, shader, ColorFragmentShader{}), InvalidInput);
+  EXPECT_THROW(draw_points(depth, stencil, uint32_t(v.size()), all, shader, ColorFragmentShader{}), InvalidInput);
+  EXPECT_THROW(Framebuffer::depth_only(0, 4), InvalidInput);
 }
 
 TEST(Raster, FragmentShaderExceptionReachesTheCaller) {

@@ -52,13 +52,19 @@ class Framebuffer {
  public:
   /// A width x height framebuffer, color black, depth cleared to the far plane, stencil 0. Throws InvalidInput for sizes < 1.
   Framebuffer(int width, int height);
+  /// A width x height framebuffer with a depth buffer alone: no color or stencil buffers (their images are empty).
+  /// Draws into it write depth only, as with the color mask off; a draw with the stencil test on throws InvalidInput.
+  /// A fifth of the memory: what a shadow map's pass 1 needs. Throws InvalidInput for sizes < 1.
+  static Framebuffer depth_only(int width, int height);
   ~Framebuffer();
   Framebuffer(Framebuffer&&) noexcept;
   Framebuffer& operator=(Framebuffer&&) noexcept;
 
   /// Size in pixels.
-  int width() const { return color_.width(); }
-  int height() const { return color_.height(); }
+  int width() const { return depth_.width(); }
+  int height() const { return depth_.height(); }
+  /// Whether it has color (and stencil) buffers: false for depth_only.
+  bool has_color() const { return !color_.empty(); }
 
   /// The back color buffer (what drawing writes).
   ImageRGBA8& color() { return color_; }
@@ -86,7 +92,7 @@ class Framebuffer {
   /// Exchanges back and front color buffers (double buffering); the new back buffer keeps the old front's pixels.
   void swap();
 
-  /// The back color buffer as linear float RGB (for image files and comparisons).
+  /// The back color buffer as linear float RGB (for image files and comparisons); empty for depth_only.
   ImageRGB color_rgb() const;
   /// The depth buffer as window z in [0, 1] (value / (2^24 - 1)), for --depth-out PFM files.
   DepthImage depth_image() const;
@@ -95,6 +101,7 @@ class Framebuffer {
   detail::RasterScratch& scratch() { return *scratch_; }
 
  private:
+  Framebuffer(int width, int height, bool color);
   void wait_for_raster() noexcept;
 
   ImageRGBA8 color_, front_;

@@ -68,7 +68,7 @@ class ShadowMap {
 
  private:
   struct Face {
-    Framebuffer depth;  // its color buffer is unused: the pipeline always has one
+    Framebuffer depth;  // depth_only
     Mat4f light;
   };
   ShadowMap() = default;

@@ -134,6 +134,7 @@ CubeMap render_cube_map(const Vec3& center, int size,
 
 /// Paints every pixel that nothing was drawn on (depth still 1) with the environment seen along its line of sight
 /// through the camera `view_projection` (world to clip space): the background of an environment-mapped scene.
+/// Throws InvalidInput for a depth-only framebuffer.
 void fill_background(Framebuffer& framebuffer, const EnvironmentMap& environment, const Mat4& view_projection);
 
 }  // namespace tessera::raster3d

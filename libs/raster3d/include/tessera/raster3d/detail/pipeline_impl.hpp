@@ -193,8 +193,10 @@ std::span<const uint32_t> painter_order(RasterScratch& scratch, const float* ver
 /// nothing is left; otherwise a and b are replaced by the clipped end points.
 bool clip_segment(float* a, float* b, int varying_count);
 
-/// Throws InvalidInput unless indices.size() is a multiple of `arity` and every index is < vertex_count.
-void check_indices(std::span<const uint32_t> indices, uint32_t vertex_count, int arity, const char* what);
+/// Throws InvalidInput unless indices.size() is a multiple of `arity`, every index is < vertex_count, and the
+/// framebuffer has the buffers the state uses (a stencil test needs a stencil buffer: not a depth_only one's).
+void check_draw(const Framebuffer& fb, const RasterState& state, std::span<const uint32_t> indices,
+                uint32_t vertex_count, int arity, const char* what);
 
 /// The setup parameters of a draw.
 SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const float* vertices, int varying_count);
@@ -775,7 +777,7 @@ template <int N, class V, class FS, DepthFunc F>
       if (constant ? !constant_kept
                    : !interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c))
         continue;
-      write_color(params, c, crow[lo + k]);
+      if (params.color_write) write_color(params, c, crow[lo + k]);  // a depth_only framebuffer has no color
       if (depth_write) drow[lo + k] = d[k];
     }
   };
@@ -891,7 +893,7 @@ void shade_fragment(Framebuffer& fb, const SetupParams& params, int i, int j, ui
   if constexpr (N > 0) std::memcpy(&v, values, sizeof(float) * N);
   Vec4f c;
   if (!run_fragment_shader(fs, v, V{}, V{}, c)) return;
-  write_color(params, c, fb.color()(i, row));
+  if (params.color_write) write_color(params, c, fb.color()(i, row));
   if (depth_write) stored = d;
 }
 
@@ -944,7 +946,7 @@ DrawStats draw_lines(Framebuffer& framebuffer, const RasterState& state, uint32_
   using V = VaryingsOf<VS>;
   constexpr int n = varying_count<V>;
   constexpr int stride = 4 + n;
-  detail::check_indices(indices, vertex_count, 2, "line");
+  detail::check_draw(framebuffer, state, indices, vertex_count, 2, "line");
   DrawStats stats;
   stats.primitives = indices.size() / 2;
   if (indices.empty()) return stats;
@@ -974,7 +976,7 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
   using V = VaryingsOf<VS>;
   constexpr int n = varying_count<V>;
   constexpr int stride = 4 + n;
-  detail::check_indices(indices, vertex_count, 1, "point");
+  detail::check_draw(framebuffer, state, indices, vertex_count, 1, "point");
   DrawStats stats;
   stats.primitives = indices.size();
   if (indices.empty()) return stats;
@@ -1011,7 +1013,7 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
                                const std::shared_ptr<const void>& keep_alive = nullptr) {
   using V = VaryingsOf<VS>;
   constexpr int n = varying_count<V>;
-  check_indices(indices, vertex_count, 3, "triangle");
+  check_draw(framebuffer, state, indices, vertex_count, 3, "triangle");
   DrawStats stats;
   stats.primitives = indices.size() / 3;
   if (indices.empty()) return stats;
