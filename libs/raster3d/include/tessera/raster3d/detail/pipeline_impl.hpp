@@ -282,9 +282,9 @@ void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s);
 /// The blend of fragment color `src` over the stored `dst` by `f` (BlendFunction).
 glm::u8vec4 blend_colors(const BlendFunction& f, const Vec4f& src, glm::u8vec4 dst);
 
-/// Writes fragment color c to the stored color: masked (params.color_write off), blended (params.blend) or stored.
+/// Writes fragment color c to the stored color, blended (params.blend) or stored. Callers skip it when
+/// params.color_write is off (the color mask, or a depth_only framebuffer, which has no color to refer to).
 inline void write_color(const SetupParams& params, const Vec4f& c, glm::u8vec4& stored) {
-  if (!params.color_write) return;
   stored = params.blend ? blend_colors(params.blend_function, c, stored) : to_color8(c);
 }
 
@@ -777,7 +777,7 @@ template <int N, class V, class FS, DepthFunc F>
       if (constant ? !constant_kept
                    : !interpolated_fragment<N, V>(fs, base.data(), px, py, float(lo + k) + 0.5f - r.rx, c))
         continue;
-      if (params.color_write) write_color(params, c, crow[lo + k]);  // a depth_only framebuffer has no color
+      if (params.color_write) write_color(params, c, crow[lo + k]);
       if (depth_write) drow[lo + k] = d[k];
     }
   };
