@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
+#include "tessera/image/texture.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/raster3d/pipeline.hpp"
 
@@ -83,13 +84,13 @@ ShadowMap ShadowMap::point(int size, const Vec3& position, const Vec3& lo, const
   const double reach = 1 + 2 * kGuard / face_size;
   const double far = glm::length(center - position) + radius;
   const Mat4 projection = perspective(2 * std::atan(reach), 1, 0.01 * radius, 1.01 * far);
-  // The faces of an environment cube map (OpenGL's order and up vectors).
-  static constexpr double kAxes[6][2][3] = {{{1, 0, 0}, {0, -1, 0}},  {{-1, 0, 0}, {0, -1, 0}}, {{0, 1, 0}, {0, 0, 1}},
-                                            {{0, -1, 0}, {0, 0, -1}}, {{0, 0, 1}, {0, -1, 0}},  {{0, 0, -1}, {0, -1, 0}}};
+  // The faces of an environment cube map, in CubeFace order (the one cube_coord picks in visibility): looking along
+  // the face's axis C with up -T, as render_cube_map does.
   ShadowMap map;
   map.center_ = Vec3f(position);
-  for (const auto& [axis, up] : kAxes) {
-    const Mat4 view = look_at(position, position + Vec3(axis[0], axis[1], axis[2]), Vec3(up[0], up[1], up[2]));
+  for (int f = 0; f < 6; ++f) {
+    const auto at = [f](float s, float t) { return Vec3(cube_direction({CubeFace(f), {s, t}})); };
+    const Mat4 view = look_at(position, position + at(0.5f, 0.5f), at(0.5f, 0) - at(0.5f, 1));
     map.faces_.push_back(Face{Framebuffer::depth_only(face_size, face_size), Mat4f(projection * view)});
   }
   return map;
@@ -110,9 +111,7 @@ void ShadowMap::clear() {
 float ShadowMap::visibility(const Vec3f& p, const Vec3f& n, int pcf) const {
   if (pcf < 0) throw InvalidInput(fmt::format("ShadowMap::visibility: negative filter radius {}", pcf));
   if (faces_.size() == 1) return visibility(faces_[0], p, n, pcf);
-  const Vec3f d = p - center_, a = glm::abs(d);
-  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-  return visibility(faces_[size_t(2 * axis + (d[axis] < 0))], p, n, pcf);
+  return visibility(faces_[size_t(cube_coord(p - center_).face)], p, n, pcf);
 }
 
 float ShadowMap::visibility(const Face& face, const Vec3f& p, const Vec3f& n, int pcf) {
