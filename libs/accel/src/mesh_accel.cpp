@@ -2,6 +2,7 @@
 #include "tessera/accel/mesh_accel.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -22,8 +23,11 @@ namespace {
 
 /// Builds the wide tree from the binary one and lays it out in MeshAccel's array of cache lines.
 ///
-/// Collapse (Wald et al. 2008, "Getting rid of packets"): a wide node takes its binary node's two children, then
-/// repeatedly replaces the interior child of largest area by that child's two children, until it has W.
+/// Collapse: the SAH-optimal choice of which binary nodes become wide nodes, leaves or neither (Pinto 2010, "Fast
+/// SAH-optimal conversion"; Ylitie, Karras and Laine 2017, "Efficient incoherent ray traversal on GPUs through
+/// compressed wide BVHs"), by dynamic programming over the binary tree: see cost_tables(). A subtree of up to
+/// max_leaf triangles may become one leaf, so the binary tree is built with small leaves and the collapse merges them
+/// where the wide tree's cost says so.
 /// Layout (see MeshAccel::node_ref), depth first: a node, the blocks of its leaf children, then its interior children's
 /// subtrees. Embree's allocator gives a similar order; here a node's reference also says how many lines of leaf blocks
 /// follow it, so that they are fetched with it.
@@ -34,18 +38,20 @@ template <int W>
 class WideTreeBuilder {
  public:
   WideTreeBuilder(std::span<const BvhNode> binary, std::span<const int> order, std::span<const uint32_t> indices,
-                  std::span<const Vec3f> positions)
+                  std::span<const Vec3f> positions, int max_leaf)
       : bn_(binary),
         order_(order),
         indices_(indices),
         p_(positions),
+        max_leaf_(max_leaf),
         parallel_nodes_(
             std::max<int64_t>(1024, int64_t(binary.size()) / (16 * tbb::this_task_arena::max_concurrency()))) {}
 
   /// Lays the tree out in tree (sized to fit); returns the root's reference and sets wide_nodes. Throws InvalidInput
   /// when the tree would pass the 2 GiB that references address.
   int32_t build(RawVector<MeshAccel::CacheLine>& tree, size_t& wide_nodes) {
-    const Subtree root{0, int(bn_.size())};
+    cost_tables();
+    const Subtree root = child(0, int(bn_.size()));
     if (is_leaf(root)) {  // a mesh of one leaf
       wide_nodes = 0;
       tree.resize((leaf_bytes(root) + 63) / 64);
@@ -64,41 +70,103 @@ class WideTreeBuilder {
   }
 
  private:
-  /// A binary subtree: its root and the end of its nodes (the binary tree is depth first).
+  /// A binary subtree: its root and the end of its nodes (the binary tree is depth first); as a leaf of the wide
+  /// tree, its triangles order_[first, first + count) (count 0: a wide node).
   struct Subtree {
     int node, end;
+    int first = 0, count = 0;
   };
   struct Size {
     size_t bytes, nodes;
   };
   static constexpr size_t kNodeBytes = sizeof(MeshAccel::WideNode<W>);
 
-  bool is_leaf(Subtree s) const { return bn_[size_t(s.node)].count > 0; }
-  size_t leaf_bytes(Subtree s) const {
-    return size_t(bn_[size_t(s.node)].count + 3) / 4 * sizeof(MeshAccel::TriangleBlock);
+  static constexpr float kNodeCost = MeshAccel::kNodeCost, kBlockCost = MeshAccel::kBlockCost;
+
+  bool is_leaf(Subtree s) const { return s.count > 0; }
+  size_t leaf_bytes(Subtree s) const { return size_t(s.count + 3) / 4 * sizeof(MeshAccel::TriangleBlock); }
+  float area(int node) const { return bn_[size_t(node)].box.area(); }
+  float leaf_cost(int node, int count) const { return area(node) * kBlockCost * float((count + 3) / 4); }
+  const float* cost(int node) const { return &cost_[size_t(node) * W]; }
+
+  /// cost(n)[i - 1]: the least SAH cost of covering binary subtree n with at most i children of a wide node, each a
+  /// leaf or a wide node (Pinto 2010). One child: a binary leaf; a merged leaf when n has at most max_leaf_
+  /// triangles; or a wide node, whose cost is its visit plus its children's, split among n's two subtrees. More:
+  /// one child, or n's two subtrees sharing them. leaf_count_ keeps each subtree's triangles, up to max_leaf_ + 1.
+  void cost_tables() {
+    cost_.resize(bn_.size() * W);
+    leaf_count_.resize(bn_.size());
+    fill_costs(0, int(bn_.size()));
+  }
+  /// The tables of subtree [n, end): its two halves in parallel when large, else one backward pass (children come
+  /// after their parent, depth first).
+  void fill_costs(int n, int end) {
+    if (end - n > parallel_nodes_) {
+      const int second = bn_[size_t(n)].first;
+      tbb::parallel_invoke([&] { fill_costs(n + 1, second); }, [&] { fill_costs(second, end); });
+      fill_cost(size_t(n));
+    } else {
+      for (int i = end; i-- > n;) fill_cost(size_t(i));
+    }
+  }
+  void fill_cost(size_t n) {
+    const BvhNode& b = bn_[n];
+    float* c = &cost_[n * W];
+    if (b.count > 0) {
+      leaf_count_[n] = std::min<int>(b.count, max_leaf_ + 1);
+      std::fill(c, c + W, leaf_cost(int(n), b.count));
+      return;
+    }
+    leaf_count_[n] = std::min(leaf_count_[n + 1] + leaf_count_[size_t(b.first)], max_leaf_ + 1);
+    c[0] = area(int(n)) * kNodeCost + forest(int(n), W);
+    if (leaf_count_[n] <= max_leaf_) c[0] = std::min(c[0], leaf_cost(int(n), leaf_count_[n]));
+    for (int i = 2; i <= W; ++i) c[i - 1] = std::min(c[0], forest(int(n), i));
+  }
+
+  /// The least cost of covering interior node n's two subtrees with `slots` children (INFINITY for fewer than 2);
+  /// split gets the first subtree's share.
+  float forest(int n, int slots, int* split = nullptr) const {
+    const float* a = cost(n + 1);
+    const float* b = cost(bn_[size_t(n)].first);
+    float best = INFINITY;
+    for (int k = 1; k < slots; ++k)
+      if (a[k - 1] + b[slots - k - 1] < best) {
+        best = a[k - 1] + b[slots - k - 1];
+        if (split) *split = k;
+      }
+    return best;
+  }
+
+  /// Subtree n (nodes up to end) as one child: a leaf when a binary leaf or when merging it is its least cost.
+  Subtree child(int n, int end) const {
+    const BvhNode& b = bn_[size_t(n)];
+    if (b.count > 0) return {n, end, b.first, b.count};
+    if (leaf_count_[size_t(n)] > max_leaf_ || leaf_cost(n, leaf_count_[size_t(n)]) > cost(n)[0]) return {n, end};
+    int first = n;  // a subtree's triangles are contiguous in order_, from its leftmost leaf on
+    while (bn_[size_t(first)].count == 0) ++first;
+    return {n, end, bn_[size_t(first)].first, leaf_count_[size_t(n)]};
+  }
+
+  /// Appends the children that cover interior node n's two subtrees with at most `slots` of them, as the tables chose.
+  void split_among(int n, int end, int slots, Subtree* kids, int& k) const {
+    int share = 1;
+    forest(n, slots, &share);
+    const int second = bn_[size_t(n)].first;
+    add(n + 1, second, share, kids, k);
+    add(second, end, slots - share, kids, k);
+  }
+  void add(int n, int end, int slots, Subtree* kids, int& k) const {
+    if (slots == 1 || bn_[size_t(n)].count > 0 || cost(n)[0] <= forest(n, slots))
+      kids[k++] = child(n, end);
+    else
+      split_among(n, end, slots, kids, k);
   }
   static size_t line_up(size_t bytes) { return (bytes + 63) / 64 * 64; }
 
   /// The children of the wide node made of interior binary node s; returns their count.
   int widen(Subtree s, Subtree kids[W]) const {
-    const int second = bn_[size_t(s.node)].first;
-    kids[0] = {s.node + 1, second};
-    kids[1] = {second, s.end};
-    int k = 2;
-    while (k < W) {
-      int widest = -1;
-      float area = -1;
-      for (int i = 0; i < k; ++i)
-        if (!is_leaf(kids[i]) && bn_[size_t(kids[i].node)].box.area() > area) {
-          area = bn_[size_t(kids[i].node)].box.area();
-          widest = i;
-        }
-      if (widest < 0) break;
-      const Subtree split = kids[widest];
-      const int split_second = bn_[size_t(split.node)].first;
-      kids[widest] = {split.node + 1, split_second};
-      kids[k++] = {split_second, split.end};
-    }
+    int k = 0;
+    split_among(s.node, s.end, W, kids, k);
     return k;
   }
 
@@ -167,7 +235,7 @@ class WideTreeBuilder {
 
   /// Writes leaf s's triangles as blocks of 4 from byte `at` on; returns its reference.
   int32_t place_leaf(Subtree s, size_t at) {
-    const BvhNode& n = bn_[size_t(s.node)];
+    const Subtree& n = s;
     auto* blocks = reinterpret_cast<MeshAccel::TriangleBlock*>(reinterpret_cast<char*>(tree_) + at);
     for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
       MeshAccel::TriangleBlock& b = blocks[k / 4];
@@ -195,12 +263,30 @@ class WideTreeBuilder {
   std::span<const int> order_;
   std::span<const uint32_t> indices_;
   std::span<const Vec3f> p_;
+  int max_leaf_;  // triangles a merged leaf may hold
+  RawVector<float> cost_;        // by binary node: cost_tables()
+  RawVector<int> leaf_count_;    // by binary node: its triangles, up to max_leaf_ + 1
   // Subtrees of more binary nodes than this do their children in parallel (about 16 tasks per thread, as the binary
   // build's).
   int64_t parallel_nodes_;
   RawVector<uint32_t> subtree_bytes_;  // by binary node: the bytes of the subtree of the wide node made of it
   MeshAccel::CacheLine* tree_ = nullptr;
 };
+
+/// The SAH cost of the subtree under node reference ref (see MeshAccel::sah_cost), in units of area.
+template <int W>
+double subtree_cost(const MeshAccel::CacheLine* tree, int32_t ref) {
+  const auto& node = *reinterpret_cast<const MeshAccel::WideNode<W>*>(tree + MeshAccel::node_line(ref));
+  double cost = 0;
+  for (int i = 0; i < W; ++i) {
+    const AABB box{{node.box[0][i], node.box[1][i], node.box[2][i]}, {node.box[3][i], node.box[4][i], node.box[5][i]}};
+    if (box.empty()) continue;
+    const int32_t c = node.child[i];
+    cost += c < 0 ? double(box.area()) * MeshAccel::kBlockCost * MeshAccel::leaf_block_count(c)
+                  : double(box.area()) * MeshAccel::kNodeCost + subtree_cost<W>(tree, c);
+  }
+  return cost;
+}
 
 int pick_width(int requested) {
   const bool avx2 = __builtin_cpu_supports("avx2");
@@ -238,8 +324,10 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
         throw InvalidInput("MeshAccel: triangle " + std::to_string(i / 3) + " uses vertex " +
                            std::to_string(mesh.indices[i]) + " of " + std::to_string(nv));
   }
+  // The binary tree's leaves are single blocks at most; the collapse merges subtrees into leaves of up to max_leaf.
+  const int max_leaf = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
   BvhSettings capped = settings;
-  capped.max_leaf_size = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
+  capped.max_leaf_size = std::min(settings.max_leaf_size, 4);
   capped.leaf_block = 4;  // the leaves' triangles are tested 4 at a time
   bvh_ = Bvh(
       nt,
@@ -254,8 +342,17 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
     width_ = 0;
     return;
   }
-  root_ = width_ == 8 ? WideTreeBuilder<8>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_)
-                      : WideTreeBuilder<4>(nodes, bvh_.prim_indices(), mesh.indices, p).build(tree_, wide_nodes_);
+  const auto order = bvh_.prim_indices();
+  root_ = width_ == 8 ? WideTreeBuilder<8>(nodes, order, mesh.indices, p, max_leaf).build(tree_, wide_nodes_)
+                      : WideTreeBuilder<4>(nodes, order, mesh.indices, p, max_leaf).build(tree_, wide_nodes_);
+}
+
+double MeshAccel::sah_cost() const {
+  if (width_ == 0) return 0;
+  if (root_ < 0) return kBlockCost * leaf_block_count(root_);
+  const double root_area = bvh_.nodes()[0].box.area();
+  const double below = width_ == 8 ? subtree_cost<8>(tree_.data(), root_) : subtree_cost<4>(tree_.data(), root_);
+  return kNodeCost + below / root_area;
 }
 
 bool MeshAccel::intersect(Ray& ray, Hit& hit, TraversalStats* stats) const {

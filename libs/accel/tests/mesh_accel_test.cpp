@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -312,6 +313,94 @@ TEST(MeshAccel, StatsCountNodesAndTriangles) {
   EXPECT_GE(s2.nodes, 2);
   EXPECT_GE(s2.prims, 1);
   EXPECT_LE(s2.prims, int64_t(sphere.triangle_count()) / 10);
+}
+
+/// The least SAH cost of collapsing binary tree `nodes` into a wide tree of width W, by exhaustive search: every wide
+/// node's children are one of all the cuts of its binary subtree (sets of at most W nodes below it that cover its
+/// leaves), each generated once by deciding node after node whether it stays a child or gives way to its two
+/// children. MeshAccel's collapse finds the optimum by dynamic programming over slot counts instead.
+class ExhaustiveCollapse {
+ public:
+  ExhaustiveCollapse(std::span<const BvhNode> nodes, int width, int max_leaf)
+      : n_(nodes), w_(width), max_leaf_(max_leaf), best_(nodes.size(), -1.0), count_(nodes.size()) {
+    for (size_t i = nodes.size(); i-- > 0;)
+      count_[i] = nodes[i].count > 0 ? nodes[i].count : count_[i + 1] + count_[size_t(nodes[i].first)];
+  }
+  /// The tree's cost as MeshAccel::sah_cost defines it (relative to the root's area).
+  double root_cost() { return as_child(0) / area(0); }
+
+ private:
+  double area(int i) const { return double(n_[size_t(i)].box.area()); }
+  double leaf(int i) const { return area(i) * MeshAccel::kBlockCost * double((count_[size_t(i)] + 3) / 4); }
+  /// Subtree i as one child: a binary leaf, a merged leaf (if small enough) or a wide node over its best cut.
+  double as_child(int i) {
+    double& b = best_[size_t(i)];
+    if (b >= 0) return b;
+    if (n_[size_t(i)].count > 0) return b = leaf(i);
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<int> kept;
+    cuts({i + 1, n_[size_t(i)].first}, kept, best);
+    b = area(i) * MeshAccel::kNodeCost + best;
+    if (count_[size_t(i)] <= max_leaf_) b = std::min(b, leaf(i));
+    return b;
+  }
+  /// Every cut that keeps `kept` and covers the undecided subtrees `open`; best gets the least sum of child costs.
+  void cuts(std::vector<int> open, std::vector<int>& kept, double& best) {
+    if (int(open.size() + kept.size()) > w_) return;
+    if (open.empty()) {
+      double sum = 0;
+      for (int k : kept) sum += as_child(k);
+      best = std::min(best, sum);
+      return;
+    }
+    const int i = open.back();
+    open.pop_back();
+    kept.push_back(i);
+    cuts(open, kept, best);
+    kept.pop_back();
+    if (n_[size_t(i)].count == 0) {
+      open.push_back(i + 1);
+      open.push_back(n_[size_t(i)].first);
+      cuts(open, kept, best);
+    }
+  }
+
+  std::span<const BvhNode> n_;
+  int w_, max_leaf_;
+  std::vector<double> best_;
+  std::vector<int> count_;
+};
+
+TEST(MeshAccel, TheCollapseIsSahOptimal) {
+  // Random triangle soups (clustered, so the SAH has choices to make) and a small torus, both widths, leaves of 1
+  // (no merging), 8 (the default) and 13: the collapse's cost is the exhaustive search's least cost.
+  Rng rng(17);
+  std::vector<TriMesh> meshes{to_tri_mesh(make_torus(1.0, 0.4, 10, 6))};
+  for (const int n : {3, 9, 24, 50, 90}) {
+    TriMesh soup;
+    for (int t = 0; t < n; ++t) {
+      const Vec3 center = rng.uniform() < 0.5 ? Vec3(rng.uniform(), rng.uniform(), rng.uniform()) * 10.0
+                                              : Vec3(rng.uniform(), 0, 0) * 10.0;
+      const double size = rng.uniform() < 0.8 ? 0.3 : 3.0;
+      for (int k = 0; k < 3; ++k) {
+        soup.positions.push_back(center + size * Vec3(rng.uniform(), rng.uniform(), rng.uniform()));
+        soup.indices.push_back(uint32_t(soup.positions.size() - 1));
+      }
+    }
+    meshes.push_back(soup);
+  }
+  const bool avx2 = __builtin_cpu_supports("avx2");
+  for (size_t m = 0; m < meshes.size(); ++m)
+    for (const int width : {4, 8})
+      for (const int leaf : {1, 8, 13}) {
+        if (width == 8 && !avx2) continue;
+        BvhSettings s = MeshAccel::default_settings();
+        s.max_leaf_size = leaf;
+        const MeshAccel accel(meshes[m], s, width);
+        const double expected = ExhaustiveCollapse(accel.bvh().nodes(), width, leaf).root_cost();
+        EXPECT_NEAR(accel.sah_cost(), expected, 1e-5 * expected)
+            << "mesh " << m << " width " << width << " leaf " << leaf;
+      }
 }
 
 TEST(MeshAccel, SmoothNormalsOfASphereMeshPointFromTheCenter) {
