@@ -235,15 +235,14 @@ class WideTreeBuilder {
 
   /// Writes leaf s's triangles as blocks of 4 from byte `at` on; returns its reference.
   int32_t place_leaf(Subtree s, size_t at) {
-    const Subtree& n = s;
     auto* blocks = reinterpret_cast<MeshAccel::TriangleBlock*>(reinterpret_cast<char*>(tree_) + at);
-    for (int k = 0; k < (n.count + 3) / 4 * 4; ++k) {
+    for (int k = 0; k < (s.count + 3) / 4 * 4; ++k) {
       MeshAccel::TriangleBlock& b = blocks[k / 4];
       const int lane = k % 4;
       Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
       int index = -1;
-      if (k < n.count) {
-        const size_t t = size_t(order_[size_t(n.first) + size_t(k)]);
+      if (k < s.count) {
+        const size_t t = size_t(order_[size_t(s.first) + size_t(k)]);
         v0 = p_[indices_[3 * t]];
         e1 = p_[indices_[3 * t + 1]] - v0;
         e2 = p_[indices_[3 * t + 2]] - v0;
@@ -256,7 +255,7 @@ class WideTreeBuilder {
       }
       b.index[lane] = index;
     }
-    return MeshAccel::leaf_ref(int(at / 32), (n.count + 3) / 4);
+    return MeshAccel::leaf_ref(int(at / 32), (s.count + 3) / 4);
   }
 
   std::span<const BvhNode> bn_;
