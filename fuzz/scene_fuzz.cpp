@@ -1,6 +1,7 @@
 // libFuzzer target for scene files and the two renderers behind them: parses the input as scene JSON (files named in it
-// are looked up in a folder that does not exist), then ray traces it and rasterizes it (with shadow volumes: the shadow
-// map's fixed 2048 x 2048 pass would take most of each run) at 8 x 6 pixels with at most 4 samples and depth 4.
+// are looked up in a folder that does not exist), then ray traces it and rasterizes it with shadow volumes and with
+// shadow maps of 32 x 32 (the default 2048 x 2048 would take most of each run), at 8 x 6 pixels with at most 4 samples
+// and depth 4.
 // tessera::Error is the expected outcome for a bad scene; anything else (a crash, another exception, a sanitizer
 // report, a hang) is a bug, and so is a pixel that is NaN or negative (colors in a scene are non-negative; an absurdly
 // bright one may overflow to infinity). Seeds: fuzz/corpus/scene/ and the built-in scenes (scenes/).
@@ -41,6 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     settings.progress = false;
     check_pixels(render(to_ray_scene(scene), settings));
     check_pixels(rasterize_scene(scene, 8, 6, RasterShadows::volumes));
+    check_pixels(rasterize_scene(scene, 8, 6, RasterShadows::map, 32));
   } catch (const Error&) {
   }
   return 0;

@@ -130,17 +130,18 @@ Vec3 light_center(const Light& light) {
 
 /// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, else
 /// from the light's position (an area light's center): one perspective view, or six around a light among the casters.
-raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& hi) {
-  constexpr int kSize = 2048;
+raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& hi, int size) {
   if (light.type == LightType::directional)
-    return raster3d::ShadowMap(kSize, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
-  return raster3d::ShadowMap::point(kSize, light_center(light), lo, hi);
+    return raster3d::ShadowMap(size, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
+  return raster3d::ShadowMap::point(size, light_center(light), lo, hi);
 }
 
 }  // namespace
 
-ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows) {
+ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows, int shadow_map_size) {
   if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
+  if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > 16384))
+    throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, 16384]", shadow_map_size));
   const double aspect = double(width) / height, fovy = radians(scene.camera.fovy);
   // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity.
   const Mat4 projection = shadows == RasterShadows::volumes ? infinite_perspective(fovy, aspect, 0.05)
@@ -183,7 +184,7 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
   std::vector<raster3d::ShadowMap> maps;
   if (shadows == RasterShadows::map && lo.x <= hi.x)
     for (int i = 0; i < lighting.light_count; ++i) {
-      maps.push_back(shadow_map(scene.lights[size_t(i)], lo, hi));
+      maps.push_back(shadow_map(scene.lights[size_t(i)], lo, hi, shadow_map_size));
       for (size_t k = 0; k < scene.objects.size(); ++k)
         if (casts(scene.objects[k])) maps.back().draw(arrays[k], scene.objects[k].transform);
     }

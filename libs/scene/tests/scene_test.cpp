@@ -272,6 +272,30 @@ TEST(Scene, RasterizedShadowsAreTheRayTracersHardShadows) {
   }
 }
 
+TEST(Scene, TheShadowMapSizeIsTheCallers) {
+  // Coarser maps still give the ray tracer's shadows away from their outlines, and the outlines widen as the texels
+  // grow (a red light's one view, a green light's six faces); a size the maps cannot have is an error, not looked at
+  // with shadow volumes.
+  const Scene scene = shadow_scene(R"([{"type": "point", "position": [3, 7, 2], "color": [1, 0, 0]},
+                                       {"type": "point", "position": [0, 3, 0.5], "color": [0, 1, 0]}])");
+  const ImageRGB traced = trace_once(scene);
+  const int w = traced.width(), h = traced.height();
+  const auto differences = [&](int size) {
+    const ImageRGB raster = rasterize_scene(scene, w, h, RasterShadows::map, size);
+    int differ = 0;
+    for (int channel = 0; channel < 2; ++channel)
+      differ += shadow_differences(raster, traced, [channel](const Vec3f& c) { return c[channel] < 0.12f; }).first;
+    return differ;
+  };
+  const int fine = differences(2048), mid = differences(256), coarse = differences(16);
+  EXPECT_LT(mid, w * h / 100);
+  EXPECT_LE(fine, mid);
+  EXPECT_GT(coarse, 2 * mid);
+  for (const int bad : {0, -3, 16385})
+    EXPECT_THROW(rasterize_scene(scene, w, h, RasterShadows::map, bad), InvalidInput) << bad;
+  EXPECT_NO_THROW(rasterize_scene(scene, w, h, RasterShadows::volumes, 0));
+}
+
 TEST(Scene, RasterizedShadowsShadowEveryLight) {
   // A red light high above and a green one low between the casters (inside their bounding sphere: the shadow map
   // looks all around it, six faces): with either method each light's shadows, seen in its own channel, are the ray

@@ -15,8 +15,8 @@ TriMesh tessellate(const Shape& shape, int segments = 48, double plane_size = 30
 /// How the rasterizer draws shadows.
 enum class RasterShadows {
   /// Every light's, through a shadow map per light fitted to the objects that cast shadows (the notes' 2-pass
-  /// z-buffer): 2048 x 2048, or six faces of 1024 x 1024 around a light inside those objects' bounding sphere
-  /// (ShadowMap::point).
+  /// z-buffer): shadow_map_size squared (2048 x 2048 by default), or six faces of half that around a light inside
+  /// those objects' bounding sphere (ShadowMap::point).
   map,
   /// Every light's, exact to the pixel, through shadow volumes counted z-fail in the stencil buffer (one additive
   /// pass per light; raster3d's draw_lights_with_shadow_volumes), for lights anywhere.
@@ -26,7 +26,9 @@ enum class RasterShadows {
 /// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
 /// volumes), its lights (area lights as point lights at their centers; at most 8), each material's color, ambient,
 /// highlight and emission (a checkerboard shows its first color), the background as the clear color. Shadows are
-/// hard, cast by the objects marked so (planes, being infinite, only receive them), as `shadows` says.
-ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map);
+/// hard, cast by the objects marked so (planes, being infinite, only receive them), as `shadows` says. Throws
+/// InvalidInput for a bad image size, or a shadow_map_size outside ShadowMap's [1, 16384] when the maps are drawn.
+ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map,
+                         int shadow_map_size = 2048);
 
 }  // namespace tessera
