@@ -404,7 +404,7 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->check(CLI::IsMember({"map", "zpass", "zfail"}))
       ->capture_default_str();
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
-      ->check(CLI::Range(16, 16384))
+      ->check(CLI::Range(16, raster3d::ShadowMap::kMaxSize))
       ->capture_default_str();
   cmd.add_option("--opacity", a->opacity,
                  "Surface opacity in [0,1]: below 1 the triangles are sorted far to near and blended over what lies "

@@ -23,7 +23,8 @@ std::pair<Vec3, double> bounding_sphere(const Vec3& lo, const Vec3& hi, const ch
 
 /// size, when it is a valid map size.
 int checked_size(int size) {
-  if (size < 1 || size > 16384) throw InvalidInput(fmt::format("ShadowMap: size {} is outside [1, 16384]", size));
+  if (size < 1 || size > ShadowMap::kMaxSize)
+    throw InvalidInput(fmt::format("ShadowMap: size {} is outside [1, {}]", size, ShadowMap::kMaxSize));
   return size;
 }
 

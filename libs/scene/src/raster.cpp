@@ -140,8 +140,9 @@ raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& h
 
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows, int shadow_map_size) {
   if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
-  if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > 16384))
-    throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, 16384]", shadow_map_size));
+  if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > raster3d::ShadowMap::kMaxSize))
+    throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, {}]", shadow_map_size,
+                                   raster3d::ShadowMap::kMaxSize));
   const double aspect = double(width) / height, fovy = radians(scene.camera.fovy);
   // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity.
   const Mat4 projection = shadows == RasterShadows::volumes ? infinite_perspective(fovy, aspect, 0.05)

@@ -25,8 +25,10 @@ namespace tessera::raster3d {
 class ShadowMap {
  public:
   /// An empty map (everything lit) of size x size texels, seen through `light_view_projection` (world space to the
-  /// light's clip space; see directional() and spot()). Throws InvalidInput unless 1 <= size <= 16384.
+  /// light's clip space; see directional() and spot()). Throws InvalidInput unless 1 <= size <= kMaxSize.
   ShadowMap(int size, const Mat4& light_view_projection);
+  /// The largest size a map may have (texels along a side).
+  static constexpr int kMaxSize = 16384;
 
   /// The view-projection of a directional light shining along -to_light: orthographic, its box holding the sphere
   /// around [lo, hi]. Throws InvalidInput for a zero direction or an empty box.

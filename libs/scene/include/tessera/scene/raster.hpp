@@ -27,7 +27,7 @@ enum class RasterShadows {
 /// volumes), its lights (area lights as point lights at their centers; at most 8), each material's color, ambient,
 /// highlight and emission (a checkerboard shows its first color), the background as the clear color. Shadows are
 /// hard, cast by the objects marked so (planes, being infinite, only receive them), as `shadows` says. Throws
-/// InvalidInput for a bad image size, or a shadow_map_size outside ShadowMap's [1, 16384] when the maps are drawn.
+/// InvalidInput for a bad image size, or a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn.
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map,
                          int shadow_map_size = 2048);
 
