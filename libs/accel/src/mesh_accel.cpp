@@ -118,9 +118,11 @@ class WideTreeBuilder {
       return;
     }
     leaf_count_[n] = std::min(leaf_count_[n + 1] + leaf_count_[size_t(b.first)], max_leaf_ + 1);
-    c[0] = area(int(n)) * kNodeCost + forest(int(n), W);
+    float shared[W + 1];  // shared[i]: the two subtrees sharing i slots
+    for (int i = 2; i <= W; ++i) shared[i] = forest(int(n), i);
+    c[0] = area(int(n)) * kNodeCost + shared[W];
     if (leaf_count_[n] <= max_leaf_) c[0] = std::min(c[0], leaf_cost(int(n), leaf_count_[n]));
-    for (int i = 2; i <= W; ++i) c[i - 1] = std::min(c[0], forest(int(n), i));
+    for (int i = 2; i <= W; ++i) c[i - 1] = std::min(c[0], shared[i]);
   }
 
   /// The least cost of covering interior node n's two subtrees with `slots` children (INFINITY for fewer than 2);
