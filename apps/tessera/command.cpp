@@ -8,6 +8,9 @@
 #include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
+#include "tessera/core/progress.hpp"
+#include "tessera/raster2d/svg.hpp"
 
 namespace tessera::cli {
 
@@ -28,6 +31,23 @@ std::string finite_number(std::string& text) {
   return v && !std::isfinite(*v) ? "expected a finite number, got '" + text + "'" : "";
 }
 
+/// A validator that accepts what `parse` accepts and reports the InvalidInput message of what it refuses.
+template <class Parse>
+CLI::Validator parses_with(Parse parse, const std::string& name) {
+  return CLI::Validator(
+      [parse](std::string& text) {
+        try {
+          parse(text);
+          return std::string();
+        } catch (const InvalidInput& e) {
+          return std::string(e.what());
+        }
+      },
+      name);
+}
+
+std::chrono::steady_clock::time_point g_command_start = std::chrono::steady_clock::now();
+
 }  // namespace
 
 CLI::Validator non_negative() {
@@ -39,20 +59,53 @@ CLI::Validator non_negative() {
       "NONNEGATIVE");
 }
 
+CLI::Validator size_format() {
+  return parses_with([](const std::string& text) { parse_size(text, "expected WxH"); }, "WxH");
+}
+
+CLI::Validator color_format() {
+  return parses_with([](const std::string& text) { parse_color(text, "expected a color"); }, "COLOR");
+}
+
+CLI::Validator numbers_format(size_t count) {
+  return parses_with([count](const std::string& text) { parse_doubles(text, count, "expected numbers"); }, "");
+}
+
 void add_common_options(CLI::App& command, CommonOptions& common) {
   for (CLI::Option* option : command.get_options())
     if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(CLI::Validator(finite_number, ""));
   if (command.get_option_no_throw("--threads") == nullptr)
     command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
-  if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress bar");
+  if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress");
+  if (command.get_option_no_throw("--progress") == nullptr)
+    command.add_option("--progress", common.progress,
+                       "Progress on stderr: a bar on a terminal (auto), always a bar, plain lines for logs, or none")
+        ->check(CLI::IsMember({"auto", "bar", "plain", "none"}))
+        ->capture_default_str();
   if (command.get_option_no_throw("--stats") == nullptr)
-    command.add_flag("--stats", common.stats, "Print key=value figures on stdout");
+    command.add_flag("--stats", common.stats, "Print key=value figures on stdout (docs/cli.md)");
   // Nested commands (`tessera mesh info`) get them too, so that their --help lists them.
   for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) add_common_options(*sub, common);
 }
 
-void print_stats(const std::vector<std::pair<std::string, std::string>>& stats) {
-  for (const auto& [key, value] : stats) fmt::print("{}={}\n", key, value);
+void add_srgb_option(CLI::App& command, CommonOptions& common) {
+  command.add_flag("--srgb", common.srgb,
+                   "Encode 8-bit output (PNG, JPG, BMP, TGA, PPM) with the sRGB curve instead of linear values");
+}
+
+void start_command_clock() { g_command_start = std::chrono::steady_clock::now(); }
+
+double command_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - g_command_start).count();
+}
+
+void print_stats(const StatRows& stats) {
+  bool has_total = false;
+  for (const auto& [key, value] : stats) {
+    fmt::print("{}={}\n", key, value);
+    has_total = has_total || key == "total_s";
+  }
+  if (!has_total) fmt::print("total_s={}\n", stat_value(command_seconds()));
 }
 
 std::string stat_value(double v) {
@@ -60,61 +113,44 @@ std::string stat_value(double v) {
   return fmt::format("{:.9g}", v);
 }
 
+double PhaseTimer::seconds(const std::string& key) const {
+  for (const auto& [k, s] : phases_)
+    if (k == key) return s;
+  return 0;
+}
+
+StatRows PhaseTimer::rows() const {
+  StatRows rows;
+  for (const auto& [key, s] : phases_) rows.emplace_back(key, stat_value(s));
+  return rows;
+}
+
+void PhaseTimer::add(const std::string& key, double seconds) {
+  for (auto& [k, s] : phases_)
+    if (k == key) {
+      s += seconds;
+      return;
+    }
+  phases_.emplace_back(key, seconds);
+}
+
 Rgb parse_color(const std::string& text, const std::string& what) {
-  if (!text.empty() && text[0] == '#') {
-    if (text.size() != 7 || text.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
-      throw InvalidInput(fmt::format("{}: expected #rrggbb, got '{}'", what, text));
-    const auto channel = [&](int i) { return float(std::stoi(text.substr(size_t(1 + 2 * i), 2), nullptr, 16)) / 255.0f; };
-    return {channel(0), channel(1), channel(2)};
+  if (text.find(',') != std::string::npos) {
+    const auto v = parse_doubles(text, 3, what);
+    for (double c : v)
+      if (c < 0 || c > 1)
+        throw InvalidInput(fmt::format("{}: color components must be in [0, 1], got '{}'", what, text));
+    return {float(v[0]), float(v[1]), float(v[2])};
   }
-  const auto v = parse_doubles(text, 3, what);
-  for (double c : v)
-    if (c < 0 || c > 1) throw InvalidInput(fmt::format("{}: color components must be in [0, 1], got '{}'", what, text));
-  return {float(v[0]), float(v[1]), float(v[2])};
-}
-
-}  // namespace tessera::cli
-
-namespace tessera::cli {
-
-void CameraOptions::add(CLI::App& command, const std::string& default_size) {
-  size = default_size;
-  command.add_option("--eye", eye, "Camera position x,y,z (default: frames the scene)");
-  command.add_option("--center", center, "Point looked at x,y,z (default: the scene's center)");
-  command.add_option("--up", up, "Up vector x,y,z (default 0,1,0)");
-  command.add_option("--fovy", fovy, "Vertical field of view, degrees")->capture_default_str();
-  command.add_option("--near", near, "Near-plane distance (default: from the scene's bounds)");
-  command.add_option("--far", far, "Far-plane distance (default: from the scene's bounds)");
-  command.add_option("--size", size, "Image size WxH")->capture_default_str();
-}
-
-Size2 CameraOptions::image_size() const { return parse_size(size, "--size"); }
-
-Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi, const Vec3& view_dir) const {
-  const Vec3 mid = 0.5 * (lo + hi);
-  const double extent = 0.5 * glm::length(hi - lo);
-  const auto vec = [](const std::string& text, const char* what, const Vec3& fallback) {
-    if (text.empty()) return fallback;
-    const auto d = parse_doubles(text, 3, what);
-    return Vec3(d[0], d[1], d[2]);
-  };
-  if (!(fovy > 0 && fovy < 180)) throw InvalidInput(fmt::format("--fovy: expected degrees in (0, 180), got {}", fovy));
-  const Size2 s = image_size();
-  Camera c;
-  c.fovy = radians(fovy);
-  c.aspect = double(s.width) / double(s.height);
-  const double radius = extent > 0 ? extent : 1.0;  // a single point: a unit sphere around it
-  // Distance at which the bounding sphere fits the narrower of the two fields of view, with a small margin.
-  const double half = std::min(c.fovy, 2 * std::atan(std::tan(c.fovy / 2) * c.aspect)) / 2;
-  const double dist = 1.1 * radius / std::sin(half);
-  c.center = vec(center, "--center", mid);
-  c.eye = vec(eye, "--eye", c.center + glm::normalize(view_dir) * dist);
-  c.up = vec(up, "--up", Vec3(0, 1, 0));
-  const double d = glm::length(c.eye - mid);
-  c.near = near > 0 ? near : std::max(1e-3 * (d + radius), d - 1.5 * radius);
-  c.far = far > 0 ? far : d + 1.5 * radius;
-  if (!(c.far > c.near)) throw InvalidInput(fmt::format("--near/--far: expected near < far, got {} and {}", c.near, c.far));
-  return c;
+  // Names and #rrggbb as SVG and CSS spell them.
+  try {
+    const Vec4f c = parse_svg_color(text);
+    return {c.r, c.g, c.b};
+  } catch (const InvalidInput&) {
+    throw InvalidInput(
+        fmt::format("{}: expected a color name (as SVG's: white, cornflowerblue), #rrggbb or r,g,b in [0,1], got '{}'",
+                    what, text));
+  }
 }
 
 }  // namespace tessera::cli

@@ -1,6 +1,10 @@
 // tessera: the command-line front end. The table below lists every command; each lives in commands/<name>.cpp.
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -10,6 +14,7 @@
 #include "tessera/core/progress.hpp"
 
 namespace tessera::cli {
+using tessera::Progress;
 void setup_bench(CLI::App&, CommonOptions&);
 void setup_canvas(CLI::App&, CommonOptions&);
 void setup_color(CLI::App&, CommonOptions&);
@@ -40,14 +45,78 @@ const Command kCommands[] = {
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
     {"bench", "Measure hot paths: bench raycast MESH (rays per second)", setup_bench},
 };
+
+/// Edit distance between two words (for "did you mean").
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+/// The message for a word that names no command of `parent`: "unknown command 'x'", with the nearest command when
+/// one is close enough to be a typo (or has the word as its prefix).
+std::string unknown_command(const CLI::App& parent, const std::string& word) {
+  std::string best;
+  size_t best_distance = 3;
+  for (const CLI::App* sub : parent.get_subcommands([](const CLI::App*) { return true; })) {
+    const std::string& name = sub->get_name();
+    const size_t d = name.rfind(word, 0) == 0 ? 0 : edit_distance(word, name);
+    if (d < best_distance) best_distance = d, best = name;
+  }
+  const std::string prefix = parent.get_parent() ? parent.get_name() + " " : "";
+  std::string message = fmt::format("unknown command '{}{}'", prefix, word);
+  if (!best.empty()) message += fmt::format(" (did you mean '{}{}'?)", prefix, best);
+  return message + fmt::format("; 'tessera {}--help' lists the commands", prefix);
+}
+
+/// Checks the command words of argv against the command tree before CLI11 sees them (CLI11 would call an unknown
+/// word an extra positional argument). Returns the error message, or "" when every command word is known.
+std::string check_command_words(const CLI::App& app, int argc, char** argv) {
+  const CLI::App* parent = &app;
+  for (int i = 1; i < argc; ++i) {
+    if (parent->get_subcommands([](const CLI::App*) { return true; }).empty()) break;
+    const std::string word = argv[i];
+    if (word.empty() || word[0] == '-') break;
+    const CLI::App* sub = parent->get_subcommand_no_throw(word);
+    if (sub == nullptr) return unknown_command(*parent, word);
+    parent = sub;
+  }
+  return "";
+}
+
+/// The list of commands, for a bare `tessera`.
+void print_command_list(const CLI::App& app) {
+  fmt::print(stderr, "usage: tessera <command> [options]   ('tessera <command> --help' for its options)\n\ncommands:\n");
+  for (const Command& c : kCommands) fmt::print(stderr, "  {:<9} {}\n", c.name, c.summary);
+  fmt::print(stderr, "\n{}\n", app.get_footer());
+}
+
+Progress::Mode progress_mode(const CommonOptions& common) {
+  if (common.quiet || common.progress == "none") return Progress::Mode::None;
+  if (common.progress == "plain") return Progress::Mode::Plain;
+  if (common.progress == "bar") return Progress::Mode::Bar;
+  return Progress::Mode::Auto;
+}
+
 }  // namespace
 }  // namespace tessera::cli
 
 int main(int argc, char** argv) {
   using namespace tessera::cli;
+  start_command_clock();
   CLI::App app{"Tessera: a computer-graphics toolkit (rasterization, ray tracing, meshes, curves, volumes)", "tessera"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "tessera 0.1.0");
+  app.footer("Every command accepts --threads N, --quiet, --progress MODE and --stats; docs/cli.md has the contract.");
   CommonOptions common;
   for (const Command& c : kCommands) {
     CLI::App* sub = app.add_subcommand(c.name, c.summary);
@@ -55,23 +124,32 @@ int main(int argc, char** argv) {
     c.setup(*sub, common);
     add_common_options(*sub, common);
   }
-  // Apply --threads/--quiet before any callback runs (CLI11 runs callbacks after parsing all options).
+  if (argc < 2) {
+    print_command_list(app);
+    return 2;
+  }
+  if (const std::string error = check_command_words(app, argc, argv); !error.empty()) {
+    fmt::print(stderr, "tessera: error: {}\n", error);
+    return 2;
+  }
+  // Apply --threads, --quiet and --progress before any callback runs (CLI11 runs callbacks after parsing all options).
   std::unique_ptr<tessera::ThreadLimit> limit;
   app.parse_complete_callback([&] {
-    tessera::Progress::set_quiet(common.quiet);
+    tessera::Progress::set_mode(progress_mode(common));
     limit = std::make_unique<tessera::ThreadLimit>(common.threads);
   });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // --help and --version exit 0; every usage error prints CLI11's message and exits 2.
-    return app.exit(e) == 0 ? 0 : 2;
-  } catch (const tessera::Error& e) {
+    // --help and --version print and exit 0; every usage error says what was wrong and exits 2.
+    if (e.get_exit_code() == 0) return app.exit(e);
     fmt::print(stderr, "tessera: error: {}\n", e.what());
-    return 1;
+    fmt::print(stderr, "run with --help for the options\n");
+    return 2;
   } catch (const std::exception& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return 1;
   }
   return 0;
 }
+

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/accel/ray_workloads.hpp"

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/image/image_io.hpp"

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 #include "tessera/color/colormap.hpp"

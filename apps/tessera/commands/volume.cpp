@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"

@@ -8,28 +8,54 @@
 
 namespace tessera {
 namespace {
-std::atomic<bool> g_quiet{false};
-}
+std::atomic<Progress::Mode> g_mode{Progress::Mode::Auto};
 
-void Progress::set_quiet(bool quiet) { g_quiet = quiet; }
+Progress::Mode resolve(Progress::Mode mode) {
+  if (mode != Progress::Mode::Auto) return mode;
+  return ::isatty(STDERR_FILENO) ? Progress::Mode::Bar : Progress::Mode::None;
+}
+}  // namespace
+
+void Progress::set_quiet(bool quiet) { g_mode = quiet ? Mode::None : Mode::Auto; }
+
+void Progress::set_mode(Mode mode) { g_mode = mode; }
 
 Progress::Progress(std::string label, int64_t total)
     : label_(std::move(label)),
       total_(total > 0 ? total : 1),
-      enabled_(!g_quiet && ::isatty(STDERR_FILENO)),
-      start_(std::chrono::steady_clock::now()) {}
+      mode_(resolve(g_mode)),
+      start_(std::chrono::steady_clock::now()) {
+  if (mode_ == Mode::Plain) {
+    fmt::print(stderr, "{}: started\n", label_);
+    std::fflush(stderr);
+  }
+}
 
 Progress::~Progress() { done(); }
 
 void Progress::advance(int64_t n) {
   const int64_t count = count_.fetch_add(n) + n;
-  if (!enabled_) return;
+  if (mode_ == Mode::Plain) return print_step(count);
+  if (mode_ != Mode::Bar) return;
   const auto now_ns =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
   int64_t last = last_draw_ns_.load();
   if (now_ns - last < 100'000'000 && count < total_) return;
   if (!last_draw_ns_.compare_exchange_strong(last, now_ns)) return;
   draw(count);
+}
+
+void Progress::print_step(int64_t count) {
+  // Each 10% step is printed once, by the thread that crossed it; steps below the last one printed are skipped.
+  const int step = int(std::min<int64_t>(10, count * 10 / total_));
+  int last = last_step_.load();
+  while (step > last && step < 10)
+    if (last_step_.compare_exchange_weak(last, step)) {
+      std::lock_guard lock(draw_mutex_);
+      if (!finished_) fmt::print(stderr, "{}: {}%\n", label_, step * 10);
+      std::fflush(stderr);
+      return;
+    }
 }
 
 void Progress::draw(int64_t count) {
@@ -50,10 +76,13 @@ void Progress::done() {
   std::lock_guard lock(draw_mutex_);
   if (finished_) return;
   finished_ = true;
-  if (enabled_) {
+  if (mode_ == Mode::Bar) {
     fmt::print(stderr, "\r\033[K");
-    std::fflush(stderr);
+  } else if (mode_ == Mode::Plain) {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    fmt::print(stderr, "{}: done in {:.2f} s\n", label_, elapsed);
   }
+  std::fflush(stderr);
 }
 
 }  // namespace tessera

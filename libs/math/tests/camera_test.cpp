@@ -1,6 +1,7 @@
 #include "tessera/math/camera.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -49,6 +50,35 @@ TEST(Camera, EyeRayHitsWhereProjectionPutsThePoint) {
   const double x = (clip.x / clip.w * 0.5 + 0.5) * 80, y = (1 - (clip.y / clip.w * 0.5 + 0.5)) * 60;
   EXPECT_NEAR(x, 17.5, 1e-3);
   EXPECT_NEAR(y, 41.5, 1e-3);
+}
+
+TEST(Camera, OrthographicRaysAreParallelAndLandWhereTheProjectionPutsThem) {
+  Camera cam;
+  cam.eye = {1, 2, 6};
+  cam.center = {0, 0, 0};
+  cam.aspect = 4.0 / 3.0;
+  cam.orthographic = true;
+  cam.ortho_height = 3;
+  EyeRays rays(cam, 80, 60);
+  const Vec3f gaze = glm::normalize(Vec3f(cam.center - cam.eye));
+  for (const auto& [i, j] : {std::pair{17, 41}, std::pair{0, 0}, std::pair{79, 59}}) {
+    const Ray r = rays.ray(i, j);
+    EXPECT_NEAR(glm::dot(r.dir, gaze), 1.0f, 1e-6f);
+    for (float t : {0.5f, 7.0f}) {  // every point of the ray projects to the same pixel
+      const Vec4 clip = cam.projection() * cam.view() * Vec4(Vec3(r.at(t)), 1);
+      EXPECT_NEAR(clip.w, 1.0, 1e-12);
+      EXPECT_NEAR((clip.x * 0.5 + 0.5) * 80, i + 0.5, 1e-3);
+      EXPECT_NEAR((1 - (clip.y * 0.5 + 0.5)) * 60, j + 0.5, 1e-3);
+    }
+  }
+  // The view is ortho_height tall: the top edge's origin lies h/2 above the eye along v.
+  const Ray top = rays.ray(40, 0, 0, 0);
+  Vec3 u, v, w;
+  cam.frame(u, v, w);
+  EXPECT_NEAR(glm::dot(Vec3(top.origin) - cam.eye, v), 1.5, 1e-6);
+  cam.ortho_height = 0;
+  EXPECT_THROW(cam.projection(), InvalidInput);
+  EXPECT_THROW(EyeRays(cam, 8, 8), InvalidInput);
 }
 
 TEST(Camera, BadInputThrows) {

@@ -1,5 +1,6 @@
 #pragma once
-// A progress bar with ETA on stderr, shown only when stderr is a terminal and not silenced.
+// Progress on stderr: a redrawn bar with ETA on a terminal, or plain lines (a start line, 10% steps, a done line) for
+// batch logs, or nothing.
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -8,10 +9,18 @@
 
 namespace tessera {
 
-/// Counts work units from any thread and redraws a one-line bar at most ten times a second.
+/// Counts work units from any thread and reports them in the process's ProgressMode.
 class Progress {
  public:
-  /// `label` names the job; `total` is the number of units. Shows nothing when quiet or stderr is no terminal.
+  /// How every Progress of the process reports.
+  enum class Mode {
+    Auto,   ///< a bar when stderr is a terminal, else nothing (the default)
+    Bar,    ///< a bar redrawn at most ten times a second
+    Plain,  ///< one line when the phase starts, one per 10% step, one when it ends (for logs)
+    None,   ///< nothing (the CLI's --quiet)
+  };
+
+  /// `label` names the job; `total` is the number of units.
   Progress(std::string label, int64_t total);
   ~Progress();
   Progress(const Progress&) = delete;
@@ -22,16 +31,20 @@ class Progress {
   /// Erases the bar.
   void done();
 
-  /// Silences every progress bar of the process (the CLI's --quiet).
+  /// Silences every progress report of the process (the CLI's --quiet): set_mode(Mode::None).
   static void set_quiet(bool quiet);
+  /// Chooses how every later Progress reports (the CLI's --progress).
+  static void set_mode(Mode mode);
 
  private:
   void draw(int64_t count);
+  void print_step(int64_t count);
 
   std::string label_;
   int64_t total_;
   std::atomic<int64_t> count_{0};
-  bool enabled_;
+  Mode mode_;  ///< Bar, Plain or None (Auto resolved at construction)
+  std::atomic<int> last_step_{0};  ///< Plain: the last 10% step printed
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;
   std::atomic<int64_t> last_draw_ns_{0};
