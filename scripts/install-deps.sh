@@ -1,20 +1,30 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages Tessera's build, tests and benchmarks need, if any are missing.
+# Installs the Debian 12 packages Tessera needs, if any are missing: `install-deps.sh demo` only what the library and
+# the `tessera` command need to build (make demo), `install-deps.sh` (or `all`) also the tests', the benchmarks' and
+# the reference peers' (make test, make bench).
 # Idempotent and quiet when everything is there; uses sudo when not run as root.
 set -euo pipefail
 
-packages=(
+demo_packages=(
   # build
   cmake ninja-build g++ pkg-config
   # libraries
   libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev
+)
+test_packages=(
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin
+  libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin python3-pil
   # reference peers (tests and benchmarks only, never the implementation)
   libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
   # a virtual X server: Debian's VTK needs a display for its volume ray-cast mapper (bench_volume under xvfb-run)
   xvfb xauth
 )
+
+case "${1:-all}" in
+  demo) packages=("${demo_packages[@]}") ;;
+  all) packages=("${demo_packages[@]}" "${test_packages[@]}") ;;
+  *) echo "usage: install-deps.sh [demo|all]" >&2; exit 2 ;;
+esac
 
 missing=()
 for p in "${packages[@]}"; do

@@ -15,6 +15,7 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/progress.hpp"
 #include "mesh_traversal.hpp"
 
 namespace tessera {
@@ -325,6 +326,8 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
         throw InvalidInput("MeshAccel: triangle " + std::to_string(i / 3) + " uses vertex " +
                            std::to_string(mesh.indices[i]) + " of " + std::to_string(nv));
   }
+  // Two phases a user may wait seconds for on millions of triangles: the binary tree, then its collapse and layout.
+  Progress progress("building BVH", 2);
   // The binary tree's leaves are single blocks at most; the collapse merges subtrees into leaves of up to max_leaf.
   const int max_leaf = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
   BvhSettings capped = settings;
@@ -338,6 +341,7 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
         return box;
       },
       capped);
+  progress.advance();
   const auto nodes = bvh_.nodes();
   if (nodes.empty()) {
     width_ = 0;
