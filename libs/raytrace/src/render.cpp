@@ -122,20 +122,25 @@ Vec3f surface_color(const World& world, const Material& m, const Ray& ray, const
 }
 
 /// The notes' eye rays (u = (2 (i + dx) / w - 1) aspect, v = 1 - 2 (j + dy) / h, direction -d w + u u + v v) as an
-/// affine function of the image position, set up once in double and evaluated in float, and the thin lens.
+/// affine function of the image position, set up once in double and evaluated in float, and the thin lens. An
+/// orthographic camera moves the origin instead (eye + (h/2)(u u + v v), h its ortho_height) and aims every ray along
+/// the gaze -w, as EyeRays does.
 class CameraRays {
  public:
-  CameraRays(const RayScene& scene, int width, int height) : aperture_(scene.aperture) {
+  CameraRays(const RayScene& scene, int width, int height)
+      : orthographic_(scene.camera.orthographic), aperture_(scene.aperture) {
     Camera camera = scene.camera;
     camera.aspect = double(width) / double(height);
-    const EyeRays check(camera, width, height);  // validates the size and field of view
+    const EyeRays check(camera, width, height);  // validates the size, field of view and view height
     Vec3 u, v, w;
     camera.frame(u, v, w);
-    const double d = check.focal_length();
+    // The view plane's point for the image position: at focal length d in front of the eye (perspective), or in the
+    // eye's plane, scaled to the view's height (orthographic).
+    const double d = orthographic_ ? 0.0 : check.focal_length(), s = orthographic_ ? 0.5 * camera.ortho_height : 1.0;
     origin_ = Vec3f(camera.eye);
-    corner_ = Vec3f(-d * w - camera.aspect * u + v);
-    step_x_ = Vec3f((2.0 * camera.aspect / width) * u);
-    step_y_ = Vec3f((-2.0 / height) * v);
+    corner_ = Vec3f(-d * w + s * (-camera.aspect * u + v));
+    step_x_ = Vec3f((2.0 * s * camera.aspect / width) * u);
+    step_y_ = Vec3f((-2.0 * s / height) * v);
     lens_u_ = Vec3f(u);
     lens_v_ = Vec3f(v);
     forward_ = Vec3f(-w);
@@ -145,9 +150,10 @@ class CameraRays {
   /// The eye ray through image position (x + offset.x, y + offset.y) at `time`; with an aperture, from the lens point
   /// `lens` (in [0, 1)^2, mapped onto the aperture disk) toward the pinhole ray's point on the focal plane.
   Ray ray(int x, int y, const Vec2f& offset, const Vec2f& lens, float time) const {
+    const Vec3f at = corner_ + (float(x) + offset.x) * step_x_ + (float(y) + offset.y) * step_y_;
     Ray r;
-    r.origin = origin_;
-    r.dir = glm::normalize(corner_ + (float(x) + offset.x) * step_x_ + (float(y) + offset.y) * step_y_);
+    r.origin = orthographic_ ? origin_ + at : origin_;
+    r.dir = orthographic_ ? forward_ : glm::normalize(at);
     r.time = time;
     if (aperture_ > 0.0f) {
       const Vec3f focal_point = r.origin + (focus_ / glm::dot(r.dir, forward_)) * r.dir;
@@ -160,6 +166,7 @@ class CameraRays {
 
  private:
   Vec3f origin_, corner_, step_x_, step_y_, lens_u_, lens_v_, forward_;
+  bool orthographic_;
   float aperture_, focus_;
 };
 

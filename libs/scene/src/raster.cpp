@@ -13,12 +13,16 @@
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
+#include "tessera/image/texture.hpp"
 
 namespace tessera {
 namespace {
 
-/// Every triangle with its own three vertices and its face normal (sharp edges on flat-faced shapes).
-TriMesh faceted(const TriMesh& mesh) {
+/// Every triangle with its own three vertices: its face normal (sharp edges on flat-faced shapes), or with
+/// `face_normals` false the mesh's own normals; the mesh's uvs, or where it has none the triangle's barycentric
+/// coordinates (0, 0), (1, 0), (0, 1), the ray tracer's texture coordinates on a mesh without uvs.
+TriMesh unwelded(const TriMesh& mesh, bool face_normals = true) {
+  static const Vec2 kBarycentric[3] = {{0, 0}, {1, 0}, {0, 1}};
   TriMesh out;
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* v = &mesh.indices[3 * t];
@@ -28,7 +32,8 @@ TriMesh faceted(const TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) {
       out.indices.push_back(uint32_t(out.positions.size()));
       out.positions.push_back(mesh.positions[v[k]]);
-      out.normals.push_back(n);
+      out.normals.push_back(face_normals ? n : mesh.normals[v[k]]);
+      out.uvs.push_back(mesh.uvs.empty() ? kBarycentric[k] : mesh.uvs[v[k]]);
     }
   }
   return out;
@@ -49,7 +54,7 @@ TriMesh fan(const std::vector<Vec3>& points) {
   std::vector<uint32_t> face(points.size());
   for (size_t i = 0; i < face.size(); ++i) face[i] = uint32_t(i);
   poly.add_face(face);
-  return faceted(to_tri_mesh(poly));
+  return unwelded(to_tri_mesh(poly));
 }
 
 /// `n` points on the circle of radius r about c in the plane with unit normal `normal`, counterclockwise about it.
@@ -67,7 +72,7 @@ std::vector<Vec3> circle(const Vec3& c, const Vec3& normal, double r, int n) {
 
 TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
   const int stacks = std::max(2, segments / 2);
-  return std::visit(
+  TriMesh mesh = std::visit(
       [&](const auto& s) -> TriMesh {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, Sphere>) {
@@ -87,10 +92,10 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
           std::vector<uint32_t> face(poly.positions.size());
           for (size_t i = 0; i < face.size(); ++i) face[i] = uint32_t(i);
           poly.add_face(face);
-          return faceted(to_tri_mesh(poly));
+          return unwelded(to_tri_mesh(poly));
         } else if constexpr (std::is_same_v<T, Box>) {
           const Vec3 lo(s.lo), hi(s.hi), mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
-          return faceted(
+          return unwelded(
               transformed(to_tri_mesh(make_box()), translate(mid.x, mid.y, mid.z) * scale(half.x, half.y, half.z)));
         } else if constexpr (std::is_same_v<T, Cylinder>) {
           const double mid = 0.5 * (s.y0 + s.y1), half = 0.5 * (s.y1 - s.y0);
@@ -109,7 +114,7 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
           return mesh;
         } else if constexpr (std::is_same_v<T, Cone>) {
           // make_cone: apex at y = 1, base of radius 1 at y = -1; the notes' cone opens upward from its apex.
-          const TriMesh unit = faceted(to_tri_mesh(make_cone(segments, s.capped)));
+          const TriMesh unit = unwelded(to_tri_mesh(make_cone(segments, s.capped)));
           return transformed(unit, translate(s.apex.x, s.apex.y + 0.5 * s.height, s.apex.z) *
                                        scale(s.radius, -0.5 * s.height, s.radius));
         } else {  // Disk
@@ -117,6 +122,8 @@ TriMesh tessellate(const Shape& shape, int segments, double plane_size) {
         }
       },
       shape);
+  mesh.uvs.clear();  // the rasterizer evaluates the shape's own texture coordinates at each pixel
+  return mesh;
 }
 
 namespace {
@@ -136,6 +143,75 @@ raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& h
   return raster3d::ShadowMap::point(size, light_center(light), lo, hi);
 }
 
+/// What the fragment shader of one object reads besides the surface uniforms: its material, and for a shape its
+/// texture coordinates' source.
+struct ObjectShading {
+  const Material* material = nullptr;
+  /// A shape: its texture coordinates are the ray tracer's, the uv of the shape's own intersection (in object space)
+  /// along the interpolated normal from `probe` outside the tessellated surface. Null for a mesh (interpolated uvs).
+  const Shape* shape = nullptr;
+  float probe = 0;
+  Mat4f eye_to_object{1.0f};
+  Mat3f normal_to_object{1.0f};  ///< eye-space normals to object space (the transposed model-view)
+  Vec3f ambient_light{0.0f};     ///< the scene's C_a in the pass that adds the ambient term, else 0
+  Vec3f environment{0.0f};       ///< what a mirror ray sees (the background), in that pass, else 0
+};
+
+/// The ray tracer's surface terms per pixel: the surface color C_r (the checkerboard of world-space cells, times the
+/// texture at the ray tracer's uv), the lighting and shadows of raster3d's surface shader, the ambient term
+/// C_r ambient C_a, and the mirror term K_refl environment(R): the background, which is all the environment a scene
+/// has. The normal faces the viewer, as the ray tracer faces it toward the ray. The alpha is 1 - K_trans (the mean of
+/// its channels; with fresnel, after Schlick's term moved weight to K_refl), the part of what lies behind that
+/// blending lets through: dst' = color + K_trans dst.
+struct SceneFragmentShader {
+  const raster3d::SurfaceUniforms* uniforms;
+  const ObjectShading* object;
+
+  Vec2f texture_uv(const raster3d::SurfaceVaryings& in) const {
+    const ObjectShading& o = *object;
+    if (!o.shape) return in.uv;
+    Ray probe;
+    const Vec3f n = glm::normalize(o.normal_to_object * in.normal);
+    probe.origin = Vec3f(o.eye_to_object * Vec4f(in.position, 1.0f)) + o.probe * n;
+    probe.dir = -n;
+    Hit hit;
+    return intersect(*o.shape, probe, hit) ? hit.uv : Vec2f(0.0f);
+  }
+
+  bool operator()(const raster3d::SurfaceVaryings& in, const raster3d::SurfaceVaryings& ddx,
+                  const raster3d::SurfaceVaryings& ddy, Vec4f& color) const {
+    const raster3d::SurfaceUniforms& u = *uniforms;
+    const Material& m = *object->material;
+    raster3d::SurfaceVaryings v = in;
+    const Vec3f e = glm::normalize(Vec3f(u.viewer) - in.position * u.viewer.w);
+    const bool front = glm::dot(in.normal, e) >= 0.0f;
+    if (!front) v.normal = -in.normal;
+    Vec3f cr = m.diffuse;
+    if (m.checker > 0.0f) {
+      const Vec3f world(u.eye_to_world * Vec4f(in.position, 1.0f));
+      const Vec3f cell = glm::floor(world * (1.0f / m.checker) + 1e-4f);  // the ray tracer's cells and offset
+      if ((int64_t(cell.x) + int64_t(cell.y) + int64_t(cell.z)) & 1) cr = m.checker_color;
+    }
+    if (m.texture) cr *= Vec3f(m.texture->sample(texture_uv(in)));
+    v.color = cr;
+    Vec3f c;
+    raster3d::SurfaceFragmentShader{uniforms}(v, ddx, ddy, c);
+    Vec3f k_refl = m.reflection, k_trans = m.transmission;
+    if (k_trans != Vec3f(0.0f) && m.fresnel) {
+      const float n1 = front ? ior::kVacuum : m.ior, n2 = front ? m.ior : ior::kVacuum;
+      const float f = schlick_fresnel(glm::abs(glm::dot(glm::normalize(in.normal), e)), n1, n2);
+      k_refl += f * k_trans;
+      k_trans *= 1.0f - f;
+    }
+    c += cr * m.ambient * object->ambient_light + k_refl * object->environment;
+    color = Vec4f(glm::clamp(c, 0.0f, 1.0f), 1.0f - (k_trans.x + k_trans.y + k_trans.z) / 3.0f);
+    return true;
+  }
+};
+
+/// Whether a material lets light through (drawn blended, after the opaque objects).
+bool transparent(const Material& m) { return m.transmission != Vec3f(0.0f); }
+
 }  // namespace
 
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows, int shadow_map_size) {
@@ -143,16 +219,21 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
   if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > raster3d::ShadowMap::kMaxSize))
     throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, {}]", shadow_map_size,
                                    raster3d::ShadowMap::kMaxSize));
-  const double aspect = double(width) / height, fovy = radians(scene.camera.fovy);
-  // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity.
-  const Mat4 projection = shadows == RasterShadows::volumes ? infinite_perspective(fovy, aspect, 0.05)
-                                                            : perspective(fovy, aspect, 0.05, 4000);
-  const Mat4 view = look_at(scene.camera.eye, scene.camera.center, scene.camera.up);
+  const bool ortho = scene.camera.orthographic;
+  const Camera camera = scene.camera.camera(double(width) / height, 0.05, 4000);
+  // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity. An
+  // orthographic projection cannot put it there (a point at infinity has w = 0 after it): z-pass counting instead.
+  const bool zfail = shadows == RasterShadows::volumes && !ortho;
+  const Mat4 projection = zfail ? infinite_perspective(camera.fovy, camera.aspect, camera.near) : camera.projection();
+  const Mat4 view = camera.view();
   const Mat3 view_linear(view);
 
-  // The lights in eye space, as glLight places them under the view matrix.
+  // The lights in eye space, as glLight places them under the view matrix. The ambient term is the fragment
+  // shader's (C_r ambient C_a); the highlights see the eye where it is (a local viewer), as the ray tracer's do.
   raster3d::Lighting lighting;
-  lighting.model_ambient = Vec3f(scene.ambient);
+  lighting.model_ambient = Vec3f(0.0f);
+  lighting.local_viewer = !ortho;
+  lighting.color_material = true;
   lighting.light_count = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
   for (int i = 0; i < lighting.light_count; ++i) {
     const Light& l = scene.lights[size_t(i)];
@@ -167,13 +248,30 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
   const auto casts = [](const SceneObject& o) {
     return o.casts_shadows && !(o.shape && std::holds_alternative<Plane>(*o.shape));
   };
+  const auto material = [&](const SceneObject& o) -> const Material& { return scene.materials.at(o.material); };
   std::vector<raster3d::VertexArrays> arrays;
+  std::vector<ObjectShading> shading;
   Vec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
   for (const SceneObject& o : scene.objects) {
-    // A mesh without normals shows its facets, as the ray tracer shades it with the geometric normal.
-    arrays.push_back(raster3d::VertexArrays::from_mesh(o.shape                ? tessellate(*o.shape)
-                                                       : o.mesh->normals.empty() ? faceted(*o.mesh)
-                                                                                 : *o.mesh));
+    // A mesh without normals shows its facets, as the ray tracer shades it with the geometric normal; a textured mesh
+    // without uvs gets the ray tracer's, each triangle's barycentrics.
+    const bool barycentric = o.mesh && o.mesh->uvs.empty() && material(o).texture;
+    arrays.push_back(raster3d::VertexArrays::from_mesh(
+        o.shape                                   ? tessellate(*o.shape)
+        : o.mesh->normals.empty() || barycentric ? unwelded(*o.mesh, o.mesh->normals.empty())
+                                                  : *o.mesh));
+    ObjectShading s;
+    s.material = &material(o);
+    if (o.shape) {
+      s.shape = &*o.shape;
+      float radius = 0;
+      for (const Vec3f& p : arrays.back().positions) radius = std::max(radius, glm::length(p));
+      s.probe = 0.01f * radius;  // well beyond the tessellation's chords (0.2% of a radius at 48 segments)
+    }
+    const Mat4 model_view = view * o.transform;
+    s.eye_to_object = Mat4f(glm::inverse(model_view));
+    s.normal_to_object = Mat3f(glm::transpose(Mat3(model_view)));
+    shading.push_back(s);
     if (!casts(o) || shadows != RasterShadows::map) continue;
     for (const Vec3f& p : arrays.back().positions) {
       const Vec3 w = transform_point(o.transform, Vec3(p));
@@ -192,59 +290,81 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
 
   raster3d::Framebuffer fb(width, height);
   fb.clear(scene.image.background);
-  // Draws every object under `lights` (the scene's, or one pass's) with the materials' terms; the emission only when
-  // `emission` (a light's pass adds that light alone).
-  const auto draw_objects = [&](const raster3d::RasterState& state, const raster3d::Lighting& lights, bool emission) {
-    for (size_t k = 0; k < scene.objects.size(); ++k) {
-      const SceneObject& o = scene.objects[k];
-      const Material& m = scene.materials.at(o.material);
-      raster3d::Lighting l = lights;
-      l.material.diffuse = m.diffuse;
-      l.material.ambient = m.diffuse * m.ambient;
-      l.material.specular = m.specular;
-      l.material.shininess = m.shininess;
-      l.material.emission = emission ? m.emission : Vec3f(0);
-      l.specular_model =
-          m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
-      raster3d::SurfaceUniforms u;
-      u.set_camera(projection, view, o.transform);
-      u.lighting = raster3d::PreparedLighting(l);
-      for (size_t i = 0; i < maps.size(); ++i) u.maps.shadows[i] = &maps[i];
-      raster3d::draw_surface(fb, state, arrays[k], u);
-    }
+  // Draws object k under `lights` (the scene's, or one pass's) with its material's terms; the emission, ambient and
+  // mirror terms only when `ambient` (a light's pass adds that light alone).
+  const auto draw_object = [&](size_t k, const raster3d::RasterState& state, const raster3d::Lighting& lights,
+                               bool ambient) {
+    const SceneObject& o = scene.objects[k];
+    const Material& m = material(o);
+    raster3d::Lighting l = lights;
+    l.material.specular = m.specular;
+    l.material.shininess = m.shininess;
+    l.material.emission = ambient ? m.emission : Vec3f(0);
+    l.specular_model =
+        m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
+    raster3d::SurfaceUniforms u;
+    u.set_camera(projection, view, o.transform);
+    u.lighting = raster3d::PreparedLighting(l);
+    for (size_t i = 0; i < maps.size(); ++i) u.maps.shadows[i] = &maps[i];
+    ObjectShading s = shading[k];
+    s.ambient_light = ambient ? scene.ambient : Vec3f(0.0f);
+    s.environment = ambient ? scene.image.background : Vec3f(0.0f);
+    const raster3d::SurfaceVertexShader vs{arrays[k].attributes(), nullptr, nullptr, &u};
+    raster3d::draw_triangles(fb, state, uint32_t(arrays[k].positions.size()), arrays[k].indices, vs,
+                             SceneFragmentShader{&u, &s});
   };
+  std::vector<size_t> opaque, see_through;
+  for (size_t k = 0; k < scene.objects.size(); ++k)
+    (transparent(material(scene.objects[k])) ? see_through : opaque).push_back(k);
   if (shadows == RasterShadows::map) {
-    draw_objects(raster3d::RasterState{}, lighting, true);
-    return fb.color_rgb();
-  }
-  // Shadow volumes: the casters' volumes for each light, then an ambient pass (ambient and emission) and one pass per
-  // light adding its own diffuse and specular terms where no volume holds the surface.
-  std::vector<std::vector<raster3d::ShadowVolume>> volumes(size_t(lighting.light_count));
-  for (size_t k = 0; k < scene.objects.size(); ++k) {
-    if (!casts(scene.objects[k])) continue;
-    std::vector<Vec3f> world;
-    for (const Vec3f& p : arrays[k].positions)
-      world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
-    for (int i = 0; i < lighting.light_count; ++i) {
-      const Light& l = scene.lights[size_t(i)];
-      const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
-                                                           : Vec4f(Vec3f(light_center(l)), 1);
-      volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
+    for (const size_t k : opaque) draw_object(k, raster3d::RasterState{}, lighting, true);
+  } else {
+    // Shadow volumes: the casters' volumes for each light, then an ambient pass (ambient, emission, mirror term) and
+    // one pass per light adding its own diffuse and specular terms where no volume holds the surface.
+    std::vector<std::vector<raster3d::ShadowVolume>> volumes(size_t(lighting.light_count));
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+      if (!casts(scene.objects[k])) continue;
+      std::vector<Vec3f> world;
+      for (const Vec3f& p : arrays[k].positions)
+        world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
+      for (int i = 0; i < lighting.light_count; ++i) {
+        const Light& l = scene.lights[size_t(i)];
+        const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
+                                                             : Vec4f(Vec3f(light_center(l)), 1);
+        volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
+      }
     }
+    raster3d::draw_lights_with_shadow_volumes(
+        fb, volumes, Mat4f(projection * view), zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
+        [&](const raster3d::RasterState& state, int light) {
+          raster3d::Lighting pass = lighting;
+          if (light >= 0) {
+            pass.lights[0] = lighting.lights[size_t(light)];
+            pass.light_count = 1;
+          } else {
+            pass.light_count = 0;
+          }
+          for (const size_t k : opaque) draw_object(k, state, pass, light < 0);
+        });
   }
-  raster3d::draw_lights_with_shadow_volumes(
-      fb, volumes, Mat4f(projection * view), raster3d::ShadowCount::zfail,
-      [&](const raster3d::RasterState& state, int light) {
-        raster3d::Lighting pass = lighting;
-        if (light < 0) {
-          pass.light_count = 0;
-        } else {
-          pass.lights[0] = lighting.lights[size_t(light)];
-          pass.light_count = 1;
-          pass.model_ambient = Vec3f(0);
-        }
-        draw_objects(state, pass, light < 0);
-      });
+  // Transparency by blending (raster3d's sorted transparency): the see-through objects after the opaque ones, far to
+  // near by their centers and each one's triangles sorted far to near, depth-tested against the opaque ones but not
+  // written, each blended over what lies behind it (dst' = color + K_trans dst). Their surfaces are unshadowed with
+  // shadow volumes (those count only the opaque surfaces' pixels).
+  const auto depth = [&](size_t k) {
+    Vec3 c(0.0);
+    for (const Vec3f& p : arrays[k].positions) c += Vec3(p);
+    return (view * scene.objects[k].transform * glm::dvec4(c / double(arrays[k].positions.size()), 1.0)).z;
+  };
+  std::stable_sort(see_through.begin(), see_through.end(), [&](size_t a, size_t b) { return depth(a) < depth(b); });
+  raster3d::RasterState blend;
+  blend.depth_write = false;
+  blend.blend = true;
+  blend.blend_function = {raster3d::BlendFactor::one, raster3d::BlendFactor::one_minus_src_alpha};
+  for (const size_t k : see_through) {
+    raster3d::sort_back_to_front(arrays[k], view * scene.objects[k].transform);
+    draw_object(k, blend, lighting, true);
+  }
   return fb.color_rgb();
 }
 

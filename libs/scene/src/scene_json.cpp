@@ -132,7 +132,7 @@ void read_image_settings(const Node& n, SceneImage& image) {
 }
 
 void read_camera(const Node& n, SceneCamera& c) {
-  n.only({"eye", "center", "up", "fovy", "aperture", "focal_distance"});
+  n.only({"eye", "center", "up", "fovy", "aperture", "focal_distance", "projection", "ortho_height"});
   if (n.has("eye")) c.eye = n["eye"].vec3();
   if (n.has("center")) c.center = n["center"].vec3();
   if (n.has("up")) c.up = n["up"].vec3();
@@ -144,6 +144,19 @@ void read_camera(const Node& n, SceneCamera& c) {
   if (n.has("focal_distance")) c.focal_distance = n["focal_distance"].non_negative();
   if (glm::length(c.center - c.eye) == 0) n.fail("eye and center coincide");
   if (glm::length(glm::cross(c.up, c.center - c.eye)) == 0) n.fail("up is parallel to the view direction");
+  if (n.has("projection")) {
+    const std::string projection = n["projection"].string();
+    if (projection != "perspective" && projection != "orthographic")
+      n["projection"].fail("expected perspective or orthographic");
+    c.orthographic = projection == "orthographic";
+  }
+  if (n.has("ortho_height")) {
+    if (!c.orthographic) n["ortho_height"].fail("applies to \"projection\": \"orthographic\" only");
+    c.ortho_height = n["ortho_height"].positive();
+  } else {
+    // What the perspective view frames at the center: switching the projection keeps the subject's size there.
+    c.ortho_height = 2 * glm::length(c.center - c.eye) * std::tan(radians(c.fovy) / 2);
+  }
 }
 
 Light read_light(const Node& n) {
@@ -445,6 +458,20 @@ Scene parse_scene(std::string_view text, const std::string& name, const std::fil
   objects.expect_array(1);
   for (size_t i = 0; i < objects.size(); ++i) scene.objects.push_back(read_object(objects.item(i), scene, base_dir));
   return scene;
+}
+
+Camera SceneCamera::camera(double aspect, double near, double far) const {
+  Camera c;
+  c.eye = eye;
+  c.center = center;
+  c.up = up;
+  c.fovy = radians(fovy);
+  c.aspect = aspect;
+  c.near = near;
+  c.far = far;
+  c.orthographic = orthographic;
+  c.ortho_height = ortho_height;
+  return c;
 }
 
 Scene load_scene(const std::filesystem::path& path) {

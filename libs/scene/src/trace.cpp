@@ -29,10 +29,7 @@ RayScene to_ray_scene(const Scene& scene) {
   rs.lights = scene.lights;
   add_light_surfaces(rs);
   rs.world.build();
-  rs.camera.eye = scene.camera.eye;
-  rs.camera.center = scene.camera.center;
-  rs.camera.up = scene.camera.up;
-  rs.camera.fovy = radians(scene.camera.fovy);
+  rs.camera = scene.camera.camera(1, 0.1, 100);  // render() sets the aspect; rays have no near or far plane
   rs.aperture = float(scene.camera.aperture);
   rs.focal_distance = float(scene.camera.focal_distance);
   rs.ambient = scene.ambient;

@@ -4,6 +4,7 @@
 //
 // The BVH knows only boxes: what a primitive is comes in through the hit_prim callback, so the same structure serves
 // meshes, shapes and instances (shapes are kernels fed to one acceleration structure).
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -51,7 +52,9 @@ struct RayBoxTest {
 
   explicit RayBoxTest(const Ray& ray)
       : origin(ray.origin), inv_dir(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z),
-        neg{ray.dir.x < 0, ray.dir.y < 0, ray.dir.z < 0} {}
+        // The sign bit, as inv_dir has it: -0 is negative (1 / -0 = -inf), else an axis-parallel ray along -0 would
+        // take the far plane for the near one and miss every box (an orthographic eye ray along -z, say).
+        neg{std::signbit(ray.dir.x), std::signbit(ray.dir.y), std::signbit(ray.dir.z)} {}
 
   /// The slab test against [tmin, tmax], selecting near and far planes by the ray's signs (no swaps). The far distance
   /// is enlarged by 2 gamma(3) (pbrt's conservative rounding) so a ray grazing a box edge is never lost.

@@ -1,15 +1,17 @@
 #pragma once
 // Driving the rasterizer (raster3d) from a scene description: every object tessellated into triangles and drawn with
 // the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with every light's hard shadows from shadow maps
-// (the notes' 2-pass z-buffer) or from shadow volumes. No reflections, refraction or distribution effects (those need
-// the ray tracer).
+// (the notes' 2-pass z-buffer) or from shadow volumes, the ray tracer's surface colors (checkerboards, textures) per
+// pixel. Mirrors reflect only the background and glass is blended without refraction; no distribution effects (those
+// need the ray tracer). docs/raytrace.md lists what differs.
 #include "tessera/image/image.hpp"
 #include "tessera/scene/scene.hpp"
 
 namespace tessera {
 
 /// Triangles approximating a shape in its own coordinates (`segments` around curved shapes; an infinite plane becomes
-/// a square of side `plane_size` about its point). Flat faces carry their face normal, curved surfaces smooth normals.
+/// a square of side `plane_size` about its point). Flat faces carry their face normal, curved surfaces smooth normals;
+/// no texture coordinates (the rasterizer finds the shape's own at each pixel).
 TriMesh tessellate(const Shape& shape, int segments = 48, double plane_size = 3000);
 
 /// How the rasterizer draws shadows.
@@ -24,10 +26,14 @@ enum class RasterShadows {
 };
 
 /// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
-/// volumes), its lights (area lights as point lights at their centers; at most 8), each material's color, ambient,
-/// highlight and emission (a checkerboard shows its first color), the background as the clear color. Shadows are
-/// hard, cast by the objects marked so (planes, being infinite, only receive them), as `shadows` says. Throws
-/// InvalidInput for a bad image size, or a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn.
+/// volumes) or orthographic projection, its lights (area lights as point lights at their centers; at most 8), and per
+/// pixel each material's surface color as the ray tracer computes it (the checkerboard's world-space cells, the
+/// texture at the ray tracer's uv), ambient, highlight and emission; mirrors add K_refl times the background (the
+/// environment seen by the reflected view vector: the other objects are not reflected), and transparent materials
+/// (transmission) are blended over what lies behind them, sorted far to near (no refraction). The background is the
+/// clear color. Shadows are hard, cast by the objects marked so (planes, being infinite, only receive them), as
+/// `shadows` says (volumes under an orthographic camera are counted z-pass). Throws InvalidInput for a bad image
+/// size, or a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn.
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map,
                          int shadow_map_size = 2048);
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "tessera/accel/shapes.hpp"
+#include "tessera/math/camera.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/raytrace/light.hpp"
 #include "tessera/raytrace/material.hpp"
@@ -27,12 +28,20 @@ struct SceneImage {
   Vec3f background{0.0f};  ///< color of rays that leave the scene
 };
 
-/// A pinhole or thin-lens camera.
+/// A pinhole or thin-lens camera, perspective or orthographic.
 struct SceneCamera {
   Vec3 eye{0, 0, 5}, center{0, 0, 0}, up{0, 1, 0};
-  double fovy = 45;           ///< vertical field of view in degrees
+  double fovy = 45;           ///< vertical field of view in degrees (perspective)
   double aperture = 0;        ///< lens radius; 0 = pinhole
   double focal_distance = 0;  ///< distance to the plane in focus; 0 = |center - eye|
+  bool orthographic = false;  ///< parallel projection along the gaze (no foreshortening)
+  /// Orthographic: the view's height in world units (its width follows the image's aspect). The loader sets it
+  /// (a scene that gives none gets the perspective view's height at the center, 2 |center - eye| tan(fovy / 2)).
+  double ortho_height = 2;
+
+  /// The camera as tessera::Camera for an image of the given aspect (width / height), fovy in radians, with the
+  /// near and far planes given.
+  Camera camera(double aspect, double near, double far) const;
 };
 
 /// One object: a shape or a mesh, its material's name, its placement and motion.
