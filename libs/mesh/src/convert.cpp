@@ -22,34 +22,19 @@ struct CornerKeyHash {
 
 }  // namespace
 
-TriMesh to_tri_mesh(const PolyMesh& poly) {
-  const PolyMesh mesh = poly.is_triangle_mesh() ? poly : triangulate(poly);
+PolyMesh split_seams(const PolyMesh& mesh) {
   const bool corner_uv = !mesh.corner_uvs.empty(), corner_n = !mesh.corner_normals.empty();
+  if (!corner_uv && !corner_n) return mesh;
   const size_t nv = mesh.vertex_count();
-  TriMesh out;
-  if (!corner_uv && !corner_n) {
-    out.positions = mesh.positions;
-    out.indices = mesh.face_vertices;
-    out.normals = mesh.normals;
-    out.uvs = mesh.uvs;
-    out.colors = mesh.colors;
-    return out;
-  }
-  const auto copy_vertex = [&](uint32_t v, size_t corner) {
-    out.positions.push_back(mesh.positions[v]);
-    if (corner_uv)
-      out.uvs.push_back(mesh.corner_uvs[corner]);
-    else if (mesh.uvs.size() == nv && nv > 0)
-      out.uvs.push_back(mesh.uvs[v]);
-    if (corner_n)
-      out.normals.push_back(mesh.corner_normals[corner]);
-    else if (mesh.normals.size() == nv && nv > 0)
-      out.normals.push_back(mesh.normals[v]);
-    if (mesh.colors.size() == nv && nv > 0) out.colors.push_back(mesh.colors[v]);
-  };
+  const bool vertex_uv = !corner_uv && mesh.uvs.size() == nv && nv > 0;
+  const bool vertex_n = !corner_n && mesh.normals.size() == nv && nv > 0;
+  const bool colors = mesh.colors.size() == nv && nv > 0;
+  PolyMesh out;
+  out.face_offsets = mesh.face_offsets;
+  out.face_vertices.reserve(mesh.face_vertices.size());
+  std::vector<uint32_t> first_copy(nv, UINT32_MAX);
   std::unordered_map<CornerKey, uint32_t, CornerKeyHash> split;
   split.reserve(mesh.face_vertices.size());
-  out.indices.reserve(mesh.face_vertices.size());
   for (size_t c = 0; c < mesh.face_vertices.size(); ++c) {
     const uint32_t v = mesh.face_vertices[c];
     CornerKey key{v, 0, 0, 0, 0, 0};
@@ -60,9 +45,33 @@ TriMesh to_tri_mesh(const PolyMesh& poly) {
     if (corner_n)
       for (int i = 0; i < 3; ++i) key[size_t(3 + i)] = std::bit_cast<uint64_t>(mesh.corner_normals[c][i]);
     const auto [it, inserted] = split.try_emplace(key, uint32_t(out.positions.size()));
-    if (inserted) copy_vertex(v, c);
-    out.indices.push_back(it->second);
+    if (inserted) {
+      if (first_copy[v] == UINT32_MAX) first_copy[v] = it->second;
+      out.positions.push_back(mesh.positions[v]);
+      if (corner_uv) out.uvs.push_back(mesh.corner_uvs[c]);
+      if (vertex_uv) out.uvs.push_back(mesh.uvs[v]);
+      if (corner_n) out.normals.push_back(mesh.corner_normals[c]);
+      if (vertex_n) out.normals.push_back(mesh.normals[v]);
+      if (colors) out.colors.push_back(mesh.colors[v]);
+    }
+    out.face_vertices.push_back(it->second);
   }
+  for (const EdgeCrease& e : mesh.creases)
+    if (first_copy[e.v0] != UINT32_MAX && first_copy[e.v1] != UINT32_MAX)
+      out.creases.push_back({first_copy[e.v0], first_copy[e.v1], e.sharpness});
+  for (const VertexCorner& k : mesh.corners)
+    if (first_copy[k.v] != UINT32_MAX) out.corners.push_back({first_copy[k.v], k.sharpness});
+  return out;
+}
+
+TriMesh to_tri_mesh(const PolyMesh& poly) {
+  PolyMesh mesh = split_seams(poly.is_triangle_mesh() ? poly : triangulate(poly));
+  TriMesh out;
+  out.positions = std::move(mesh.positions);
+  out.indices = std::move(mesh.face_vertices);
+  out.normals = std::move(mesh.normals);
+  out.uvs = std::move(mesh.uvs);
+  out.colors = std::move(mesh.colors);
   return out;
 }
 

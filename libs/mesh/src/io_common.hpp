@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 
 namespace tessera::mesh_io {
@@ -30,6 +31,34 @@ namespace tessera::mesh_io {
   throw InvalidInput(located(at_byte(name, offset), what));
 }
 
+/// Reports how far a reader has got through its data to a Progress (whose total is the data's size), in steps of
+/// 1 MiB so that the check costs one comparison per line or row. Does nothing without a Progress.
+class ByteProgress {
+ public:
+  ByteProgress(Progress* progress, std::string_view data)
+      : progress_(progress), reported_(data.data()), next_(data.data() + kStep), end_(data.data() + data.size()) {}
+  /// The reader has parsed everything before `position`.
+  void at(const char* position) {
+    if (progress_ != nullptr && position >= next_) report(position);
+  }
+  /// The reader is done: the rest of the data counts as parsed.
+  void finish() {
+    if (progress_ != nullptr) report(end_);
+  }
+
+ private:
+  static constexpr ptrdiff_t kStep = 1 << 20;
+  void report(const char* position) {
+    progress_->advance(position - reported_);
+    reported_ = position;
+    next_ = position + kStep;
+  }
+  Progress* progress_;
+  const char* reported_;
+  const char* next_;
+  const char* end_;
+};
+
 /// A cursor over text held in memory: blanks are spaces, tabs and carriage returns; a line ends at '\n', at the end
 /// of the data or (when comments are on) at '#'. Numbers are parsed in place with std::from_chars.
 class TextCursor {
@@ -37,6 +66,9 @@ class TextCursor {
   /// A cursor at the start of `data`, which is line `first_line` of the file `name` (for messages).
   TextCursor(std::string_view data, const std::string& name, bool hash_comments, long first_line = 1)
       : p_(data.data()), end_(data.data() + data.size()), line_(first_line), name_(name), comments_(hash_comments) {}
+
+  /// Reports the bytes passed to `progress` as lines are read (nullptr: no reports).
+  void set_progress(ByteProgress* progress) { progress_ = progress; }
 
   bool at_end() const { return p_ == end_; }
   long line() const { return line_; }
@@ -61,6 +93,7 @@ class TextCursor {
     }
     p_ = static_cast<const char*>(nl) + 1;
     ++line_;
+    if (progress_ != nullptr) progress_->at(p_);
   }
   /// Requires the rest of the line to be empty, then moves to the next line.
   void end_line(const char* what) {
@@ -131,6 +164,7 @@ class TextCursor {
   long line_;
   const std::string& name_;
   bool comments_;
+  ByteProgress* progress_ = nullptr;
 };
 
 /// Reads a scalar of type T stored at `p` in little (or big) endian byte order.

@@ -163,8 +163,10 @@ void resolve_refs(const CornerRefs& refs, const std::vector<T>& items, const Pol
 
 }  // namespace
 
-PolyMesh read_obj(std::string_view data, const std::string& name) {
+PolyMesh read_obj(std::string_view data, const std::string& name, Progress* progress) {
   TextCursor in(data, name, true);
+  mesh_io::ByteProgress bytes(progress, data);
+  in.set_progress(&bytes);
   PolyMesh mesh;
   std::vector<Vec2> uvs;
   std::vector<Vec3> normals;
@@ -227,6 +229,7 @@ PolyMesh read_obj(std::string_view data, const std::string& name) {
   if (!mesh.colors.empty()) mesh.colors.resize(mesh.positions.size(), Vec3(1.0));
   resolve_refs(uv_refs, uvs, mesh, mesh.uvs, mesh.corner_uvs);
   resolve_refs(normal_refs, normals, mesh, mesh.normals, mesh.corner_normals);
+  bytes.finish();
   return mesh;
 }
 

@@ -42,8 +42,10 @@ size_t parse_count(TextCursor& in, const char* what) {
 
 }  // namespace
 
-PolyMesh read_off(std::string_view data, const std::string& name) {
+PolyMesh read_off(std::string_view data, const std::string& name, Progress* progress) {
   TextCursor in(data, name, true);
+  mesh_io::ByteProgress bytes(progress, data);
+  in.set_progress(&bytes);
   in.skip_empty_lines();
   const OffLayout layout = parse_keyword(in, in.token());
   const size_t nv = parse_count(in, "a vertex count");
@@ -97,6 +99,7 @@ PolyMesh read_off(std::string_view data, const std::string& name) {
   }
   in.skip_empty_lines();
   if (!in.at_end()) in.fail(fmt::format("expected the end of the file after {} faces, got '{}'", nf, in.preview()));
+  bytes.finish();
   return mesh;
 }
 
@@ -104,13 +107,15 @@ void write_off(std::ostream& out, const PolyMesh& mesh) {
   const size_t nv = mesh.vertex_count();
   const bool colors = !mesh.colors.empty() && mesh.colors.size() == nv;
   const bool normals = !mesh.normals.empty() && mesh.normals.size() == nv;
+  const bool uvs = !mesh.uvs.empty() && mesh.uvs.size() == nv;
   mesh_io::BufferedWriter w(out);
-  w.print("{}{}OFF\n{} {} 0\n", colors ? "C" : "", normals ? "N" : "", nv, mesh.face_count());
+  w.print("{}{}{}OFF\n{} {} 0\n", uvs ? "ST" : "", colors ? "C" : "", normals ? "N" : "", nv, mesh.face_count());
   for (size_t v = 0; v < nv; ++v) {
     const Vec3& p = mesh.positions[v];
     w.print("{} {} {}", p.x, p.y, p.z);
     if (normals) w.print(" {} {} {}", mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z);
     if (colors) w.print(" {} {} {} 1", mesh.colors[v].x, mesh.colors[v].y, mesh.colors[v].z);
+    if (uvs) w.print(" {} {}", mesh.uvs[v].x, mesh.uvs[v].y);
     w.print("\n");
   }
   for (size_t f = 0; f < mesh.face_count(); ++f) {

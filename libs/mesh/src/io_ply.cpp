@@ -195,8 +195,9 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
 /// Values from a binary body.
 class BinarySource {
  public:
-  BinarySource(std::string_view data, const char* body, bool big_endian, const std::string& name)
-      : begin_(data.data()), p_(body), end_(data.data() + data.size()), big_(big_endian), name_(name) {}
+  BinarySource(std::string_view data, const char* body, bool big_endian, const std::string& name,
+               mesh_io::ByteProgress& bytes)
+      : begin_(data.data()), p_(body), end_(data.data() + data.size()), big_(big_endian), name_(name), bytes_(bytes) {}
 
   double value(PlyType t, const char* what) {
     const size_t n = type_size(t);
@@ -232,7 +233,7 @@ class BinarySource {
     p_ += n;
     return v;
   }
-  void end_row() {}
+  void end_row() { bytes_.at(p_); }
   size_t remaining() const { return size_t(end_ - p_); }
   [[noreturn]] void fail(const std::string& what) const { fail_at_byte(name_, p_ - begin_, what); }
   /// The bytes one list item takes at least.
@@ -244,12 +245,15 @@ class BinarySource {
   const char* end_;
   bool big_;
   const std::string& name_;
+  mesh_io::ByteProgress& bytes_;
 };
 
 /// Values from an ASCII body: one row per line.
 class AsciiSource {
  public:
-  AsciiSource(std::string_view body, long first_line, const std::string& name) : in_(body, name, false, first_line) {
+  AsciiSource(std::string_view body, long first_line, const std::string& name, mesh_io::ByteProgress& bytes)
+      : in_(body, name, false, first_line) {
+    in_.set_progress(&bytes);
     in_.skip_empty_lines();
   }
 
@@ -257,7 +261,8 @@ class AsciiSource {
     double v;
     if (!in_.try_number(v)) fail(fmt::format("expected {}, got '{}'", what, in_.preview()));
     if (!is_float(t) && v != std::floor(v)) fail(fmt::format("expected an integer for {}, got {}", what, v));
-    return v;
+    // A float property holds a float: the decimal text (shortest digits of a float) reads back as that float.
+    return t == PlyType::Float32 ? double(float(v)) : v;
   }
   void end_row() {
     if (!in_.at_line_end()) fail(fmt::format("expected the end of the row, got '{}'", in_.preview()));
@@ -326,15 +331,16 @@ void read_body(Source& src, const std::vector<PlyElement>& elements, bool binary
 
 }  // namespace
 
-PolyMesh read_ply(std::string_view data, const std::string& name) {
+PolyMesh read_ply(std::string_view data, const std::string& name, Progress* progress) {
   const PlyHeader header = parse_header(data, name);
   PolyMesh mesh;
+  mesh_io::ByteProgress bytes(progress, data);
   const std::string_view body(header.body, size_t(data.data() + data.size() - header.body));
   if (header.encoding == Encoding::Ascii) {
-    AsciiSource src(body, header.body_line, name);
+    AsciiSource src(body, header.body_line, name, bytes);
     read_body(src, header.elements, false, mesh);
   } else {
-    BinarySource src(data, header.body, header.encoding == Encoding::BinaryBig, name);
+    BinarySource src(data, header.body, header.encoding == Encoding::BinaryBig, name, bytes);
     read_body(src, header.elements, true, mesh);
   }
   // Faces listed before their vertices are checked now that the vertex count is known.
@@ -342,10 +348,12 @@ PolyMesh read_ply(std::string_view data, const std::string& name) {
     if (v >= mesh.positions.size())
       throw InvalidInput(
           located(name, fmt::format("vertex index {} is out of range (0..{})", v, long(mesh.positions.size()) - 1)));
+  bytes.finish();
   return mesh;
 }
 
-void write_ply(std::ostream& out, const PolyMesh& mesh, bool binary) {
+void write_ply(std::ostream& out, const PolyMesh& mesh, const MeshWriteOptions& options) {
+  const bool binary = options.binary;
   const size_t nv = mesh.vertex_count();
   const bool normals = !mesh.normals.empty() && mesh.normals.size() == nv;
   const bool uvs = !mesh.uvs.empty() && mesh.uvs.size() == nv;
@@ -356,22 +364,44 @@ void write_ply(std::ostream& out, const PolyMesh& mesh, bool binary) {
 
   std::string head = fmt::format("ply\nformat {} 1.0\ncomment written by tessera\nelement vertex {}\n",
                                  binary ? "binary_little_endian" : "ascii", nv);
-  head += "property double x\nproperty double y\nproperty double z\n";
-  if (normals) head += "property double nx\nproperty double ny\nproperty double nz\n";
-  if (uvs) head += "property double u\nproperty double v\n";
+  const char* real = options.double_precision ? "double" : "float";
+  for (const char* axis : {"x", "y", "z"}) head += fmt::format("property {} {}\n", real, axis);
+  if (normals)
+    for (const char* axis : {"nx", "ny", "nz"}) head += fmt::format("property {} {}\n", real, axis);
+  if (uvs)
+    for (const char* axis : {"s", "t"}) head += fmt::format("property {} {}\n", real, axis);
   if (colors) head += "property uchar red\nproperty uchar green\nproperty uchar blue\n";
   head += fmt::format("element face {}\nproperty list {} int vertex_indices\nend_header\n", mesh.face_count(),
                       wide_count ? "int" : "uchar");
   out.write(head.data(), std::streamsize(head.size()));
 
   const auto color_byte = [](double c) { return uint8_t(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)); };
+  // Text keeps the shortest digits that read back as the stored type; binary stores that type.
+  const auto print_reals = [&](mesh_io::BufferedWriter& w, std::initializer_list<double> values) {
+    for (double x : values) {
+      if (options.double_precision)
+        w.print(" {}", x);
+      else
+        w.print(" {}", float(x));
+    }
+  };
+  const auto store_real = [&](std::string& bytes, double x) {
+    if (options.double_precision)
+      mesh_io::store_le(bytes, x);
+    else
+      mesh_io::store_le(bytes, float(x));
+  };
   if (!binary) {
     mesh_io::BufferedWriter w(out);
     for (size_t v = 0; v < nv; ++v) {
       const Vec3& p = mesh.positions[v];
-      w.print("{} {} {}", p.x, p.y, p.z);
-      if (normals) w.print(" {} {} {}", mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z);
-      if (uvs) w.print(" {} {}", mesh.uvs[v].x, mesh.uvs[v].y);
+      if (options.double_precision)
+        w.print("{}", p.x);
+      else
+        w.print("{}", float(p.x));
+      print_reals(w, {p.y, p.z});
+      if (normals) print_reals(w, {mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z});
+      if (uvs) print_reals(w, {mesh.uvs[v].x, mesh.uvs[v].y});
       if (colors)
         w.print(" {} {} {}", color_byte(mesh.colors[v].x), color_byte(mesh.colors[v].y), color_byte(mesh.colors[v].z));
       w.print("\n");
@@ -385,11 +415,11 @@ void write_ply(std::ostream& out, const PolyMesh& mesh, bool binary) {
   }
   std::string body;
   for (size_t v = 0; v < nv; ++v) {
-    for (int i = 0; i < 3; ++i) mesh_io::store_le(body, mesh.positions[v][i]);
+    for (int i = 0; i < 3; ++i) store_real(body, mesh.positions[v][i]);
     if (normals)
-      for (int i = 0; i < 3; ++i) mesh_io::store_le(body, mesh.normals[v][i]);
+      for (int i = 0; i < 3; ++i) store_real(body, mesh.normals[v][i]);
     if (uvs)
-      for (int i = 0; i < 2; ++i) mesh_io::store_le(body, mesh.uvs[v][i]);
+      for (int i = 0; i < 2; ++i) store_real(body, mesh.uvs[v][i]);
     if (colors)
       for (int i = 0; i < 3; ++i) mesh_io::store_le(body, color_byte(mesh.colors[v][i]));
     if (body.size() > (1 << 20)) {

@@ -13,13 +13,14 @@ using mesh_io::TextCursor;
 
 constexpr size_t kHeaderBytes = 84, kTriangleBytes = 50;
 
-PolygonSoup read_binary(std::string_view data, const std::string& name) {
+PolygonSoup read_binary(std::string_view data, const std::string& name, mesh_io::ByteProgress& bytes) {
   const auto count = mesh_io::load_scalar<uint32_t>(data.data() + 80, false);
   PolygonSoup soup;
   soup.points.reserve(3 * size_t(count));
   soup.face_offsets.reserve(size_t(count) + 1);
   for (size_t t = 0; t < count; ++t) {
     const char* p = data.data() + kHeaderBytes + t * kTriangleBytes + 12;  // skip the stored normal
+    bytes.at(p);
     std::array<Vec3, 3> corners;
     for (int i = 0; i < 9; ++i) {
       const float v = mesh_io::load_scalar<float>(p + 4 * i, false);
@@ -39,8 +40,9 @@ void expect(TextCursor& in, std::string_view word) {
     in.fail(fmt::format("expected '{}', got '{}'", word, got.empty() ? in.preview() : std::string(got.substr(0, 40))));
 }
 
-PolygonSoup read_ascii(std::string_view data, const std::string& name) {
+PolygonSoup read_ascii(std::string_view data, const std::string& name, mesh_io::ByteProgress& bytes) {
   TextCursor in(data, name, false);
+  in.set_progress(&bytes);
   PolygonSoup soup;
   in.skip_empty_lines();
   while (!in.at_end()) {
@@ -80,7 +82,7 @@ PolygonSoup read_ascii(std::string_view data, const std::string& name) {
 
 }  // namespace
 
-PolyMesh read_stl(std::string_view data, const std::string& name) {
+PolyMesh read_stl(std::string_view data, const std::string& name, Progress* progress) {
   const bool binary_size =
       data.size() >= kHeaderBytes &&
       (data.size() - kHeaderBytes) / kTriangleBytes == mesh_io::load_scalar<uint32_t>(data.data() + 80, false) &&
@@ -96,7 +98,10 @@ PolyMesh read_stl(std::string_view data, const std::string& name) {
                           fmt::format("expected {} bytes for {} binary STL triangles (84 + 50 n), the file has {}",
                                       kHeaderBytes + size_t(count) * kTriangleBytes, count, data.size()));
   }
-  return weld(ascii ? read_ascii(data, name) : read_binary(data, name));
+  mesh_io::ByteProgress bytes(progress, data);
+  PolyMesh mesh = weld(ascii ? read_ascii(data, name, bytes) : read_binary(data, name, bytes));
+  bytes.finish();
+  return mesh;
 }
 
 void write_stl(std::ostream& out, const PolyMesh& mesh, bool binary) {

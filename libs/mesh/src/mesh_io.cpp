@@ -15,6 +15,8 @@
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/progress.hpp"
+#include "tessera/mesh/convert.hpp"
 
 namespace tessera {
 namespace {
@@ -64,24 +66,46 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   throw InvalidInput(fmt::format("'{}': unknown mesh format (expected .obj, .ply, .off or .stl)", path.string()));
 }
 
-PolyMesh read_mesh(std::string_view data, MeshFormat format, const std::string& name) {
+PolyMesh read_mesh(std::string_view data, MeshFormat format, const std::string& name, Progress* progress) {
   switch (format) {
     case MeshFormat::Obj:
-      return read_obj(data, name);
+      return read_obj(data, name, progress);
     case MeshFormat::Ply:
-      return read_ply(data, name);
+      return read_ply(data, name, progress);
     case MeshFormat::Off:
-      return read_off(data, name);
+      return read_off(data, name, progress);
     case MeshFormat::Stl:
-      return read_stl(data, name);
+      return read_stl(data, name, progress);
   }
   throw InvalidInput(fmt::format("{}: unknown mesh format", name));
 }
 
-PolyMesh read_mesh(const std::filesystem::path& path) {
+PolyMesh read_mesh(const std::filesystem::path& path, Progress* progress) {
   const MeshFormat format = mesh_format_from_path(path);
   const MappedFile file(path);
-  return read_mesh(file.view(), format, path.string());
+  return read_mesh(file.view(), format, path.string(), progress);
+}
+
+PolyMesh read_mesh_with_progress(const std::filesystem::path& path) {
+  const MeshFormat format = mesh_format_from_path(path);
+  const MappedFile file(path);
+  Progress progress("read " + path.filename().string(), int64_t(file.view().size()));
+  PolyMesh mesh = read_mesh(file.view(), format, path.string(), &progress);
+  progress.done();
+  return mesh;
+}
+
+std::vector<std::string> unsupported_properties(const PolyMesh& mesh, MeshFormat format) {
+  std::vector<std::string> lost;
+  if (format == MeshFormat::Obj) return lost;
+  if (format == MeshFormat::Stl) {
+    if (!mesh.uvs.empty() || !mesh.corner_uvs.empty()) lost.emplace_back("texture coordinates");
+    if (!mesh.normals.empty() || !mesh.corner_normals.empty()) lost.emplace_back("normals");
+    if (!mesh.colors.empty()) lost.emplace_back("vertex colors");
+  }
+  if (!mesh.creases.empty()) lost.emplace_back("creases");
+  if (!mesh.corners.empty()) lost.emplace_back("corners");
+  return lost;
 }
 
 void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
@@ -90,10 +114,10 @@ void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, cons
       write_obj(out, mesh);
       return;
     case MeshFormat::Ply:
-      write_ply(out, mesh, options.binary);
+      write_ply(out, split_seams(mesh), options);
       return;
     case MeshFormat::Off:
-      write_off(out, mesh);
+      write_off(out, split_seams(mesh));
       return;
     case MeshFormat::Stl:
       write_stl(out, mesh, options.binary);

@@ -98,13 +98,26 @@ PolygonSoup to_soup(const PolyMesh& mesh) {
   return soup;
 }
 
-void weld_vertices(PolyMesh& mesh, double tolerance) {
+size_t weld_vertices(PolyMesh& mesh, double tolerance) {
   WeldedPoints welded = weld_points(mesh.positions, tolerance);
-  const size_t n = welded.points.size();
-  // Per-vertex properties: the first vertex of each group wins.
+  const size_t n = welded.points.size(), merged = mesh.positions.size() - n;
+  // Per-vertex properties: the first vertex of each group gives the value, unless uvs or normals differ inside a
+  // group: then they become face-varying (each corner keeps its old vertex's value).
   std::vector<uint32_t> first(n, UINT32_MAX);
   for (uint32_t v = 0; v < welded.remap.size(); ++v)
     if (first[welded.remap[v]] == UINT32_MAX) first[welded.remap[v]] = v;
+  const auto to_corners = [&](auto& property, auto& per_corner) {
+    if (property.size() != welded.remap.size() || property.empty() || !per_corner.empty()) return;
+    bool differ = false;
+    for (uint32_t v = 0; v < welded.remap.size() && !differ; ++v)
+      differ = property[v] != property[first[welded.remap[v]]];
+    if (!differ) return;
+    per_corner.resize(mesh.face_vertices.size());
+    for (size_t c = 0; c < mesh.face_vertices.size(); ++c) per_corner[c] = property[mesh.face_vertices[c]];
+    property.clear();
+  };
+  to_corners(mesh.uvs, mesh.corner_uvs);
+  to_corners(mesh.normals, mesh.corner_normals);
   const auto gather = [&](auto& property) {
     if (property.empty()) return;
     std::remove_reference_t<decltype(property)> kept(n);
@@ -151,6 +164,7 @@ void weld_vertices(PolyMesh& mesh, double tolerance) {
   mesh.corner_normals = std::move(corner_normals);
   for (EdgeCrease& c : mesh.creases) c = {welded.remap[c.v0], welded.remap[c.v1], c.sharpness};
   for (VertexCorner& c : mesh.corners) c.v = welded.remap[c.v];
+  return merged;
 }
 
 }  // namespace tessera

@@ -64,6 +64,25 @@ TEST(OffWriter, RoundTrips) {
   EXPECT_EQ(back.colors, m.colors);
 }
 
+TEST(OffWriter, KeepsNormalsColorsAndUvs) {
+  PolyMesh m = make_dodecahedron();
+  m.colors.assign(m.vertex_count(), Vec3(0.25, 0.5, 1));
+  m.normals.resize(m.vertex_count());
+  m.uvs.resize(m.vertex_count());
+  for (size_t v = 0; v < m.vertex_count(); ++v) {
+    m.normals[v] = glm::normalize(m.positions[v]);
+    m.uvs[v] = Vec2(m.positions[v].x, 0.1 * double(v));
+  }
+  std::ostringstream out;
+  write_off(out, m);
+  EXPECT_EQ(out.str().substr(0, 8), "STCNOFF\n");
+  const PolyMesh back = read_off(out.str(), "round.off");
+  EXPECT_EQ(back.positions, m.positions);
+  EXPECT_EQ(back.normals, m.normals);
+  EXPECT_EQ(back.colors, m.colors);
+  EXPECT_EQ(back.uvs, m.uvs);
+}
+
 TEST(OffReader, SharedDataFilesMatchTheirSources) {
   TESSERA_SHARED_FILE(spot, "meshes/off/spot_control_mesh.off");
   const PolyMesh s = read_mesh(spot);

@@ -128,13 +128,13 @@ TEST(PlyReader, HostileAndTruncatedFilesAreRejectedWithTheirPlace) {
   EXPECT_THAT(error_of("ply\nformat ascii 1.0\nelement vertex 1\n"), HasSubstr("expected 'end_header'"));
 }
 
-TEST(PlyWriter, BinaryAndAsciiRoundTripExactly) {
+TEST(PlyWriter, DoublePrecisionRoundTripsExactly) {
   PolyMesh m = make_quad_sphere(3);
   m.uvs.assign(m.vertex_count(), Vec2(0.125, 0.5));
   m.colors.assign(m.vertex_count(), Vec3(1, 0, 0.2));
   for (bool binary : {true, false}) {
     std::ostringstream out;
-    write_ply(out, m, binary);
+    write_ply(out, m, {.binary = binary, .double_precision = true});
     const PolyMesh back = read_ply(out.str(), "round.ply");
     EXPECT_EQ(back.positions, m.positions);
     EXPECT_EQ(back.normals, m.normals);
@@ -142,6 +142,53 @@ TEST(PlyWriter, BinaryAndAsciiRoundTripExactly) {
     EXPECT_EQ(back.colors, m.colors);
     EXPECT_EQ(back.face_vertices, m.face_vertices);
     EXPECT_EQ(back.face_offsets, m.face_offsets);
+  }
+}
+
+// The default stores float32 (as Blender, MeshLab and Open3D write PLY) with the uvs named s t: every value reads
+// back as the nearest float to what was written.
+TEST(PlyWriter, FloatIsTheDefaultAndUvsAreNamedST) {
+  PolyMesh m = make_quad_sphere(2);
+  m.uvs.resize(m.vertex_count());
+  for (size_t v = 0; v < m.vertex_count(); ++v) m.uvs[v] = Vec2(m.positions[v].x * 0.3 + 0.5, 1.0 / 3.0);
+  const auto f = [](double x) {
+    volatile float rounded = float(x);  // volatile: keeps the optimizer from folding the round trip away
+    return double(rounded);
+  };
+  for (bool binary : {true, false}) {
+    std::ostringstream out;
+    write_ply(out, m, {.binary = binary});
+    const std::string text = out.str();
+    EXPECT_THAT(text, HasSubstr("property float x\nproperty float y\nproperty float z\n"));
+    EXPECT_THAT(text, HasSubstr("property float nx\nproperty float ny\nproperty float nz\n"));
+    EXPECT_THAT(text, HasSubstr("property float s\nproperty float t\n"));
+    SCOPED_TRACE(binary ? "binary" : "ascii");
+    const PolyMesh back = read_ply(text, "float.ply");
+    ASSERT_EQ(back.vertex_count(), m.vertex_count());
+    for (size_t v = 0; v < m.vertex_count(); ++v) {
+      const Vec3 &p = m.positions[v], &n = m.normals[v];
+      EXPECT_EQ(back.positions[v], Vec3(f(p.x), f(p.y), f(p.z)));
+      EXPECT_EQ(back.normals[v], Vec3(f(n.x), f(n.y), f(n.z)));
+      EXPECT_EQ(back.uvs[v], Vec2(f(m.uvs[v].x), f(m.uvs[v].y)));
+    }
+  }
+}
+
+TEST(PlyReader, ReadsUvAsUVOrST) {
+  for (const char* names : {"u v", "s t", "texture_u texture_v"}) {
+    const std::string n(names);
+    const std::string a = n.substr(0, n.find(' ')), b = n.substr(n.find(' ') + 1);
+    const PolyMesh m = read_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                "property float z\nproperty float " +
+                                    a + "\nproperty float " + b +
+                                    "\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                                    "property uchar alpha\nelement face 1\nproperty list uchar int vertex_indices\n"
+                                    "end_header\n0 0 0 0.25 0.75 255 0 51 255\n1 0 0 1 0 0 255 0 0\n"
+                                    "0 1 0 0 1 0 0 255 128\n3 0 1 2\n",
+                                "uv.ply");
+    ASSERT_EQ(m.uvs.size(), 3u) << names;
+    EXPECT_EQ(m.uvs[0], Vec2(0.25, 0.75));
+    EXPECT_EQ(m.colors[0], Vec3(1, 0, 0.2));
   }
 }
 

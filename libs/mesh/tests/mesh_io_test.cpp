@@ -9,6 +9,7 @@
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/mesh/primitives.hpp"
 
 namespace tessera {
@@ -36,7 +37,7 @@ TEST_F(MeshFiles, EveryFormatRoundTripsThroughFiles) {
     for (bool binary : {true, false}) {
       SCOPED_TRACE(std::string(ext) + (binary ? " binary" : " ascii"));
       const fs::path path = dir_ / (std::string("cube") + ext);
-      write_mesh(path, cube, {binary});
+      write_mesh(path, cube, {.binary = binary, .double_precision = true});
       const PolyMesh back = read_mesh(path);
       EXPECT_EQ(back.positions, cube.positions);
       EXPECT_EQ(back.face_vertices, cube.face_vertices);
@@ -47,6 +48,71 @@ TEST_F(MeshFiles, EveryFormatRoundTripsThroughFiles) {
   const PolyMesh stl = read_mesh(dir_ / "cube.STL");
   EXPECT_EQ(stl.vertex_count(), 8u);
   EXPECT_EQ(stl.face_count(), 12u);
+}
+
+/// The uv, normal and color a face corner ends up with, whether stored per corner or per vertex.
+struct CornerData {
+  Vec3 position;
+  Vec2 uv;
+  Vec3 normal, color;
+};
+CornerData corner_data(const PolyMesh& m, size_t c) {
+  const uint32_t v = m.face_vertices[c];
+  return {m.positions[v], m.corner_uvs.empty() ? m.uvs[v] : m.corner_uvs[c],
+          m.corner_normals.empty() ? m.normals[v] : m.corner_normals[c], m.colors[v]};
+}
+
+TEST_F(MeshFiles, EveryAttributeSurvivesEveryFormatThatCanHoldIt) {
+  // A uv sphere: face-varying uvs (a seam and the poles), per-vertex normals; plus colors k/255 (exact in a uchar)
+  // and a crease tag.
+  PolyMesh m = make_uv_sphere(8, 4);
+  ASSERT_FALSE(m.corner_uvs.empty());
+  ASSERT_EQ(m.normals.size(), m.vertex_count());
+  for (size_t v = 0; v < m.vertex_count(); ++v) m.colors.emplace_back(double(v) / 255, double(3 * v) / 255, 1.0);
+  m.creases.push_back({m.face_vertices[0], m.face_vertices[1], 2.0f});
+  EXPECT_TRUE(unsupported_properties(m, MeshFormat::Obj).empty());
+  for (const char* ext : {".obj", ".ply", ".off"}) {
+    for (bool binary : {true, false}) {
+      SCOPED_TRACE(std::string(ext) + (binary ? " binary" : " ascii"));
+      const fs::path path = dir_ / (std::string("sphere") + ext);
+      write_mesh(path, m, {.binary = binary, .double_precision = true});
+      const PolyMesh back = read_mesh(path);
+      ASSERT_EQ(back.face_offsets, m.face_offsets);
+      for (size_t c = 0; c < m.face_vertices.size(); ++c) {
+        const CornerData a = corner_data(m, c), b = corner_data(back, c);
+        EXPECT_EQ(b.position, a.position);
+        EXPECT_EQ(b.uv, a.uv);
+        EXPECT_EQ(b.normal, a.normal);
+        EXPECT_EQ(b.color, a.color);
+      }
+      // OBJ keeps the welded vertices and the crease; PLY and OFF split the seam's vertices (one per distinct uv).
+      EXPECT_EQ(back.vertex_count() == m.vertex_count(), std::string(ext) == ".obj");
+      EXPECT_EQ(back.creases.size(), std::string(ext) == ".obj" ? 1u : 0u);
+    }
+  }
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::Ply), std::vector<std::string>{"creases"});
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::Off), std::vector<std::string>{"creases"});
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::Stl),
+            (std::vector<std::string>{"texture coordinates", "normals", "vertex colors", "creases"}));
+  EXPECT_TRUE(unsupported_properties(make_cube(), MeshFormat::Stl).empty());
+}
+
+TEST_F(MeshFiles, ReadingReportsTheBytesParsed) {
+  // Just over 4 MiB of vertices: reported every MiB, as plain lines at the 10% steps crossed (25%, 50%, 75%).
+  std::string obj;
+  while (obj.size() < (4u << 20)) obj += "v 0.125 0.25 0.5\n";
+  obj += "f 1 2 3\n";
+  Progress::set_mode(Progress::Mode::Plain);
+  ::testing::internal::CaptureStderr();
+  {
+    Progress progress("read big.obj", int64_t(obj.size()));
+    const PolyMesh m = read_mesh(obj, MeshFormat::Obj, "big.obj", &progress);
+    progress.done();
+    EXPECT_EQ(m.face_count(), 1u);
+  }
+  const std::string log = ::testing::internal::GetCapturedStderr();
+  Progress::set_mode(Progress::Mode::Auto);
+  EXPECT_THAT(log, ::testing::HasSubstr("read big.obj: 20%\nread big.obj: 40%\nread big.obj: 70%\n"));
 }
 
 TEST_F(MeshFiles, UnknownExtensionsAndMissingFilesAreReported) {

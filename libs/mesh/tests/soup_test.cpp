@@ -52,5 +52,30 @@ TEST(Soup, WeldingDropsCollapsedFacesAndRemapsTags) {
   EXPECT_EQ(mesh.creases[0].v0, 0u);
 }
 
+// Two unit squares side by side, each with its own uv square (as two Bezier patches): welding the shared edge keeps
+// every corner's uv, now per corner; uvs that agree stay per vertex.
+TEST(Soup, WeldingKeepsDifferingUvsPerCorner) {
+  PolyMesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0),
+                    Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0), Vec3(1, 1, 0)};
+  mesh.uvs = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  mesh.add_face({0, 1, 2, 3});
+  mesh.add_face({4, 5, 6, 7});
+  PolyMesh same_uvs = mesh;
+  EXPECT_EQ(weld_vertices(mesh), 2u);
+  EXPECT_EQ(mesh.vertex_count(), 6u);
+  EXPECT_TRUE(mesh.uvs.empty());
+  ASSERT_EQ(mesh.corner_uvs.size(), 8u);
+  EXPECT_EQ(mesh.face_vertices[4], mesh.face_vertices[1]);  // the shared edge
+  EXPECT_EQ(mesh.corner_uvs[1], Vec2(1, 0));
+  EXPECT_EQ(mesh.corner_uvs[4], Vec2(0, 0));
+  EXPECT_EQ(mesh.corner_uvs[6], Vec2(1, 1));
+
+  for (size_t v = 0; v < same_uvs.vertex_count(); ++v) same_uvs.uvs[v] = Vec2(same_uvs.positions[v]);
+  weld_vertices(same_uvs);
+  EXPECT_TRUE(same_uvs.corner_uvs.empty());
+  EXPECT_EQ(same_uvs.uvs.size(), 6u);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -110,6 +110,36 @@ class LevelRefiner {
     });
   }
 
+  // Face-varying values (uvs) refined linearly inside each face, as OpenSubdiv's FVAR_LINEAR_ALL: face point =
+  // average of the face's corners, edge point = midpoint of the edge's two corners, vertex = its own corner. Every
+  // child corner lies inside one parent face, so the values on either side of a seam never mix.
+  template <class T>
+  void refine_face_varying(std::span<const T> parent, std::vector<T>& child) const {
+    resize_fresh(child, (quads_ ? 4 : 3) * child_face_count());
+    parallel_for(0, int64_t(t_.face_count()), kGrain, [&](int64_t b, int64_t e) {
+      for (int64_t f = b; f < e; ++f) {
+        const uint32_t o = t_.face_offset(f), n = t_.face_size(f);
+        const auto mid = [&](uint32_t j) { return (parent[o + j] + parent[o + (j + 1) % n]) * 0.5; };
+        if (quads_) {
+          T center(0.0);
+          for (uint32_t j = 0; j < n; ++j) center += parent[o + j];
+          center *= 1.0 / double(n);
+          for (uint32_t j = 0; j < n; ++j) {
+            T* q = child.data() + 4 * size_t(o + j);
+            q[0] = parent[o + j];
+            q[1] = mid(j);
+            q[2] = center;
+            q[3] = mid((j + n - 1) % n);
+          }
+        } else {
+          const T m0 = mid(0), m1 = mid(1), m2 = mid(2);
+          const T tri[12] = {parent[o], m0, m2, parent[o + 1], m1, m0, parent[o + 2], m2, m1, m0, m1, m2};
+          std::copy(std::begin(tri), std::end(tri), child.data() + 12 * size_t(f));
+        }
+      }
+    });
+  }
+
   // The creases and corners of the child level: the two halves of every tagged edge and every tagged vertex, with
   // their subdivided sharpness (boundaries and boundary corners are implied by the topology at every level).
   void child_tags(PolyMesh& child) const {
@@ -301,6 +331,7 @@ PolyMesh refine_with(const TopologyTables& topology, const detail::LevelSharpnes
   });
   refiner.child_faces(child);
   refiner.child_tags(child);
+  if (!mesh.corner_uvs.empty()) refiner.template refine_face_varying<Vec2>(mesh.corner_uvs, child.corner_uvs);
   return child;
 }
 
@@ -328,10 +359,11 @@ PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options) {
   if ((!mesh.uvs.empty() && mesh.uvs.size() != mesh.vertex_count()) ||
       (!mesh.colors.empty() && mesh.colors.size() != mesh.vertex_count()))
     throw InvalidInput("subdivide: per-vertex uvs and colors must have one entry per vertex");
+  if (!mesh.corner_uvs.empty() && mesh.corner_uvs.size() != mesh.face_vertices.size())
+    throw InvalidInput("subdivide: face-varying uvs must have one entry per face corner");
   if (options.levels == 0) {
     PolyMesh copy = mesh;
     copy.normals.clear();
-    copy.corner_uvs.clear();
     copy.corner_normals.clear();
     return copy;
   }

@@ -93,6 +93,70 @@ inline OsdRefinement osd_refine(const PolyMesh& mesh, const SubdivisionOptions& 
   return r;
 }
 
+/// A face-varying uv in OpenSubdiv's primvar interface.
+struct OsdUv {
+  Vec2 uv{0.0};
+  void Clear(void* = nullptr) { uv = Vec2(0.0); }
+  void AddWithWeight(const OsdUv& src, double w) { uv += w * src.uv; }
+};
+
+/// A face corner of a refined mesh: its vertex's position and its face-varying uv.
+struct CornerSample {
+  Vec3 position;
+  Vec2 uv;
+};
+
+/// Refines `mesh` (with corner_uvs, one face-varying channel whose values are the corners themselves) with
+/// OpenSubdiv, the uvs by FVAR_LINEAR_ALL, and returns the corners of every face of the last level.
+inline std::vector<CornerSample> osd_refine_face_varying(const PolyMesh& mesh, const SubdivisionOptions& o) {
+  std::vector<int> sizes, indices(mesh.face_vertices.begin(), mesh.face_vertices.end()), fvar(mesh.face_vertices.size());
+  for (size_t f = 0; f < mesh.face_count(); ++f) sizes.push_back(int(mesh.face_size(f)));
+  for (size_t c = 0; c < fvar.size(); ++c) fvar[c] = int(c);
+  osd::TopologyDescriptor::FVarChannel channel;
+  channel.numValues = int(fvar.size());
+  channel.valueIndices = fvar.data();
+  osd::TopologyDescriptor desc;
+  desc.numVertices = int(mesh.vertex_count());
+  desc.numFaces = int(mesh.face_count());
+  desc.numVertsPerFace = sizes.data();
+  desc.vertIndicesPerFace = indices.data();
+  desc.numFVarChannels = 1;
+  desc.fvarChannels = &channel;
+  sdc::Options options = osd_options(o);
+  options.SetFVarLinearInterpolation(sdc::Options::FVAR_LINEAR_ALL);
+  const sdc::SchemeType type = o.scheme == SubdivisionScheme::loop ? sdc::SCHEME_LOOP : sdc::SCHEME_CATMARK;
+  std::unique_ptr<osd::TopologyRefiner> refiner(osd::TopologyRefinerFactory<osd::TopologyDescriptor>::Create(
+      desc, osd::TopologyRefinerFactory<osd::TopologyDescriptor>::Options(type, options)));
+  osd::TopologyRefiner::UniformOptions uniform(o.levels);
+  uniform.fullTopologyInLastLevel = true;
+  refiner->RefineUniform(uniform);
+  std::vector<OsdPoint> points;
+  std::vector<OsdUv> uvs;
+  for (const Vec3& p : mesh.positions) points.push_back({p});
+  for (const Vec2& t : mesh.corner_uvs) uvs.push_back({t});
+  osd::PrimvarRefinerReal<double> primvar(*refiner);
+  for (int level = 1; level <= o.levels; ++level) {
+    std::vector<OsdPoint> next_points(size_t(refiner->GetLevel(level).GetNumVertices()));
+    std::vector<OsdUv> next_uvs(size_t(refiner->GetLevel(level).GetNumFVarValues(0)));
+    const OsdPoint* src_points = points.data();
+    OsdPoint* dst_points = next_points.data();
+    const OsdUv* src_uvs = uvs.data();
+    OsdUv* dst_uvs = next_uvs.data();
+    primvar.Interpolate(level, src_points, dst_points);
+    primvar.InterpolateFaceVarying(level, src_uvs, dst_uvs, 0);
+    points.swap(next_points);
+    uvs.swap(next_uvs);
+  }
+  const osd::TopologyLevel& last = refiner->GetLevel(o.levels);
+  std::vector<CornerSample> corners;
+  for (int f = 0; f < last.GetNumFaces(); ++f) {
+    const auto verts = last.GetFaceVertices(f);
+    const auto values = last.GetFaceFVarValues(f, 0);
+    for (int i = 0; i < verts.size(); ++i) corners.push_back({points[size_t(verts[i])].p, uvs[size_t(values[i])].uv});
+  }
+  return corners;
+}
+
 /// The diagonal of the bounding box of `points`.
 inline double bbox_diagonal(const std::vector<Vec3>& points) {
   Vec3 lo(1e300), hi(-1e300);

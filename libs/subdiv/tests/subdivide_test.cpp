@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -204,6 +207,65 @@ TEST(Subdivide, InterpolatesUvsAndColorsWithTheSameMasks) {
   }
 }
 
+// A uv-mapped plane: midpoint subdivision keeps positions linear, and linear face-varying uvs stay the same linear
+// function of them, at every corner of every level.
+TEST(Subdivide, FaceVaryingUvsOfAPlaneStayLinear) {
+  for (bool triangles : {false, true}) {
+    PolyMesh m = triangles ? fan_triangulated(test::grid(3, 2)) : test::grid(3, 2);
+    for (uint32_t v : m.face_vertices) m.corner_uvs.emplace_back(0.25 * m.positions[v].x, 0.5 * m.positions[v].y);
+    const PolyMesh out = subdivide(m, {.scheme = SubdivisionScheme::midpoint, .levels = 3});
+    ASSERT_EQ(out.corner_uvs.size(), out.face_vertices.size());
+    for (size_t c = 0; c < out.face_vertices.size(); ++c) {
+      const Vec3& p = out.positions[out.face_vertices[c]];
+      EXPECT_NEAR(out.corner_uvs[c].x, 0.25 * p.x, 1e-12);
+      EXPECT_NEAR(out.corner_uvs[c].y, 0.5 * p.y, 1e-12);
+    }
+  }
+}
+
+// Face-varying uvs with a seam at every edge (each face its own uv square or triangle) against OpenSubdiv's
+// FVAR_LINEAR_ALL: the multiset of (corner position, corner uv) of the refined faces must agree.
+TEST(Subdivide, FaceVaryingUvsMatchOpenSubdivLinearInterpolation) {
+  const auto with_uvs = [](PolyMesh m) {
+    for (size_t f = 0; f < m.face_count(); ++f)
+      for (uint32_t j = 0; j < m.face_size(f); ++j) {
+        const double a = 2 * kPi * j / m.face_size(f);
+        m.corner_uvs.emplace_back(0.1 * double(f) + 0.05 * std::cos(a), 0.3 + 0.05 * std::sin(a));
+      }
+    return m;
+  };
+  const struct {
+    PolyMesh mesh;
+    SubdivisionOptions options;
+  } cases[] = {
+      {with_uvs(cube()), {.levels = 2}},
+      {with_uvs(test::house()), {.levels = 2}},
+      {with_uvs(test::grid(3, 3)), {.levels = 3}},
+      {with_uvs(test::icosahedron()), {.scheme = SubdivisionScheme::loop, .levels = 2, .loop_weights = LoopWeights::loop}},
+  };
+  const auto sorted = [](std::vector<test::CornerSample> corners) {
+    const auto key = [](const test::CornerSample& c) {
+      return std::array<double, 5>{std::round(c.position.x * 1e6), std::round(c.position.y * 1e6),
+                                   std::round(c.position.z * 1e6), c.uv.x, c.uv.y};
+    };
+    std::sort(corners.begin(), corners.end(), [&](const auto& a, const auto& b) { return key(a) < key(b); });
+    return corners;
+  };
+  for (const auto& c : cases) {
+    const PolyMesh out = subdivide(c.mesh, c.options);
+    std::vector<test::CornerSample> ours;
+    for (size_t k = 0; k < out.face_vertices.size(); ++k)
+      ours.push_back({out.positions[out.face_vertices[k]], out.corner_uvs[k]});
+    const std::vector<test::CornerSample> reference = sorted(test::osd_refine_face_varying(c.mesh, c.options));
+    ours = sorted(ours);
+    ASSERT_EQ(ours.size(), reference.size());
+    for (size_t k = 0; k < ours.size(); ++k) {
+      EXPECT_NEAR(glm::distance(ours[k].position, reference[k].position), 0.0, 1e-9) << k;
+      EXPECT_NEAR(glm::distance(ours[k].uv, reference[k].uv), 0.0, 1e-12) << k;
+    }
+  }
+}
+
 TEST(Subdivide, RejectsBadInput) {
   EXPECT_THROW(loop_subdivide(cube()), InvalidInput);
   EXPECT_THROW(subdivide(cube(), {.levels = -1}), InvalidInput);
@@ -215,6 +277,9 @@ TEST(Subdivide, RejectsBadInput) {
   fin.positions.push_back({0, 0, 3});
   fin.add_face({4, 5, 8});  // a third face on edge 4-5
   EXPECT_THROW(catmull_clark_subdivide(fin), TopologyError);
+  PolyMesh short_uvs = cube();
+  short_uvs.corner_uvs.resize(3);
+  EXPECT_THROW(catmull_clark_subdivide(short_uvs), InvalidInput);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

@@ -5,10 +5,15 @@
 
 namespace tessera {
 
-/// Triangulates (see triangulate()) and splits every vertex whose corners carry different face-varying uvs or
-/// normals into one vertex per distinct (uv, normal) pair, so the result has per-vertex properties only.
-/// Per-vertex properties are copied. Without face-varying data the vertex numbering is unchanged.
+/// Triangulates (see triangulate()) and splits seams (split_seams), so the result has per-vertex properties only.
+/// Without face-varying data the vertex numbering is unchanged.
 TriMesh to_tri_mesh(const PolyMesh& mesh);
+
+/// Makes face-varying uvs and normals per-vertex (what PLY and OFF can hold): every vertex whose corners carry
+/// different values becomes one vertex per distinct (uv, normal) pair; faces keep their sizes. Per-vertex properties
+/// are copied; creases and corners on split vertices go to the first copy. Without face-varying data the mesh is
+/// returned unchanged.
+PolyMesh split_seams(const PolyMesh& mesh);
 
 /// A TriMesh as a PolyMesh of triangles with the same vertices and per-vertex properties.
 PolyMesh to_poly_mesh(const TriMesh& mesh);

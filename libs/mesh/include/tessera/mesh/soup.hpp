@@ -40,9 +40,11 @@ PolyMesh weld(const PolygonSoup& soup, double tolerance = 0);
 /// Indexed face set -> polygon soup (every face gets its own copies of its corner points).
 PolygonSoup to_soup(const PolyMesh& mesh);
 
-/// Merges coincident vertices of a mesh in place (see weld_points); the first vertex of each group keeps its
-/// per-vertex properties. Repeated consecutive corners are removed and faces left with < 3 corners dropped, with
-/// their face-varying data and subdivision tags remapped.
-void weld_vertices(PolyMesh& mesh, double tolerance = 0);
+/// Merges coincident vertices of a mesh in place (see weld_points). Per-vertex uvs and normals that differ inside a
+/// merged group (a texture seam, a crease, patches that each carry their own (u, v)) become face-varying, every
+/// corner keeping its old vertex's value, so nothing is lost; otherwise, and for colors, the group's first vertex
+/// gives the value. Repeated consecutive corners are removed and faces left with < 3 corners dropped, with their
+/// face-varying data and subdivision tags remapped. Returns the number of vertices merged away.
+size_t weld_vertices(PolyMesh& mesh, double tolerance = 0);
 
 }  // namespace tessera

@@ -35,10 +35,13 @@ struct SubdivisionOptions {
 /// Subdivides `mesh` options.levels times (uniformly, every face). The result's vertices are the vertex points (the
 /// original vertices keep their indices), then the face points (quad splits only), then the edge points, one per
 /// edge in order of first appearance (OpenSubdiv's default order); per-vertex uvs and colors are refined with the
-/// same masks; creases and corners carry the remaining sharpness, so subdividing twice equals two levels. Normals and
-/// face-varying data are dropped. Parallel and deterministic.
+/// same masks; face-varying uvs (corner_uvs, texture seams) are refined linearly inside every face, as OpenSubdiv's
+/// FVAR_LINEAR_ALL (face point = average of the face's corner uvs, edge point = midpoint, vertex = its corner's uv),
+/// so seams stay where they are and a linear map stays linear; creases and corners carry the remaining sharpness,
+/// so subdividing twice equals two levels. Normals (per vertex or per corner) are dropped: they do not subdivide
+/// (recompute them, or take the limit normals). Parallel and deterministic.
 /// Throws InvalidInput (bad faces, a crease that names no edge, NaN sharpness, Loop on non-triangles, levels out of
-/// range) and TopologyError (non-manifold edges or vertices).
+/// range, corner_uvs not one per corner) and TopologyError (non-manifold edges or vertices).
 PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options);
 
 /// Catmull-Clark, Loop and midpoint subdivision with the default options (see subdivide()).
