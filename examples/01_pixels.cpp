@@ -3,9 +3,12 @@
 //   (a) a 400 x 400 canvas (size(400, 400): origin top-left, pixels 0..399 on each axis) with one pink pixel,
 //       (255, 150, 150), written with write_pixel at (200, 200), and the notes' rect(100, 200, 10, 10) and
 //       ellipse(200, 200, 20, 20) on background(255, 255, 255);
-//   (b) the pink pixel's neighborhood drawn as a magnified grid: each pixel a 20 x 20 square;
+//   (b) the pink pixel's neighborhood, pixels 190..209 on both axes of picture (a) as written, magnified: each
+//       pixel a 20 x 20 cell of its own color, a thin blue grid between the cells (a raster image is a grid of
+//       (r, g, b) values);
 //   (c) the notes' mapping of the range [-2, 2] to [0, 400] ("add 2, multiply by 100"): y = 1.5 sin(pi x / 2) plotted
 //       over x in [-2, 2], with the axes, as a polyline of the notes' DDA lines (no_smooth).
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -16,6 +19,16 @@
 namespace {
 
 using namespace tessera;
+
+// Pixels [x0, x0 + n) x [y0, y0 + n) of `image`, each a `cell` x `cell` square of its own color, with a one-pixel
+// grid line of `grid` along each cell's top and left edges and the block's right and bottom edges.
+ImageRGBA8 magnify(const ImageRGBA8& image, int x0, int y0, int n, int cell, glm::u8vec4 grid) {
+  ImageRGBA8 zoom(n * cell + 1, n * cell + 1);
+  for (int y = 0; y < zoom.height(); ++y)
+    for (int x = 0; x < zoom.width(); ++x)
+      zoom(x, y) = x % cell == 0 || y % cell == 0 ? grid : image(x0 + std::min(x / cell, n - 1), y0 + std::min(y / cell, n - 1));
+  return zoom;
+}
 
 // The notes' mapping of [-2, 2] to [0, 400]: add 2, multiply by 100 (y flipped, the canvas's y points down).
 double to_x(double x) { return (x + 2) * 100; }
@@ -33,22 +46,15 @@ TESSERA_EXAMPLE(ex01_pixels, "01_pixels", "Pixels, Processing coordinates and th
   canvas.rect(100, 200, 10, 10);
   canvas.ellipse(200, 200, 20, 20);
   canvas.write_pixel(200, 200, pink);
-  gallery.add("01_pink_pixel.png", to_rgba8(canvas.image()),
+  const ImageRGBA8 picture = to_rgba8(canvas.image());
+  gallery.add("01_pink_pixel.png", picture,
               "size(400, 400): one pink (255, 150, 150) pixel at (200, 200), rect(100, 200, 10, 10) and "
               "ellipse(200, 200, 20, 20) on a white background");
 
-  Canvas zoom(400, 400);
-  zoom.background(rgb255(255, 255, 255));
-  zoom.stroke(rgb255(200, 200, 200));
-  zoom.no_smooth();
-  for (int j = 0; j < 20; ++j)
-    for (int i = 0; i < 20; ++i) {
-      zoom.fill(i == 10 && j == 10 ? pink : rgb255(0, 0, 0));
-      zoom.rect(i * 20, j * 20, 20, 20);
-    }
-  gallery.add("01_pink_pixel_zoom.png", to_rgba8(zoom.image()),
-              "The pixels (190..209, 190..209) magnified 20x: a raster image is a grid of (r, g, b) values; the pink "
-              "one is (200, 200)");
+  gallery.add("01_pink_pixel_zoom.png", magnify(picture, 190, 190, 20, 20, {110, 150, 230, 255}),
+              "Pixels x, y = 190..209 of the picture above, magnified 20x (one cell per pixel, a blue grid between "
+              "them): a raster image is a grid of (r, g, b) values. The circle's outline is its gray antialiased "
+              "pixels on white; the pink one inside is (200, 200)");
 
   Canvas plot(400, 400);
   plot.background(rgb255(255, 255, 255));

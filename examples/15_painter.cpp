@@ -1,8 +1,10 @@
 // Example 15: hidden surfaces by the z-buffer and by the painter's algorithm (the notes, "Hidden vs. Visible
 // Surfaces"). The painter sorts the polygons by their average depth and draws them back to front, so nearer ones
 // cover farther ones; the z-buffer keeps the nearest depth per pixel. First pair: a sphere pierced by a slanted
-// slab of two big triangles, by the painter (each triangle is drawn whole at its average depth, so the slab covers
-// the sphere's front or hides behind it) and by the z-buffer (the true intersection). Second
+// slab of two big triangles, by the painter and by the z-buffer (the true intersection). The slab's two triangles
+// have their centroids near the sphere's center, so the painter draws every sphere triangle nearer than that after
+// them: the sphere covers the slab even where the slab is in front (examples/tests/gallery_test.cpp checks this
+// against a ray cast). Second
 // pair: the painter's failure case, three sticks in cyclic overlap (each lies over the next: A over B over C over
 // A). All three have the same average depth, so no drawing order is right; the z-buffer shows the cycle.
 #include <cmath>
@@ -88,7 +90,12 @@ TESSERA_EXAMPLE(ex15_painter, "15_painter", "Z-buffer versus the painter's algor
                                       draw(pierced, raster3d::HiddenSurface::zbuffer, turn),
                                       draw(sticks, raster3d::HiddenSurface::painter, Mat4(1.0)),
                                       draw(sticks, raster3d::HiddenSurface::zbuffer, Mat4(1.0))}),
-              "A sphere pierced by a slab of two big triangles, by the painter's algorithm (each triangle drawn whole "
-              "at its average depth: no intersection, the slab lies over the sphere) and by the z-buffer; three sticks in cyclic overlap by the painter (no order is "
-              "right: one stick lies wrongly on top) and by the z-buffer (each stick over the next).");
+              "A sphere pierced by a slab of two big triangles. Painter's algorithm (first): each triangle is drawn "
+              "whole, far to near by its average depth; the slab's two triangles average near the sphere's center, "
+              "so the sphere's near triangles come after them and the sphere covers the slab even where the slab is "
+              "in front (only rim triangles farther than the slab lie under it: the notches). Z-buffer (second): the "
+              "true intersection, the slab's lower half in front of the sphere. Three sticks in cyclic overlap, red "
+              "over blue over green over red as the z-buffer shows (fourth): the painter (third) cannot get all "
+              "three crossings right; green covers blue at the lower right, and each stick's two triangles, sorted "
+              "apart, break along its diagonal.");
 }

@@ -2,7 +2,8 @@
 // notes' texture and diffuse programs combined: the vertex shader passes the eye-space normal and the texture
 // coordinates, the fragment shader samples the texture and multiplies by ambient + diffuse N.L, plus a Blinn
 // highlight), and the Stanford bunny with per-pixel (Phong-interpolated) shading. Both come from the shared data
-// (TESSERA_SHARED_DATA or ../shared/data); without it, a checker-textured torus and a quad sphere stand in.
+// (found as Gallery::data_file says); without it, a checker-textured torus and a quad sphere stand in, and the
+// caption and stderr say so.
 #include <cmath>
 #include <filesystem>
 
@@ -83,20 +84,13 @@ ImageRGB textured(PolyMesh poly, const Texture2D& texture, const Mat4& model) {
 }  // namespace
 
 TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured Spot and the Stanford bunny") {
-  const std::filesystem::path spot = examples::shared_data() / "meshes/spot/spot_triangulated.obj";
-  const std::filesystem::path spot_png = examples::shared_data() / "meshes/spot/spot_texture.png";
-  const std::filesystem::path bunny = examples::shared_data() / "meshes/bunny/bun_zipper_res2.ply";
-  const bool have_data = std::filesystem::exists(spot) && std::filesystem::exists(spot_png) && std::filesystem::exists(bunny);
-
-  ImageRGB left;
-  PolyMesh right_mesh;
-  if (have_data) {
-    left = textured(read_mesh(spot), Texture2D(read_image(spot_png)), rotate_y(radians(145)));
-    right_mesh = read_mesh(bunny);
-  } else {
-    left = textured(make_torus(0.72, 0.3, 64, 32), checker_texture(), rotate_x(radians(50)));
-    right_mesh = make_quad_sphere(12);
-  }
+  const auto spot = gallery.data_file("meshes/spot/spot_triangulated.obj", "a checker-textured torus for Spot");
+  const auto spot_png = gallery.data_file("meshes/spot/spot_texture.png", "a checker-textured torus for Spot");
+  const auto bunny = gallery.data_file("meshes/bunny/bun_zipper_res2.ply", "a quad sphere for the bunny");
+  const bool have_spot = spot && spot_png;
+  const ImageRGB left = have_spot ? textured(read_mesh(*spot), Texture2D(read_image(*spot_png)), rotate_y(radians(145)))
+                                  : textured(make_torus(0.72, 0.3, 64, 32), checker_texture(), rotate_x(radians(50)));
+  const PolyMesh right_mesh = bunny ? read_mesh(*bunny) : make_quad_sphere(12);
   examples::MeshViewOptions o;
   o.width = o.height = 360;
   o.shading = raster3d::ShadingModel::phong;
@@ -112,8 +106,15 @@ TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured S
   o.camera->near = 0.2 * radius;
   o.camera->far = 10 * radius;
   gallery.add("18_shared_mesh.png", examples::side_by_side({left, examples::render_mesh(right_mesh, o)}),
-              have_data ? "Keenan Crane's Spot, textured and lit by a custom shader pair (texture * (ambient + "
-                          "diffuse) + Blinn highlight), and the Stanford bunny (res2) with Phong interpolation."
-                        : "Shared data absent: a checker-textured torus through the custom texture shader pair and a "
-                          "quad sphere with Phong interpolation stand in for Spot and the bunny.");
+              [&] {
+                const std::string caption = std::string(have_spot ? "Keenan Crane's Spot" : "a checker-textured torus") +
+                                            ", textured and lit by a custom shader pair (texture * (ambient + diffuse) "
+                                            "+ Blinn highlight), and " +
+                                            (bunny ? "the Stanford bunny (res2)" : "a quad sphere") +
+                                            " with Phong interpolation.";
+                if (have_spot && bunny) return caption;
+                return examples::stand_in_caption(
+                    have_spot ? "a quad sphere" : bunny ? "a torus" : "a torus and a quad sphere",
+                    have_spot ? "the bunny" : bunny ? "Spot" : "Spot and the bunny", caption);
+              }());
 }

@@ -2,8 +2,8 @@
 // up color from environment map"). Each pixel reflects the view direction about the interpolated normal,
 // R = 2 (N.E) N - E, and looks R up in a lat-long image of the surroundings, which also fills the background. A
 // mirror sphere, a partly reflective torus and a mirror cube (flat faces: plane mirrors). The environment is Poly
-// Haven's Venice Sunset from the shared data (TESSERA_SHARED_DATA or ../shared/data); without it, a procedural sky
-// over a checkered ground.
+// Haven's Venice Sunset from the shared data (Gallery::data_file); without it, a procedural sky over a checkered
+// ground, and the captions say so.
 #include <cmath>
 #include <filesystem>
 
@@ -41,15 +41,22 @@ ImageRGBA procedural_sky() {
   return image;
 }
 
-ImageRGBA environment_image() {
-  const std::filesystem::path hdr = examples::shared_data() / "env/venice_sunset_1k.hdr";
-  return std::filesystem::exists(hdr) ? read_image(hdr) : procedural_sky();
+// The environment and whether it is the real one (else the stand-in).
+std::pair<ImageRGBA, bool> environment_image(examples::Gallery& gallery) {
+  const auto hdr = gallery.data_file("env/venice_sunset_1k.hdr", "a procedural sky over a checkered ground");
+  return hdr ? std::pair(read_image(*hdr), true) : std::pair(procedural_sky(), false);
 }
 
 }  // namespace
 
 TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping: reflections looked up in a lat-long map") {
-  const EnvironmentMap environment(environment_image());
+  const std::pair<ImageRGBA, bool> loaded = environment_image(gallery);
+  const EnvironmentMap environment(loaded.first);
+  const bool real_environment = loaded.second;
+  const auto caption = [&](const std::string& text) {
+    return real_environment ? text
+                            : examples::stand_in_caption("a procedural sky", "Poly Haven's Venice Sunset", text);
+  };
   struct Panel {
     PolyMesh mesh;
     Mat4 model;
@@ -78,8 +85,8 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
     panels.push_back(examples::downsample(fb.color_rgb(), s));
   }
   gallery.add("23_environment_map.png", examples::side_by_side(panels),
-              "Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
-              "mirror sphere, a red torus reflecting 45 %, a mirror cube (each face a plane mirror).");
+              caption("Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
+              "mirror sphere, a red torus reflecting 45 %, a mirror cube (each face a plane mirror)."));
 
   // Cube mapping: a mirror sphere among nearby objects. The lat-long map alone shows only the far surroundings (the
   // notes: "good if objects are far away"); the scene rendered 6 times from the sphere's center puts the floor and
@@ -130,7 +137,7 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
     cube_panels.push_back(examples::downsample(fb.color_rgb(), s));
   }
   gallery.add("23_cube_mapping.png", examples::side_by_side(cube_panels),
-              "Cube mapping: a mirror sphere among near objects reflecting the far lat-long environment only (left), "
+              caption("Cube mapping: a mirror sphere among near objects reflecting the far lat-long environment only (left), "
               "and a cube map of the scene rendered 6 times from its center (right): the floor and the objects "
-              "appear in the reflection.");
+              "appear in the reflection."));
 }

@@ -1,7 +1,7 @@
 // Example 24: bump mapping (Blinn 1978; the notes: "add bumps to surface -> normals get changed", N' = N - (B_u P_s +
 // B_v P_t)). The geometry stays flat or smooth, only the normal is tilted by the slopes of a height map B(u, v), so
 // the silhouette keeps its shape ("fake bumps"). A sphere without and with dimples, and a wall of bricks: the shared
-// data's brick texture as the height map (TESSERA_SHARED_DATA or ../shared/data), else procedural bricks.
+// data's brick texture as the height map (Gallery::data_file), else procedural bricks (and the caption says so).
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -46,15 +46,17 @@ ImageRGBA procedural_bricks() {
   return image;
 }
 
-ImageRGBA brick_heights() {
-  const std::filesystem::path png = examples::shared_data() / "textures/brick.png";
-  return std::filesystem::exists(png) ? read_image(png) : procedural_bricks();
+// The brick heights and whether they are the shared data's photo (else the stand-in).
+std::pair<ImageRGBA, bool> brick_heights(examples::Gallery& gallery) {
+  const auto png = gallery.data_file("textures/brick.png", "procedural bricks");
+  return png ? std::pair(read_image(*png), true) : std::pair(procedural_bricks(), false);
 }
 
 }  // namespace
 
 TESSERA_EXAMPLE(ex24_bump_map, "24_bump_map", "Bump mapping: normals tilted by a height map's slopes") {
-  const Texture2D dimple_map(dimples()), brick_map(brick_heights());
+  const auto [bricks, real_bricks] = brick_heights(gallery);
+  const Texture2D dimple_map(dimples()), brick_map(bricks);
   const raster3d::VertexArrays sphere = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(128, 64)));
   const raster3d::UvTangents sphere_tangents = raster3d::uv_tangents(sphere.positions, sphere.uvs, sphere.indices);
   const raster3d::VertexArrays wall = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1)));
@@ -93,7 +95,9 @@ TESSERA_EXAMPLE(ex24_bump_map, "24_bump_map", "Bump mapping: normals tilted by a
     raster3d::draw_surface(fb, raster3d::RasterState{}, *p.arrays, u, p.tangents);
     panels.push_back(examples::downsample(fb.color_rgb(), s));
   }
+  const std::string caption =
+      "Bump mapping: a smooth sphere; the same sphere with dimples from a height map (its outline stays round: only "
+      "the normals change); a flat wall with bricks (the brick texture as heights).";
   gallery.add("24_bump_map.png", examples::side_by_side(panels),
-              "Bump mapping: a smooth sphere; the same sphere with dimples from a height map (its outline stays "
-              "round: only the normals change); a flat wall with bricks (the brick texture as heights).");
+              real_bricks ? caption : examples::stand_in_caption("procedural bricks", "the brick photo", caption));
 }

@@ -1,8 +1,7 @@
 // Example 42: bicubic Bezier patches, the notes' "Bezier inside Bezier". The Utah teapot's 32 patches (Newell's data,
-// from ../shared/data/bezier/teapot.bpt or TESSERA_SHARED_DATA when present; otherwise four patches built here that
-// make a dome), each tessellated on a uniform grid, colored per patch; beside it the control net, the polyhedron of the
+// the shared data's bezier/teapot.bpt (Gallery::data_file); otherwise four patches built here that make a dome, and
+// the caption says so), each tessellated on a uniform grid, colored per patch; beside it the control net, the polyhedron of the
 // 16 control points per patch that the surface approximates.
-#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -17,15 +16,10 @@ namespace {
 
 // The teapot if the shared data is there, else a dome of four patches (each a quarter, its first row collapsed to
 // the apex like the teapot's lid). Sets `teapot`.
-std::vector<BezierPatch> load_patches(bool& teapot) {
-  const char* env = std::getenv("TESSERA_SHARED_DATA");
-  for (const std::filesystem::path& dir :
-       {std::filesystem::path(env ? env : ""), std::filesystem::path("../shared/data")})
-    if (!dir.empty() && std::filesystem::exists(dir / "bezier/teapot.bpt")) {
-      teapot = true;
-      return read_bpt(dir / "bezier/teapot.bpt");
-    }
-  teapot = false;
+std::vector<BezierPatch> load_patches(Gallery& gallery, bool& teapot) {
+  const auto bpt = gallery.data_file("bezier/teapot.bpt", "a dome of 4 patches");
+  teapot = bpt.has_value();
+  if (teapot) return read_bpt(*bpt);
   const double k = 0.5523;  // a quarter circle's handle length
   const Vec2 arc[4] = {Vec2(1, 0), Vec2(1, k), Vec2(k, 1), Vec2(0, 1)};
   const double radius[4] = {0, 0.8, 1.5, 1.5}, height[4] = {1.5, 1.5, 0.8, 0};
@@ -75,7 +69,7 @@ void reverse_faces(PolyMesh& mesh) {
 TESSERA_EXAMPLE(ex42_bezier_patches, "42_bezier_patches", "Bicubic Bezier patches: the Utah teapot") {
   using namespace tessera;
   bool teapot = false;
-  const std::vector<BezierPatch> patches = examples::load_patches(teapot);
+  const std::vector<BezierPatch> patches = examples::load_patches(gallery, teapot);
   const TriMesh surface = tessellate(patches, PatchTessellation{.steps = 8});
   std::vector<Vec3f> colors;
   PolyMesh quads = examples::patch_quads(surface, patches.size(), colors);
@@ -97,8 +91,10 @@ TESSERA_EXAMPLE(ex42_bezier_patches, "42_bezier_patches", "Bicubic Bezier patche
   options.face_colors.clear();
   options.color = Vec3f(0.9f, 0.8f, 0.6f);
   examples::paste(sheet, examples::render_mesh(net, options), size);
+  const std::string caption =
+      std::string(teapot ? "The Utah teapot: 32 bicubic patches" : "A dome of 4 bicubic patches") +
+      ", each sampled on a 9 x 9 grid of (u, v) and colored per patch (left), and its control net of 16 points per "
+      "patch (right), which the surface interpolates only at the patch corners.";
   gallery.add("42_bezier_patches.png", sheet,
-              std::string(teapot ? "The Utah teapot: 32 bicubic patches" : "A dome of 4 bicubic patches") +
-                  ", each sampled on a 9 x 9 grid of (u, v) and colored per patch (left), and its control net of 16 "
-                  "points per patch (right), which the surface interpolates only at the patch corners.");
+              teapot ? caption : examples::stand_in_caption("a dome of 4 patches", "the Utah teapot", caption));
 }

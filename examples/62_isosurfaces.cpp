@@ -11,11 +11,11 @@
 TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces: CT head skin and bone, a gyroid") {
   using namespace tessera;
   using namespace tessera::examples;
-  const std::filesystem::path head = examples::shared_data() / "volumes/headsq_64x64x93_int16le.mhd";
+  const auto head = gallery.data_file("volumes/headsq_64x64x93_int16le.mhd", "a procedural phantom (ellipsoid and shell)");
   Volume<float> ct;
   float skin = 500, bone = 1150;
-  if (std::filesystem::exists(head)) {
-    ct = to_float(read_volume(head.string()));
+  if (head) {
+    ct = to_float(read_volume(head->string()));
   } else {  // phantom: a soft ellipsoid "head" around a denser shell "skull"
     ct = make_sphere(64, 0.8);
     for (float& v : ct.voxels()) v = v > 0.12f ? 600.0f : v > 0.0f ? 1300.0f : 0.0f;
@@ -34,9 +34,14 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   options.camera->near = 1;
   options.camera->far = 1e4;
   options.color = {0.9f, 0.72f, 0.62f};
-  gallery.add("62_ct_skin.png", render_mesh(marching_cubes(ct, {.iso = skin}), options), "CT head, skin iso-surface (marching cubes).");
+  const auto caption = [&](const std::string& text) {
+    return head ? text : stand_in_caption("a procedural phantom (an ellipsoid around a shell)", "the CT head", text);
+  };
+  gallery.add("62_ct_skin.png", render_mesh(marching_cubes(ct, {.iso = skin}), options),
+              caption("CT head, skin iso-surface (marching cubes)."));
   options.color = {0.95f, 0.93f, 0.85f};
-  gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options), "CT head, bone iso-surface.");
+  gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options),
+              caption("CT head, bone iso-surface."));
   MeshViewOptions g;
   g.wireframe = false;
   gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");

@@ -1,7 +1,8 @@
 #include "gallery.hpp"
 
-#include <cstdlib>
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "tessera/core/atomic_file.hpp"
@@ -30,20 +31,35 @@ std::string html_escape(const std::string& s) {
 }
 }  // namespace
 
-Gallery::Gallery(std::filesystem::path dir) : dir_(std::move(dir)) {
+Gallery::Gallery(std::filesystem::path dir, DataFolder data, WriteOptions write)
+    : dir_(std::move(dir)), data_(std::move(data)), write_(write) {
   std::error_code ec;
   std::filesystem::create_directories(dir_, ec);
   if (ec) throw IoError(fmt::format("cannot create folder '{}': {}", dir_.string(), ec.message()));
 }
 
 void Gallery::add(const std::string& file, const ImageRGB& image, const std::string& caption) {
-  write_image(dir_ / file, image);
+  write_image(dir_ / file, image, write_);
   pictures_.push_back({file, caption});
 }
 
 void Gallery::add(const std::string& file, const ImageRGBA8& image, const std::string& caption) {
-  write_image(dir_ / file, image);
+  write_image(dir_ / file, image, write_);
   pictures_.push_back({file, caption});
+}
+
+std::optional<std::filesystem::path> Gallery::data_file(const std::string& relative, const std::string& stand_in) {
+  if (!data_.dir.empty()) {
+    std::filesystem::path path = data_.dir / relative;
+    if (std::filesystem::exists(path)) return path;
+  }
+  ++stand_ins_;
+  const std::string where = data_.dir.empty()
+                                ? "no shared data folder found (give one with --data DIR or TESSERA_DATA)"
+                                : fmt::format("not in {} (from {})", data_.dir.string(), data_.source);
+  std::fprintf(stderr, "tessera: warning: shared data file %s: %s; drawing a stand-in: %s\n", relative.c_str(),
+               where.c_str(), stand_in.c_str());
+  return std::nullopt;
 }
 
 void Gallery::add_file(const std::string& file, const std::string& caption) { pictures_.push_back({file, caption}); }
@@ -76,9 +92,32 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0) {
       if (sheet.contains(x0 + x, y0 + y)) sheet(x0 + x, y0 + y) = tile(x, y);
 }
 
-std::filesystem::path shared_data() {
-  const char* env = std::getenv("TESSERA_SHARED_DATA");
-  return env ? env : "../shared/data";
+std::vector<DataFolder> default_data_folders() {
+  std::vector<DataFolder> folders = {{"shared/data", "./shared/data"}, {"../shared/data", "../shared/data"}};
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec)
+    for (std::filesystem::path dir = exe.parent_path(); !dir.empty(); dir = dir.parent_path()) {
+      folders.push_back({dir / "shared/data", "shared/data above the executable"});
+      if (dir == dir.root_path()) break;
+    }
+#ifdef TESSERA_CONFIGURED_DATA
+  folders.push_back({TESSERA_CONFIGURED_DATA, "the build's TESSERA_SHARED_DATA"});
+#endif
+  return folders;
+}
+
+DataFolder locate_shared_data(const std::filesystem::path& option) {
+  if (!option.empty()) return {option, "--data"};
+  for (const char* name : {"TESSERA_DATA", "TESSERA_SHARED_DATA"})
+    if (const char* env = std::getenv(name); env && *env) return {env, name};
+  for (DataFolder& folder : default_data_folders())
+    if (std::filesystem::is_directory(folder.dir)) return folder;
+  return {};
+}
+
+std::string stand_in_caption(const std::string& what, const std::string& real, const std::string& caption) {
+  return fmt::format("STAND-IN (shared data not found: {} is drawn instead of {}): {}", what, real, caption);
 }
 
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {
@@ -105,8 +144,9 @@ std::vector<Example> all_examples() {
   return examples;
 }
 
-size_t run_examples(const std::filesystem::path& dir, const std::vector<std::string>& prefixes) {
-  Gallery gallery(dir);
+RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& options) {
+  const std::vector<std::string>& prefixes = options.prefixes;
+  Gallery gallery(dir, options.data, options.write);
   for (const Example& e : all_examples()) {
     const std::string name = e.name;
     const bool selected = prefixes.empty() || std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) {
@@ -117,7 +157,7 @@ size_t run_examples(const std::filesystem::path& dir, const std::vector<std::str
     e.run(gallery);
   }
   gallery.write_index("Tessera gallery");
-  return gallery.pictures().size();
+  return {gallery.pictures().size(), gallery.stand_ins()};
 }
 
 }  // namespace tessera::examples

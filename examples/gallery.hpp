@@ -4,10 +4,12 @@
 // Each numbered example (examples/NN_name.cpp) is a function that draws one or more pictures and hands them to a
 // Gallery. The same function runs as its own program (a test) and inside `tessera gallery` / `tessera demo`.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "tessera/image/image.hpp"
+#include "tessera/image/image_io.hpp"
 
 namespace tessera::examples {
 
@@ -17,11 +19,30 @@ struct Picture {
   std::string caption;  ///< one sentence for index.html
 };
 
+/// Where the shared data sets (/work/shared/data's layout: meshes/, volumes/, env/, textures/, bezier/) were looked
+/// for: the folder, and what named it ("--data", "TESSERA_DATA", "./shared/data", ...; see locate_shared_data).
+struct DataFolder {
+  std::filesystem::path dir;  ///< empty when no candidate exists
+  std::string source;         ///< what chose dir, for messages
+};
+
+/// Finds the shared data folder. The first given of `option` (tessera's --data), $TESSERA_DATA and
+/// $TESSERA_SHARED_DATA is used as it is, existing or not (so a wrong setting is reported, not silently replaced);
+/// without any, the first existing folder of: ./shared/data, ../shared/data, shared/data in the executable's folder or
+/// any folder above it, and the folder configured at build time (CMake's TESSERA_SHARED_DATA). Returns an empty dir
+/// when none exists.
+DataFolder locate_shared_data(const std::filesystem::path& option = {});
+
+/// The candidates locate_shared_data tries when neither the option nor an environment variable is given, in order,
+/// with their sources (for messages and tests).
+std::vector<DataFolder> default_data_folders();
+
 /// Collects pictures into a folder; write_index() makes index.html with a caption per picture.
 class Gallery {
  public:
-  /// Creates the folder if needed. Throws IoError when it cannot.
-  explicit Gallery(std::filesystem::path dir);
+  /// Creates the folder if needed. Throws IoError when it cannot. `data` is where data_file() looks; `write` is how
+  /// add() encodes the pictures (WriteOptions::srgb: the sRGB curve on float pictures).
+  explicit Gallery(std::filesystem::path dir, DataFolder data = locate_shared_data(), WriteOptions write = {});
   /// Writes an image (PNG, atomically) under `file` and records its caption.
   void add(const std::string& file, const ImageRGB& image, const std::string& caption);
   void add(const std::string& file, const ImageRGBA8& image, const std::string& caption);
@@ -29,6 +50,13 @@ class Gallery {
   void add_file(const std::string& file, const std::string& caption);
   /// The folder pictures go to.
   const std::filesystem::path& dir() const { return dir_; }
+  /// A file of the shared data (`relative`, e.g. "meshes/bunny/bun_zipper_res2.ply"): its path when it exists;
+  /// otherwise nullopt, after a warning on stderr naming the missing file, where the data was looked for and the
+  /// stand-in the example draws instead (`stand_in`), counted in stand_ins(). The example's caption must say so too
+  /// (stand_in_caption).
+  std::optional<std::filesystem::path> data_file(const std::string& relative, const std::string& stand_in);
+  /// The number of data files that were missing (each drawn as a stand-in).
+  size_t stand_ins() const { return stand_ins_; }
   /// Everything added so far, in order.
   const std::vector<Picture>& pictures() const { return pictures_; }
   /// Writes dir()/index.html listing every picture with its caption, grouped by example title.
@@ -38,6 +66,9 @@ class Gallery {
 
  private:
   std::filesystem::path dir_;
+  DataFolder data_;
+  WriteOptions write_;
+  size_t stand_ins_ = 0;
   std::vector<Picture> pictures_;
   std::vector<std::pair<size_t, std::string>> sections_;  // (first picture index, title)
 };
@@ -47,9 +78,9 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0 = 0);
 /// Panels placed left to right, top-aligned, on a white sheet as tall as the tallest. Precondition: not empty.
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels);
 
-/// The shared data folder: $TESSERA_SHARED_DATA, else ../shared/data. Examples that read from it draw generated
-/// stand-ins when a file is missing.
-std::filesystem::path shared_data();
+/// The caption of a picture drawn with a stand-in for missing shared data: "STAND-IN (shared data not found: `what`
+/// is drawn instead of `real`): " + caption.
+std::string stand_in_caption(const std::string& what, const std::string& real, const std::string& caption);
 
 /// A registered example: `name` is its file stem ("01_pixels"), `title` a line for the gallery.
 struct Example {
@@ -62,9 +93,21 @@ struct Example {
 int register_example(const Example& example);
 /// Every registered example, sorted by name (so by number).
 std::vector<Example> all_examples();
-/// Runs examples whose name starts with one of `prefixes` (all when empty) into `dir`, and writes index.html.
-/// Returns the number of pictures written.
-size_t run_examples(const std::filesystem::path& dir, const std::vector<std::string>& prefixes = {});
+/// What run_examples did.
+struct RunSummary {
+  size_t pictures = 0;   ///< pictures written
+  size_t stand_ins = 0;  ///< shared data files that were missing (stand-ins drawn)
+};
+
+/// Which examples run_examples runs, and how.
+struct RunOptions {
+  std::vector<std::string> prefixes;           ///< run examples whose name starts with one of these (all when empty)
+  DataFolder data = locate_shared_data();      ///< where the shared data is read from
+  WriteOptions write;                          ///< how pictures are encoded (see Gallery)
+};
+
+/// Runs the examples `options` selects into `dir` and writes index.html.
+RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& options = {});
 
 }  // namespace tessera::examples
 

@@ -1,8 +1,9 @@
-// tessera demo [-o DIR]: the embedded default, renders the built-in scenes (quickly: half size, few samples) and the
-// gallery into DIR.
+// tessera demo [-o DIR] [--data DIR]: the embedded default, renders the built-in scenes (quickly: half size, few
+// samples) and the gallery into DIR.
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "data_option.hpp"
 #include "gallery.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
@@ -12,7 +13,7 @@ namespace tessera::cli {
 namespace {
 
 /// Renders every built-in scene to DIR/scene_<name>.png at half its size with at most 4 samples per pixel.
-size_t render_builtin_scenes(const std::filesystem::path& dir, bool quiet) {
+size_t render_builtin_scenes(const std::filesystem::path& dir, bool quiet, const WriteOptions& write) {
   std::filesystem::create_directories(dir);
   size_t count = 0;
   for (const auto& name : builtin_scene_names()) {
@@ -22,7 +23,7 @@ size_t render_builtin_scenes(const std::filesystem::path& dir, bool quiet) {
     s.height = std::max(1, s.height / 2);
     s.samples = std::min(s.samples, 4);
     s.progress = !quiet;
-    write_image(dir / ("scene_" + name + ".png"), render(to_ray_scene(scene), s));
+    write_image(dir / ("scene_" + name + ".png"), render(to_ray_scene(scene), s), write);
     ++count;
   }
   return count;
@@ -31,16 +32,28 @@ size_t render_builtin_scenes(const std::filesystem::path& dir, bool quiet) {
 }  // namespace
 
 void setup_demo(CLI::App& cmd, CommonOptions& common) {
-  auto output = std::make_shared<std::string>("out");
-  cmd.add_option("-o,--output", *output, "Folder for the pictures")->capture_default_str();
-  cmd.callback([output, &common] {
+  struct Options {
+    std::string output = "out";
+    std::string data;
+  };
+  auto opt = std::make_shared<Options>();
+  cmd.add_option("-o,--output", opt->output, "Folder for the pictures")->capture_default_str();
+  add_data_option(cmd, opt->data);
+  add_srgb_option(cmd, common);
+  cmd.callback([opt, &common] {
     const ThreadLimit limit(common.threads);
-    const size_t scenes = render_builtin_scenes(*output, common.quiet);
-    const size_t n = examples::run_examples(*output) + scenes;
-    if (common.stats)
-      print_stats({{"pictures", stat_value(double(n))}, {"scenes", stat_value(double(scenes))}});
-    else
-      fmt::print("{} pictures ({} built-in scenes) written to {}/ (open {}/index.html)\n", n, scenes, *output, *output);
+    const examples::DataFolder data = examples::locate_shared_data(opt->data);
+    const size_t scenes = render_builtin_scenes(opt->output, common.quiet, common.write_options());
+    const examples::RunSummary run = examples::run_examples(opt->output, {{}, data, common.write_options()});
+    const size_t n = run.pictures + scenes;
+    if (common.stats) {
+      print_stats({{"pictures", stat_value(double(n))},
+                   {"scenes", stat_value(double(scenes))},
+                   {"stand_ins", stat_value(double(run.stand_ins))}});
+    } else {
+      fmt::print("{} pictures ({} built-in scenes) written to {}/ (open {}/index.html){}\n", n, scenes, opt->output,
+                 opt->output, stand_in_note(run, data));
+    }
   });
 }
 

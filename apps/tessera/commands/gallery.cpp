@@ -1,7 +1,8 @@
-// tessera gallery -o DIR [--only PREFIX...]: every example and algorithm as a picture, with an index.html.
+// tessera gallery -o DIR [--only PREFIX...] [--data DIR]: every example and algorithm as a picture, with an index.html.
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "data_option.hpp"
 #include "gallery.hpp"
 
 namespace tessera::cli {
@@ -10,14 +11,20 @@ void setup_gallery(CLI::App& cmd, CommonOptions& common) {
   struct Options {
     std::string output = "gallery";
     std::vector<std::string> only;
+    std::string data;
   };
   auto opt = std::make_shared<Options>();
   cmd.add_option("-o,--output", opt->output, "Folder for the pictures and index.html")->capture_default_str();
   cmd.add_option("--only", opt->only, "Only examples whose name starts with these prefixes (e.g. 01 07)");
+  add_data_option(cmd, opt->data);
+  add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
-    const size_t n = examples::run_examples(opt->output, opt->only);
-    if (common.stats) print_stats({{"pictures", stat_value(double(n))}});
-    else fmt::print("{} pictures written to {}/index.html\n", n, opt->output);
+    const examples::DataFolder data = examples::locate_shared_data(opt->data);
+    const examples::RunSummary run = examples::run_examples(opt->output, {opt->only, data, common.write_options()});
+    if (common.stats)
+      print_stats({{"pictures", stat_value(double(run.pictures))}, {"stand_ins", stat_value(double(run.stand_ins))}});
+    else
+      fmt::print("{} pictures written to {}/index.html{}\n", run.pictures, opt->output, stand_in_note(run, data));
   });
 }
 
