@@ -145,7 +145,7 @@ Rgb parse_color(const std::string& text, const std::string& what) {
   // Names and #rrggbb as SVG and CSS spell them.
   try {
     const Vec4f c = parse_svg_color(text);
-    return {c.r, c.g, c.b};
+    return {c.x, c.y, c.z};
   } catch (const InvalidInput&) {
     throw InvalidInput(
         fmt::format("{}: expected a color name (as SVG's: white, cornflowerblue), #rrggbb or r,g,b in [0,1], got '{}'",

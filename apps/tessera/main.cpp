@@ -86,9 +86,10 @@ std::string check_command_words(const CLI::App& app, int argc, char** argv) {
     if (parent->get_subcommands([](const CLI::App*) { return true; }).empty()) break;
     const std::string word = argv[i];
     if (word.empty() || word[0] == '-') break;
-    const CLI::App* sub = parent->get_subcommand_no_throw(word);
-    if (sub == nullptr) return unknown_command(*parent, word);
-    parent = sub;
+    // CLI11 2.1 has no get_subcommand_no_throw: look the word up among the subcommands' names.
+    const auto named = parent->get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); });
+    if (named.empty()) return unknown_command(*parent, word);
+    parent = named.front();
   }
   return "";
 }
