@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -12,6 +11,7 @@
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/raster.hpp"
@@ -20,8 +20,13 @@
 namespace tessera::cli {
 namespace {
 
+enum class Backend { raytrace, raster };
+
 struct RenderArgs {
-  std::string scene, output, size, backend = "raytrace", shadow_method;
+  std::string scene, output, size;
+  Backend backend = Backend::raytrace;
+  RasterShadows shadow_method = RasterShadows::map;
+  bool shadow_method_given = false;
   std::optional<int> spp, depth;
   uint64_t seed = 0;
 };
@@ -49,10 +54,10 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   if (!kFormats.count(lower))
     throw InvalidInput(
         fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
-  if (!a.shadow_method.empty() && a.backend != "raster")
-    throw InvalidInput(fmt::format(
-        "--shadow-method {}: only the raster backend has shadow methods; add --backend raster", a.shadow_method));
-  const Scene scene = load_scene_or_builtin(a.scene);
+  if (a.shadow_method_given && a.backend != Backend::raster)
+    throw InvalidInput("--shadow-method: only the raster backend has shadow methods; add --backend raster");
+  PhaseTimer timer;
+  const Scene scene = timer.time("read_s", [&] { return load_scene_or_builtin(a.scene); });
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
   if (a.spp) settings.samples = *a.spp;
@@ -60,29 +65,32 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   settings.seed = a.seed;
   settings.progress = !common.quiet;
   const ThreadLimit limit(common.threads);
-  std::vector<std::pair<std::string, std::string>> figures = {{"width", stat_value(settings.width)},
-                                                              {"height", stat_value(settings.height)},
-                                                              {"objects", stat_value(double(scene.objects.size()))},
-                                                              {"lights", stat_value(double(scene.lights.size()))}};
-  if (a.backend == "raster") {
-    // Local shading only: samples and depth do not apply.
-    const auto start = std::chrono::steady_clock::now();
-    const ImageRGB image = rasterize_scene(scene, settings.width, settings.height,
-                                           a.shadow_method == "volumes" ? RasterShadows::volumes : RasterShadows::map);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_image(a.output, image);
-    figures.emplace_back("seconds", stat_value(seconds));
+  // The raster backend shades one sample per pixel, locally: the scene's samples and depth do not apply.
+  const int samples = a.backend == Backend::raster ? 1 : settings.samples;
+  StatRows figures = {{"width", stat_value(settings.width)},
+                      {"height", stat_value(settings.height)},
+                      {"pixels", stat_value(double(settings.width) * settings.height)},
+                      {"samples", stat_value(samples)},
+                      {"objects", stat_value(double(scene.objects.size()))},
+                      {"lights", stat_value(double(scene.lights.size()))}};
+  ImageRGB image;
+  double seconds = 0;  // the rendering's own time: the deprecated `seconds` scripts read
+  if (a.backend == Backend::raster) {
+    image = timer.time("compute_s",
+                       [&] { return rasterize_scene(scene, settings.width, settings.height, a.shadow_method); });
+    seconds = timer.seconds("compute_s");
   } else {
-    const RayScene rs = to_ray_scene(scene);
     RenderStats stats;
-    const ImageRGB image = render(rs, settings, &stats);
-    write_image(a.output, image);
-    figures.insert(figures.end(), {{"samples", stat_value(settings.samples)},
-                                   {"eye_rays", stat_value(double(stats.eye_rays))},
+    image = timer.time("compute_s", [&] { return render(to_ray_scene(scene), settings, &stats); });
+    seconds = stats.seconds;
+    figures.insert(figures.end(), {{"eye_rays", stat_value(double(stats.eye_rays))},
                                    {"rays", stat_value(double(stats.rays))},
-                                   {"seconds", stat_value(stats.seconds)},
                                    {"rays_per_s", stat_value(double(stats.rays) / std::max(stats.seconds, 1e-9))}});
   }
+  timer.time("write_s", [&] { write_image(a.output, image, common.write_options()); });
+  figures.emplace_back("seconds", stat_value(seconds));
+  const StatRows phases = timer.rows();
+  figures.insert(figures.end(), phases.begin(), phases.end());
   if (common.stats) print_stats(figures);
 }
 
@@ -94,17 +102,21 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
       ->required();
   cmd.add_option("-o,--output", a->output, "Output image (.png, .hdr, .pfm, .ppm, .jpg)")->required();
   cmd.add_option("--spp", a->spp, "Samples per pixel (default: the scene's)");
-  cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)");
+  cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)")->check(size_format());
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
-  cmd.add_option("--backend", a->backend,
-                 "Renderer: raytrace (everything) or raster (z-buffer, local shading, hard shadows)")
-      ->check(CLI::IsMember({"raytrace", "raster"}));
-  cmd.add_option("--shadow-method", a->shadow_method,
-                 "Raster shadows of every light: map (a shadow map per light; the default) or volumes (stencil "
-                 "shadow volumes)")
-      ->check(CLI::IsMember({"map", "volumes"}));
-  cmd.callback([a, &common] { run_render(*a, common); });
+  add_choice(cmd, "--backend", a->backend, {{"raytrace", Backend::raytrace}, {"raster", Backend::raster}},
+             "Renderer: raytrace (everything) or raster (z-buffer and local shading: mirrors reflect the background, "
+             "glass is blended without refraction; docs/raytrace.md)");
+  CLI::Option* shadows = add_choice(cmd, "--shadow-method", a->shadow_method,
+                                    {{"map", RasterShadows::map}, {"volumes", RasterShadows::volumes}},
+                                    "Raster shadows of every light: map (a shadow map per light) or volumes (stencil "
+                                    "shadow volumes)");
+  add_srgb_option(cmd, common);
+  cmd.callback([a, shadows, &common] {
+    a->shadow_method_given = shadows->count() > 0;
+    run_render(*a, common);
+  });
 }
 
 }  // namespace tessera::cli
