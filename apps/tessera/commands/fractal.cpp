@@ -1,14 +1,15 @@
-// tessera fractal mandelbrot|julia|cantor|sierpinski|koch|hilbert|peano|terrain -o OUT [options] [--stats] and
-// tessera fractal dimension IMAGE [--stats] (docs/fractal.md). Numbers are parsed strictly: a bad number, size or
-// depth is an error (exit 1) naming the option.
+// tessera fractal mandelbrot|julia|cantor|sierpinski|koch|hilbert|peano|terrain -o OUT [options] [--srgb] [--stats]
+// and tessera fractal dimension IMAGE [--stats] (docs/fractal.md). Malformed values, unknown choices and depths past a
+// figure's limit are usage errors (exit 2) found while parsing, before anything is computed or written.
 #include <fmt/format.h>
 
-#include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/fractal/coloring.hpp"
 #include "tessera/fractal/dimension.hpp"
 #include "tessera/fractal/draw.hpp"
@@ -21,131 +22,208 @@
 namespace tessera::cli {
 namespace {
 
-// Every option as text, parsed when the command runs (so that bad values are tessera errors, exit 1).
+enum class SierpinskiShape { Carpet, Triangle };
+enum class KochShape { Snowflake, Curve };
+enum class TerrainMethod { Midpoint, Triangles, DiamondSquare };
+
 struct FractalOptions {
-  std::string output;
-  std::string size;
-  std::string center, scale, iterations = "1000", palette = "classic", simd = "auto", c = "-0.8,0.156";
-  std::string depth, shape, line_width = "1", margin;
-  std::string method = "diamond-square", roughness = "0.5", seed = "1", height_scale = "0.5";
-  std::string image, threshold = "0.5", min_box = "2", max_box = "0", factor = "2";
+  std::string output, size;
+  // mandelbrot, julia
+  std::string center, c = "-0.8,0.156";
+  double scale = 3;
+  int iterations = 1000;
+  Palette palette = Palette::Classic;
+  SimdPath simd = SimdPath::Auto;
+  // the self-similar figures
+  int depth = 0;
+  double margin = 0, line_width = 1;
+  bool dust = false;
+  SierpinskiShape sierpinski = SierpinskiShape::Carpet;
+  KochShape koch = KochShape::Snowflake;
+  // terrain
+  TerrainMethod method = TerrainMethod::DiamondSquare;
+  double roughness = 0.5, height_scale = 0.5;
+  int seed = 1;
+  // dimension
+  std::string image;
+  double threshold = 0.5, min_box = 1, max_box = 0, factor = 2;
   bool invert = false;
 };
 
-int parse_bounded(const std::string& text, const char* what, long long lo, long long hi) {
-  const long long v = parse_int(text, what);
-  if (v < lo || v > hi) throw InvalidInput(fmt::format("{} must be in [{}, {}], got {}", what, lo, hi, v));
-  return int(v);
+/// Checks that a number option is above `lo` (or at least `lo` when `inclusive`), and below `hi` when hi > lo.
+CLI::Validator number_range(double lo, double hi, bool inclusive = false) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v)) return "expected a number, got '" + text + "'";
+        const bool above = inclusive ? v >= lo : v > lo;
+        if (above && (hi <= lo || v < hi)) return "";
+        if (hi > lo) return fmt::format("expected a number in {}{}, {}), got {}", inclusive ? "[" : "(", lo, hi, text);
+        return fmt::format("expected a number {} {}, got {}", inclusive ? ">=" : ">", lo, text);
+      },
+      "");
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+/// A depth past the limit of the figure the other options chose: a usage error, like a depth past --depth's range.
+void check_depth(int depth, int max_depth, const std::string& which) {
+  if (depth > max_depth)
+    throw CLI::ValidationError("--depth", fmt::format("{} goes up to depth {}, got {}", which, max_depth, depth));
 }
 
-void write_picture(const std::string& path, const ImageRGBA& picture) { write_image(path, picture); }
+CLI::Option* add_size(CLI::App& sub, FractalOptions& o, const char* size, const char* help = "Picture size WxH") {
+  o.size = size;
+  return sub.add_option("--size", o.size, help)->check(size_format())->capture_default_str();
+}
 
-/// The escape-time view and options shared by mandelbrot and julia.
-std::pair<ComplexView, EscapeOptions> escape_setup(const FractalOptions& o) {
+/// Writes a picture (with --srgb's encoding) under write_s and returns the stats rows that describe it.
+template <class Picture>
+StatRows write_picture(const std::string& path, const Picture& picture, const CommonOptions& common,
+                       PhaseTimer& timer) {
+  timer.time("write_s", [&] { write_image(path, picture, common.write_options()); });
+  return {{"width", stat_value(picture.width())},
+          {"height", stat_value(picture.height())},
+          {"pixels", stat_value(double(picture.width()) * picture.height())}};
+}
+
+/// Prints rows, then the picture's rows and the timed phases.
+void print_all(StatRows rows, const StatRows& picture, const PhaseTimer& timer) {
+  rows.insert(rows.end(), picture.begin(), picture.end());
+  for (const auto& row : timer.rows()) rows.push_back(row);
+  print_stats(rows);
+}
+
+ComplexView complex_view(const FractalOptions& o) {
   const Size2 size = parse_size(o.size, "--size");
   const auto center = parse_doubles(o.center, 2, "--center");
-  ComplexView view{{center[0], center[1]}, parse_double(o.scale, "--scale"), size.width, size.height};
-  EscapeOptions options;
-  options.max_iterations = parse_bounded(o.iterations, "--iterations", 1, 100000000);
-  options.simd = parse_simd_path(o.simd);
-  return {view, options};
+  return ComplexView{{center[0], center[1]}, o.scale, size.width, size.height};
 }
 
-void add_escape_options(CLI::App& sub, FractalOptions& o, const char* center, const char* scale) {
-  o.center = center, o.scale = scale, o.size = "800x600";
-  sub.add_option("--center", o.center, "Middle of the view in the complex plane, re,im")->capture_default_str();
-  sub.add_option("--scale", o.scale, "Width of the view in the complex plane")->capture_default_str();
-  sub.add_option("--size", o.size, "Picture size WxH")->capture_default_str();
-  sub.add_option("--iterations", o.iterations, "Iteration cap")->capture_default_str();
-  sub.add_option("--palette", o.palette, "classic, fire, ocean or gray")->capture_default_str();
-  sub.add_option("--simd", o.simd, "auto, scalar, avx2 or avx512")->capture_default_str();
+void add_escape_options(CLI::App& sub, FractalOptions& o, const char* center, double scale) {
+  o.center = center, o.scale = scale;
+  sub.add_option("-o,--output", o.output, "Output picture")->required();
+  sub.add_option("--center", o.center, "Middle of the view in the complex plane, re,im")
+      ->check(numbers_format(2))
+      ->capture_default_str();
+  sub.add_option("--scale", o.scale, "Width of the view in the complex plane")
+      ->check(number_range(0, 0))
+      ->capture_default_str();
+  add_size(sub, o, "800x600");
+  sub.add_option("--iterations", o.iterations, "Iteration cap")->check(CLI::Range(1, 100000000))->capture_default_str();
+  add_choice(
+      sub, "--palette", o.palette,
+      {{"classic", Palette::Classic}, {"fire", Palette::Fire}, {"ocean", Palette::Ocean}, {"gray", Palette::Gray}},
+      "Color ramp of the escape times");
+  add_choice(
+      sub, "--simd", o.simd,
+      {{"auto", SimdPath::Auto}, {"scalar", SimdPath::Scalar}, {"avx2", SimdPath::Avx2}, {"avx512", SimdPath::Avx512}},
+      "Instruction set of the escape loop");
 }
 
-/// A self-similar picture's subcommand: -o, --depth, --size, --margin, and a run function.
-CLI::App* add_figure(CLI::App& fractal, const char* name, const char* help, const std::shared_ptr<FractalOptions>& o,
-                     const char* depth, const char* size) {
-  CLI::App* sub = fractal.add_subcommand(name, help);
-  o->depth = depth, o->size = size, o->margin = "0";
-  sub->add_option("-o,--output", o->output, "Output picture (PNG, PPM, JPG, ...)")->required();
-  sub->add_option("--depth", o->depth, "Subdivision depth")->capture_default_str();
-  sub->add_option("--size", o->size, "Picture size WxH")->capture_default_str();
-  sub->add_option("--margin", o->margin, "Free border in pixels")->capture_default_str();
-  return sub;
-}
-
-PictureFrame square_frame(const FractalOptions& o) {
-  const Size2 size = parse_size(o.size, "--size");
-  return PictureFrame{size.width, size.height, parse_double(o.margin, "--margin"), {0, 0, 1, 1}};
-}
-
-void print_figure_stats(const CommonOptions& common, size_t elements, double measure, const char* measure_name,
-                        double dimension) {
-  if (common.stats)
-    print_stats({{"elements", stat_value(double(elements))},
-                 {measure_name, stat_value(measure)},
-                 {"dimension", stat_value(dimension)}});
+/// Colors escape times and writes the picture, timed; returns the picture's rows.
+StatRows color_and_write(const FractalOptions& o, const CommonOptions& common, PhaseTimer& timer,
+                         const EscapeImage& image) {
+  ColorOptions colors;
+  colors.palette = o.palette;
+  const ImageRGB picture = timer.time("compute_s", [&] { return colorize(image, colors); });
+  return write_picture(o.output, picture, common, timer);
 }
 
 void setup_mandelbrot(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
   CLI::App* sub = fractal.add_subcommand("mandelbrot", "The Mandelbrot set (z0 = 0, c from the pixel)");
-  sub->add_option("-o,--output", o->output, "Output picture")->required();
-  add_escape_options(*sub, *o, "-0.5,0", "3");
+  add_escape_options(*sub, *o, "-0.5,0", 3);
+  add_srgb_option(*sub, common);
   sub->callback([o, &common] {
-    const auto [view, options] = escape_setup(*o);
-    const auto start = std::chrono::steady_clock::now();
-    const EscapeImage image = mandelbrot(view, options);
-    const double seconds = seconds_since(start);
-    ColorOptions colors;
-    colors.palette = parse_palette(o->palette);
-    write_image(o->output, colorize(image, colors));
+    const ComplexView view = complex_view(*o);
+    EscapeOptions options;
+    options.max_iterations = o->iterations;
+    options.simd = o->simd;
+    PhaseTimer timer;
+    const EscapeImage image = timer.time("compute_s", [&] { return mandelbrot(view, options); });
+    const double seconds = timer.seconds("compute_s");  // the escape loop alone: `seconds` keeps its meaning
+    const StatRows picture = color_and_write(*o, common, timer, image);
     if (!common.stats) return;
     size_t inside = 0;
     for (uint32_t n : image.iterations.pixels()) inside += n >= uint32_t(options.max_iterations);
-    print_stats({{"area", stat_value(double(inside) * view.pixel_size() * view.pixel_size())},
-                 {"seconds", stat_value(seconds)},
-                 {"iterations", stat_value(double(iteration_count(image)))},
-                 {"simd", std::string(simd_name(options.simd == SimdPath::Auto ? best_simd_path() : options.simd))}});
+    print_all({{"area", stat_value(double(inside) * view.pixel_size() * view.pixel_size())},
+               {"seconds", stat_value(seconds)},
+               {"iterations", stat_value(double(iteration_count(image)))},
+               {"simd", std::string(simd_name(options.simd == SimdPath::Auto ? best_simd_path() : options.simd))}},
+              picture, timer);
   });
 }
 
 void setup_julia(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
   CLI::App* sub = fractal.add_subcommand("julia", "The Julia set of one c (z0 from the pixel)");
-  sub->add_option("-o,--output", o->output, "Output picture")->required();
-  sub->add_option("--c", o->c, "The constant c, re,im")->capture_default_str();
-  add_escape_options(*sub, *o, "0,0", "3.2");
+  sub->add_option("--c", o->c, "The constant c, re,im")->check(numbers_format(2))->capture_default_str();
+  add_escape_options(*sub, *o, "0,0", 3.2);
+  add_srgb_option(*sub, common);
   sub->callback([o, &common] {
-    const auto [view, options] = escape_setup(*o);
+    const ComplexView view = complex_view(*o);
     const auto c = parse_doubles(o->c, 2, "--c");
-    const auto start = std::chrono::steady_clock::now();
-    const EscapeImage image = julia({c[0], c[1]}, view, options);
-    const double seconds = seconds_since(start);
-    ColorOptions colors;
-    colors.palette = parse_palette(o->palette);
-    write_image(o->output, colorize(image, colors));
+    EscapeOptions options;
+    options.max_iterations = o->iterations;
+    options.simd = o->simd;
+    PhaseTimer timer;
+    const EscapeImage image = timer.time("compute_s", [&] { return julia({c[0], c[1]}, view, options); });
+    const double seconds = timer.seconds("compute_s");
+    const StatRows picture = color_and_write(*o, common, timer, image);
     if (common.stats)
-      print_stats({{"connected", julia_is_connected({c[0], c[1]}) ? "1" : "0"},
-                   {"seconds", stat_value(seconds)},
-                   {"iterations", stat_value(double(iteration_count(image)))}});
+      print_all({{"connected", julia_is_connected({c[0], c[1]}) ? "1" : "0"},
+                 {"seconds", stat_value(seconds)},
+                 {"iterations", stat_value(double(iteration_count(image)))}},
+                picture, timer);
   });
+}
+
+/// A self-similar picture's subcommand: -o, --depth (0..max_depth), --size, --margin, --srgb.
+CLI::App* add_figure(CLI::App& fractal, CommonOptions& common, const char* name, const char* help, FractalOptions& o,
+                     int depth, int max_depth, const char* size, double margin) {
+  CLI::App* sub = fractal.add_subcommand(name, help);
+  o.depth = depth, o.margin = margin;
+  sub->add_option("-o,--output", o.output, "Output picture (PNG, PPM, JPG, ...)")->required();
+  sub->add_option("--depth", o.depth, "Subdivision depth")->check(CLI::Range(0, max_depth))->capture_default_str();
+  add_size(*sub, o, size);
+  sub->add_option("--margin", o.margin, "Free border in pixels")->check(non_negative())->capture_default_str();
+  add_srgb_option(*sub, common);
+  return sub;
+}
+
+void add_line_width(CLI::App& sub, FractalOptions& o) {
+  sub.add_option("--line-width", o.line_width, "Line width in pixels")
+      ->check(number_range(0, 0))
+      ->capture_default_str();
+}
+
+PictureFrame square_frame(const FractalOptions& o) {
+  const Size2 size = parse_size(o.size, "--size");
+  return PictureFrame{size.width, size.height, o.margin, {0, 0, 1, 1}};
+}
+
+/// Draws a figure under compute_s, writes it and prints the figure's stats.
+void finish_figure(const FractalOptions& o, const CommonOptions& common, const std::function<ImageRGBA()>& draw,
+                   size_t elements, double measure, const char* measure_name, double dimension) {
+  PhaseTimer timer;
+  const ImageRGBA picture = timer.time("compute_s", draw);
+  const StatRows rows = write_picture(o.output, picture, common, timer);
+  if (common.stats)
+    print_all({{"elements", stat_value(double(elements))},
+               {measure_name, stat_value(measure)},
+               {"dimension", stat_value(dimension)}},
+              rows, timer);
 }
 
 void setup_cantor(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
-  CLI::App* sub =
-      add_figure(fractal, "cantor", "Cantor set levels 0..depth stacked, or --dust: 2D Cantor dust", o, "5", "729x729");
-  auto dust = std::make_shared<bool>(false);
-  sub->add_flag("--dust", *dust, "Draw the 2D Cantor dust (Cantor set x Cantor set) at --depth");
-  sub->callback([o, dust, &common] {
-    const int depth = parse_bounded(o->depth, "--depth", 0, *dust ? 10 : 20);
-    const PictureFrame frame = square_frame(*o);
+  CLI::App* sub = add_figure(fractal, common, "cantor", "Cantor set levels 0..depth stacked, or --dust: 2D Cantor dust",
+                             *o, 5, 20, "729x729", 0);
+  sub->add_flag("--dust", o->dust, "Draw the 2D Cantor dust (Cantor set x Cantor set) at --depth (up to 10)");
+  sub->callback([o, &common] {
+    if (o->dust) check_depth(o->depth, 10, "--dust");
+    const int depth = o->depth;
     std::vector<Rect> rects;
-    if (*dust) {
+    if (o->dust) {
       rects = cantor_dust(depth);
     } else {
       // The notes' figure: level k as a bar in row k, bars half as tall as the gaps between rows.
@@ -153,74 +231,69 @@ void setup_cantor(CLI::App& fractal, CommonOptions& common) {
       for (int k = 0; k <= depth; ++k)
         for (const Interval& i : cantor_set(k)) rects.push_back({i.a, 1.0 - (k + 0.75) * row, i.b - i.a, 0.5 * row});
     }
-    write_picture(o->output, draw_polygons(as_polygons(rects), frame));
-    print_figure_stats(common, *dust ? rects.size() : size_t(1) << depth,
-                       *dust ? cantor_measure(depth) * cantor_measure(depth) : cantor_measure(depth),
-                       *dust ? "area" : "length", similarity_dimension(*dust ? 4 : 2, 3));
+    finish_figure(
+        *o, common, [&] { return draw_polygons(as_polygons(rects), square_frame(*o)); },
+        o->dust ? rects.size() : size_t(1) << depth,
+        o->dust ? cantor_measure(depth) * cantor_measure(depth) : cantor_measure(depth), o->dust ? "area" : "length",
+        similarity_dimension(o->dust ? 4 : 2, 3));
   });
 }
 
 void setup_sierpinski(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
-  CLI::App* sub = add_figure(fractal, "sierpinski", "Sierpinski carpet or triangle", o, "5", "729x729");
-  o->shape = "carpet";
-  sub->add_option("--shape", o->shape, "carpet or triangle")->capture_default_str();
+  CLI::App* sub = add_figure(fractal, common, "sierpinski", "Sierpinski carpet (depth up to 7) or triangle (up to 12)",
+                             *o, 5, 12, "729x729", 0);
+  add_choice(*sub, "--shape", o->sierpinski,
+             {{"carpet", SierpinskiShape::Carpet}, {"triangle", SierpinskiShape::Triangle}}, "Which figure");
   sub->callback([o, &common] {
-    const PictureFrame frame = square_frame(*o);
-    if (o->shape == "carpet") {
-      const int depth = parse_bounded(o->depth, "--depth", 0, 7);
-      const auto rects = sierpinski_carpet(depth);
-      write_picture(o->output, draw_polygons(as_polygons(rects), frame));
-      print_figure_stats(common, rects.size(), carpet_area(depth), "area", similarity_dimension(8, 3));
-    } else if (o->shape == "triangle") {
-      const int depth = parse_bounded(o->depth, "--depth", 0, 12);
-      const auto triangles = sierpinski_triangle(depth);
-      write_picture(o->output, draw_polygons(as_polygons(triangles), frame));
-      print_figure_stats(common, triangles.size(), sierpinski_triangle_fraction(depth), "area",
-                         similarity_dimension(3, 2));
+    if (o->sierpinski == SierpinskiShape::Carpet) {
+      check_depth(o->depth, 7, "the carpet");
+      const auto rects = sierpinski_carpet(o->depth);
+      finish_figure(
+          *o, common, [&] { return draw_polygons(as_polygons(rects), square_frame(*o)); }, rects.size(),
+          carpet_area(o->depth), "area", similarity_dimension(8, 3));
     } else {
-      throw InvalidInput(fmt::format("--shape must be carpet or triangle, got '{}'", o->shape));
+      const auto triangles = sierpinski_triangle(o->depth);
+      finish_figure(
+          *o, common, [&] { return draw_polygons(as_polygons(triangles), square_frame(*o)); }, triangles.size(),
+          sierpinski_triangle_fraction(o->depth), "area", similarity_dimension(3, 2));
     }
   });
 }
 
 void setup_koch(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
-  CLI::App* sub = add_figure(fractal, "koch", "von Koch snowflake or curve", o, "4", "600x600");
-  o->shape = "snowflake", o->margin = "10";
-  sub->add_option("--shape", o->shape, "snowflake or curve")->capture_default_str();
-  sub->add_option("--line-width", o->line_width, "Line width in pixels")->capture_default_str();
+  CLI::App* sub = add_figure(fractal, common, "koch", "von Koch snowflake or curve", *o, 4, 10, "600x600", 10);
+  add_choice(*sub, "--shape", o->koch, {{"snowflake", KochShape::Snowflake}, {"curve", KochShape::Curve}},
+             "Which figure");
+  add_line_width(*sub, *o);
   sub->callback([o, &common] {
-    const int depth = parse_bounded(o->depth, "--depth", 0, 10);
+    const bool closed = o->koch == KochShape::Snowflake;
+    const std::vector<Vec2> points = closed ? koch_snowflake(o->depth) : koch_curve(o->depth);
     const Size2 size = parse_size(o->size, "--size");
-    const bool closed = o->shape == "snowflake";
-    if (!closed && o->shape != "curve")
-      throw InvalidInput(fmt::format("--shape must be snowflake or curve, got '{}'", o->shape));
-    const std::vector<Vec2> points = closed ? koch_snowflake(depth) : koch_curve(depth);
-    const PictureFrame frame = frame_around(points, size.width, size.height, parse_double(o->margin, "--margin"));
     DrawStyle style;
-    style.line_width = parse_double(o->line_width, "--line-width");
+    style.line_width = o->line_width;
     style.antialias = true;
-    write_picture(o->output, draw_curve(points, closed, frame, style));
-    print_figure_stats(common, points.size(), (closed ? 3 : 1) * koch_length(depth), "length",
-                       similarity_dimension(4, 3));
+    finish_figure(
+        *o, common,
+        [&] { return draw_curve(points, closed, frame_around(points, size.width, size.height, o->margin), style); },
+        points.size(), (closed ? 3 : 1) * koch_length(o->depth), "length", similarity_dimension(4, 3));
   });
 }
 
 void setup_space_filling(CLI::App& fractal, CommonOptions& common, const char* name, const char* help, int max_depth,
                          std::vector<Vec2> (*curve)(int), double copies, double scale) {
   auto o = std::make_shared<FractalOptions>();
-  CLI::App* sub = add_figure(fractal, name, help, o, "4", "512x512");
-  o->margin = "4";
-  sub->add_option("--line-width", o->line_width, "Line width in pixels")->capture_default_str();
-  sub->callback([o, &common, max_depth, curve, copies, scale] {
-    const int depth = parse_bounded(o->depth, "--depth", 0, max_depth);
-    const auto points = curve(depth);
+  CLI::App* sub = add_figure(fractal, common, name, help, *o, 4, max_depth, "512x512", 4);
+  add_line_width(*sub, *o);
+  sub->callback([o, &common, curve, copies, scale] {
+    const auto points = curve(o->depth);
     DrawStyle style;
-    style.line_width = parse_double(o->line_width, "--line-width");
+    style.line_width = o->line_width;
     style.antialias = true;
-    write_picture(o->output, draw_curve(points, false, square_frame(*o), style));
-    print_figure_stats(common, points.size(), polyline_length(points), "length", similarity_dimension(copies, scale));
+    finish_figure(
+        *o, common, [&] { return draw_curve(points, false, square_frame(*o), style); }, points.size(),
+        polyline_length(points), "length", similarity_dimension(copies, scale));
   });
 }
 
@@ -237,25 +310,48 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
   CLI::App* sub = fractal.add_subcommand(
       "terrain", "Fractal mountains: 1D midpoint profile, 2D triangle subdivision or diamond-square grid");
-  o->depth = "7", o->size = "800x400";
+  o->depth = 7;
   sub->add_option("-o,--output", o->output, "Output: a mesh (.obj .ply .off .stl) or a picture (.png ...)")->required();
-  sub->add_option("--method", o->method, "midpoint (1D profile), triangles or diamond-square")->capture_default_str();
-  sub->add_option("--depth", o->depth, "Subdivision levels")->capture_default_str();
-  sub->add_option("--roughness", o->roughness, "Range factor per level in (0, 1); 0.5 halves (the notes)")
+  add_choice(*sub, "--method", o->method,
+             {{"midpoint", TerrainMethod::Midpoint},
+              {"triangles", TerrainMethod::Triangles},
+              {"diamond-square", TerrainMethod::DiamondSquare}},
+             "midpoint (1D profile, a picture), triangles (a mesh) or diamond-square (a mesh or a height picture)");
+  sub->add_option("--depth", o->depth,
+                  fmt::format("Subdivision levels (midpoint up to {}, triangles {}, diamond-square {})",
+                              kMaxTerrainDepth1D, kMaxTerrainDepthTriangles, kMaxTerrainDepthGrid))
+      ->check(CLI::Range(0, kMaxTerrainDepth1D))
       ->capture_default_str();
-  sub->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+  sub->add_option("--roughness", o->roughness, "Range factor per level in (0, 1); 0.5 halves (the notes)")
+      ->check(number_range(0, 1))
+      ->capture_default_str();
+  sub->add_option("--seed", o->seed, "Random seed")->check(CLI::Range(0, 2147483647))->capture_default_str();
   sub->add_option("--height-scale", o->height_scale, "Grid meshes: height multiplier")->capture_default_str();
-  sub->add_option("--size", o->size, "Profile picture size WxH (midpoint)")->capture_default_str();
+  add_size(*sub, *o, "800x400", "Profile picture size WxH (midpoint)");
+  add_srgb_option(*sub, common);
   sub->callback([o, &common] {
-    TerrainOptions options;
-    options.depth = parse_bounded(o->depth, "--depth", 0, 24);
-    options.roughness = parse_double(o->roughness, "--roughness");
-    options.seed = uint64_t(parse_bounded(o->seed, "--seed", 0, 2147483647));
     const bool mesh_out = is_mesh_path(o->output);
-    size_t vertices = 0;
-    if (o->method == "midpoint") {
-      if (mesh_out) throw InvalidInput("the 1D midpoint profile is a picture: give -o a .png");
-      const auto heights = midpoint_displacement_1d(options);
+    if (o->method == TerrainMethod::Midpoint && mesh_out)
+      throw CLI::ValidationError("--method", "the 1D midpoint profile is a picture: give -o a .png");
+    if (o->method == TerrainMethod::Triangles && !mesh_out)
+      throw CLI::ValidationError("--method", "the triangle mountain is a mesh: give -o a .obj, .ply, .off or .stl");
+    check_depth(o->depth,
+                o->method == TerrainMethod::Midpoint    ? kMaxTerrainDepth1D
+                : o->method == TerrainMethod::Triangles ? kMaxTerrainDepthTriangles
+                                                        : kMaxTerrainDepthGrid,
+                "--method");
+    TerrainOptions options;
+    options.depth = o->depth;
+    options.roughness = o->roughness;
+    options.seed = uint64_t(o->seed);
+    PhaseTimer timer;
+    StatRows rows, output;
+    const auto save_mesh = [&](const PolyMesh& mesh) {
+      timer.time("write_s", [&] { write_mesh(o->output, mesh); });
+      rows = {{"vertices", stat_value(double(mesh.vertex_count()))}, {"faces", stat_value(double(mesh.face_count()))}};
+    };
+    if (o->method == TerrainMethod::Midpoint) {
+      const auto heights = timer.time("compute_s", [&] { return midpoint_displacement_1d(options); });
       // The profile as a filled mountain: the height polyline closed along the bottom.
       std::vector<Vec2> outline;
       for (size_t i = 0; i < heights.size(); ++i)
@@ -264,24 +360,23 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       const Size2 size = parse_size(o->size, "--size");
       DrawStyle style;
       style.ink = {0.35f, 0.3f, 0.25f}, style.paper = {0.85f, 0.92f, 1.0f}, style.antialias = true;
-      write_picture(o->output, draw_polygons({outline}, frame_around(outline, size.width, size.height, 0), style));
-      vertices = heights.size();
-    } else if (o->method == "triangles") {
-      if (!mesh_out) throw InvalidInput("the triangle mountain is a mesh: give -o a .obj, .ply, .off or .stl");
-      const PolyMesh mesh = triangle_mountain(options);
-      write_mesh(o->output, mesh);
-      vertices = mesh.vertex_count();
-    } else if (o->method == "diamond-square") {
-      const Image<float> heights = diamond_square(options);
-      if (mesh_out)
-        write_mesh(o->output, height_map_mesh(heights, parse_double(o->height_scale, "--height-scale")));
-      else
-        write_image(o->output, height_map_picture(heights));
-      vertices = heights.pixels().size();
+      const ImageRGBA picture = timer.time("compute_s", [&] {
+        return draw_polygons({outline}, frame_around(outline, size.width, size.height, 0), style);
+      });
+      output = write_picture(o->output, picture, common, timer);
+      rows = {{"vertices", stat_value(double(heights.size()))}};
+    } else if (o->method == TerrainMethod::Triangles) {
+      save_mesh(timer.time("compute_s", [&] { return triangle_mountain(options); }));
     } else {
-      throw InvalidInput(fmt::format("--method must be midpoint, triangles or diamond-square, got '{}'", o->method));
+      const Image<float> heights = timer.time("compute_s", [&] { return diamond_square(options); });
+      if (mesh_out) {
+        save_mesh(timer.time("compute_s", [&] { return height_map_mesh(heights, o->height_scale); }));
+      } else {
+        output = write_picture(o->output, height_map_picture(heights), common, timer);
+        rows = {{"vertices", stat_value(double(heights.pixels().size()))}};
+      }
     }
-    if (common.stats) print_stats({{"vertices", stat_value(double(vertices))}});
+    if (common.stats) print_all(rows, output, timer);
   });
 }
 
@@ -289,27 +384,41 @@ void setup_dimension(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
   CLI::App* sub = fractal.add_subcommand("dimension", "Box-counting dimension of the dark pixels of a picture");
   sub->add_option("image", o->image, "Picture to measure (dark ink on light paper unless --invert)")->required();
-  sub->add_option("--threshold", o->threshold, "Luminance below which a pixel is ink")->capture_default_str();
-  sub->add_flag("--invert", o->invert, "Measure the light pixels instead");
-  sub->add_option("--min-box", o->min_box, "Smallest box side in pixels")->capture_default_str();
-  sub->add_option("--max-box", o->max_box, "Largest box side (0: a quarter of the shorter side)")
+  sub->add_option("--threshold", o->threshold, "Luminance below which a pixel is ink")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  sub->add_option("--factor", o->factor, "Ratio between box sizes")->capture_default_str();
+  sub->add_flag("--invert", o->invert, "Measure the light pixels instead");
+  sub->add_option("--min-box", o->min_box, "Smallest box side in pixels (>= 1)")
+      ->check(number_range(1, 0, true))
+      ->capture_default_str();
+  sub->add_option("--max-box", o->max_box,
+                  "Largest box side in pixels (0: the set's extent, the longer side of its bounding box)")
+      ->check(non_negative())
+      ->capture_default_str();
+  sub->add_option("--factor", o->factor, "Ratio between box sizes (> 1); 3 suits triadic sets")
+      ->check(number_range(1, 0))
+      ->capture_default_str();
   sub->callback([o, &common] {
-    const ImageRGBA picture = read_image(o->image);
-    BoxCountOptions options;
-    options.min_box = parse_bounded(o->min_box, "--min-box", 1, 65536);
-    options.max_box = parse_bounded(o->max_box, "--max-box", 0, 65536);
-    options.factor = parse_double(o->factor, "--factor");
-    const BoxCountResult r =
-        box_counting_dimension(ink_mask(picture, float(parse_double(o->threshold, "--threshold")), o->invert), options);
+    PhaseTimer timer;
+    const ImageRGBA picture = timer.time("read_s", [&] { return read_image(o->image); });
+    const BoxCountResult r = timer.time("compute_s", [&] {
+      return box_counting_dimension(ink_mask(picture, float(o->threshold), o->invert),
+                                    BoxCountOptions{o->min_box, o->max_box, o->factor});
+    });
     if (common.stats)
-      print_stats({{"dimension", stat_value(r.dimension)},
-                   {"box_sizes", stat_value(double(r.sizes.size()))},
-                   {"smallest_box_count", stat_value(double(r.counts.front()))}});
+      print_all({{"dimension", stat_value(r.dimension)},
+                 {"box_sizes", stat_value(double(r.sizes.size()))},
+                 {"fitted_sizes", stat_value(double(r.fitted))},
+                 {"extent", stat_value(r.extent)},
+                 {"smallest_box", stat_value(r.sizes.back())},
+                 {"smallest_box_count", stat_value(double(r.counts.back()))},
+                 {"width", stat_value(picture.width())},
+                 {"height", stat_value(picture.height())},
+                 {"pixels", stat_value(double(picture.width()) * picture.height())}},
+                {}, timer);
     else
-      fmt::print("box-counting dimension {:.4f} (boxes of {} to {} pixels)\n", r.dimension, r.sizes.front(),
-                 r.sizes.back());
+      fmt::print("box-counting dimension {:.4f} (set extent {} pixels; boxes of {:.4g} to {:.4g} pixels, {} fitted)\n",
+                 r.dimension, r.extent, r.sizes.back(), r.sizes.front(), r.fitted);
   });
 }
 
