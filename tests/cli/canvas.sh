@@ -55,8 +55,37 @@ expect_exit 1 "tessera: error: .*missing.svg" "$tessera" canvas render "$scratch
 expect_exit "1 2" "size" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/neg.png" --size -5x5
 expect_exit "1 2" "size" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/neg.png" --size=-5x5
 [ ! -e "$scratch/neg.png" ] || fail "neg.png was written"
-expect_exit 1 "background" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/bg.png" --background 2,0,0
+# Malformed values are usage errors (exit 2), found before anything is read or written.
+expect_exit 2 "background" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/bg.png" --background 2,0,0
+expect_exit 2 "background.*whit" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/bg.png" --background whit
+expect_exit 2 "size" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/bg.png" --size 800
+expect_exit 2 "tolerance" "$tessera" canvas render "$scratch/ok.svg" -o "$scratch/bg.png" --tolerance 0
+expect_exit 2 "size" "$tessera" canvas render "$scratch/missing.svg" -o "$scratch/bg.png" --size 8x
+[ ! -e "$scratch/bg.png" ] || fail "bg.png was written"
 expect_exit 2 "" "$tessera" canvas render "$scratch/ok.svg"
+
+# Colors by name (as SVG spells them), #rrggbb and r,g,b; --srgb encodes with the sRGB formula: a linear gray of 0.5
+# is 128 in the file without it and 188 with it; the whole picture is checked against its linear floats (PFM).
+py=/usr/bin/python3 check="$(dirname "$0")/srgb_check.py"
+printf '<svg width="16" height="8"><rect x="8" width="8" height="8" fill="#336699"/></svg>' >"$scratch/half.svg"
+"$tessera" canvas render "$scratch/half.svg" -o "$scratch/white.png" --background white
+"$py" "$check" pixel "$scratch/white.png" 0 0 1,1,1 || fail "--background white"
+"$tessera" canvas render "$scratch/half.svg" -o "$scratch/blue.png" --background cornflowerblue
+"$py" -c "import sys; from PIL import Image; sys.exit(Image.open(sys.argv[1]).getpixel((0, 0)) != (100, 149, 237, 255))" \
+  "$scratch/blue.png" || fail "--background cornflowerblue is not SVG's (100, 149, 237)"
+"$tessera" canvas render "$scratch/half.svg" -o "$scratch/gray.png" --background 0.5,0.5,0.5
+"$py" -c "import sys; from PIL import Image; sys.exit(Image.open(sys.argv[1]).getpixel((0, 0)) != (128, 128, 128, 255))" \
+  "$scratch/gray.png" || fail "a linear 0.5 gray is not 128 without --srgb"
+"$tessera" canvas render "$scratch/half.svg" -o "$scratch/gray_srgb.png" --background 0.5,0.5,0.5 --srgb
+"$py" "$check" pixel "$scratch/gray_srgb.png" 0 0 0.5,0.5,0.5 || fail "--srgb gray"
+"$tessera" canvas render "$scratch/ok.svg" -o "$scratch/ok.pfm" --background '#ffffff'
+"$tessera" canvas render "$scratch/ok.svg" -o "$scratch/ok_srgb.png" --background '#ffffff' --srgb
+"$py" "$check" pfm "$scratch/ok.pfm" "$scratch/ok_srgb.png" || fail "--srgb picture"
+stats=$("$tessera" canvas render "$scratch/ok.svg" -o "$scratch/ok.png" --stats)
+for key in width height pixels shapes warnings seconds read_s compute_s write_s total_s; do
+  grep -q "^$key=" <<<"$stats" || fail "--stats lacks $key: $stats"
+done
+grep -qx "pixels=1200" <<<"$stats" || fail "pixels is not 40 x 30: $stats"
 
 # Unsupported elements: drawn without them, listed once on stderr.
 printf '<svg width="10" height="10"><text>a</text><text>b</text><rect width="5" height="5"/></svg>' \

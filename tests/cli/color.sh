@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tessera color convert: known conversions (exact output), stdin rows, hue units, the bad-row error (exit 1, message
-# naming the line, nothing of the bad row written) and usage errors (exit 2).
+# naming the line, nothing of the bad row written), usage errors (exit 2, --values included) and --stats.
 set -euo pipefail
 tessera=$1 scratch=$2
 rm -rf "$scratch" && mkdir -p "$scratch"
@@ -46,10 +46,31 @@ status=0
 printf '0.1,0.2,0.3\n0.1,x,0.3\n' | convert --from rgb --to cmyk >/dev/null 2>"$scratch/err" || status=$?
 [ "$status" -eq 1 ] && grep -q "stdin:2: expected 3 comma-separated numbers, got '0.1,x,0.3'" "$scratch/err" ||
   { echo "non-number row: exit $status"; cat "$scratch/err"; exit 1; }
+# A value the model cannot convert names the row: xyY with y = 0 and Y != 0.
 status=0
-convert --from cmyk --to rgb --values 0,0,0 >/dev/null 2>"$scratch/err" || status=$?
-[ "$status" -eq 1 ] && grep -q "expected 4 comma-separated numbers" "$scratch/err" ||
-  { echo "--values count: exit $status"; cat "$scratch/err"; exit 1; }
+printf '0.3,0.3,1\n0.3,0,1\n' | convert --from xyy --to rgb >/dev/null 2>"$scratch/err" || status=$?
+[ "$status" -eq 1 ] && grep -q "tessera: error: stdin:2: " "$scratch/err" ||
+  { echo "xyY row: exit $status"; cat "$scratch/err"; exit 1; }
+# --values is an option: a malformed one is a usage error (exit 2) that says what was expected.
+for case in "cmyk 0,0,0 expected 4 comma-separated numbers" "rgb 1,x,0 expected 3 comma-separated numbers" \
+            "xyy 0.3,0,1 --values: "; do
+  read -r model values pattern <<<"$case"
+  status=0
+  convert --from "$model" --to rgb --values "$values" >/dev/null 2>"$scratch/err" || status=$?
+  [ "$status" -eq 2 ] && grep -q "tessera: error: .*$pattern" "$scratch/err" ||
+    { echo "--values $values: exit $status"; cat "$scratch/err"; exit 1; }
+done
+# Model names are matched without case; an unknown one lists the names, never internal numbers.
+expect_output "30,1,1" convert --from RGB --to Hsv --values 1,0.5,0
+status=0
+convert --from lab --to rgb --values 1,2,3 2>"$scratch/err" >/dev/null || status=$?
+[ "$status" -eq 2 ] && grep -q "rgb,cmy,cmyk,hsv" "$scratch/err" && ! grep -q -- "->" "$scratch/err" ||
+  { echo "unknown model: exit $status"; cat "$scratch/err"; exit 1; }
+# --stats after the rows: how many colors were converted, the conversion time and the whole command's.
+expect_output "$(printf '0,1,1\n\n120,1,1\ncolors=2')" bash -c \
+  "printf '1,0,0\n\n0,1,0\n' | '$tessera' color convert --from rgb --to hsv --stats | grep -v '_s='"
+stats=$(convert --from rgb --to hsv --values 1,0,0 --stats)
+grep -q "^compute_s=" <<<"$stats" && grep -q "^total_s=" <<<"$stats" || { echo "--stats: $stats"; exit 1; }
 
 # Usage errors: exit 2.
 for args in "convert --from lab --to rgb --values 1,2,3" "convert --from rgb" "convert --from rgb --to hsv --hue grad" ""; do

@@ -1,12 +1,12 @@
-// tessera canvas render IN.svg -o OUT.png [--size WxH] [--no-antialias] [--background r,g,b|#rrggbb]: rasterizes an
+// tessera canvas render IN.svg -o OUT.png [--size WxH] [--no-antialias] [--background COLOR] [--srgb]: rasterizes an
 // SVG drawing (the subset of docs/svg.md) with the 2D canvas's path fill and strokes.
-#include <chrono>
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <memory>
 
-#include <fmt/format.h>
-
 #include "command.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster2d/svg.hpp"
 
@@ -23,13 +23,16 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("input", opt->input, "The SVG file")->required();
   cmd.add_option("-o,--output", opt->output, "The image to write (PNG keeps alpha; the extension picks the format)")
       ->required();
-  cmd.add_option("--size", opt->size, "Output size WxH in pixels (default: the SVG's width and height)");
+  cmd.add_option("--size", opt->size, "Output size WxH in pixels (default: the SVG's width and height)")
+      ->check(size_format());
   cmd.add_flag("--no-antialias", opt->no_antialias, "Fill pixels whose center is inside instead of area coverage");
   cmd.add_option("--background", opt->background,
-                 "Opaque background r,g,b in [0,1] or #rrggbb (default: transparent)");
+                 "Opaque background: a color name as SVG's (white), #rrggbb or r,g,b in [0,1] (default: transparent)")
+      ->check(color_format());
   cmd.add_option("--tolerance", opt->tolerance, "Curve flattening tolerance in pixels")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
     // Every option and the whole document are checked before anything is written; write_image is atomic.
     SvgRenderOptions options;
@@ -44,18 +47,21 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
     }
     options.antialias = !opt->no_antialias;
     options.tolerance = opt->tolerance;
-    const auto start = std::chrono::steady_clock::now();
-    const SvgDocument document = load_svg(opt->input);
+    PhaseTimer timer;
+    const SvgDocument document = timer.time("read_s", [&] { return load_svg(opt->input); });
     for (const std::string& warning : document.warnings) fmt::print(stderr, "tessera: warning: {}\n", warning);
-    const ImageRGBA image = render_svg(document, options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_image(opt->output, image);
-    if (common.stats)
-      print_stats({{"width", stat_value(image.width())},
-                   {"height", stat_value(image.height())},
-                   {"shapes", stat_value(double(document.shapes.size()))},
-                   {"warnings", stat_value(double(document.warnings.size()))},
-                   {"seconds", stat_value(seconds)}});
+    const ImageRGBA image = timer.time("compute_s", [&] { return render_svg(document, options); });
+    timer.time("write_s", [&] { write_image(opt->output, image, common.write_options()); });
+    if (!common.stats) return;
+    StatRows rows{{"width", stat_value(image.width())},
+                  {"height", stat_value(image.height())},
+                  {"pixels", stat_value(double(image.width()) * image.height())},
+                  {"shapes", stat_value(double(document.shapes.size()))},
+                  {"warnings", stat_value(double(document.warnings.size()))},
+                  // Deprecated alias: reading and rendering, as before read_s and compute_s.
+                  {"seconds", stat_value(timer.seconds("read_s") + timer.seconds("compute_s"))}};
+    for (const auto& row : timer.rows()) rows.push_back(row);
+    print_stats(rows);
   });
 }
 

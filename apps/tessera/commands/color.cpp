@@ -1,5 +1,6 @@
-// tessera color convert --from M --to M [--values a,b,c] [--hue degrees|turns|radians]: color-model conversions of
-// one color (--values) or of CSV rows read from stdin, one converted row per line on stdout (docs/color.md).
+// tessera color convert --from M --to M [--values a,b,c] [--hue degrees|turns|radians] [--stats]: color-model
+// conversions of one color (--values, whose errors are usage errors) or of CSV rows read from stdin (errors name the
+// line), one converted row per line on stdout (docs/color.md).
 #include "tessera/color/color.hpp"
 
 #include <fmt/format.h>
@@ -13,14 +14,15 @@
 #include "command.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 
 namespace tessera::cli {
 namespace {
 
 struct ConvertOptions {
-  std::string from, to;
+  ColorModel from = ColorModel::Rgb, to = ColorModel::Rgb;
   std::string values;  // empty: read stdin
-  std::string hue = "degrees";
+  HueUnit hue = HueUnit::Degrees;
 };
 
 // Parses one row of component_count(model) comma-separated numbers; `where` names it in the error.
@@ -39,11 +41,18 @@ std::string format_number(double v) {
   return fmt::format("{:.9g}", v);
 }
 
-// Converts one row; the hue component (if any) is read and written in `unit`. Returns the output line.
-std::string convert_row(const std::vector<double>& in, ColorModel from, ColorModel to, HueUnit unit) {
+// Converts one row; the hue component (if any) is read and written in `unit`. Returns the output line; errors name
+// `where`.
+std::string convert_row(const std::vector<double>& in, ColorModel from, ColorModel to, HueUnit unit,
+                        const std::string& where) {
   std::vector<double> values = in;
   if (hue_index(from) >= 0) values[size_t(hue_index(from))] /= full_turn(unit);
-  std::vector<double> out = convert(from, to, values);
+  std::vector<double> out;
+  try {
+    out = convert(from, to, values);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(fmt::format("{}: {}", where, e.what()));
+  }
   std::string line;
   for (size_t i = 0; i < out.size(); ++i) {
     std::string text = format_number(out[i]);
@@ -57,43 +66,63 @@ std::string convert_row(const std::vector<double>& in, ColorModel from, ColorMod
   return line;
 }
 
-std::vector<std::string> model_names() {
-  std::vector<std::string> names;
-  for (ColorModel m : kColorModels) names.emplace_back(model_name(m));
+std::vector<std::pair<std::string, ColorModel>> model_names() {
+  std::vector<std::pair<std::string, ColorModel>> names;
+  for (ColorModel m : kColorModels) names.emplace_back(model_name(m), m);
   return names;
 }
 
 }  // namespace
 
-void setup_color(CLI::App& color, CommonOptions&) {
+void setup_color(CLI::App& color, CommonOptions& common) {
   color.require_subcommand(1);
   CLI::App* convert_cmd = color.add_subcommand(
       "convert", "Convert colors between models: --values a,b,c, or CSV rows on stdin to stdout, one per line");
   auto opt = std::make_shared<ConvertOptions>();
-  const std::vector<std::string> names = model_names();
-  convert_cmd->add_option("--from", opt->from, "Model of the input")->required()->check(CLI::IsMember(names));
-  convert_cmd->add_option("--to", opt->to, "Model of the output")->required()->check(CLI::IsMember(names));
+  add_choice(*convert_cmd, "--from", opt->from, model_names(), "Model of the input")->required();
+  add_choice(*convert_cmd, "--to", opt->to, model_names(), "Model of the output")->required();
   convert_cmd->add_option("--values", opt->values, "One color as comma-separated numbers (else stdin rows)");
-  convert_cmd->add_option("--hue", opt->hue, "Unit of HSV/HLS hue in input and output")
-      ->check(CLI::IsMember({"degrees", "turns", "radians"}))
-      ->capture_default_str();
+  add_choice(*convert_cmd, "--hue", opt->hue,
+             {{"degrees", HueUnit::Degrees}, {"turns", HueUnit::Turns}, {"radians", HueUnit::Radians}},
+             "Unit of HSV/HLS hue in input and output");
   convert_cmd->footer(
       "Models: rgb (linear, [0,1]) cmy cmyk hsv hls yiq xyz xyy srgb. Hue in [0,360) degrees unless --hue.\n"
+      "Stats (--stats, after the rows): colors compute_s total_s.\n"
       "Example: echo 1,0.5,0 | tessera color convert --from rgb --to hsv   ->   30,1,1");
-  convert_cmd->callback([opt] {
-    const ColorModel from = parse_color_model(opt->from), to = parse_color_model(opt->to);
-    const HueUnit unit = parse_hue_unit(opt->hue);
+  convert_cmd->callback([opt, &common] {
+    const ColorModel from = opt->from, to = opt->to;
+    PhaseTimer timer;
+    long colors = 0;
     if (!opt->values.empty()) {
-      fmt::print("{}\n", convert_row(parse_row(opt->values, from, "--values"), from, to, unit));
-      return;
-    }
-    std::string row;
-    for (long line = 1; std::getline(std::cin, row); ++line) {
-      if (trim(row).empty()) {
-        fmt::print("\n");  // blank rows stay blank, so output line k answers input line k
-        continue;
+      // --values depends on --from for its count, so it is checked here, as a usage error all the same.
+      std::string line;
+      try {
+        line = timer.time("compute_s", [&] {
+          return convert_row(parse_row(opt->values, from, "--values"), from, to, opt->hue, "--values");
+        });
+      } catch (const InvalidInput& e) {
+        throw CLI::ValidationError(e.what());
       }
-      fmt::print("{}\n", convert_row(parse_row(row, from, at_line("stdin", line)), from, to, unit));
+      fmt::print("{}\n", line);
+      colors = 1;
+    } else {
+      std::string row;
+      for (long line = 1; std::getline(std::cin, row); ++line) {
+        if (trim(row).empty()) {
+          fmt::print("\n");  // blank rows stay blank, so output line k answers input line k
+          continue;
+        }
+        const std::string where = at_line("stdin", line);
+        fmt::print("{}\n", timer.time("compute_s", [&] {
+          return convert_row(parse_row(row, from, where), from, to, opt->hue, where);
+        }));
+        ++colors;
+      }
+    }
+    if (common.stats) {
+      StatRows rows{{"colors", stat_value(double(colors))}};
+      for (const auto& r : timer.rows()) rows.push_back(r);
+      print_stats(rows);
     }
   });
 }
