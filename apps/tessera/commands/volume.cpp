@@ -1,7 +1,7 @@
 // tessera volume info|slice|contour|isosurface|render: volume data from raw/NRRD/MetaImage files or procedural names.
-#include <chrono>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -60,17 +60,34 @@ struct VolumeInput {
   }
 };
 
-void setup_info(CLI::App& volume, CommonOptions&) {
-  auto* cmd = volume.add_subcommand("info", "Dimensions, voxel type, spacing, origin and value range");
+/// The rows every --stats report of a volume command ends with: what `extra` holds, then the timed phases.
+void print_volume_stats(StatRows rows, const PhaseTimer& timer) {
+  const StatRows phases = timer.rows();
+  rows.insert(rows.end(), phases.begin(), phases.end());
+  print_stats(rows);
+}
+
+/// --stats rows for an image written: width, height, pixels.
+StatRows image_rows(int width, int height) {
+  return {{"width", stat_value(width)}, {"height", stat_value(height)}, {"pixels", stat_value(double(width) * height)}};
+}
+
+void setup_info(CLI::App& volume, CommonOptions& common) {
+  auto* cmd = volume.add_subcommand(
+      "info", "Dimensions, voxel type, spacing, origin, value range, and Otsu's threshold between background and object");
   auto in = std::make_shared<VolumeInput>();
   in->add(*cmd);
-  cmd->callback([in] {
-    const AnyVolume v = in->read();
+  add_common_options(*cmd, common);
+  cmd->callback([in, &common] {
+    PhaseTimer timer;
+    const AnyVolume v = timer.time("read_s", [&] { return in->read(); });
+    const ValueProfile p = timer.time("compute_s", [&] { return profile_values(to_float(v)); });
     const auto d = dims_of(v);
     const auto s = spacing_of(v), o = origin_of(v);
-    const auto [lo, hi] = std::visit([](const auto& x) { return value_range(x); }, v);
-    fmt::print("dims={},{},{}\ntype={}\nspacing={},{},{}\norigin={},{},{}\nmin={}\nmax={}\n", d.x, d.y, d.z,
-               voxel_type_name(voxel_type(v)), s.x, s.y, s.z, o.x, o.y, o.z, stat_value(lo), stat_value(hi));
+    fmt::print("dims={},{},{}\ntype={}\nspacing={},{},{}\norigin={},{},{}\nmin={}\nmax={}\nthreshold={}\n", d.x, d.y,
+               d.z, voxel_type_name(voxel_type(v)), s.x, s.y, s.z, o.x, o.y, o.z, stat_value(p.lo), stat_value(p.hi),
+               stat_value(p.threshold));
+    if (common.stats) print_volume_stats({{"voxels", stat_value(double(d.x) * d.y * d.z)}}, timer);
   });
 }
 
@@ -83,44 +100,95 @@ ImageRGB gray_image(const DepthImage& s, double lo, double hi) {
 }
 
 struct SliceArgs {
-  std::string axis = "z";
-  int index = 0;
+  Axis axis = Axis::Z;
+  std::optional<int> index;
   std::string output;
   void add(CLI::App& cmd) {
-    cmd.add_option("--axis", axis, "Slice axis: x|y|z");
-    cmd.add_option("--slice", index, "Slice index along the axis")->required();
+    add_choice(cmd, "--axis", axis, {{"x", Axis::X}, {"y", Axis::Y}, {"z", Axis::Z}}, "Slice axis");
+    cmd.add_option("--slice", index, "Slice index along the axis (default: the middle one)");
     cmd.add_option("-o,--output", output, "Output file")->required();
+  }
+  /// The slice asked for, or the middle one.
+  DepthImage take(const Volume<float>& v) const {
+    return slice(v, axis, index ? *index : v.dims()[int(axis)] / 2);
   }
 };
 
-void setup_slice(CLI::App& volume, CommonOptions&) {
+void setup_slice(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand("slice", "A plane of voxels as a grayscale image (min..max mapped to black..white)");
   auto in = std::make_shared<VolumeInput>();
   auto args = std::make_shared<SliceArgs>();
   in->add(*cmd);
   args->add(*cmd);
-  cmd->callback([in, args] {
-    const Volume<float> v = to_float(in->read());
-    const auto [lo, hi] = value_range(v);
-    write_image(args->output, gray_image(slice(v, parse_axis(args->axis), args->index), lo, hi));
+  add_common_options(*cmd, common);
+  add_srgb_option(*cmd, common);
+  cmd->callback([in, args, &common] {
+    PhaseTimer timer;
+    const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
+    const ImageRGB image = timer.time("compute_s", [&] {
+      const auto [lo, hi] = value_range(v);
+      return gray_image(args->take(v), lo, hi);
+    });
+    timer.time("write_s", [&] { write_image(args->output, image, common.write_options()); });
+    if (common.stats) print_volume_stats(image_rows(image.width(), image.height()), timer);
   });
 }
 
-void setup_contour(CLI::App& volume, CommonOptions&) {
+/// Says on stderr when an iso value lies outside the values it is drawn from (the output is then empty).
+void warn_outside(float iso, double lo, double hi, const char* where) {
+  if (iso < lo || iso > hi)
+    fmt::print(stderr, "tessera: warning: --iso {} is outside the {}'s values [{}, {}]: the output is empty\n", iso,
+               where, stat_value(lo), stat_value(hi));
+}
+
+/// --iso: given, or Otsu's threshold of the volume (said on stderr).
+float iso_or_threshold(const std::optional<float>& iso, const Volume<float>& v) {
+  if (iso) return *iso;
+  const float t = float(profile_values(v).threshold);
+  fmt::print(stderr, "tessera: note: --iso {:.4g} (Otsu's threshold between background and object)\n", t);
+  return t;
+}
+
+void setup_contour(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand("contour", "Marching-squares iso-lines of a slice, as SVG or PNG");
   auto in = std::make_shared<VolumeInput>();
   auto args = std::make_shared<SliceArgs>();
-  auto iso = std::make_shared<float>(0.0f);
+  auto iso = std::make_shared<std::optional<float>>();
   in->add(*cmd);
   args->add(*cmd);
-  cmd->add_option("--iso", *iso, "Iso value")->required();
-  cmd->callback([in, args, iso] {
-    const Volume<float> v = to_float(in->read());
-    const DepthImage s = slice(v, parse_axis(args->axis), args->index);
-    const auto lines = marching_squares(s, *iso);
+  cmd->add_option("--iso", *iso, "Iso value (default: Otsu's threshold of the volume)");
+  add_common_options(*cmd, common);
+  add_srgb_option(*cmd, common);
+  cmd->callback([in, args, iso, &common] {
+    PhaseTimer timer;
+    const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
+    std::vector<Polyline> lines;
+    const DepthImage s = timer.time("compute_s", [&] {
+      const float value = iso_or_threshold(*iso, v);
+      DepthImage plane = args->take(v);
+      const auto [lo, hi] = std::minmax_element(plane.pixels().begin(), plane.pixels().end());
+      warn_outside(value, *lo, *hi, "slice");
+      lines = marching_squares(plane, value);
+      return plane;
+    });
+    const auto stats = [&](int width, int height) {
+      if (!common.stats) return;
+      size_t points = 0, segments = 0;
+      for (const auto& l : lines) {
+        points += l.points.size();
+        segments += l.points.size() - (l.closed || l.points.empty() ? 0 : 1);
+      }
+      StatRows rows{{"vertices", stat_value(double(points))}, {"edges", stat_value(double(segments))}};
+      if (width > 0) {
+        const StatRows size = image_rows(width, height);
+        rows.insert(rows.end(), size.begin(), size.end());
+      }
+      print_volume_stats(rows, timer);
+    };
     const std::string ext = std::filesystem::path(args->output).extension().string();
     if (ext == ".svg") {
-      write_contours_svg(args->output, lines, s.width(), s.height());
+      timer.time("write_s", [&] { write_contours_svg(args->output, lines, s.width(), s.height()); });
+      stats(0, 0);
       return;
     }
     const double scale = 4;
@@ -134,7 +202,8 @@ void setup_contour(CLI::App& volume, CommonOptions&) {
         const Vec2 a = (l.points[i] + 0.5) * scale, b = (l.points[(i + 1) % l.points.size()] + 0.5) * scale;
         canvas.line(a.x, a.y, b.x, b.y);
       }
-    canvas.save(args->output);
+    timer.time("write_s", [&] { write_image(args->output, canvas.image(), common.write_options()); });
+    stats(canvas.width(), canvas.height());
   });
 }
 
@@ -144,23 +213,33 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
   auto options = std::make_shared<MarchingCubesOptions>();
   auto output = std::make_shared<std::string>();
   in->add(*cmd);
-  cmd->add_option("--iso", options->iso, "Iso value (inside is value >= iso)")->required();
+  auto iso = std::make_shared<std::optional<float>>();
+  cmd->add_option("--iso", *iso, "Iso value (inside is value >= iso; default: Otsu's threshold of the volume)");
   cmd->add_option("-o,--output", *output, "Output mesh (.obj, .ply, .off, .stl)")->required();
   cmd->add_flag("--topological", options->topological, "Resolve ambiguous faces with the asymptotic decider");
   add_common_options(*cmd, common);
-  cmd->callback([in, options, output, &common] {
+  cmd->callback([in, options, output, iso, &common] {
     const ThreadLimit limit(common.threads);
-    const Volume<float> v = to_float(in->read());
-    const auto start = std::chrono::steady_clock::now();
-    const PolyMesh mesh = marching_cubes(v, *options);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    write_mesh(*output, mesh);
-    if (common.stats)
-      print_stats({{"tris", stat_value(double(mesh.face_count()))},
-                   {"verts", stat_value(double(mesh.vertex_count()))},
-                   {"area", stat_value(surface_area(mesh))},
-                   {"volume", stat_value(signed_volume(mesh))},
-                   {"seconds", stat_value(seconds)}});
+    PhaseTimer timer;
+    const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
+    MarchingCubesOptions o = *options;
+    o.iso = iso_or_threshold(*iso, v);
+    const auto [lo, hi] = value_range(v);
+    warn_outside(o.iso, lo, hi, "volume");
+    const PolyMesh mesh = timer.time("compute_s", [&] { return marching_cubes(v, o); });
+    timer.time("write_s", [&] { write_mesh(*output, mesh); });
+    if (common.stats) {
+      const std::string triangles = stat_value(double(mesh.face_count())), vertices = stat_value(double(mesh.vertex_count()));
+      // tris, verts and seconds (the extraction's time, = compute_s) are the deprecated spellings scripts rely on.
+      print_volume_stats({{"triangles", triangles},
+                          {"vertices", vertices},
+                          {"area", stat_value(surface_area(mesh))},
+                          {"volume", stat_value(signed_volume(mesh))},
+                          {"tris", triangles},
+                          {"verts", vertices},
+                          {"seconds", stat_value(timer.seconds("compute_s"))}},
+                         timer);
+    }
   });
 }
 
@@ -178,33 +257,46 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   cmd->add_option("-o,--output", a->output, "Output image")->required();
   a->camera.fovy = 30;  // a volume's box fills a narrower view better
   a->camera.add(*cmd, "256x256");
-  cmd->add_option("--tf", a->tf, "Transfer function file (.json or .csv)");
-  cmd->add_option("--preset", a->preset, "Transfer-function preset: ct-bone|ct-skin|mri");
-  cmd->add_flag("--mip", a->mip, "Maximum-intensity projection");
-  cmd->add_option("--step", a->step, "Sample distance in world units (default: half the smallest spacing)");
+  auto* tf = cmd->add_option("--tf", a->tf, "Transfer function file (.json or .csv)");
+  auto* preset = cmd->add_option("--preset", a->preset,
+                                 "Transfer-function preset, fitted to the volume's values (Otsu's threshold and the "
+                                 "top of the object's values)")
+                     ->check(CLI::IsMember(TransferFunction::preset_names()));
+  auto* mip = cmd->add_flag("--mip", a->mip, "Maximum-intensity projection (no transfer function)");
+  tf->excludes(preset);
+  mip->excludes(tf)->excludes(preset);
+  cmd->add_option("--step", a->step, "Sample distance in world units (default: half the smallest spacing)")
+      ->check(non_negative());
   add_common_options(*cmd, common);
+  add_srgb_option(*cmd, common);
   cmd->callback([in, a, &common] {
     const ThreadLimit limit(common.threads);
-    const Volume<float> v = to_float(in->read());
+    PhaseTimer timer;
+    const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     VolumeRenderOptions o;
     const auto size = a->camera.image_size();
     o.width = size.width;
     o.height = size.height;
     o.step = a->step;
     o.mip = a->mip;
-    // Framed as every 3D command frames its scene: the volume's bounding sphere fills the view from the +z side.
+    // Framed as every 3D command frames its scene (CameraOptions: a three-quarter view of the bounding sphere).
     const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1));
     o.camera = a->camera.camera(lo, hi);
-    if (!a->tf.empty()) {
-      o.transfer = TransferFunction::load(a->tf);
-    } else if (!a->preset.empty()) {
-      o.transfer = TransferFunction::preset(a->preset);
-    } else {  // a ramp over the volume's upper half
-      const auto [vlo, vhi] = value_range(v);
-      const float m = float(0.5 * (vlo + vhi)), top = float(vhi);
-      o.transfer = TransferFunction({{m, {0.9f, 0.6f, 0.4f}, 0.0f}, {top, {1.0f, 0.95f, 0.9f}, 0.8f}});
-    }
-    write_image(a->output, render_volume(v, o));
+    const ImageRGB image = timer.time("compute_s", [&] {
+      if (!a->tf.empty()) {
+        o.transfer = TransferFunction::load(a->tf);
+      } else if (!a->mip) {
+        const ValueProfile p = profile_values(v);
+        o.transfer = a->preset.empty() ? TransferFunction::automatic(p) : TransferFunction::preset(a->preset, p);
+        if (!common.quiet)
+          fmt::print(stderr, "tessera: note: {} over values {:.4g}..{:.4g} (Otsu's threshold {:.4g}, top of the object {:.4g})\n",
+                     a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
+                     o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
+      }
+      return render_volume(v, o);
+    });
+    timer.time("write_s", [&] { write_image(a->output, image, common.write_options()); });
+    if (common.stats) print_volume_stats(image_rows(image.width(), image.height()), timer);
   });
 }
 

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <tuple>
 
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
@@ -48,17 +50,118 @@ float TransferFunction::max_opacity(float lo, float hi) const {
   return m;
 }
 
-TransferFunction TransferFunction::preset(const std::string& name) {
-  if (name == "ct-bone")
-    return TransferFunction({{0, {0, 0, 0}, 0}, {1000, {0.9f, 0.6f, 0.4f}, 0}, {1150, {0.95f, 0.9f, 0.8f}, 0.6f},
-                             {2000, {1, 1, 0.95f}, 0.9f}});
-  if (name == "ct-skin")
-    return TransferFunction({{0, {0, 0, 0}, 0}, {400, {0.8f, 0.5f, 0.4f}, 0}, {600, {0.9f, 0.7f, 0.6f}, 0.15f},
-                             {1100, {0.9f, 0.7f, 0.6f}, 0.15f}, {1300, {1, 1, 0.95f}, 0.8f}});
-  if (name == "mri")
-    return TransferFunction({{0, {0, 0, 0}, 0}, {40, {0.5f, 0.3f, 0.3f}, 0}, {90, {0.9f, 0.75f, 0.6f}, 0.1f},
-                             {255, {1, 1, 1}, 0.5f}});
-  throw InvalidInput(fmt::format("unknown transfer-function preset '{}' (ct-bone, ct-skin, mri)", name));
+ValueProfile profile_values(const Volume<float>& volume) {
+  if (volume.empty()) throw InvalidInput("cannot profile an empty volume");
+  ValueProfile p;
+  std::tie(p.lo, p.hi) = value_range(volume);
+  p.diagonal = glm::length(volume.to_world(Vec3(volume.dims() - 1)) - volume.origin());
+  p.threshold = p.median = p.top = p.hi;
+  if (!(p.hi > p.lo)) return p;
+  // Otsu's histogram spans [lo, the 99th percentile], values above counting in its last bin: the long tail of a
+  // skewed field, such as the metaballs' centres, would otherwise squeeze the rest into one bin. Percentiles are
+  // numpy's "lower" ones (the element at floor(f (n - 1)) in sorted order), found by selection in a copy.
+  std::vector<float> values(volume.voxels().begin(), volume.voxels().end());
+  const auto percentile = [](std::vector<float>::iterator first, std::vector<float>::iterator last, double f) {
+    const auto at = first + std::ptrdiff_t(f * double(last - first - 1));
+    std::nth_element(first, at, last);
+    return double(*at);
+  };
+  const double p99 = percentile(values.begin(), values.end(), 0.99);
+  const double span_hi = p99 > p.lo ? p99 : p.hi;
+  constexpr int kBins = 1024;
+  const std::vector<uint64_t> counts = histogram(volume, kBins, p.lo, span_hi);
+  // Otsu's method: the split of the histogram that maximizes the between-class variance w0 w1 (m0 - m1)^2.
+  double total = 0, total_moment = 0;
+  for (int b = 0; b < kBins; ++b) {
+    total += double(counts[size_t(b)]);
+    total_moment += double(b) * double(counts[size_t(b)]);
+  }
+  double w0 = 0, moment0 = 0, best = -1;
+  int split = 0;  // the last bin of the background
+  for (int b = 0; b + 1 < kBins; ++b) {
+    w0 += double(counts[size_t(b)]);
+    moment0 += double(b) * double(counts[size_t(b)]);
+    const double w1 = total - w0;
+    if (w0 == 0 || w1 == 0) continue;
+    const double d = moment0 / w0 - (total_moment - moment0) / w1;
+    const double variance = w0 * w1 * d * d;
+    if (variance > best) best = variance, split = b;
+  }
+  p.threshold = p.lo + (split + 1) * (span_hi - p.lo) / kBins;
+  // The object's median and top (99.5th percentile) among the values above the threshold.
+  const auto object = std::partition(values.begin(), values.end(), [&](float x) { return !(x > p.threshold); });
+  if (object != values.end()) {
+    p.median = percentile(object, values.end(), 0.5);
+    p.top = percentile(object, values.end(), 0.995);
+  }
+  return p;
+}
+
+namespace {
+
+/// A control point on the object's scale of a profile: position s (ValueProfile::value_at), color, and opacity per
+/// kReferenceDiagonal-th of the diagonal.
+struct ScalePoint {
+  double s;
+  Vec3f color;
+  double opacity;
+};
+
+/// The transfer function of scale points on a volume of profile `p`.
+TransferFunction on_scale(const std::vector<ScalePoint>& points, const ValueProfile& p) {
+  // Opacity per reference length -> per world unit: 1 - (1 - a)^(kReferenceDiagonal / diagonal).
+  const double exponent = TransferFunction::kReferenceDiagonal / std::max(p.diagonal, 1e-30);
+  std::vector<TransferFunction::Point> out;
+  for (const auto& q : points)
+    out.push_back({float(p.value_at(q.s)), q.color, float(std::clamp(1 - std::pow(1 - q.opacity, exponent), 0.0, 1.0))});
+  return TransferFunction(std::move(out));
+}
+
+/// The presets on the object's scale. They were made for headsq (CT, 12-bit: threshold 644.8, top 2529) and the
+/// clinical MRI head of the shared data (8-bit: 62.2, 255), where they give the values of the ramps first written for
+/// them (bone from 1000 over 1150 to 2000, skin from 400 to 600 and 1100 to 1300, MRI from 40 to 90 and 255).
+const std::vector<std::pair<std::string, std::vector<ScalePoint>>>& preset_table() {
+  static const std::vector<std::pair<std::string, std::vector<ScalePoint>>> table = {
+      {"ct-bone", {{0.19, {0.9f, 0.6f, 0.4f}, 0}, {0.27, {0.95f, 0.9f, 0.8f}, 0.6}, {0.72, {1, 1, 0.95f}, 0.9}}},
+      {"ct-skin",
+       {{-0.13, {0.8f, 0.5f, 0.4f}, 0}, {-0.02, {0.9f, 0.7f, 0.6f}, 0.15}, {0.24, {0.9f, 0.7f, 0.6f}, 0.15},
+        {0.35, {1, 1, 0.95f}, 0.8}}},
+      {"mri", {{-0.12, {0.5f, 0.3f, 0.3f}, 0}, {0.14, {0.9f, 0.75f, 0.6f}, 0.1}, {1.0, {1, 1, 1}, 0.5}}},
+  };
+  return table;
+}
+
+}  // namespace
+
+const std::vector<std::string>& TransferFunction::preset_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const auto& [name, points] : preset_table()) n.push_back(name);
+    return n;
+  }();
+  return names;
+}
+
+TransferFunction TransferFunction::preset(const std::string& name, const ValueProfile& profile) {
+  for (const auto& [key, points] : preset_table()) {
+    if (key != name) continue;
+    if (!profile.separable())
+      throw InvalidInput(fmt::format("preset '{}' cannot apply: every voxel has the value {}, so there is no tissue to "
+                                     "tell from the background (use --tf or the default transfer function)",
+                                     name, profile.lo));
+    return on_scale(points, profile);
+  }
+  throw InvalidInput(fmt::format("unknown transfer-function preset '{}' ({})", name, fmt::join(preset_names(), ", ")));
+}
+
+TransferFunction TransferFunction::automatic(const ValueProfile& profile) {
+  if (!profile.separable())  // a constant volume: its box as a light haze
+    return on_scale({{0, {0.9f, 0.8f, 0.7f}, 0.02}}, profile);
+  // On the object's scale, with its median in the middle of the ramp: skewed fields keep most of their object
+  // translucent instead of crowding it into the ramp's first steps.
+  const double median = (profile.median - profile.threshold) / (profile.top - profile.threshold);
+  return on_scale({{0, {0.8f, 0.35f, 0.2f}, 0}, {median, {0.95f, 0.7f, 0.45f}, 0.05}, {1, {1, 0.97f, 0.92f}, 0.3}},
+                  profile);
 }
 
 namespace {

@@ -3,10 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/metrics.hpp"
 #include "tessera/volume/procedural.hpp"
+#include "tessera/volume/volume_io.hpp"
 
 namespace tessera {
 namespace {
@@ -192,8 +196,170 @@ TEST(TransferFunction, InterpolatesAndParses) {
   EXPECT_FLOAT_EQ(j(3).w, 0.5f);
   EXPECT_THROW(TransferFunction::from_csv("1,2\n", "bad.csv"), InvalidInput);
   EXPECT_THROW(TransferFunction::from_json("{", "bad.json"), InvalidInput);
-  EXPECT_THROW(TransferFunction::preset("pet"), InvalidInput);
-  EXPECT_NO_THROW(TransferFunction::preset("ct-bone"));
+  ValueProfile p;
+  p.lo = p.threshold = 0;
+  p.hi = p.top = 100;
+  p.diagonal = TransferFunction::kReferenceDiagonal;
+  EXPECT_THROW(TransferFunction::preset("pet", p), InvalidInput);
+  EXPECT_NO_THROW(TransferFunction::preset("ct-bone", p));
+}
+
+TEST(TransferFunction, PresetsSitOnTheObjectsScale) {
+  // The same preset on 12-bit and 8-bit profiles: the same positions between threshold and top, and opacities per
+  // 1/300 of the diagonal, so a volume twice as large gets 1 - (1 - a)^(1/2) per world unit.
+  ValueProfile ct;
+  ct.lo = 0, ct.hi = 4000, ct.threshold = 640, ct.top = 2533, ct.diagonal = 300;
+  ValueProfile foot;
+  foot.lo = 0, foot.hi = 255, foot.threshold = 38, foot.top = 255, foot.diagonal = 600;
+  const auto a = TransferFunction::preset("ct-bone", ct), b = TransferFunction::preset("ct-bone", foot);
+  ASSERT_EQ(a.points().size(), b.points().size());
+  for (size_t i = 0; i < a.points().size(); ++i) {
+    const double s = (a.points()[i].value - 640.0) / (2533.0 - 640.0);
+    EXPECT_NEAR(b.points()[i].value, 38 + s * (255 - 38), 1e-3);
+    EXPECT_NEAR(b.points()[i].opacity, 1 - std::sqrt(1 - a.points()[i].opacity), 1e-6);
+  }
+  // On headsq's profile the bone ramp is where the textbook puts it: from about 1000 to 1150.
+  EXPECT_NEAR(a.points()[0].value, 1000, 15);
+  EXPECT_NEAR(a.points()[1].value, 1150, 15);
+  ValueProfile constant;
+  constant.lo = constant.hi = constant.threshold = constant.top = 7;
+  try {
+    TransferFunction::preset("ct-bone", constant);
+    ADD_FAILURE() << "a preset on a constant volume";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("every voxel has the value 7"), std::string::npos) << e.what();
+  }
+  EXPECT_GT(TransferFunction::automatic(constant)(7).w, 0.0f);  // a constant volume still shows its box
+}
+
+TEST(ValueProfile, OtsuThresholdAndTopOfKnownHistograms) {
+  // Two values: Otsu's threshold separates them, and the object's top is the upper value.
+  Volume<float> two(glm::ivec3(8), 10.0f);
+  for (int z = 2; z < 5; ++z)
+    for (int y = 2; y < 5; ++y)
+      for (int x = 2; x < 5; ++x) two(x, y, z) = 200.0f;
+  const ValueProfile p = profile_values(two);
+  EXPECT_GT(p.threshold, 10);
+  EXPECT_LT(p.threshold, 200);
+  EXPECT_DOUBLE_EQ(p.top, 200);
+  EXPECT_NEAR(p.diagonal, 7 * std::sqrt(3.0), 1e-9);
+  // Values 0..99, 100 voxels each: Otsu's split of a uniform histogram is its middle (between-class variance
+  // w0 w1 (m1 - m0)^2 with m1 - m0 = 50 at every split is largest at w0 = w1), and the top is the 99.5th percentile of
+  // the upper half, 99.75 of the bin edges.
+  Volume<float> ramp(glm::ivec3(100, 10, 10));
+  for (int z = 0; z < 10; ++z)
+    for (int y = 0; y < 10; ++y)
+      for (int x = 0; x < 100; ++x) ramp(x, y, z) = float(x);
+  const ValueProfile r = profile_values(ramp);
+  EXPECT_NEAR(r.threshold, 49.5, 0.5);
+  EXPECT_NEAR(r.top, 99, 1);
+  const ValueProfile c = profile_values(Volume<float>(glm::ivec3(3), 5.0f));
+  EXPECT_FALSE(c.separable());
+}
+
+/// The fraction of pixels brighter than 0.02 (not background black).
+double lit_fraction(const ImageRGB& img) {
+  size_t lit = 0;
+  for (const auto& p : img.pixels()) lit += std::max({p.x, p.y, p.z}) > 0.02f;
+  return double(lit) / double(img.pixels().size());
+}
+
+/// A three-quarter view (azimuth 30, elevation 20 degrees) framing the volume's bounding sphere, as the CLI's default.
+Camera three_quarter(const Volume<float>& v) {
+  const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1)), mid = 0.5 * (lo + hi);
+  const double r = 0.5 * glm::length(hi - lo), az = radians(30.0), el = radians(20.0);
+  Camera c;
+  c.fovy = radians(30.0);
+  c.center = mid;
+  c.eye = mid + Vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)) * (1.1 * r / std::sin(c.fovy / 2));
+  return c;
+}
+
+/// A volume of the shared data, or nullopt (the caller skips) when they are not there.
+std::optional<Volume<float>> shared_volume(const std::string& name) {
+  const char* env = std::getenv("TESSERA_SHARED_DATA");
+  const auto path = std::filesystem::path(env ? env : TESSERA_SHARED_DATA) / "volumes" / name;
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return to_float(read_volume(path.string()));
+}
+
+TEST(ValueProfile, SharedVolumesMatchNumpy) {
+  // The reference: numpy, the same definitions written independently (np.percentile(a, 99, method="lower"),
+  // np.histogram of min(a, p99) in 1024 bins, Otsu's argmax over the bins' upper edges, then np.median and
+  // np.percentile(.., 99.5) of the values above the threshold).
+  struct Expected {
+    const char* file;
+    double threshold, median, top;
+  };
+  for (const Expected& e : {Expected{"foot_256x256x256_uint8.mhd", 32.0117, 51, 255},
+                            Expected{"headsq_64x64x93_int16le.mhd", 644.804, 1080, 2529},
+                            Expected{"hydrogen_atom_128x128x128_uint8.mhd", 13.0127, 24, 74},
+                            Expected{"mr_head_160x232x160_uint8.mhd", 62.1562, 107, 255}}) {
+    const auto v = shared_volume(e.file);
+    if (!v) GTEST_SKIP() << "no shared data (TESSERA_SHARED_DATA): " << e.file;
+    const ValueProfile p = profile_values(*v);
+    EXPECT_NEAR(p.threshold, e.threshold, 1e-3) << e.file;
+    // The median and top come from a sample of about a million voxels (all of them for the two smaller volumes).
+    EXPECT_NEAR(p.median, e.median, 1) << e.file;
+    EXPECT_NEAR(p.top, e.top, 1) << e.file;
+  }
+}
+
+// The foot CT (8-bit) was black with the CT presets, which were written for 12-bit values; presets now fit the data.
+TEST(TransferFunction, PresetsShowTheFootCT) {
+  const auto v = shared_volume("foot_256x256x256_uint8.mhd");
+  if (!v) GTEST_SKIP() << "no shared data (TESSERA_SHARED_DATA): foot_256x256x256_uint8.mhd";
+  const ValueProfile p = profile_values(*v);
+  VolumeRenderOptions o;
+  o.camera = three_quarter(*v);
+  o.width = o.height = 64;
+  const VolumeRenderer renderer(*v);
+  for (const std::string name : TransferFunction::preset_names()) {
+    o.transfer = TransferFunction::preset(name, p);
+    EXPECT_GT(lit_fraction(renderer.render(o)), 0.1) << name;
+  }
+  o.transfer = TransferFunction::automatic(p);
+  EXPECT_GT(lit_fraction(renderer.render(o)), 0.1) << "automatic";
+}
+
+TEST(TransferFunction, AutomaticShowsEveryProceduralVolume) {
+  for (const std::string spec : {"sphere:32", "torus:32", "gyroid:32", "metaballs:32", "noise:32"}) {
+    Volume<float> v;
+    ASSERT_TRUE(make_procedural(spec, v));
+    VolumeRenderOptions o;
+    o.camera = three_quarter(v);
+    o.width = o.height = 48;
+    o.transfer = TransferFunction::automatic(profile_values(v));
+    EXPECT_GT(lit_fraction(render_volume(v, o)), 0.04) << spec;  // the metaballs, smallest in their box: 0.06
+  }
+}
+
+// An orthographic camera: the sphere's silhouette (radius 0.7) is 0.7 / ortho_height of the image height, at any
+// distance; a perspective camera's grows as it comes closer.
+TEST(VolumeRender, OrthographicSilhouetteHasTheAnalyticRadius) {
+  const auto v = make_sphere(64);
+  VolumeRenderOptions o;
+  o.width = o.height = 101;
+  o.shading = false;
+  o.transfer = TransferFunction({{-0.005f, {1, 1, 1}, 0}, {0.005f, {1, 1, 1}, 1}});
+  o.camera.orthographic = true;
+  o.camera.ortho_height = 2.5;
+  const Vec3 dir = glm::normalize(Vec3(1, 2, 3));
+  const auto radius_px = [&](double distance) {
+    o.camera.eye = dir * distance;
+    const ImageRGB img = render_volume(v, o);
+    size_t lit = 0;
+    for (const auto& p : img.pixels()) lit += p.x > 0.5f;
+    return std::sqrt(double(lit) / M_PI);
+  };
+  const double expected = 0.7 / 2.5 * 101;  // 28.28 pixels
+  const double near = radius_px(3), far = radius_px(12);
+  EXPECT_NEAR(near, expected, 0.5);
+  EXPECT_NEAR(far, expected, 0.5);
+  EXPECT_NEAR(near, far, 0.1);
+  o.camera.orthographic = false;  // the test tells the projections apart: in perspective, nearer is larger
+  o.camera.fovy = radians(40.0);
+  EXPECT_GT(radius_px(3), radius_px(6) + 5);
 }
 
 // Found by fuzz/transfer_fuzz.cpp: a number beyond float's range was converted anyway (undefined behaviour; an infinite

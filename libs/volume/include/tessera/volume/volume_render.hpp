@@ -13,6 +13,23 @@
 
 namespace tessera {
 
+/// What a volume's value histogram says about it, for transfer functions that adapt to the data (medical volumes
+/// come as 8-bit, 12-bit or Hounsfield values, procedural ones in any range).
+struct ValueProfile {
+  double lo = 0, hi = 0;  ///< the value range
+  double threshold = 0;   ///< Otsu's threshold (1024 bins over [lo, 99th percentile]): object above, background below
+  double median = 0;      ///< the median of the values above the threshold
+  double top = 0;         ///< the 99.5th percentile of the values above the threshold (robust to a few outliers)
+  double diagonal = 0;    ///< the length of the volume's box diagonal, world units
+  /// Whether the values above the threshold spread over a range (false for a constant volume).
+  bool separable() const { return top > threshold; }
+  /// The value at position s of the object's scale: s = 0 is the threshold, s = 1 the top.
+  double value_at(double s) const { return threshold + s * (top - threshold); }
+};
+
+/// Profiles `volume`. Throws InvalidInput for an empty volume.
+ValueProfile profile_values(const Volume<float>& volume);
+
 /// A piecewise-linear map from value to color and opacity. Opacity is per unit world length: a sample standing for a
 /// segment of length s gets alpha = 1 - (1 - opacity)^s.
 class TransferFunction {
@@ -34,9 +51,19 @@ class TransferFunction {
   float max_opacity(float lo, float hi) const;
   const std::vector<Point>& points() const { return points_; }
 
-  /// Presets for CT (Hounsfield-like values of headsq: "ct-bone", "ct-skin") and 8-bit MRI ("mri"). Throws
-  /// InvalidInput for another name.
-  static TransferFunction preset(const std::string& name);
+  /// The opacities of automatic() and preset() are per this fraction of the volume's diagonal (one world unit of the
+  /// volumes the presets were made for, whose diagonals are 317 and 298), so that they look alike at any size.
+  static constexpr double kReferenceDiagonal = 300;
+  /// The names preset() knows, for help texts and messages.
+  static const std::vector<std::string>& preset_names();
+  /// A preset adapted to a volume: "ct-bone", "ct-skin" (CT) or "mri" (MRI). Values are placed on the object's scale
+  /// of `profile` (ValueProfile::value_at), so one preset serves 8-bit, 12-bit and Hounsfield data alike; opacities
+  /// are per kReferenceDiagonal-th of the diagonal. Throws InvalidInput for another name, and, saying why, for a
+  /// volume without an object to tell from its background (a constant volume).
+  static TransferFunction preset(const std::string& name, const ValueProfile& profile);
+  /// The default transfer function, for any volume: the background (below Otsu's threshold) clear, then color and
+  /// opacity ramping up to the profile's top, translucent enough to see inside. A constant volume is a uniform haze.
+  static TransferFunction automatic(const ValueProfile& profile);
   /// Parses JSON {"points": [[value, r, g, b, opacity], ...]} or CSV lines "value,r,g,b,opacity" (by extension).
   static TransferFunction load(const std::filesystem::path& path);
   /// Parses the JSON text above. Throws InvalidInput naming `name`.
