@@ -282,6 +282,28 @@ TEST(Render, PinholeEyeRaysAreTheNotesEyeRays) {
   }
 }
 
+TEST(Render, OrthographicEyeRaysAreTheNotesEyeRays) {
+  // An orthographic camera: every ray along the gaze, from eye + (h/2)(u u + v v), as EyeRays has it; the corner
+  // pixel's origin by hand (h = 3, aspect 2: u spans [-3, 3] and v [-1.5, 1.5] about the eye).
+  RayScene scene;
+  scene.camera.eye = {1, 2, 5};
+  scene.camera.center = {1, 2, 0};
+  scene.camera.orthographic = true;
+  scene.camera.ortho_height = 3;
+  Camera cam = scene.camera;
+  cam.aspect = 2;
+  const EyeRays rays(cam, 64, 32);
+  for (const auto& [x, y, dx, dy] : {std::tuple{0, 0, 0.0f, 0.0f}, std::tuple{63, 31, 0.99f, 0.99f},
+                                     std::tuple{20, 17, 0.25f, 0.75f}}) {
+    const Ray want = rays.ray(x, y, dx, dy);
+    const Ray got = eye_ray(scene, 64, 32, x, y, {dx, dy}, Vec2f(0.5f), 0.0f);
+    EXPECT_NEAR(glm::length(got.origin - want.origin), 0.0f, 1e-5f) << x << " " << y;
+    EXPECT_EQ(got.dir, Vec3f(0, 0, -1));
+  }
+  EXPECT_NEAR(glm::length(eye_ray(scene, 64, 32, 0, 0, Vec2f(0.0f), Vec2f(0.5f), 0.0f).origin - Vec3f(-2, 3.5f, 5)),
+              0.0f, 1e-5f);
+}
+
 RayScene busy_scene() {
   RayScene scene = camera_on_z(7, 45);
   scene.aperture = 0.1f;
