@@ -78,6 +78,15 @@ tris=$(sed -n 's/^tris=//p' <<<"$stats")
 grep -q '<svg' "$scratch/cubic.svg" && grep -q '</svg>' "$scratch/cubic.svg"
 stats=$("$tessera" curve --points 10,10,50,90,90,10,130,90,170,10,190,50 --steps 50 -o "$scratch/q.svg" --stats)
 grep -qx 'degree=5' <<<"$stats" || { echo "bad curve stats: $stats"; exit 1; }
+for key in length width height pixels compute_s write_s total_s; do
+  grep -q "^$key=" <<<"$stats" || { echo "curve stats lack $key: $stats"; exit 1; }
+done
+# --srgb: the picture is the linear one (PFM) through the sRGB formula.
+"$tessera" curve --points 12,108,24,12,96,12,108,108 --t 0.75 --split -o "$scratch/cubic.pfm" --size 120x120
+"$tessera" curve --points 12,108,24,12,96,12,108,108 --t 0.75 --split -o "$scratch/cubic_srgb.png" --size 120x120 \
+  --srgb
+/usr/bin/python3 "$(dirname "$0")/srgb_check.py" pfm "$scratch/cubic.pfm" "$scratch/cubic_srgb.png" ||
+  { echo "curve --srgb"; exit 1; }
 
 # Errors: runtime errors exit 1, usage errors 2.
 { printf '1\n3 3\n'; for i in $(seq 15); do echo "0.000 0.000 0.000"; done; echo "0 0"; } >"$scratch/short.bpt"
@@ -87,9 +96,11 @@ expect_exit 1 "short.bpt:18: expected z of control point 16 of patch 1, got end 
 expect_exit 1 "to be 3 (bicubic)" "$tessera" patch "$scratch/degree.bpt" -o "$scratch/x.obj"
 expect_exit 1 "tessera: error:" "$tessera" patch "$scratch/two.bpt" -o "$scratch/x.unknown"
 expect_exit 1 "tessera: error:" "$tessera" patch "$scratch/two.bpt" -o /proc/forbidden/x.obj
-expect_exit 1 "expected 2 to 1000 x,y pairs" "$tessera" curve --points 1,2,3 -o "$scratch/x.svg"
-expect_exit 1 "tessera: error:" "$tessera" curve --points 1,2,3,nan -o "$scratch/x.svg"
-expect_exit 1 "tessera: error:" "$tessera" curve --points 1,2,3,4 -o "$scratch/x.svg" --size 0x10
+expect_exit 2 "tessera: error: --points: expected 2 to 1000 x,y pairs, got 3 numbers" \
+  "$tessera" curve --points 1,2,3 -o "$scratch/x.svg"
+expect_exit 2 "tessera: error: --points" "$tessera" curve --points 1,2,3,nan -o "$scratch/x.svg"
+expect_exit 2 "tessera: error: --size" "$tessera" curve --points 1,2,3,4 -o "$scratch/x.svg" --size 0x10
+expect_exit 2 "tessera: error: --size" "$tessera" curve --points 1,2,3,4 -o "$scratch/x.png" --size 400
 expect_exit 2 "" "$tessera" patch "$scratch/two.bpt" -o "$scratch/x.obj" --tess 0
 expect_exit 2 "" "$tessera" patch "$scratch/missing.bpt" -o "$scratch/x.obj"
 expect_exit 2 "" "$tessera" patch "$scratch/two.bpt" -o "$scratch/x.obj" --orient sideways

@@ -1,5 +1,5 @@
-// tessera curve --points x,y,x,y,... -o OUT.png|OUT.svg [--steps N] [--t T] [--split] [--size WxH]: draws a Bezier
-// curve of any degree with its control polygon, convex hull and de Casteljau construction at t (docs/curves.md).
+// tessera curve --points x,y,x,y,... -o OUT.png|OUT.svg [--steps N] [--t T] [--split] [--size WxH] [--srgb]: draws a
+// Bezier curve of any degree with its control polygon, convex hull and de Casteljau construction at t (docs/curves.md).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/curves/figure.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster2d/svg.hpp"
@@ -39,14 +40,17 @@ void run_curve(const CurveOptions& opt, const CommonOptions& common) {
   figure.construction = opt.t;
   figure.show_split = opt.split;
   figure.steps = opt.steps;
-  const std::string svg = curve_figure_svg(figure);
+  PhaseTimer timer;
+  const std::string svg = timer.time("compute_s", [&] { return curve_figure_svg(figure); });
   std::string ext = std::filesystem::path(opt.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext == ".svg") {
-    write_file_atomic(opt.output, svg);
+    timer.time("write_s", [&] { write_file_atomic(opt.output, svg); });
   } else {
     // Pixels through raster2d's SVG renderer: the same picture as the SVG, antialiased.
-    write_image(opt.output, render_svg(parse_svg(svg, "curve figure"), SvgRenderOptions{}));
+    const ImageRGBA image =
+        timer.time("compute_s", [&] { return render_svg(parse_svg(svg, "curve figure"), SvgRenderOptions{}); });
+    timer.time("write_s", [&] { write_image(opt.output, image, common.write_options()); });
   }
   if (common.stats) {
     const Bezier2& curve = figure.curves.front();
@@ -54,7 +58,13 @@ void run_curve(const CurveOptions& opt, const CommonOptions& common) {
     flatten(curve, 1e-3, polyline);
     double length = 0;
     for (size_t i = 1; i < polyline.size(); ++i) length += glm::length(polyline[i] - polyline[i - 1]);
-    print_stats({{"degree", stat_value(curve.degree())}, {"length", stat_value(length)}});
+    StatRows rows{{"degree", stat_value(curve.degree())},
+                  {"length", stat_value(length)},
+                  {"width", stat_value(size.width)},
+                  {"height", stat_value(size.height)},
+                  {"pixels", stat_value(double(size.width) * size.height)}};
+    for (const auto& row : timer.rows()) rows.push_back(row);
+    print_stats(rows);
   }
 }
 
@@ -62,7 +72,19 @@ void run_curve(const CurveOptions& opt, const CommonOptions& common) {
 
 void setup_curve(CLI::App& curve, CommonOptions& common) {
   auto opt = std::make_shared<CurveOptions>();
-  curve.add_option("--points", opt->points, "Control points x,y,x,y,... in pixels (2 or more; y down)")->required();
+  curve.add_option("--points", opt->points, "Control points x,y,x,y,... in pixels (2 or more; y down)")
+      ->required()
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              parse_curve(text);
+              return std::string();
+            } catch (const InvalidInput& e) {
+              const std::string message = e.what();  // CLI11 names the option itself
+              return message.rfind("--points: ", 0) == 0 ? message.substr(10) : message;
+            }
+          },
+          "X,Y,..."));
   curve.add_option("-o,--output", opt->output, "Output picture: .svg, or an image (.png, .ppm, .jpg)")->required();
   curve.add_option("--steps", opt->steps, "Draw the curve as N segments by forward differences (0: adaptive)")
       ->check(CLI::Range(0, 1000000))
@@ -71,9 +93,10 @@ void setup_curve(CLI::App& curve, CommonOptions& common) {
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   curve.add_flag("--split", opt->split, "Also draw the control polygons of the two halves split at --t");
-  curve.add_option("--size", opt->size, "Picture size WxH")->capture_default_str();
+  curve.add_option("--size", opt->size, "Picture size WxH")->check(size_format())->capture_default_str();
+  add_srgb_option(curve, common);
   curve.footer(
-      "Stats (--stats): degree length.\n"
+      "Stats (--stats): degree length width height pixels compute_s write_s total_s.\n"
       "Example: tessera curve --points 40,360,80,40,320,40,360,360 --t 0.75 --split -o curve.png");
   curve.callback([opt, &common] { run_curve(*opt, common); });
 }
