@@ -1,27 +1,63 @@
 #pragma once
-// The camera options shared by every 3D command (DESIGN.md section 4).
-#include <string>
-
+// The camera options shared by every 3D command (DESIGN.md section 4, docs/raster3d.md "The camera options").
 #include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
 
 #include "tessera/core/parse.hpp"
 #include "tessera/math/camera.hpp"
 
 namespace tessera::cli {
 
-/// The camera options shared by every 3D command (DESIGN.md section 4):
-/// `--eye x,y,z --center x,y,z --up x,y,z --fovy DEG --near N --far F --size WxH`.
+/// Where the framed camera stands, as an azimuth about the model's up axis (0 = front, 90 = right) and an elevation
+/// above its horizontal plane (90 = top). three_quarter is the default of raster and trace.
+enum class View { three_quarter, front, back, left, right, top, bottom, iso };
+
+/// The model's up axis (--up-axis): meshes are y-up by OpenGL's convention, CAD data and the teapot (.bpt) are z-up.
+enum class UpAxis { x, y, z };
+
+/// The camera options shared by every 3D command (DESIGN.md section 4): `--eye x,y,z --center x,y,z --up x,y,z
+/// --fovy DEG --near N --far F --size WxH`, the framed views `--view NAME --azimuth DEG --elevation DEG --up-axis
+/// x|y|z`, and `--ortho [--ortho-size H]`.
+///
+/// The model's frame: up U is the --up-axis; front F and right R are (+z, +x) for y-up, (-y, +x) for z-up (Blender's
+/// front view) and (+z, -y) for x-up, so that R x U = F in every case. The framed eye lies on
+/// cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
+/// up (U at elevation 0; -F on the top view: the front at the bottom of the image, as in Blender).
 struct CameraOptions {
   std::string eye, center, up, size;
-  double fovy = 45, near = 0, far = 0;  ///< near/far 0: chosen from the framed bounds
+  double fovy = 45, near = 0, far = 0;       ///< near/far 0: chosen from the framed bounds
+  View view = View::three_quarter;           ///< the default view: set before add() to change a command's default
+  std::optional<double> azimuth, elevation;  ///< degrees; given, they replace the view's
+  UpAxis up_axis = UpAxis::y;
+  bool ortho = false;     ///< --ortho: parallel projection
+  double ortho_size = 0;  ///< --ortho-size: the view's height in world units; 0 frames the bounds
 
-  /// Adds the options to `command`; `default_size` is the --size default ("WxH").
+  /// Adds the options to `command`; `default_size` is the --size default ("WxH"). Malformed sizes and vectors,
+  /// unknown views, and --view/--azimuth/--elevation together with --eye are usage errors (exit 2).
   void add(CLI::App& command, const std::string& default_size = "512x512");
   /// The image size from --size.
   Size2 image_size() const;
-  /// The camera: options that were given win; the rest frame the bounding sphere of the box [lo, hi] from the +z side
-  /// (eye on `view_dir` from the center, so that the sphere fills the view). The aspect is the image's.
-  Camera camera(const Vec3& lo, const Vec3& hi, const Vec3& view_dir = {0, 0, 1}) const;
+  /// The view's azimuth and elevation in degrees (--azimuth and --elevation replace the view's own).
+  double view_azimuth() const;
+  double view_elevation() const;
+  /// The camera: options that were given win; the rest frame the bounding sphere of the box [lo, hi] (radius r) from
+  /// the view's direction at the distance where the sphere, grown by 10%, fills the narrower field of view; an
+  /// orthographic camera's height is --ortho-size, or 2.2 r / min(1, aspect) so that the same sphere fits. The aspect
+  /// is the image's.
+  Camera camera(const Vec3& lo, const Vec3& hi) const;
 };
+
+/// Adds `--samples N` (anti-aliasing: N samples per pixel, 1 to 1024) to a command.
+void add_samples_option(CLI::App& command, int& samples);
+
+/// Where sample s of a pixel's n samples (--samples) lies in the pixel, in [0, 1)^2 with y down the image: the pixel
+/// center for n = 1 (the unsampled picture), else Kensler's correlated multi-jittered pattern `pattern`, stratified in
+/// a ceil(sqrt n) grid and in 1/n strata along each axis (raytrace/sampling.hpp).
+Vec2 pixel_sample(int s, int n, uint32_t pattern);
+
+/// `projection` moved on screen so that the pipeline's pixel centers see the image at `sample` (a pixel_sample) of
+/// each pixel of a width x height image: clip x += (1 - 2 sample.x) w / width, clip y -= (1 - 2 sample.y) w / height.
+Mat4 jittered_projection(const Mat4& projection, const Vec2& sample, int width, int height);
 
 }  // namespace tessera::cli

@@ -37,11 +37,14 @@ for name in ['cube_unlit.png', 'cube_phong.png', 'lights_dir.png', 'lights_pos.p
     assert len(set(im.convert('RGB').getdata())) > 1, name + ' is a single color'
 "
 
-# --stats: the keys, 12 triangles for the cube (6 quads), and `pixels` equal to the covered pixels of --depth-out.
+# --stats: the keys (docs/cli.md; tris and seconds kept for scripts), 12 triangles for the cube (6 quads), and
+# `pixels` equal to the covered pixels of --depth-out.
 "$tessera" raster cube.obj -o stats.png --size 40x30 --depth-out stats.pfm --repeat 3 --stats > stats.txt
-for key in tris pixels seconds tris_per_s; do grep -q "^$key=" stats.txt || { echo "missing $key"; cat stats.txt; exit 1; }; done
-grep -q '^tris=12$' stats.txt || { echo "expected tris=12"; cat stats.txt; exit 1; }
-[ "$(wc -l < stats.txt)" -eq 4 ] || { echo "expected exactly 4 stats lines"; cat stats.txt; exit 1; }
+keys="triangles tris pixels width height samples seconds tris_per_s read_s compute_s write_s total_s"
+[ "$(sed 's/=.*//' stats.txt | tr '\n' ' ')" = "$keys " ] || { echo "expected the keys $keys"; cat stats.txt; exit 1; }
+grep -q '^tris=12$' stats.txt && grep -q '^triangles=12$' stats.txt || { echo "expected 12 triangles"; cat stats.txt; exit 1; }
+grep -q '^width=40$' stats.txt && grep -q '^height=30$' stats.txt && grep -q '^samples=1$' stats.txt \
+  || { echo "expected width=40 height=30 samples=1"; cat stats.txt; exit 1; }
 $py - "$(sed -n 's/^pixels=//p' stats.txt)" <<'PY'
 import sys, numpy as np
 raw = open('stats.pfm', 'rb').read()
@@ -196,6 +199,210 @@ assert (abs(half[inside] - 191) <= 1).mean() > 0.95, np.unique(half[inside], ret
 assert (half[~inside] == 0).all() and (clear == 0).all()
 PY
 
+# The framed views (CameraOptions, docs/raster3d.md): trace --shade normal shows n/2 + 1/2. On a unit sphere seen
+# orthographically with --ortho-size 2, the center pixel's normal is the direction D toward the eye, and the pixel
+# v = 0.49 above it (row 16 of 65) has the normal v U + sqrt(1 - v^2) D, U the image's up. D and U are written out
+# by hand for each view and up axis. Then the eye's distance: bench raycast's single 1x1 ray from the eye to the
+# center of the cube [-1,1]^3 hits it at t = d - 1/max|D_i|, with the framing distance d = 1.1 sqrt(3) / sin(22.5 deg).
+$py - <<'PY'
+import math
+n, m = 48, 97  # 97 meridians: no view direction runs exactly along an edge
+with open('sphere.obj', 'w') as f:
+    for i in range(n + 1):
+        for j in range(m):
+            th, ph = math.pi * i / n, 2 * math.pi * j / m
+            x, y, z = math.sin(th) * math.cos(ph), math.cos(th), -math.sin(th) * math.sin(ph)
+            f.write(f'v {x:.9f} {y:.9f} {z:.9f}\nvn {x:.9f} {y:.9f} {z:.9f}\n')
+    for i in range(n):
+        for j in range(m):
+            a, b = i * m + j + 1, i * m + (j + 1) % m + 1
+            f.write(f'f {a}//{a} {a + m}//{a + m} {b + m}//{b + m} {b}//{b}\n')
+PY
+views="front:y back:y left:y right:y top:y bottom:y iso:y three-quarter:y front:z top:z right:z front:x"
+for vu in $views; do
+  "$tessera" trace sphere.obj -o "view_${vu/:/_}.png" --shade normal --ortho --ortho-size 2 --size 65x65 \
+    --view "${vu%:*}" --up-axis "${vu#*:}"
+  "$tessera" bench raycast cube.obj --size 1x1 --random-rays 0 --view "${vu%:*}" --up-axis "${vu#*:}" \
+    --hits-out "hits_${vu/:/_}.txt" > /dev/null
+done
+"$tessera" trace sphere.obj -o view_default.png --shade normal --ortho --ortho-size 2 --size 65x65
+"$tessera" trace sphere.obj -o view_angles.png --shade normal --ortho --ortho-size 2 --size 65x65 --azimuth -60 \
+  --elevation 45 --up-axis z
+$py - <<'PY'
+import math
+import numpy as np
+from PIL import Image
+s, c = math.sin, math.cos
+r = math.radians
+i3 = 1 / math.sqrt(3)
+# view: (D, U) by hand. y up: front +z, right +x; z up: front -y, right +x; x up: front +z, right -y.
+expected = {
+    'front_y': ((0, 0, 1), (0, 1, 0)), 'back_y': ((0, 0, -1), (0, 1, 0)),
+    'left_y': ((-1, 0, 0), (0, 1, 0)), 'right_y': ((1, 0, 0), (0, 1, 0)),
+    'top_y': ((0, 1, 0), (0, 0, -1)), 'bottom_y': ((0, -1, 0), (0, 0, 1)),
+    'iso_y': ((i3, i3, i3), (-i3 / math.sqrt(2), math.sqrt(2 / 3), -i3 / math.sqrt(2))),
+    'three-quarter_y': ((s(r(30)) * c(r(20)), s(r(20)), c(r(30)) * c(r(20))),
+                        (-s(r(30)) * s(r(20)), c(r(20)), -c(r(30)) * s(r(20)))),
+    'default': ((s(r(30)) * c(r(20)), s(r(20)), c(r(30)) * c(r(20))),
+                (-s(r(30)) * s(r(20)), c(r(20)), -c(r(30)) * s(r(20)))),
+    'front_z': ((0, -1, 0), (0, 0, 1)), 'top_z': ((0, 0, 1), (0, 1, 0)), 'right_z': ((1, 0, 0), (0, 0, 1)),
+    'front_x': ((0, 0, 1), (1, 0, 0)),
+    # azimuth -60 (toward the left), elevation 45, z up: D = cos 45 (cos 60 (-y) - sin 60 (+x)) + sin 45 z.
+    'angles': ((-s(r(60)) * c(r(45)), -c(r(60)) * c(r(45)), s(r(45))),
+               (s(r(60)) * s(r(45)), c(r(60)) * s(r(45)), c(r(45)))),
+}
+v = 1 - 2 * 16.5 / 65
+d = 1.1 * math.sqrt(3) / math.sin(math.radians(22.5))
+for name, (D, U) in expected.items():
+    D, U = np.array(D), np.array(U)
+    img = np.asarray(Image.open(f'view_{name}.png').convert('RGB')) / 255.0
+    for (row, col), normal in (((32, 32), D), ((16, 32), v * U + math.sqrt(1 - v * v) * D)):
+        got = 2 * img[row, col] - 1
+        assert np.abs(got - normal).max() < 0.03, (name, row, col, got, normal)
+    if name in ('default', 'angles'):
+        continue
+    index, t, prim = open(f'hits_{name}.txt').read().split()
+    want = d - 1 / np.abs(D).max()
+    assert abs(float(t) - want) < 1e-4 * d, (name, t, want)
+PY
+
+# The teapot (z up) from the front with --up-axis z: its lid's knob, the highest point (z = 3.15, x = 0), is the top
+# of the picture, near the middle column; the teapot is wider (spout to handle, 6.4) than tall (3.15).
+teapot="${TESSERA_SHARED_DATA:-}/bezier/teapot.bpt"
+if [ ! -f "$teapot" ]; then
+  echo "skipped the teapot check: no shared data in TESSERA_SHARED_DATA"
+else
+  "$tessera" patch "$teapot" -o teapot.obj --tess 8 --quiet
+  "$tessera" raster teapot.obj -o teapot_front.png --up-axis z --view front --size 160x120 --shading unlit \
+    --depth-out teapot_front.pfm
+  $py - <<'PY'
+import numpy as np
+raw = open('teapot_front.pfm', 'rb').read().split(b'\n', 3)
+depth = np.frombuffer(raw[3], dtype='<f4').reshape(120, 160)[::-1]  # PFM: bottom row first
+rows, cols = np.nonzero(depth < 1)
+top = rows.min()
+width, height = cols.max() - cols.min() + 1, rows.max() - top + 1
+assert width > 1.7 * height, (width, height)
+knob = cols[rows == top].mean()
+# x = 0 in the picture: the bounds' x range is [-3, 3.43] (handle to spout), at its center 0.215 from x = 0.
+x0 = cols.min() + (0 - (-3.0)) / 6.43 * width
+assert abs(knob - x0) < 0.06 * width, (knob, x0, width)
+PY
+fi
+
+# --ortho: the cube's front face with --ortho-size 4 on 100 pixels is 2/4 of the height, exactly 50 x 50 pixels
+# (pixel centers in [25, 75)), whatever the width; without --ortho-size the bounding sphere, grown by 10%, fills the
+# height: 100 x 2 / (2.2 sqrt 3) = 52.5 pixels. The sphere's disk: pi 25^2 pixels.
+"$tessera" raster cube.obj -o ortho.png --view front --ortho --ortho-size 4 --size 160x100 --stats > ortho.txt
+"$tessera" raster cube.obj -o ortho_framed.png --view front --ortho --size 100x100 --stats > ortho_framed.txt
+"$tessera" raster sphere.obj -o ortho_sphere.png --view front --ortho --ortho-size 4 --size 100x100 --stats \
+  > ortho_sphere.txt
+grep -q '^pixels=2500$' ortho.txt || { echo "expected 2500 pixels"; cat ortho.txt; exit 1; }
+framed=$(sed -n 's/^pixels=//p' ortho_framed.txt)
+[ "$framed" -ge 2704 ] && [ "$framed" -le 2809 ] || { echo "expected 52-53 squared pixels, got $framed"; exit 1; }
+disk=$(sed -n 's/^pixels=//p' ortho_sphere.txt)
+$py -c "import math, sys; d = $disk; assert abs(d - math.pi * 625) < 2 * math.pi * 25, d"
+
+# --hidden-surface: two triangles seen from the front, orthographically, unlit. Depth-sortable (a red one at z = 0, a
+# green one in front at z = 0.5, overlapping it): the painter's algorithm and the z-buffer give the same picture.
+# Intersecting (the green one tilted, z = x + 0.2, through the red one at x = -0.2): the z-buffer shows red left of
+# x = -0.2 and green right of it; the painter's algorithm draws the green triangle (centroid z = 0.2, the nearer)
+# over all of the red one.
+cat > sortable.obj <<'OBJ'
+v -1 -1 0 1 0 0
+v 1 -1 0 1 0 0
+v 0 1 0 1 0 0
+v -0.5 -1 0.5 0 1 0
+v 1.5 -1 0.5 0 1 0
+v 0.5 1 0.5 0 1 0
+f 1 2 3
+f 4 5 6
+OBJ
+cat > crossing.obj <<'OBJ'
+v -1 -1 0 1 0 0
+v 1 -1 0 1 0 0
+v 0 1 0 1 0 0
+v -1 -1 -0.8 0 1 0
+v 1 -1 1.2 0 1 0
+v 0 1 0.2 0 1 0
+f 1 2 3
+f 4 5 6
+OBJ
+hs=(--view front --ortho --ortho-size 2.5 --size 100x100 --shading unlit --center 0.25,0,0)
+for scene in sortable crossing; do
+  for method in zbuffer painter; do
+    "$tessera" raster "$scene.obj" -o "${scene}_$method.png" "${hs[@]}" --hidden-surface "$method" --stats \
+      > "${scene}_$method.txt"
+  done
+  cmp -s <(grep '^pixels=' "${scene}_zbuffer.txt") <(grep '^pixels=' "${scene}_painter.txt") \
+    || { echo "$scene: the two methods cover different pixels"; exit 1; }
+done
+cmp -s sortable_zbuffer.png sortable_painter.png || { echo "painter and z-buffer differ on a sortable scene"; exit 1; }
+$py - <<'PY'
+import numpy as np
+from PIL import Image
+z = np.asarray(Image.open('crossing_zbuffer.png').convert('RGB')).astype(int)
+p = np.asarray(Image.open('crossing_painter.png').convert('RGB')).astype(int)
+# World x = 0.25 + (col + 0.5 - 50) * 2.5 / 100, y = (50 - row - 0.5) * 2.5 / 100; inside both triangles at y = -0.5.
+row = 69
+for col, zcolor in ((20, (255, 0, 0)), (28, (255, 0, 0)), (44, (0, 255, 0)), (60, (0, 255, 0))):
+    x = 0.25 + (col + 0.5 - 50) * 0.025
+    assert tuple(z[row, col]) == zcolor, (col, x, z[row, col])
+    assert tuple(p[row, col]) == (0, 255, 0), (col, x, p[row, col])
+PY
+
+# --samples: a white half plane x < 0 seen orthographically on 11 pixels across 2 units: the edge runs through the
+# centers of column 5, which N samples cover by 1/2 within 1/N (stratified in 1/N strata along x); columns left of it
+# stay white, right of it black. --samples 1 is the unsampled picture, byte for byte.
+cat > half.obj <<'OBJ'
+v -5 -5 0
+v 0 -5 0
+v 0 5 0
+v -5 5 0
+f 1 2 3 4
+OBJ
+aa=(--view front --ortho --ortho-size 2 --center 0,0,0 --size 11x11 --shading unlit --color 1,1,1)
+"$tessera" raster half.obj -o aa_default.png "${aa[@]}"
+"$tessera" raster half.obj -o aa_1.png "${aa[@]}" --samples 1
+cmp -s aa_default.png aa_1.png || { echo "--samples 1 differs from the default"; exit 1; }
+for n in 4 9 16 64; do "$tessera" raster half.obj -o "aa_$n.png" "${aa[@]}" --samples "$n"; done
+"$tessera" raster cube.obj -o cube_s1.png --size 64x48 --samples 1
+"$tessera" raster cube.obj -o cube_s0.png --size 64x48
+cmp -s cube_s0.png cube_s1.png || { echo "--samples 1 differs from the default (cube)"; exit 1; }
+"$tessera" raster cube.obj -o cube_s8.png --size 64x48 --samples 8 --stats > cube_s8.txt
+grep -q '^samples=8$' cube_s8.txt || { echo "expected samples=8"; cat cube_s8.txt; exit 1; }
+$py - <<'PY'
+import numpy as np
+from PIL import Image
+for n in (4, 9, 16, 64):
+    a = np.asarray(Image.open(f'aa_{n}.png').convert('L')).astype(float)
+    assert (a[:, :5] == 255).all() and (a[:, 6:] == 0).all(), n
+    assert (np.abs(a[:, 5] / 255 - 0.5) <= 1 / n + 0.5 / 255).all(), (n, a[:, 5])
+one, eight = (np.asarray(Image.open(f).convert('L')).astype(int) for f in ('cube_s1.png', 'cube_s8.png'))
+# The silhouette gets in-between values; the number of distinct gray levels grows.
+assert len(np.unique(eight)) > len(np.unique(one)), 'no intermediate values'
+PY
+
+# --srgb: every pixel is the sRGB curve of the linear picture's value (an unlit gray ramp of vertex colors).
+cat > ramp.obj <<'OBJ'
+v -1 -1 0 0 0 0
+v 1 -1 0 1 1 1
+v 1 1 0 1 1 1
+v -1 1 0 0 0 0
+f 1 2 3 4
+OBJ
+"$tessera" raster ramp.obj -o ramp_linear.png --view front --size 64x64 --shading unlit
+"$tessera" raster ramp.obj -o ramp_srgb.png --view front --size 64x64 --shading unlit --srgb
+$py - <<'PY'
+import numpy as np
+from PIL import Image
+lin = np.asarray(Image.open('ramp_linear.png').convert('RGB')) / 255.0
+srgb = np.asarray(Image.open('ramp_srgb.png').convert('RGB')).astype(float)
+want = np.where(lin <= 0.0031308, 12.92 * lin, 1.055 * lin ** (1 / 2.4) - 0.055) * 255
+assert np.abs(srgb - want).max() <= 0.5 + 1e-9, np.abs(srgb - want).max()
+assert len(np.unique(lin)) > 30
+PY
+
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
 expect_error() {
   local status="$1" pattern="$2"
@@ -211,10 +418,25 @@ expect_error() {
 printf 'v 0 0 0\nv 1 0 0\nf 1 2 7\n' > broken.obj
 expect_error 1 "missing.obj" missing.obj -o bad.png
 expect_error 1 "broken.obj" broken.obj -o bad.png
-expect_error 1 "color" cube.obj -o bad.png --color 2,0,0
+expect_error 2 "color" cube.obj -o bad.png --color 2,0,0
+expect_error 2 "background" cube.obj -o bad.png --background whiteish
+expect_error 2 "size" cube.obj -o bad.png --size 800
+expect_error 2 "eye" cube.obj -o bad.png --eye 1,2
+expect_error 2 "light-dir" cube.obj -o bad.png --light-dir 1,x,2
+expect_error 2 "view" cube.obj -o bad.png --view diagonal
+expect_error 2 "up-axis" cube.obj -o bad.png --up-axis w
+expect_error 2 "eye" cube.obj -o bad.png --view top --eye 0,5,0
+expect_error 2 "ortho" cube.obj -o bad.png --ortho-size 3
+expect_error 2 "fovy" cube.obj -o bad.png --ortho --fovy 30
+expect_error 2 "elevation" cube.obj -o bad.png --elevation 100
+expect_error 2 "samples" cube.obj -o bad.png --samples 0
+expect_error 2 "hidden-surface" cube.obj -o bad.png --hidden-surface scanline
+expect_error 1 "z-buffer" cube.obj -o bad.png --hidden-surface painter --wireframe
+expect_error 1 "depth" cube.obj -o bad.png --hidden-surface painter --depth-out bad.pfm
+expect_error 1 "perspective" cube.obj -o bad.png --ortho --floor --shadows --shadow-method zfail
 expect_error 1 "\.pfm" cube.obj -o bad.png --depth-out bad.png
 expect_error 1 "not both" cube.obj -o bad.png --light-dir 0,0,1 --light-pos 0,0,5
-expect_error 1 "size" cube.obj -o bad.png --size 0x10
+expect_error 2 "size" cube.obj -o bad.png --size 0x10
 expect_error 1 "near" cube.obj -o bad.png --near 5 --far 2
 expect_error 1 "xyz" cube.obj -o bad.xyz
 expect_error 1 "" cube.obj -o bad.png --depth-out no_such_dir/bad.pfm

@@ -1,11 +1,11 @@
 // tessera bench raycast MESH: build a BVH over a mesh and measure primary and incoherent rays per second.
+#include <fmt/format.h>
+
 #include <atomic>
 #include <chrono>
 #include <memory>
 #include <span>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "camera_options.hpp"
 #include "command.hpp"
@@ -65,9 +65,9 @@ void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   // The rays are made up front (36 bytes each): 2^27 of them take 4.5 GiB.
   constexpr long long kMaxRandomRays = 1LL << 27;
   if (a.random_rays < 0 || a.random_rays > kMaxRandomRays)
-    throw InvalidInput(
-        fmt::format("--random-rays: expected N in [0, {}], got {}", kMaxRandomRays, a.random_rays));
-  const PolyMesh poly = read_mesh(a.mesh);
+    throw InvalidInput(fmt::format("--random-rays: expected N in [0, {}], got {}", kMaxRandomRays, a.random_rays));
+  PhaseTimer timer;
+  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh(a.mesh); });
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to cast rays at", a.mesh));
   const Bounds3 b = bounding_box(poly);
@@ -95,34 +95,41 @@ void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   const int64_t random_hits = cast_all(accel, random, true, [](int64_t, const Hit*) {});
   const double random_s = seconds_since(start);
 
-  if (!a.hits_out.empty()) {
-    write_file_atomic(a.hits_out, [&](std::ostream& out) {
-      for (size_t i = 0; i < hit_t.size(); ++i) {
-        if (hit_prim[i] < 0)
-          out << i << " -1 -1\n";
-        else
-          out << fmt::format("{} {:.9g} {}\n", i, hit_t[i], hit_prim[i]);
-      }
+  if (!a.hits_out.empty())
+    timer.time("write_s", [&] {
+      write_file_atomic(a.hits_out, [&](std::ostream& out) {
+        for (size_t i = 0; i < hit_t.size(); ++i) {
+          if (hit_prim[i] < 0)
+            out << i << " -1 -1\n";
+          else
+            out << fmt::format("{} {:.9g} {}\n", i, hit_t[i], hit_prim[i]);
+        }
+      });
     });
-  }
   const double primary_rate = primary_s > 0 ? double(primary.size()) / primary_s : 0;
   const double random_rate = random_s > 0 && !random.empty() ? double(random.size()) / random_s : 0;
   if (!common.stats) {
-    fmt::print("build_s={} primary_rays_per_s={} random_rays_per_s={}\n", stat_value(build_s),
-               stat_value(primary_rate), stat_value(random_rate));
+    fmt::print("build_s={} primary_rays_per_s={} random_rays_per_s={}\n", stat_value(build_s), stat_value(primary_rate),
+               stat_value(random_rate));
     return;
   }
-  print_stats({{"build_s", stat_value(build_s)},
-               {"primary_rays_per_s", stat_value(primary_rate)},
-               {"random_rays_per_s", stat_value(random_rate)},
-               {"triangles", stat_value(double(mesh.triangle_count()))},
-               {"bvh_nodes", stat_value(double(accel.bvh().nodes().size()))},
-               {"bvh_depth", stat_value(accel.bvh().depth())},
-               {"primary_rays", stat_value(double(primary.size()))},
-               {"primary_hit_fraction", stat_value(double(primary_hits) / double(primary.size()))},
-               {"random_rays", stat_value(double(random.size()))},
-               {"random_hit_fraction", stat_value(random.empty() ? 0 : double(random_hits) / double(random.size()))},
-               {"threads", stat_value(thread_count())}});
+  StatRows rows = {
+      {"build_s", stat_value(build_s)},
+      {"primary_rays_per_s", stat_value(primary_rate)},
+      {"random_rays_per_s", stat_value(random_rate)},
+      {"triangles", stat_value(double(mesh.triangle_count()))},
+      {"bvh_nodes", stat_value(double(accel.bvh().nodes().size()))},
+      {"bvh_depth", stat_value(accel.bvh().depth())},
+      {"primary_rays", stat_value(double(primary.size()))},
+      {"primary_hit_fraction", stat_value(double(primary_hits) / double(primary.size()))},
+      {"random_rays", stat_value(double(random.size()))},
+      {"random_hit_fraction", stat_value(random.empty() ? 0 : double(random_hits) / double(random.size()))},
+      {"width", stat_value(width)},
+      {"height", stat_value(height)},
+      {"threads", stat_value(thread_count())},
+      {"compute_s", stat_value(build_s + primary_s + random_s)}};
+  for (auto& row : timer.rows()) rows.push_back(row);
+  print_stats(rows);
 }
 
 }  // namespace
@@ -132,6 +139,7 @@ void setup_bench(CLI::App& bench, CommonOptions& common) {
   CLI::App* cmd = bench.add_subcommand("raycast", "Build a BVH over a mesh and measure primary and random rays/s");
   auto a = std::make_shared<RaycastArgs>();
   cmd->add_option("mesh", a->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
+  a->camera.view = View::front;  // the benchmark's rays stay those of earlier sessions' measurements
   a->camera.add(*cmd);
   cmd->add_option("--random-rays", a->random_rays,
                   "Incoherent rays: origins uniform in the mesh box scaled 1.1x, directions uniform (0 skips)")

@@ -1,10 +1,9 @@
 // tessera trace MESH -o IMG: a quick ray-cast of a mesh through a BVH (headlight diffuse shading, smooth normals when
 // the mesh has them), or a picture of the normals or of the traversal cost.
-#include <algorithm>
-#include <chrono>
-#include <memory>
-
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <memory>
 
 #include "camera_options.hpp"
 #include "command.hpp"
@@ -16,63 +15,77 @@
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
+#include "tessera/raytrace/sampling.hpp"
 
 namespace tessera::cli {
 namespace {
 
 struct TraceArgs {
   std::string mesh, output, shade = "diffuse", color = "0.85,0.8,0.7", background = "0.1,0.1,0.12";
+  int samples = 1;
   CameraOptions camera;
 };
+
+/// What one eye ray shows: the headlit surface, its normal, or (cost) the BVH nodes and triangles it tested.
+Vec3f shade_ray(const TraceArgs& a, const MeshAccel& accel, const TriMesh& mesh, Ray ray, const Vec3f& surface,
+                const Vec3f& background) {
+  Hit hit;
+  TraversalStats stats;
+  const bool h = accel.intersect(ray, hit, &stats);
+  if (a.shade == "cost") return Vec3f(float(stats.nodes + stats.prims));
+  if (!h) return background;
+  const Vec3f n = shading_normal(mesh, hit);
+  if (a.shade == "normal") return 0.5f * n + 0.5f;
+  // A headlight: the light is at the eye, so N.L is the cosine with the ray (either side of the surface).
+  const float lambert = std::abs(glm::dot(n, glm::normalize(ray.dir)));
+  return surface * (0.15f + 0.85f * lambert);
+}
 
 void run_trace(const TraceArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
-  const PolyMesh poly = read_mesh(a.mesh);
+  PhaseTimer timer;
+  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh(a.mesh); });
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to trace", a.mesh));
   const Bounds3 b = bounding_box(poly);
   const Camera camera = a.camera.camera(b.lo, b.hi);
 
-  const auto start = std::chrono::steady_clock::now();
-  const MeshAccel accel(mesh);
-  const EyeRays eye(camera, width, height);
   const Vec3f surface(color.r, color.g, color.b), bg(background.r, background.g, background.b);
   ImageRGB image(width, height, bg);
-  Image<float> cost(a.shade == "cost" ? width : 1, a.shade == "cost" ? height : 1, 0.0f);
-  parallel_tiles(width, height, 16, [&](const Tile& tile) {
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        Ray ray = eye.ray(x, y);
-        Hit hit;
-        TraversalStats stats;
-        const bool h = accel.intersect(ray, hit, &stats);
-        if (a.shade == "cost") {
-          cost(x, y) = float(stats.nodes + stats.prims);
-          continue;
+  timer.time("compute_s", [&] {
+    const MeshAccel accel(mesh);
+    const EyeRays eye(camera, width, height);
+    // Each pixel averages its --samples rays (stratified, a pattern of its own), or (cost) their traversal costs.
+    parallel_tiles(width, height, 16, [&](const Tile& tile) {
+      for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+          Vec3f sum(0);
+          const uint32_t pattern = hash_u32(uint64_t(x), uint64_t(y));
+          for (int s = 0; s < a.samples; ++s) {
+            const Vec2 offset = pixel_sample(s, a.samples, pattern);
+            sum += shade_ray(a, accel, mesh, eye.ray(x, y, offset.x, offset.y), surface, bg);
+          }
+          image(x, y) = sum / float(a.samples);
         }
-        if (!h) continue;
-        const Vec3f n = shading_normal(mesh, hit);
-        if (a.shade == "normal") {
-          image(x, y) = 0.5f * n + 0.5f;
-        } else {
-          // A headlight: the light is at the eye, so N.L is the cosine with the ray (either side of the surface).
-          const float lambert = std::abs(glm::dot(n, glm::normalize(ray.dir)));
-          image(x, y) = surface * (0.15f + 0.85f * lambert);
-        }
-      }
+    });
+    if (a.shade == "cost") {
+      float most = 0;
+      for (const Vec3f& c : image.pixels()) most = std::max(most, c.x);
+      for (Vec3f& c : image.pixels()) c = heat_color(most > 0 ? c.x / most : 0.0f);
+    }
   });
-  if (a.shade == "cost") {
-    const float most = *std::max_element(cost.pixels().begin(), cost.pixels().end());
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) image(x, y) = heat_color(most > 0 ? cost(x, y) / most : 0.0f);
+  timer.time("write_s", [&] { write_image(a.output, image, common.write_options()); });
+  if (common.stats) {
+    StatRows rows = {{"triangles", stat_value(double(mesh.triangle_count()))},
+                     {"pixels", stat_value(double(width) * height)},
+                     {"width", stat_value(width)},
+                     {"height", stat_value(height)},
+                     {"samples", stat_value(a.samples)},
+                     {"seconds", stat_value(timer.seconds("compute_s"))}};
+    for (auto& row : timer.rows()) rows.push_back(row);
+    print_stats(rows);
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  write_image(a.output, image);
-  if (common.stats)
-    print_stats({{"triangles", stat_value(double(mesh.triangle_count()))},
-                 {"pixels", stat_value(double(width) * height)},
-                 {"seconds", stat_value(seconds)}});
 }
 
 }  // namespace
@@ -87,8 +100,14 @@ void setup_trace(CLI::App& cmd, CommonOptions& common) {
                  "triangles tested per pixel, blue to red)")
       ->check(CLI::IsMember({"diffuse", "normal", "cost"}))
       ->capture_default_str();
-  cmd.add_option("--color", a->color, "Surface color r,g,b in [0,1] or #rrggbb")->capture_default_str();
-  cmd.add_option("--background", a->background, "Background color r,g,b or #rrggbb")->capture_default_str();
+  cmd.add_option("--color", a->color, "Surface color: a name, #rrggbb or r,g,b in [0,1]")
+      ->check(color_format())
+      ->capture_default_str();
+  cmd.add_option("--background", a->background, "Background color: a name, #rrggbb or r,g,b")
+      ->check(color_format())
+      ->capture_default_str();
+  add_samples_option(cmd, a->samples);
+  add_srgb_option(cmd, common);
   cmd.callback([a, &common] { run_trace(*a, common); });
 }
 
