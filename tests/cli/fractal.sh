@@ -156,6 +156,7 @@ expect_usage "--depth" "$tessera" fractal cantor -o "$dir/x.png" --dust --depth 
 expect_usage "--depth" "$tessera" fractal koch -o "$dir/x.png" --depth 2x
 expect_usage "--line-width" "$tessera" fractal koch -o "$dir/x.png" --line-width 0
 expect_usage "--margin" "$tessera" fractal hilbert -o "$dir/x.png" --margin -1
+expect_usage "--margin" "$tessera" fractal koch -o "$dir/x.png" --size 10x10 --margin 5
 expect_usage "carpet" "$tessera" fractal sierpinski -o "$dir/x.png" --shape hexagon
 expect_usage "snowflake" "$tessera" fractal koch -o "$dir/x.png" --shape square
 expect_usage "picture" "$tessera" fractal terrain -o "$dir/x.obj" --method midpoint

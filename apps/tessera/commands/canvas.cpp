@@ -30,7 +30,7 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
                  "Opaque background: a color name as SVG's (white), #rrggbb or r,g,b in [0,1] (default: transparent)")
       ->check(color_format());
   cmd.add_option("--tolerance", opt->tolerance, "Curve flattening tolerance in pixels")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1e-6, 1e6))
       ->capture_default_str();
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {

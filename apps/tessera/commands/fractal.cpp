@@ -3,6 +3,7 @@
 // figure's limit are usage errors (exit 2) found while parsing, before anything is computed or written.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -201,9 +202,14 @@ PictureFrame square_frame(const FractalOptions& o) {
   return PictureFrame{size.width, size.height, o.margin, {0, 0, 1, 1}};
 }
 
-/// Draws a figure under compute_s, writes it and prints the figure's stats.
+/// Draws a figure under compute_s, writes it and prints the figure's stats. A margin that leaves no room is a usage
+/// error, like a malformed --margin.
 void finish_figure(const FractalOptions& o, const CommonOptions& common, const std::function<ImageRGBA()>& draw,
                    size_t elements, double measure, const char* measure_name, double dimension) {
+  const Size2 size = parse_size(o.size, "--size");
+  if (2 * o.margin >= std::min(size.width, size.height))
+    throw CLI::ValidationError("--margin", fmt::format("a margin of {} pixels leaves nothing of a {}x{} picture",
+                                                       o.margin, size.width, size.height));
   PhaseTimer timer;
   const ImageRGBA picture = timer.time("compute_s", draw);
   const StatRows rows = write_picture(o.output, picture, common, timer);
