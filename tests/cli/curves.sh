@@ -52,15 +52,20 @@ cat >"$scratch/two.bpt" <<'BPT'
 6 3 0
 BPT
 
-# --tess 4: per patch 5x5 vertices and 2*4*4 triangles.
+# --tess 4: per patch 5x5 vertices and 2*4*4 triangles; welded (the default), the 5 vertices of the shared border
+# count once: 45. --no-weld keeps 50. tris/verts/seconds are the deprecated aliases of triangles/vertices/total.
 stats=$("$tessera" patch "$scratch/two.bpt" -o "$scratch/two.obj" --tess 4 --stats)
-grep -qx 'patches=2' <<<"$stats" || { echo "bad stats: $stats"; exit 1; }
-grep -qx 'tris=64' <<<"$stats" || { echo "bad stats: $stats"; exit 1; }
-grep -qx 'verts=50' <<<"$stats" || { echo "bad stats: $stats"; exit 1; }
-grep -q '^area=' <<<"$stats" && grep -q '^seconds=' <<<"$stats"
-[ "$(grep -c '^v ' "$scratch/two.obj")" -eq 50 ] || { echo "OBJ vertex count"; exit 1; }
-[ "$(grep -c '^vn ' "$scratch/two.obj")" -eq 50 ] || { echo "OBJ normal count"; exit 1; }
+for key in patches=2 triangles=64 faces=64 vertices=45 tris=64 verts=45; do
+  grep -qx "$key" <<<"$stats" || { echo "bad stats ($key): $stats"; exit 1; }
+done
+for key in area volume read_s compute_s write_s total_s seconds; do
+  grep -q "^$key=" <<<"$stats" || { echo "stats lack $key: $stats"; exit 1; }
+done
+[ "$(grep -c '^v ' "$scratch/two.obj")" -eq 45 ] || { echo "OBJ vertex count"; exit 1; }
 [ "$(grep -c '^f ' "$scratch/two.obj")" -eq 64 ] || { echo "OBJ face count"; exit 1; }
+stats=$("$tessera" patch "$scratch/two.bpt" -o "$scratch/unwelded.obj" --tess 4 --no-weld --stats)
+grep -qx 'vertices=50' <<<"$stats" || { echo "--no-weld stats: $stats"; exit 1; }
+[ "$(grep -c '^vn ' "$scratch/unwelded.obj")" -eq 50 ] || { echo "OBJ normal count"; exit 1; }
 # The flat patch is a 3 x 3 square: area 9 plus the bump's, which is larger than its 3 x 3 footprint.
 area=$(sed -n 's/^area=//p' <<<"$stats")
 awk -v a="$area" 'BEGIN { exit !(a > 18.5 && a < 25) }' || { echo "area $area"; exit 1; }
@@ -70,6 +75,50 @@ awk -v a="$area" 'BEGIN { exit !(a > 18.5 && a < 25) }' || { echo "area $area"; 
 stats=$("$tessera" patch "$scratch/two.bpt" -o "$scratch/adaptive.ply" --tess 32 --tolerance 0.01 --stats)
 tris=$(sed -n 's/^tris=//p' <<<"$stats")
 [ "$tris" -gt 2 ] && [ "$tris" -lt 2048 ] || { echo "adaptive tris $tris"; exit 1; }
+
+# Newell's teapot (the README's example). Its 32 patches, read off the control points: 16 patch borders are shared by
+# no other patch (the rim's inner edge and the lid's outer edge, 4 each; both ends of the 2-patch handle and spout
+# tubes, 2 each), every other border is shared by exactly two patches, and 8 borders collapse to the lid tip and the
+# bottom centre. So welded at --tess N: 4 components (body with rim and bottom, lid, handle, spout), 6 boundary loops
+# of 16 N edges in all, a manifold, consistently oriented mesh; facing outward, the volume is positive and the normal
+# at the topmost point (the lid tip, z = 3.15) points up.
+teapot="${TESSERA_SHARED_DATA:-}/bezier/teapot.bpt"
+if [ -f "$teapot" ]; then
+  "$tessera" patch "$teapot" -o "$scratch/teapot.obj" --tess 8
+  info=$("$tessera" mesh info "$scratch/teapot.obj" --stats)
+  for key in components=4 boundary_loops=6 boundary_edges=128 nonmanifold_edges=0 nonmanifold_vertices=0 oriented=1; do
+    grep -qx "$key" <<<"$info" || { echo "teapot: expected $key: $info"; exit 1; }
+  done
+  "$tessera" patch "$teapot" -o "$scratch/teapot16.obj" --tess 16
+  "$tessera" mesh info "$scratch/teapot16.obj" --stats | grep -qx boundary_edges=256 || { echo "teapot --tess 16"; exit 1; }
+  /usr/bin/python3 - "$scratch/teapot.obj" <<'EOF'
+import sys
+v, vn, faces = [], [], []
+for line in open(sys.argv[1]):
+    w = line.split()
+    if not w: continue
+    if w[0] == 'v': v.append(tuple(map(float, w[1:4])))
+    elif w[0] == 'vn': vn.append(tuple(map(float, w[1:4])))
+    elif w[0] == 'f': faces.append([tuple(int(i) - 1 if i else None for i in c.split('/')) for c in w[1:]])
+def sub(a, b): return tuple(x - y for x, y in zip(a, b))
+def cross(a, b): return (a[1]*b[2] - a[2]*b[1], a[2]*b[0] - a[0]*b[2], a[0]*b[1] - a[1]*b[0])
+# Signed volume (divergence theorem); the openings are small and roughly level, so it stays near the closed value.
+vol = sum(sum(x * y for x, y in zip(v[f[0][0]], cross(v[f[i][0]], v[f[i + 1][0]]))) / 6
+          for f in faces for i in range(1, len(f) - 1))
+assert vol > 0, f"signed volume {vol} is not positive: the teapot is inside out"
+top = max(range(len(v)), key=lambda i: v[i][2])
+assert abs(v[top][2] - 3.15) < 1e-9, v[top]
+ups = [vn[c[2]][2] for f in faces for c in f if c[0] == top]
+assert ups and min(ups) > 0.99, f"normals at the lid tip: {ups}"
+geo = [cross(sub(v[f[1][0]], v[f[0][0]]), sub(v[f[2][0]], v[f[0][0]]))[2] for f in faces if any(c[0] == top for c in f)]
+assert geo and min(geo) > 0, "the triangles around the lid tip face down"
+print(f"teapot: volume {vol:.3f}, {len(ups)} corners at the tip")
+EOF
+  "$tessera" patch "$teapot" -o "$scratch/inside_out.obj" --tess 8 --orient given --stats | grep -q '^volume=-' ||
+    { echo "--orient given keeps the data's inward winding"; exit 1; }
+else
+  echo "skipped the teapot checks: no shared data in TESSERA_SHARED_DATA"
+fi
 
 # Curves: a cubic to PNG and SVG, a quintic with forward-difference steps.
 "$tessera" curve --points 40,360,80,40,320,40,360,360 --t 0.75 --split -o "$scratch/cubic.png"

@@ -49,6 +49,56 @@ stats=$("$bin" mesh subdivide "$dir/cube.obj" -o "$dir/stats.obj" --levels 3 --s
 grep -qx 'faces=384' <<<"$stats" || fail "--stats: expected faces=384, got: $stats"
 grep -qx 'vertices=386' <<<"$stats" || fail "--stats: expected vertices=386, got: $stats"
 grep -q '^seconds=' <<<"$stats" || fail "--stats: no seconds"
+for key in levels=3 read_s compute_s write_s total_s; do
+  grep -q "^$key" <<<"$stats" || fail "--stats lacks $key: $stats"
+done
+"$bin" mesh subdivide --help | grep -q -- '->' && fail "--help shows internal enum values"
+"$bin" mesh subdivide --help | grep -q "catmull-clark" || fail "--help lists the schemes"
+
+# Face-varying uvs are carried (OpenSubdiv's linear face-varying rule): two unit quads side by side, each with its
+# own vt (a seam on the shared edge), uv = (x/2, y). Midpoint subdivision keeps positions linear, so every refined
+# corner must still have uv = (x/2, y). Normals in the input give the output normals.
+cat >"$dir/plane.obj" <<'OBJ'
+v 0 0 0
+v 1 0 0
+v 2 0 0
+v 0 1 0
+v 1 1 0
+v 2 1 0
+vt 0 0
+vt 0.5 0
+vt 0.5 1
+vt 0 1
+vt 0.5 0
+vt 1 0
+vt 1 1
+vt 0.5 1
+vn 0 0 1
+f 1/1/1 2/2/1 5/3/1 4/4/1
+f 2/5/1 3/6/1 6/7/1 5/8/1
+OBJ
+"$bin" mesh subdivide "$dir/plane.obj" -o "$dir/plane_sub.obj" --scheme midpoint --levels 2 --quiet
+expect_faces "$dir/plane_sub.obj" 32
+[ "$(grep -c '^vn ' "$dir/plane_sub.obj")" -gt 0 ] || fail "normals are dropped"
+/usr/bin/python3 - "$dir/plane_sub.obj" <<'EOF'
+import sys
+v, vt, n = [], [], 0
+for line in open(sys.argv[1]):
+    w = line.split()
+    if not w: continue
+    if w[0] == 'v': v.append(tuple(map(float, w[1:4])))
+    elif w[0] == 'vt': vt.append(tuple(map(float, w[1:3])))
+    elif w[0] == 'f':
+        for c in w[1:]:
+            i = c.split('/')
+            p, t = v[int(i[0]) - 1], vt[int(i[1]) - 1]
+            assert abs(t[0] - p[0] / 2) < 1e-12 and abs(t[1] - p[1]) < 1e-12, (p, t)
+            n += 1
+assert n == 128, n
+EOF
+"$bin" mesh subdivide "$dir/plane.obj" -o "$dir/plane_cc.ply" --levels 1 --quiet 2>"$dir/err.txt"
+[ ! -s "$dir/err.txt" ] || fail "PLY holds the uvs: no warning expected: $(cat "$dir/err.txt")"
+grep -a -q "property float s" "$dir/plane_cc.ply" || fail "the subdivided PLY has no uvs"
 if "$bin" mesh info --help >/dev/null 2>&1; then
   "$bin" mesh info "$dir/stats.obj" --stats | grep -qx 'faces=384' || fail "mesh info disagrees on the face count"
 fi

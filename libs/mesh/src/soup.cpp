@@ -167,4 +167,48 @@ size_t weld_vertices(PolyMesh& mesh, double tolerance) {
   return merged;
 }
 
+size_t split_pinched_vertices(PolyMesh& mesh) {
+  // Union-find over the face corners: two corners at the same vertex are in one fan when their faces share an edge
+  // at that vertex (the edge {v, w} seen from both corners).
+  const size_t corners = mesh.face_vertices.size();
+  std::vector<uint32_t> parent(corners);
+  std::iota(parent.begin(), parent.end(), 0u);
+  const auto find = [&](uint32_t c) {
+    while (parent[c] != c) c = parent[c] = parent[parent[c]];
+    return c;
+  };
+  std::unordered_map<uint64_t, uint32_t> edge_corner;
+  edge_corner.reserve(2 * corners);
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const uint32_t b = mesh.face_offsets[f], n = mesh.face_size(f);
+    for (uint32_t j = 0; j < n; ++j) {
+      const uint32_t c = b + j, v = mesh.face_vertices[c];
+      for (uint32_t w : {mesh.face_vertices[b + (j + 1) % n], mesh.face_vertices[b + (j + n - 1) % n]}) {
+        const auto [it, inserted] = edge_corner.try_emplace(uint64_t(v) << 32 | w, c);
+        if (!inserted) parent[find(c)] = find(it->second);
+      }
+    }
+  }
+  // The first fan seen at a vertex keeps it; every other fan gets a new vertex.
+  const size_t original = mesh.vertex_count();
+  const bool normals = mesh.normals.size() == original, uvs = mesh.uvs.size() == original,
+             colors = mesh.colors.size() == original;
+  std::vector<uint32_t> first_root(original, UINT32_MAX);
+  std::unordered_map<uint32_t, uint32_t> fan_vertex;  // fan root -> its new vertex
+  for (uint32_t c = 0; c < corners; ++c) {
+    const uint32_t v = mesh.face_vertices[c], root = find(c);
+    if (first_root[v] == UINT32_MAX) first_root[v] = root;
+    if (first_root[v] == root) continue;
+    const auto [it, inserted] = fan_vertex.try_emplace(root, uint32_t(mesh.positions.size()));
+    if (inserted) {
+      mesh.positions.push_back(mesh.positions[v]);
+      if (normals && original > 0) mesh.normals.push_back(mesh.normals[v]);
+      if (uvs && original > 0) mesh.uvs.push_back(mesh.uvs[v]);
+      if (colors && original > 0) mesh.colors.push_back(mesh.colors[v]);
+    }
+    mesh.face_vertices[c] = it->second;
+  }
+  return mesh.vertex_count() - original;
+}
+
 }  // namespace tessera

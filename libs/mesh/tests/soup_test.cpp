@@ -4,6 +4,7 @@
 
 #include "tessera/core/error.hpp"
 #include "tessera/mesh/primitives.hpp"
+#include "tessera/mesh/topology.hpp"
 
 namespace tessera {
 namespace {
@@ -75,6 +76,31 @@ TEST(Soup, WeldingKeepsDifferingUvsPerCorner) {
   weld_vertices(same_uvs);
   EXPECT_TRUE(same_uvs.corner_uvs.empty());
   EXPECT_EQ(same_uvs.uvs.size(), 6u);
+}
+
+// Two triangles touching at one vertex (a bowtie) and a closed tetrahedron: only the bowtie's vertex splits.
+TEST(Soup, SplittingPinchedVerticesGivesEachFanItsOwnVertex) {
+  PolyMesh bowtie;
+  bowtie.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-1, 0, 0), Vec3(-1, -1, 0)};
+  bowtie.colors = {Vec3(0.5), Vec3(1), Vec3(1), Vec3(1), Vec3(1)};
+  bowtie.add_face({0, 1, 2});
+  bowtie.add_face({0, 3, 4});
+  EXPECT_EQ(split_pinched_vertices(bowtie), 1u);
+  ASSERT_EQ(bowtie.vertex_count(), 6u);
+  EXPECT_EQ(bowtie.face(0)[0], 0u);
+  EXPECT_EQ(bowtie.face(1)[0], 5u);
+  EXPECT_EQ(bowtie.positions[5], Vec3(0, 0, 0));
+  EXPECT_EQ(bowtie.colors[5], Vec3(0.5));
+  EXPECT_EQ(analyze_topology(bowtie).nonmanifold_vertices, 0u);
+
+  PolyMesh tetra;
+  tetra.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
+  tetra.add_face({0, 2, 1});
+  tetra.add_face({0, 1, 3});
+  tetra.add_face({1, 2, 3});
+  tetra.add_face({0, 3, 2});
+  EXPECT_EQ(split_pinched_vertices(tetra), 0u);
+  EXPECT_EQ(tetra.vertex_count(), 4u);
 }
 
 }  // namespace

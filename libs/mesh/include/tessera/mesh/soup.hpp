@@ -47,4 +47,10 @@ PolygonSoup to_soup(const PolyMesh& mesh);
 /// face-varying data and subdivision tags remapped. Returns the number of vertices merged away.
 size_t weld_vertices(PolyMesh& mesh, double tolerance = 0);
 
+/// Gives every pinched vertex — one whose faces form several fans that share no edge at it, as where welding joins
+/// two surfaces that merely touch at a point — one vertex per fan (copies of its per-vertex properties), so the
+/// mesh is manifold at its vertices. The fan of the vertex's first corner keeps the index (and the tags). Returns the
+/// number of vertices added.
+size_t split_pinched_vertices(PolyMesh& mesh);
+
 }  // namespace tessera
