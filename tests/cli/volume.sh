@@ -150,6 +150,15 @@ grep -q "outside the volume's values \[10, 200\]" warn.txt || { echo "no warning
 # The middle slice by default.
 "$tessera" volume slice sphere:9 -o mid.png --stats | grep -q '^width=9$'
 
+# A picture of nothing but background says why: a transfer function clear over the data, or a camera looking away.
+printf '100,1,1,1,0\n200,1,1,1,1\n' > far.csv
+"$tessera" volume render sphere:16 --tf far.csv -o clear.png --size 16x16 2> warn.txt
+grep -q "transparent over the volume's values" warn.txt || { echo "no warning for a clear transfer function"; exit 1; }
+"$tessera" volume render sphere:16 --eye 10,0,0 --center 20,0,0 -o away.png --size 16x16 2> warn.txt
+grep -q "only the background" warn.txt || { echo "no warning for a camera looking away"; exit 1; }
+"$tessera" volume render sphere:16 -o seen.png --size 16x16 2> warn.txt
+! grep -q "warning" warn.txt || { echo "a warning on a good picture"; cat warn.txt; exit 1; }
+
 # A preset cannot apply to a constant volume: exit 1 saying why.
 /usr/bin/python3 -c "open('flat.raw', 'wb').write(bytes([7]) * 64)"
 set +e
@@ -160,9 +169,10 @@ set -e
 "$tessera" volume render flat.raw "${raw[@]}" -o flat.pfm --quiet  # the default shows the box as a haze
 lit flat.pfm 0.04 || { echo "the default render of a constant volume is black"; exit 1; }
 # Usage errors (exit 2): an unknown preset, --tf with --preset, --mip with a transfer function.
-for args in "--preset bone" "--preset ct-bone --tf tf.csv" "--mip --preset mri"; do
+for args in "--preset bone" "--preset ct-bone --tf tf.csv" "--mip --preset mri" "--dtype uint9" "--endian middle" \
+            "--dims 4,4" "--spacing 1,x,1" "--axis w"; do
   set +e
-  "$tessera" volume render sphere:8 $args -o usage.png 2> err.txt
+  "$tessera" volume $([[ $args == --axis* ]] && echo slice || echo render) sphere:8 $args -o usage.png 2> err.txt
   rc=$?
   set -e
   [ "$rc" -eq 2 ] || { echo "expected exit 2 for $args, got $rc"; cat err.txt; exit 1; }

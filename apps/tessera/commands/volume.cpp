@@ -23,17 +23,22 @@ namespace {
 
 /// The volume argument and the raw layout options every subcommand takes.
 struct VolumeInput {
-  std::string path, dims, dtype = "uint8", endian = "little", spacing;
+  std::string path, dims, spacing;
+  VoxelType dtype = VoxelType::UInt8;
+  Endian endian = Endian::Little;
   long long header_skip = 0;
 
   void add(CLI::App& app) {
     app.add_option("volume", path, "Volume: FILE.nrrd|.nhdr|.mhd, a raw file with --dims, or sphere:N, torus:N, gyroid:N, "
                                    "metaballs:N, noise:N[:SEED]")
         ->required();
-    app.add_option("--dims", dims, "Raw voxels along x,y,z");
-    app.add_option("--dtype", dtype, "Raw voxel type: uint8|uint16|int16|float32");
-    app.add_option("--endian", endian, "Raw byte order: little|big");
-    app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz");
+    app.add_option("--dims", dims, "Raw voxels along x,y,z")->check(numbers_format(3));
+    add_choice(app, "--dtype", dtype,
+               {{"uint8", VoxelType::UInt8}, {"uint16", VoxelType::UInt16}, {"int16", VoxelType::Int16},
+                {"float32", VoxelType::Float32}},
+               "Raw voxel type");
+    add_choice(app, "--endian", endian, {{"little", Endian::Little}, {"big", Endian::Big}}, "Raw byte order");
+    app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz")->check(numbers_format(3));
     app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(non_negative());
   }
 
@@ -47,9 +52,8 @@ struct VolumeInput {
         layout.dims[i] = int(d[size_t(i)]);
       }
     }
-    layout.type = parse_voxel_type(dtype);
-    if (endian != "little" && endian != "big") throw InvalidInput(fmt::format("--endian: expected little or big, got '{}'", endian));
-    layout.endian = endian == "big" ? Endian::Big : Endian::Little;
+    layout.type = dtype;
+    layout.endian = endian;
     if (!spacing.empty()) {
       const auto s = parse_doubles(spacing, 3, "--spacing");
       layout.spacing = {s[0], s[1], s[2]};
@@ -141,11 +145,11 @@ void warn_outside(float iso, double lo, double hi, const char* where) {
                where, stat_value(lo), stat_value(hi));
 }
 
-/// --iso: given, or Otsu's threshold of the volume (said on stderr).
-float iso_or_threshold(const std::optional<float>& iso, const Volume<float>& v) {
+/// --iso: given, or Otsu's threshold of the volume (said on stderr unless quiet).
+float iso_or_threshold(const std::optional<float>& iso, const Volume<float>& v, bool quiet) {
   if (iso) return *iso;
   const float t = float(profile_values(v).threshold);
-  fmt::print(stderr, "tessera: note: --iso {:.4g} (Otsu's threshold between background and object)\n", t);
+  if (!quiet) fmt::print(stderr, "tessera: note: --iso {:.4g} (Otsu's threshold between background and object)\n", t);
   return t;
 }
 
@@ -164,7 +168,7 @@ void setup_contour(CLI::App& volume, CommonOptions& common) {
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     std::vector<Polyline> lines;
     const DepthImage s = timer.time("compute_s", [&] {
-      const float value = iso_or_threshold(*iso, v);
+      const float value = iso_or_threshold(*iso, v, common.quiet);
       DepthImage plane = args->take(v);
       const auto [lo, hi] = std::minmax_element(plane.pixels().begin(), plane.pixels().end());
       warn_outside(value, *lo, *hi, "slice");
@@ -223,7 +227,7 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
     PhaseTimer timer;
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     MarchingCubesOptions o = *options;
-    o.iso = iso_or_threshold(*iso, v);
+    o.iso = iso_or_threshold(*iso, v, common.quiet);
     const auto [lo, hi] = value_range(v);
     warn_outside(o.iso, lo, hi, "volume");
     const PolyMesh mesh = timer.time("compute_s", [&] { return marching_cubes(v, o); });
@@ -241,6 +245,23 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
                          timer);
     }
   });
+}
+
+/// Says on stderr why a rendered picture shows nothing but the background, when it does.
+void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, const Volume<float>& v) {
+  if (!o.mip) {
+    const auto [lo, hi] = value_range(v);
+    if (o.transfer.max_opacity(float(lo), float(hi)) == 0) {
+      fmt::print(stderr,
+                 "tessera: warning: the transfer function is transparent over the volume's values [{}, {}]: the "
+                 "picture is empty\n",
+                 stat_value(lo), stat_value(hi));
+      return;
+    }
+  }
+  for (const auto& p : image.pixels())
+    if (p != o.background) return;
+  fmt::print(stderr, "tessera: warning: the picture shows only the background: is the volume in view (--eye, --center)?\n");
 }
 
 void setup_render(CLI::App& volume, CommonOptions& common) {
@@ -295,6 +316,7 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
       }
       return render_volume(v, o);
     });
+    warn_if_empty(image, o, v);
     timer.time("write_s", [&] { write_image(a->output, image, common.write_options()); });
     if (common.stats) print_volume_stats(image_rows(image.width(), image.height()), timer);
   });
