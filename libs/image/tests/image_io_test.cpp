@@ -297,6 +297,35 @@ TEST_F(ImageIo, SrgbOptionEncodesAndNothingDecodesOnRead) {
   EXPECT_EQ(to_rgba8(read_image(path("srgb.png")))(0, 0), glm::u8vec4(encoded, 0, 255, 255));
 }
 
+TEST_F(ImageIo, SrgbWriteFollowsTheFormula) {
+  // IEC 61966-2-1 written out here, in double, independently of tessera/color/srgb.hpp: 12.92 v up to 0.0031308, else
+  // 1.055 v^(1/2.4) - 0.055; then 255 x and round half up. 4097 levels through a PNG and back, both branches and the
+  // knee; a level whose exact value lies within 1e-3 of a rounding half step may go either way in float.
+  const auto formula = [](double v) { return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055; };
+  ImageRGB ramp(4097, 1);
+  for (int i = 0; i <= 4096; ++i) ramp(i, 0) = glm::vec3(float(i / 4096.0), float(i / 4096.0 * 0.01), 0.0031308f);
+  write_image(path("ramp.png"), ramp, {.srgb = true});
+  const ImageRGBA8 back = to_rgba8(read_image(path("ramp.png")));
+  int checked = 0;
+  for (int i = 0; i <= 4096; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double exact = 255 * formula(double(ramp(i, 0)[c]));
+      if (std::abs(exact - std::floor(exact) - 0.5) < 1e-3) continue;
+      EXPECT_EQ(int(back(i, 0)[c]), int(std::floor(exact + 0.5))) << "level " << i << " channel " << c;
+      ++checked;
+    }
+  EXPECT_GT(checked, 12000);
+  // The worked values: middle gray 0.5 -> 188 (0.7354), the knee 0.0031308 -> 10 (0.04045), 0.001 -> 3, 0.2 -> 124.
+  EXPECT_EQ(back(2048, 0).x, 188);
+  EXPECT_EQ(back(0, 0).z, 10);
+  EXPECT_EQ(back(410, 0).y, 3);  // 0.1001 x 0.01 = 0.001001: 12.92 x 0.001001 x 255 = 3.30
+  EXPECT_EQ(back(0, 0).x, 0);
+  EXPECT_EQ(back(4096, 0).x, 255);
+  const ImageRGB fifth(1, 1, glm::vec3(0.2f));
+  write_image(path("fifth.png"), fifth, {.srgb = true});
+  EXPECT_EQ(to_rgba8(read_image(path("fifth.png")))(0, 0).x, 124);  // 1.055 x 0.2^(1/2.4) - 0.055 = 0.4845
+}
+
 TEST(ImageConversions, ClampRoundAndKeepAlphaLinear) {
   ImageRGBA image(4, 1);
   image(0, 0) = glm::vec4(-1.f, 2.f, std::nanf(""), 0.5f);
