@@ -403,6 +403,16 @@ assert np.abs(srgb - want).max() <= 0.5 + 1e-9, np.abs(srgb - want).max()
 assert len(np.unique(lin)) > 30
 PY
 
+# An inside-out mesh (every face wound clockwise, no normals in the file) would be lit from behind, black but for the
+# ambient term, and culled whole by --cull back: it is drawn turned outward, the same picture as the cube, with a note.
+awk '/^f /{printf "f"; for (i = NF; i > 1; i--) printf " %s", $i; print ""; next} {print}' cube.obj > inside_out.obj
+for cull in none back; do
+  "$tessera" raster cube.obj -o "outward_$cull.png" --size 64x48 --cull "$cull"
+  "$tessera" raster inside_out.obj -o "inward_$cull.png" --size 64x48 --cull "$cull" 2> inward.txt
+  cmp -s "outward_$cull.png" "inward_$cull.png" || { echo "the inside-out cube differs (--cull $cull)"; exit 1; }
+  grep -q "wind inward" inward.txt || { echo "no note on the inside-out cube"; cat inward.txt; exit 1; }
+done
+
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
 expect_error() {
   local status="$1" pattern="$2"

@@ -20,6 +20,7 @@
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
+#include "tessera/mesh/topology.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
@@ -83,6 +84,26 @@ std::vector<std::pair<uint32_t, uint32_t>> polygon_edges(const PolyMesh& mesh) {
     }
   }
   return {edges.begin(), edges.end()};
+}
+
+/// Whether the faces wind inward (an inside-out mesh: lit from behind, black but for the ambient term, and culled
+/// whole by --cull back): a closed, consistently oriented mesh with a negative volume. Open meshes are left as they
+/// are: their volume depends on the origin.
+bool winds_inward(const PolyMesh& mesh) {
+  if (signed_volume(mesh) >= 0) return false;
+  const EdgeTable edges = build_edge_table(mesh);
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (edges.valence(e) != 2) return false;
+  return is_consistently_oriented(mesh, edges);
+}
+
+/// Reverses every face's winding, with its corner attributes.
+void reverse_faces(PolyMesh& mesh) {
+  for (size_t f = 0; f < mesh.face_count(); ++f) {
+    const uint32_t begin = mesh.face_offsets[f], end = mesh.face_offsets[f + 1];
+    std::reverse(mesh.face_vertices.begin() + begin, mesh.face_vertices.begin() + end);
+    if (!mesh.corner_uvs.empty()) std::reverse(mesh.corner_uvs.begin() + begin, mesh.corner_uvs.begin() + end);
+  }
 }
 
 Vec3 parse_vec3(const std::string& text, const char* what) {
@@ -450,6 +471,14 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   SampleResolve resolve(width, height);
   TriMesh mesh;
   timer.time("compute_s", [&] {
+    // Normals come from the winding when the file has none: an inside-out mesh is drawn turned outward.
+    const bool own_normals = !poly.normals.empty() || !poly.corner_normals.empty();
+    if (!own_normals && winds_inward(poly)) {
+      reverse_faces(poly);
+      if (!common.quiet)
+        fmt::print(stderr, "tessera: note: {}: the faces wind inward (a negative volume); drawn turned outward\n",
+                   a.mesh);
+    }
     if (shading != raster3d::ShadingModel::unlit && poly.normals.empty() && poly.corner_normals.empty())
       compute_vertex_normals(poly);
     mesh = to_tri_mesh(poly);
