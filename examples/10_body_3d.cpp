@@ -151,6 +151,7 @@ TESSERA_EXAMPLE(ex10_body_3d, "10_body_3d", "The body hierarchy in 3D (matrix st
   gtMakeCurrent(nullptr);
   gallery.add("10_body_3d.png", context.framebuffer().color_rgb(),
               "The notes' person in 3D: torso, head and two arms (upper arm, bent forearm, hand with four fingers and "
-              "a thumb), every part a unit cube placed by push/transform/pop; the right arm is the left one mirrored "
-              "by gtScale(-1, 1, 1).");
+              "a thumb), every part a unit cube (the head a sphere) placed by push/transform/pop; the right arm "
+              "(viewer's left, hanging) is the same arm definition as the waving left one, mirrored by "
+              "gtScale(-1, 1, 1) and posed with other joint angles.");
 }

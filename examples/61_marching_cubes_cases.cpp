@@ -1,7 +1,8 @@
 // The 15 base configurations of marching cubes (Lorensen & Cline), triangulated by Tessera's generated table, drawn
-// as the textbook figure: each cell's surface (lit triangles with their edges), the cube's twelve edges over it (the
-// three hidden behind the cube dashed), and every corner marked on top, the inside ones as filled blue dots, the
-// outside ones as open circles. Cases left to right, top to bottom, in Lorensen and Cline's order (0 to 14).
+// as the textbook figure: each cell's surface (lit triangles with their edges; the side facing the inside corners is
+// the darker back face), the cube's twelve edges over it (the three hidden behind the cube dashed), and every corner
+// marked on top, the inside ones as filled blue dots, the outside ones as open circles. Cases left to right, top to
+// bottom, in Lorensen and Cline's order (0 to 14).
 #include <array>
 
 #include "gallery.hpp"
@@ -51,6 +52,7 @@ ImageRGB case_picture(int cube_case, int size) {
   options.width = options.height = size;
   options.color = {0.95f, 0.6f, 0.35f};
   options.camera = cell_camera();
+  options.light_dir = {1.6, 2.2, 2.7};  // from over the viewer's shoulder: no face of the surface turns black
   const ImageRGB surface = examples::render_mesh(marching_cubes(cube, {.iso = 0.5f, .normals = false}), options);
 
   Canvas canvas(size, size);
@@ -93,6 +95,7 @@ TESSERA_EXAMPLE(ex61_marching_cubes_cases, "61_marching_cubes_cases", "The 15 ba
     examples::paste(sheet, case_picture(mc::base_cases()[k], tile), int(k % 5) * tile, int(k / 5) * tile);
   gallery.add("61_marching_cubes_cases.png", sheet,
               "Lorensen and Cline's 15 base cases, 0 to 14 left to right and top to bottom, triangulated by the "
-              "generated table: each cube's edges in black (the three behind it dashed), inside corners as filled "
-              "blue dots, outside corners as open circles.");
+              "generated table (the surface orange on its outer side, dark brown on the side facing the inside "
+              "corners): each cube's edges in black (the three behind it dashed), inside corners as filled blue "
+              "dots, outside corners as open circles.");
 }

@@ -2,6 +2,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "gallery.hpp"
 #include "mesh_view.hpp"
 #include "tessera/volume/marching_cubes.hpp"
@@ -38,10 +40,10 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
     return head ? text : stand_in_caption("a procedural phantom (an ellipsoid around a shell)", "the CT head", text);
   };
   gallery.add("62_ct_skin.png", render_mesh(marching_cubes(ct, {.iso = skin}), options),
-              caption("CT head, skin iso-surface (marching cubes)."));
+              caption(fmt::format("CT head, skin iso-surface (marching cubes at {:g}).", skin)));
   options.color = {0.95f, 0.93f, 0.85f};
   gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options),
-              caption("CT head, bone iso-surface."));
+              caption(fmt::format("CT head, bone iso-surface (marching cubes at {:g}).", bone)));
   MeshViewOptions g;
   g.wireframe = false;
   gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");

@@ -1,5 +1,6 @@
 // The gallery's pictures against their sources: 01's zoom shows the real pixels it claims to magnify; 15's painter
-// and z-buffer panels show what a ray cast of their scene says; 61's figure
+// and z-buffer panels show what a ray cast of their scene says; 28's Venn diagram is the notes' average, written
+// linear or sRGB-encoded; 61's figure
 // has the cube edges drawn and the corner markers visible where an independent projection (GLM's lookAt and
 // perspective) puts them. And the shared data lookup: --data, then the environment, then the documented folders.
 #include <gtest/gtest.h>
@@ -156,6 +157,26 @@ TEST(Gallery, PainterPanelsShowWhatTheCaptionSays) {
   std::ifstream index(dir / "index.html");
   const std::string html((std::istreambuf_iterator<char>(index)), std::istreambuf_iterator<char>());
   EXPECT_NE(html.find("the sphere covers the slab even where the slab is in front"), std::string::npos);
+}
+
+TEST(Gallery, VennPictureAndItsSrgbEncoding) {
+  // 28's two-texture picture, left panel: where only leftCoord = uv - (0.2, 0) falls in the orange disc (0.95, 0.45,
+  // 0.1) and rightCoord reads the white background, the pixel is their average; written linear by default and with
+  // the sRGB curve (IEC 61966-2-1) when the gallery runs with --srgb.
+  const Vec3f half = 0.5f * (Vec3f(0.95f, 0.45f, 0.1f) + Vec3f(1.0f));
+  const auto srgb = [](float c) { return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f; };
+  for (const bool encode : {false, true}) {
+    const fs::path dir = scratch(encode ? "28-srgb" : "28");
+    run_examples(dir, {{"28"}, {}, {.srgb = encode}});
+    const ImageRGBA8 picture = read8(dir / "28_two_texture_shader.png");
+    const glm::u8vec4 lens = picture(120, 120), one = picture(180, 120), none = picture(120, 20);
+    for (int k = 0; k < 3; ++k) {
+      const float linear = half[k];
+      EXPECT_NEAR(one[k], 255 * (encode ? srgb(linear) : linear), 1.5) << "channel " << k << " srgb " << encode;
+    }
+    EXPECT_EQ(none, glm::u8vec4(255));
+    EXPECT_NEAR(lens.x, 255 * (encode ? srgb(0.95f) : 0.95f), 1.5);
+  }
 }
 
 // Sets or unsets an environment variable for one test, restoring it afterwards.
