@@ -96,6 +96,16 @@ within "$dim" 1.535 1.635 || fail "Sierpinski triangle dimension $dim, expected 
 dim=$("$tessera" fractal dimension "$dir/koch_curve.png" --stats | stat dimension)
 within "$dim" 1.2119 1.3119 || fail "Koch curve dimension $dim, expected 1.2619 within 0.05"
 
+# Progress of the escape-time loop: plain lines on stderr for logs (a start, 10% steps, the end), nothing on stdout,
+# and nothing at all off a terminal by default (one thread: with more, a step two tasks cross at once prints once).
+"$tessera" fractal mandelbrot -o "$dir/p.png" --size 64x40 --threads 1 --progress plain >"$dir/out.txt" 2>"$dir/err.txt"
+[ ! -s "$dir/out.txt" ] || fail "progress on stdout: $(cat "$dir/out.txt")"
+for line in started 50% done; do
+  grep -q "^mandelbrot: escape times: $line" "$dir/err.txt" || fail "no progress line '$line': $(cat "$dir/err.txt")"
+done
+"$tessera" fractal julia -o "$dir/p.png" --size 64x40 2>"$dir/err.txt"
+[ ! -s "$dir/err.txt" ] || fail "progress off a terminal without --progress: $(cat "$dir/err.txt")"
+
 # --stats: the shared vocabulary on every subcommand (docs/cli.md), and the figures' own keys.
 has_keys() {  # has_keys STATS KEY...: every KEY is printed
   local stats=$1; shift

@@ -11,6 +11,7 @@
 #include "escape_points.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/progress.hpp"
 
 namespace tessera {
 namespace detail {
@@ -108,6 +109,8 @@ EscapeImage escape_image(const ComplexView& view, const EscapeOptions& options, 
                   options.max_iterations, options.escape_radius};
   const bool checks = options.interior_checks && julia_c == nullptr;
   tbb::enumerable_thread_specific<Batch> batches;  // one per worker thread
+  // Deep zooms and large pictures take seconds to minutes: rows done, on stderr as the CLI's --progress says.
+  Progress progress(julia_c ? "julia: escape times" : "mandelbrot: escape times", view.height);
   parallel_for(0, view.height, kRowsPerTask, [&](int64_t y0, int64_t y1) {
     Batch& batch = batches.local();  // reused from strip to strip: no allocation per task once it has grown
     batch.clear();
@@ -128,6 +131,7 @@ EscapeImage escape_image(const ComplexView& view, const EscapeOptions& options, 
       out.iterations.pixels()[size_t(batch.pixel[i])] = batch.iterations[i];
       out.norm2.pixels()[size_t(batch.pixel[i])] = float(batch.norm2[i]);
     }
+    progress.advance(y1 - y0);
   });
   return out;
 }
