@@ -70,8 +70,10 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
       ->check(numbers_format(3));
   CLI::Option* fovy_option =
       command.add_option("--fovy", fovy, "Vertical field of view, degrees")->capture_default_str();
-  command.add_option("--near", near, "Near-plane distance (default: from the scene's bounds)")->check(non_negative());
-  command.add_option("--far", far, "Far-plane distance (default: from the scene's bounds)")->check(non_negative());
+  if (clip_planes) {
+    command.add_option("--near", near, "Near-plane distance (default: from the scene's bounds)")->check(non_negative());
+    command.add_option("--far", far, "Far-plane distance (default: from the scene's bounds)")->check(non_negative());
+  }
   command.add_option("--size", size, "Image size WxH")->check(size_format())->capture_default_str();
   CLI::Option* view_option = add_choice(command, "--view", view,
                                         {{"three-quarter", View::three_quarter},

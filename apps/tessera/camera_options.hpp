@@ -30,8 +30,9 @@ struct CameraOptions {
   View view = View::three_quarter;           ///< the default view: set before add() to change a command's default
   std::optional<double> azimuth, elevation;  ///< degrees; given, they replace the view's
   UpAxis up_axis = UpAxis::y;
-  bool ortho = false;     ///< --ortho: parallel projection
-  double ortho_size = 0;  ///< --ortho-size: the view's height in world units; 0 frames the bounds
+  bool ortho = false;       ///< --ortho: parallel projection
+  double ortho_size = 0;    ///< --ortho-size: the view's height in world units; 0 frames the bounds
+  bool clip_planes = true;  ///< offer --near and --far (a rasterizer's clipping planes; ray casters have none)
 
   /// Adds the options to `command`; `default_size` is the --size default ("WxH"). Malformed sizes and vectors,
   /// unknown views, and --view/--azimuth/--elevation together with --eye are usage errors (exit 2).

@@ -440,6 +440,12 @@ expect_error 2 "ortho" cube.obj -o bad.png --ortho-size 3
 expect_error 2 "fovy" cube.obj -o bad.png --ortho --fovy 30
 expect_error 2 "elevation" cube.obj -o bad.png --elevation 100
 expect_error 2 "samples" cube.obj -o bad.png --samples 0
+# Options that would change nothing are refused, not ignored.
+expect_error 2 "texture" cube.obj -o bad.png --filter nearest
+expect_error 2 "bump" cube.obj -o bad.png --bump-scale 0.1
+expect_error 2 "shadows" cube.obj -o bad.png --shadow-size 512
+expect_error 1 "nothing to reflect" cube.obj -o bad.png --reflect 0.5
+expect_error 1 "without lights" cube.obj -o bad.png --shading unlit --light-dir 0,0,1
 expect_error 2 "hidden-surface" cube.obj -o bad.png --hidden-surface scanline
 expect_error 1 "z-buffer" cube.obj -o bad.png --hidden-surface painter --wireframe
 expect_error 1 "depth" cube.obj -o bad.png --hidden-surface painter --depth-out bad.pfm

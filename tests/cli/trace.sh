@@ -175,6 +175,11 @@ expect_error 2 "size" bad.png trace sphere.obj -o bad.png --size 0x10
 expect_error 2 "size" bad.png trace sphere.obj -o bad.png --size 800
 expect_error 2 "background" bad.png trace sphere.obj -o bad.png --background nocolor
 expect_error 2 "samples" bad.png trace sphere.obj -o bad.png --samples 0
+# Options that would change nothing are refused, not ignored: a ray caster has no clipping planes.
+expect_error 2 "near" bad.png trace sphere.obj -o bad.png --near 1
+expect_error 2 "far" bad_hits.txt bench raycast sphere.obj --far 3 --hits-out bad_hits.txt
+expect_error 1 "surface color" bad.png trace sphere.obj -o bad.png --shade normal --color red
+expect_error 1 "cost" bad.png trace sphere.obj -o bad.png --shade cost --background white
 expect_error 2 "center" bad.png trace sphere.obj -o bad.png --center 0,0
 expect_error 2 "eye" bad.png trace sphere.obj -o bad.png --azimuth 30 --eye 0,0,5
 expect_error 2 "ortho" bad_hits.txt bench raycast sphere.obj --ortho-size 2 --hits-out bad_hits.txt

@@ -140,6 +140,7 @@ void setup_bench(CLI::App& bench, CommonOptions& common) {
   auto a = std::make_shared<RaycastArgs>();
   cmd->add_option("mesh", a->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
   a->camera.view = View::front;  // the benchmark's rays stay those of earlier sessions' measurements
+  a->camera.clip_planes = false;
   a->camera.add(*cmd);
   cmd->add_option("--random-rays", a->random_rays,
                   "Incoherent rays: origins uniform in the mesh box scaled 1.1x, directions uniform (0 skips)")

@@ -526,21 +526,26 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--repeat", a->repeat, "Render N frames (for timing with --stats)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
+  CLI::Option* texture =
+      cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
   cmd.add_option("--filter", a->filter, "Texture filter: nearest | bilinear | trilinear (MIPmaps)")
       ->check(CLI::IsMember({"nearest", "bilinear", "trilinear"}))
-      ->capture_default_str();
-  cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
+      ->capture_default_str()
+      ->needs(texture);
+  CLI::Option* bump =
+      cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
   cmd.add_option("--bump-scale", a->bump_scale, "Height of a white bump texel, as a fraction of the mesh's size")
       ->check(non_negative())
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(bump);
   cmd.add_option("--env", a->env, "Environment map: a lat-long (equirectangular) image the surface reflects");
   cmd.add_option("--reflect", a->reflect, "How much of the environment the surface reflects, in [0,1]")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   cmd.add_flag("--env-cube", a->env_cube,
                "Reflect what surrounds the mesh (--floor, --env) through a cube map rendered from its center");
-  cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
+  CLI::Option* shadows =
+      cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
   cmd.add_option("--shadow-method", a->shadow_method,
                  "With --shadows: map (shadow mapping) | zpass | zfail (stencil shadow volumes, counted in front of or "
                  "behind the surface; zfail is right with the eye in shadow)")
@@ -548,7 +553,8 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->capture_default_str();
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
       ->check(CLI::Range(16, raster3d::ShadowMap::kMaxSize))
-      ->capture_default_str();
+      ->capture_default_str()
+      ->needs(shadows);
   cmd.add_option("--opacity", a->opacity,
                  "Surface opacity in [0,1]: below 1 the triangles are sorted far to near and blended over what lies "
                  "behind them (alpha blending)")
@@ -563,6 +569,11 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   add_srgb_option(cmd, common);
   cmd.callback([a, &common, &cmd] {
     a->shading_given = cmd.count("--shading") > 0;
+    // Options that would change nothing are refused rather than ignored.
+    if (cmd.count("--reflect") > 0 && a->env.empty() && !a->env_cube)
+      throw InvalidInput("--reflect: nothing to reflect; add --env or --env-cube");
+    if (a->shading == "unlit" && (!a->light_dir.empty() || !a->light_pos.empty()))
+      throw InvalidInput("--shading unlit draws without lights; --light-dir and --light-pos need a lit shading");
     run_raster(*a, common);
   });
 }

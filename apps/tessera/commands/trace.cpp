@@ -94,6 +94,7 @@ void setup_trace(CLI::App& cmd, CommonOptions& common) {
   auto a = std::make_shared<TraceArgs>();
   cmd.add_option("mesh", a->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
   cmd.add_option("-o,--output", a->output, "Output image (.png, .ppm, .pfm, .hdr, .jpg, ...)")->required();
+  a->camera.clip_planes = false;
   a->camera.add(cmd);
   cmd.add_option("--shade", a->shade,
                  "diffuse (headlight, smooth normals when the mesh has them) | normal (n/2 + 1/2) | cost (BVH nodes + "
@@ -108,7 +109,14 @@ void setup_trace(CLI::App& cmd, CommonOptions& common) {
       ->capture_default_str();
   add_samples_option(cmd, a->samples);
   add_srgb_option(cmd, common);
-  cmd.callback([a, &common] { run_trace(*a, common); });
+  cmd.callback([a, &common, &cmd] {
+    // Options that would change nothing are refused rather than ignored.
+    if (cmd.count("--color") > 0 && a->shade != "diffuse")
+      throw InvalidInput(fmt::format("--color: --shade {} does not use the surface color", a->shade));
+    if (cmd.count("--background") > 0 && a->shade == "cost")
+      throw InvalidInput("--background: --shade cost colors every pixel by its cost");
+    run_trace(*a, common);
+  });
 }
 
 }  // namespace tessera::cli
