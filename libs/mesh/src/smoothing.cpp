@@ -6,6 +6,7 @@
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/mesh/normals.hpp"
 #include "tessera/mesh/topology.hpp"
 #include "tessera/mesh/triangulate.hpp"
 
@@ -101,6 +102,11 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
     step(options.lambda);
     if (options.method == SmoothingMethod::Taubin) step(options.mu);
     if (progress) progress(i + 1);
+  }
+  // Normals of the old shape would be silently wrong: give the smoothed shape its own.
+  if (options.iterations > 0 && (!mesh.normals.empty() || !mesh.corner_normals.empty())) {
+    mesh.corner_normals.clear();
+    compute_vertex_normals(mesh, NormalWeighting::Area);
   }
 }
 

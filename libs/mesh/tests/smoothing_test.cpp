@@ -79,5 +79,25 @@ TEST(Smoothing, RejectsBadParameters) {
   EXPECT_THROW(smooth(m, {SmoothingMethod::Taubin, 1, 0.5, -0.4}), InvalidInput);
 }
 
+// A bumpy plane smoothed flat: its normals must follow the new shape (they pointed along the bumps before).
+TEST(Smoothing, NormalsFollowTheSmoothedShape) {
+  PolyMesh m;
+  const int n = 6;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) m.positions.emplace_back(x, y, (x + y) % 2 == 0 ? 0.3 : -0.3);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const auto v = uint32_t(y * (n + 1) + x);
+      m.add_face({v, v + 1, v + uint32_t(n) + 2, v + uint32_t(n) + 1});
+    }
+  m.normals.assign(m.vertex_count(), Vec3(1, 0, 0));
+  smooth(m, {.method = SmoothingMethod::Laplacian, .iterations = 50, .lambda = 0.5});
+  ASSERT_EQ(m.normals.size(), m.vertex_count());
+  for (size_t v = 0; v < m.vertex_count(); ++v) {
+    if (std::abs(m.positions[v].x - n / 2.0) > 1 || std::abs(m.positions[v].y - n / 2.0) > 1) continue;
+    EXPECT_GT(std::abs(m.normals[v].z), 0.99) << v;  // the interior is flat after smoothing: normals along z
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -25,7 +25,9 @@ struct SmoothingOptions {
 
 /// Smooths the vertex positions in place (Jacobi steps: every vertex moves from the old positions). Neighbours are
 /// the vertices sharing a face edge; cotangent weights use the faces fan-triangulated, clamped at 0 (obtuse
-/// triangles would make them negative). `progress` (optional) is called after every step with the step count.
+/// triangles would make them negative). `progress` (optional) is called after every step with the step count. A mesh
+/// that had normals (per vertex or per corner) gets the smoothed shape's area-weighted vertex normals; uvs and colors
+/// stay as they are.
 /// Throws InvalidInput for out-of-range parameters.
 void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function<void(int)>& progress = {});
 
