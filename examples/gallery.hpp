@@ -19,8 +19,8 @@ struct Picture {
   std::string caption;  ///< one sentence for index.html
 };
 
-/// Where the shared data sets (/work/shared/data's layout: meshes/, volumes/, env/, textures/, bezier/) were looked
-/// for: the folder, and what named it ("--data", "TESSERA_DATA", "./shared/data", ...; see locate_shared_data).
+/// Where the shared data sets (a folder with meshes/, volumes/, env/, textures/, bezier/) were looked for: the folder,
+/// and what named it ("--data", "TESSERA_DATA", "./shared/data", ...; see locate_shared_data).
 struct DataFolder {
   std::filesystem::path dir;  ///< empty when no candidate exists
   std::string source;         ///< what chose dir, for messages
@@ -101,9 +101,9 @@ struct RunSummary {
 
 /// Which examples run_examples runs, and how.
 struct RunOptions {
-  std::vector<std::string> prefixes;           ///< run examples whose name starts with one of these (all when empty)
-  DataFolder data = locate_shared_data();      ///< where the shared data is read from
-  WriteOptions write;                          ///< how pictures are encoded (see Gallery)
+  std::vector<std::string> prefixes;       ///< run examples whose name starts with one of these (all when empty)
+  DataFolder data = locate_shared_data();  ///< where the shared data is read from
+  WriteOptions write;                      ///< how pictures are encoded (see Gallery)
 };
 
 /// Runs the examples `options` selects into `dir` and writes index.html.
