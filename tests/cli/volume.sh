@@ -142,6 +142,10 @@ PY
 done
 "$tessera" volume render sphere:16 --ortho -o ortho_default.png --size 32x32 --quiet
 
+# Progress: --progress plain prints the rendering's phase for logs.
+"$tessera" volume render sphere:16 --size 32x32 -o progress.png --progress plain 2> progress.txt
+grep -q '^render: started$' progress.txt && grep -q '^render: done' progress.txt || { echo "no render progress"; cat progress.txt; exit 1; }
+
 # A default --iso (Otsu's threshold, said on stderr); an --iso outside the values warns that the output is empty.
 "$tessera" volume isosurface cube.raw "${raw[@]}" -o auto.obj 2> note.txt && grep -q "Otsu" note.txt
 "$tessera" volume contour cube.raw "${raw[@]}" -o auto.svg 2> note.txt && grep -q "Otsu" note.txt && grep -q '<polygon' auto.svg

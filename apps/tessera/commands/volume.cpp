@@ -9,6 +9,7 @@
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
@@ -314,7 +315,12 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
                      a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
                      o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
       }
-      return render_volume(v, o);
+      Progress progress("render", int64_t(o.width) * o.height);
+      o.progress = [&](int64_t pixels) { progress.advance(pixels); };
+      ImageRGB picture = render_volume(v, o);
+      progress.done();
+      o.progress = nullptr;
+      return picture;
     });
     warn_if_empty(image, o, v);
     timer.time("write_s", [&] { write_image(a->output, image, common.write_options()); });

@@ -683,6 +683,9 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
   const Vec3f inv_spacing = Vec3f(1.0 / sp);
   const Vec3f origin = Vec3f(volume.origin());
   ImageRGB image(options.width, options.height, options.background);
+  const auto report = [&](const Tile& tile) {
+    if (options.progress) options.progress(int64_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
+  };
   if (options.mip) {
     parallel_tiles(options.width, options.height, 16, [&](const Tile& tile) {
       for (int j = tile.y0; j < tile.y1; ++j)
@@ -695,6 +698,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
             best = std::max(best, volume.sample((ray.at(t) - origin) * inv_spacing));
           if (best > -INFINITY) image(i, j) = Vec3f(float((best - vlo) / std::max(vhi - vlo, 1e-12)));
         }
+      report(tile);
     });
     return image;
   }
@@ -752,6 +756,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
           image(pixel[lane].x, pixel[lane].y) = color[lane] + (1 - alpha[lane]) * options.background;
         }
       }
+    report(tile);
   });
   return image;
 }

@@ -2,7 +2,9 @@
 // Direct volume rendering by ray casting (the notes' "render directly from volume data"): eye rays through the
 // volume's box, trilinear samples at a fixed step, a transfer function, front-to-back compositing with early ray
 // termination, empty-space skipping over a min/max block grid, maximum-intensity projection, gradient shading.
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -89,6 +91,8 @@ struct VolumeRenderOptions {
   int block = 8;                 ///< voxels per empty-space block side
   bool simd = true;              ///< 8 rays at a time with AVX2 where the CPU has it (same image up to rounding)
   Vec3f background{0.0f};
+  /// Called (from worker threads, concurrently) with the number of pixels of each finished tile, for progress reports.
+  std::function<void(int64_t pixels)> progress;
 };
 
 /// Ray-casts `volume` into an image (parallel tiles; identical for any thread count). Throws InvalidInput for an
