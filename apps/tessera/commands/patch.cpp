@@ -25,7 +25,7 @@ struct PatchOptions {
   int tess = 8;
   double tolerance = 0;
   PatchOrientation orientation = PatchOrientation::Outward;
-  bool weld = true;
+  bool no_weld = false;
 };
 
 void run_patch(const PatchOptions& opt, const CommonOptions& common) {
@@ -34,7 +34,7 @@ void run_patch(const PatchOptions& opt, const CommonOptions& common) {
   const PolyMesh mesh = timer.time("compute_s", [&] {
     PolyMesh m = to_poly_mesh(tessellate(
         patches, PatchTessellation{.steps = opt.tess, .tolerance = opt.tolerance, .orientation = opt.orientation}));
-    if (opt.weld) {
+    if (!opt.no_weld) {
       const Bounds3 box = bounding_box(m);
       if (!box.empty()) weld_vertices(m, kWeldTolerance * glm::length(box.hi - box.lo));
       // Surfaces that only touch (the teapot's handle meets the body's equator in one point) stay apart.
@@ -77,7 +77,7 @@ void setup_patch(CLI::App& patch, CommonOptions& common) {
               {"flip", PatchOrientation::Flipped}},
              "Which side the triangles and normals face: out of the model (outward: positive signed volume), du x dv "
              "as the data is wound (given), or reversed (flip)");
-  patch.add_flag("!--no-weld", opt->weld,
+  patch.add_flag("--no-weld", opt->no_weld,
                  "Keep every patch's own vertices (default: vertices that patches share are merged, so the mesh is "
                  "connected across patch borders; their uvs, which differ per patch, become per-corner; surfaces that "
                  "touch in a single point stay apart)");
