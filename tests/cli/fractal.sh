@@ -176,6 +176,7 @@ expect_usage "--roughness" "$tessera" fractal terrain -o "$dir/x.png" --roughnes
 expect_usage "--depth" "$tessera" fractal terrain -o "$dir/x.obj" --depth 20
 expect_usage "--factor" "$tessera" fractal dimension "$dir/carpet.png" --factor 1
 expect_usage "--min-box" "$tessera" fractal dimension "$dir/carpet.png" --min-box 0.5
+expect_usage "--max-box: 0.5 is smaller than --min-box 1" "$tessera" fractal dimension "$dir/carpet.png" --max-box 0.5
 expect_usage "--threshold" "$tessera" fractal dimension "$dir/carpet.png" --threshold x
 
 # Runtime errors: exit 1 with a message that names the file and what was wrong.
@@ -188,5 +189,6 @@ expect_error() {  # expect_error PATTERN COMMAND...
 expect_error "missing.png" "$tessera" fractal dimension "$dir/missing.png"
 "$py" -c "import sys; from PIL import Image; Image.new('L', (20, 20), 255).save(sys.argv[1])" "$dir/blank.png"
 expect_error "empty" "$tessera" fractal dimension "$dir/blank.png"
+expect_error "the set spans 729 pixels" "$tessera" fractal dimension "$dir/carpet.png" --min-box 5000
 [ ! -e "$dir/x.png" ] && [ ! -e "$dir/x.obj" ] || fail "a failed command left a file"
 echo "fractal CLI: all checks passed"

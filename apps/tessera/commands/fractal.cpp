@@ -405,6 +405,8 @@ void setup_dimension(CLI::App& fractal, CommonOptions& common) {
       ->check(number_range(1, 0))
       ->capture_default_str();
   sub->callback([o, &common] {
+    if (o->max_box > 0 && o->max_box < o->min_box)
+      throw CLI::ValidationError("--max-box", fmt::format("{} is smaller than --min-box {}", o->max_box, o->min_box));
     PhaseTimer timer;
     const ImageRGBA picture = timer.time("read_s", [&] { return read_image(o->image); });
     const BoxCountResult r = timer.time("compute_s", [&] {
