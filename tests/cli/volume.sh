@@ -171,6 +171,10 @@ rc=$?
 set -e
 [ "$rc" -eq 1 ] && grep -q "cannot apply: every voxel has the value 7" err.txt && [ ! -e flat.png ] || { echo "preset on a constant volume"; cat err.txt; exit 1; }
 "$tessera" volume render flat.raw "${raw[@]}" -o flat.pfm --quiet  # the default shows the box as a haze
+"$tessera" volume render flat.raw "${raw[@]}" --mip -o flat_mip.png 2> warn.txt
+grep -q "every voxel has the value 7: the projection is black" warn.txt || { echo "MIP of a constant volume"; cat warn.txt; exit 1; }
+"$tessera" volume slice flat.raw "${raw[@]}" -o flat_slice.png 2> warn.txt
+grep -q "every voxel has the value 7: the slice is black" warn.txt || { echo "slice of a constant volume"; cat warn.txt; exit 1; }
 lit flat.pfm 0.04 || { echo "the default render of a constant volume is black"; exit 1; }
 # Usage errors (exit 2): an unknown preset, --tf with --preset, --mip with a transfer function.
 for args in "--preset bone" "--preset ct-bone --tf tf.csv" "--mip --preset mri" "--dtype uint9" "--endian middle" \

@@ -96,6 +96,11 @@ void setup_info(CLI::App& volume, CommonOptions& common) {
   });
 }
 
+/// Says on stderr that every voxel has the same value, and what that makes of the output.
+void warn_constant(double value, const char* consequence) {
+  fmt::print(stderr, "tessera: warning: every voxel has the value {}: {}\n", stat_value(value), consequence);
+}
+
 /// Grayscale image of a slice, values mapped from [lo, hi] to [0, 1].
 ImageRGB gray_image(const DepthImage& s, double lo, double hi) {
   ImageRGB img(s.width(), s.height());
@@ -132,6 +137,7 @@ void setup_slice(CLI::App& volume, CommonOptions& common) {
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     const ImageRGB image = timer.time("compute_s", [&] {
       const auto [lo, hi] = value_range(v);
+      if (!(hi > lo)) warn_constant(lo, "the slice is black (min..max maps to black..white)");
       return gray_image(args->take(v), lo, hi);
     });
     timer.time("write_s", [&] { write_image(args->output, image, common.write_options()); });
@@ -250,8 +256,12 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
 
 /// Says on stderr why a rendered picture shows nothing but the background, when it does.
 void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, const Volume<float>& v) {
+  const auto [lo, hi] = value_range(v);
+  if (o.mip && !(hi > lo)) {
+    warn_constant(lo, "the projection is black");
+    return;
+  }
   if (!o.mip) {
-    const auto [lo, hi] = value_range(v);
     if (o.transfer.max_opacity(float(lo), float(hi)) == 0) {
       fmt::print(stderr,
                  "tessera: warning: the transfer function is transparent over the volume's values [{}, {}]: the "
