@@ -7,6 +7,7 @@
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 
 namespace tessera::examples {
@@ -146,16 +147,21 @@ std::vector<Example> all_examples() {
 
 RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& options) {
   const std::vector<std::string>& prefixes = options.prefixes;
-  Gallery gallery(dir, options.data, options.write);
+  std::vector<Example> selected;
   for (const Example& e : all_examples()) {
     const std::string name = e.name;
-    const bool selected = prefixes.empty() || std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) {
-                            return name.rfind(p, 0) == 0;
-                          });
-    if (!selected) continue;
+    if (prefixes.empty() || std::any_of(prefixes.begin(), prefixes.end(),
+                                        [&](const std::string& p) { return name.rfind(p, 0) == 0; }))
+      selected.push_back(e);
+  }
+  Gallery gallery(dir, options.data, options.write);
+  Progress progress("gallery", int64_t(selected.size()));
+  for (const Example& e : selected) {
     gallery.section(fmt::format("{}: {}", e.name, e.title));
     e.run(gallery);
+    progress.advance();
   }
+  progress.done();
   gallery.write_index("Tessera gallery");
   return {gallery.pictures().size(), gallery.stand_ins()};
 }

@@ -84,4 +84,16 @@ for command in gallery demo; do
 done
 [ ! -e "$scratch/bad" ] || fail "a usage error left an output folder"
 
+# --only must select something: a prefix that matches no example is a usage error naming the examples' numbers.
+status=0
+"$tessera" gallery --only 99 -o "$scratch/none" >/dev/null 2>"$scratch/none.stderr" || status=$?
+[ "$status" = 2 ] || fail "--only 99: exit $status, expected 2"
+grep -q "no example's name starts with '99'" "$scratch/none.stderr" || fail "--only 99: $(cat "$scratch/none.stderr")"
+[ ! -e "$scratch/none" ] || fail "--only 99 left an output folder"
+
+# --progress plain: one line when the gallery starts and one when it ends, on stderr (for logs).
+"$tessera" gallery --only 01 -o "$scratch/progress" --progress plain --data "$empty" >/dev/null 2>"$scratch/progress.stderr"
+grep -q "^gallery: started" "$scratch/progress.stderr" || fail "no plain progress: $(cat "$scratch/progress.stderr")"
+grep -q "^gallery: done" "$scratch/progress.stderr" || fail "no plain progress end: $(cat "$scratch/progress.stderr")"
+
 echo "gallery.sh: ok"
