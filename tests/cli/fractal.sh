@@ -88,6 +88,17 @@ for picture in cantor_1000 cantor_3000; do
   dim=$("$tessera" fractal dimension "$dir/$picture.png" --stats | stat dimension)
   within "$dim" 0.5909 0.6709 || fail "$picture dimension $dim, expected 0.6309 within 0.04"
 done
+# Transparency is paper: a line drawn by canvas render on its default transparent background measures 1 (the
+# transparent pixels, RGBA 0,0,0,0, were black ink once, and the whole picture measured 2).
+printf '<svg width="300" height="100"><rect x="10" y="50" width="256" height="1" fill="black"/></svg>' >"$dir/line.svg"
+"$tessera" canvas render "$dir/line.svg" -o "$dir/line.png" --no-antialias
+dim=$("$tessera" fractal dimension "$dir/line.png" --stats | stat dimension)
+within "$dim" 0.999999 1.000001 || fail "a line on a transparent background measured $dim"
+printf '<svg width="300" height="100"><rect x="10" y="50" width="256" height="1" fill="white"/></svg>' >"$dir/light.svg"
+"$tessera" canvas render "$dir/light.svg" -o "$dir/light.png" --no-antialias
+dim=$("$tessera" fractal dimension "$dir/light.png" --invert --stats | stat dimension)
+within "$dim" 0.999999 1.000001 || fail "a light line on a transparent background measured $dim with --invert"
+
 # A Sierpinski triangle and a Koch curve drawn by tessera: log 3 / log 2 = 1.585 and log 4 / log 3 = 1.2619.
 "$tessera" fractal sierpinski -o "$dir/triangle.png" --shape triangle --depth 5 --size 512x512
 dim=$("$tessera" fractal dimension "$dir/triangle.png" --stats | stat dimension)

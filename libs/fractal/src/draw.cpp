@@ -105,7 +105,8 @@ Image<uint8_t> ink_mask(const ImageRGBA& picture, float threshold, bool invert) 
   for (int y = 0; y < picture.height(); ++y)
     for (int x = 0; x < picture.width(); ++x) {
       const Vec4f& p = picture(x, y);
-      const float luminance = 0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z;
+      const float paper = invert ? 0.0f : 1.0f;  // what shows through where the picture is transparent
+      const float luminance = p.w * (0.2126f * p.x + 0.7152f * p.y + 0.0722f * p.z) + (1 - p.w) * paper;
       mask(x, y) = uint8_t((luminance < threshold) != invert);
     }
   return mask;

@@ -53,5 +53,23 @@ TEST(Draw, InkMaskThresholdAndInvert) {
   EXPECT_EQ(ink_mask(picture, 0.5f, true)(0, 0), 0);
 }
 
+TEST(Draw, InkMaskSeesTransparencyAsPaper) {
+  // Black ink on a transparent background (straight alpha, as PNG and canvas render store it): over white paper the
+  // background is white, the ink black, and half-transparent black is mid gray (luminance 0.5: not below 0.5).
+  ImageRGBA picture(4, 1, Vec4f(0.0f));
+  picture(0, 0) = Vec4f(0, 0, 0, 1), picture(1, 0) = Vec4f(0, 0, 0, 0.5f), picture(2, 0) = Vec4f(0, 0, 0, 0.6f);
+  const Image<uint8_t> mask = ink_mask(picture);
+  EXPECT_EQ(mask(0, 0), 1);
+  EXPECT_EQ(mask(1, 0), 0);
+  EXPECT_EQ(mask(2, 0), 1);
+  EXPECT_EQ(mask(3, 0), 0);
+  // Light on dark: white ink on a transparent background, seen over black paper.
+  picture(0, 0) = Vec4f(1, 1, 1, 1), picture(1, 0) = Vec4f(1, 1, 1, 0.4f);
+  const Image<uint8_t> light = ink_mask(picture, 0.5f, true);
+  EXPECT_EQ(light(0, 0), 1);
+  EXPECT_EQ(light(1, 0), 0);
+  EXPECT_EQ(light(3, 0), 0);
+}
+
 }  // namespace
 }  // namespace tessera

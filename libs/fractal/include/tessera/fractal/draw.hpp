@@ -53,7 +53,8 @@ void add_curve(ImageRGBA& picture, const std::vector<Vec2>& polyline, bool close
                const Vec3f& color, double line_width, bool antialias);
 
 /// The binary mask of a picture: 1 where the luminance (Rec. 709 weights) is below `threshold` (dark ink on light
-/// paper), else 0; `invert` swaps the two (light on dark).
+/// paper), else 0; `invert` swaps the two (light on dark). Transparency is paper: a pixel of alpha a is seen over
+/// white paper (black with `invert`), so a transparent background (RGBA 0,0,0,0, as canvas render writes) is no ink.
 Image<uint8_t> ink_mask(const ImageRGBA& picture, float threshold = 0.5f, bool invert = false);
 
 }  // namespace tessera
