@@ -31,7 +31,8 @@ std::string finite_number(std::string& text) {
   return v && !std::isfinite(*v) ? "expected a finite number, got '" + text + "'" : "";
 }
 
-/// A validator that accepts what `parse` accepts and reports the InvalidInput message of what it refuses.
+/// A validator that accepts what `parse` accepts and reports the InvalidInput message of what it refuses. `parse` names
+/// nothing (CLI11 puts the option's name in front), so the message's empty "<what>: " prefix is cut.
 template <class Parse>
 CLI::Validator parses_with(Parse parse, const std::string& name) {
   return CLI::Validator(
@@ -40,7 +41,8 @@ CLI::Validator parses_with(Parse parse, const std::string& name) {
           parse(text);
           return std::string();
         } catch (const InvalidInput& e) {
-          return std::string(e.what());
+          const std::string message = e.what();
+          return message.rfind(": ", 0) == 0 ? message.substr(2) : message;
         }
       },
       name);
@@ -60,15 +62,15 @@ CLI::Validator non_negative() {
 }
 
 CLI::Validator size_format() {
-  return parses_with([](const std::string& text) { parse_size(text, "expected WxH"); }, "WxH");
+  return parses_with([](const std::string& text) { parse_size(text, ""); }, "WxH");
 }
 
 CLI::Validator color_format() {
-  return parses_with([](const std::string& text) { parse_color(text, "expected a color"); }, "COLOR");
+  return parses_with([](const std::string& text) { parse_color(text, ""); }, "COLOR");
 }
 
 CLI::Validator numbers_format(size_t count) {
-  return parses_with([count](const std::string& text) { parse_doubles(text, count, "expected numbers"); }, "");
+  return parses_with([count](const std::string& text) { parse_doubles(text, count, ""); }, "");
 }
 
 void add_common_options(CLI::App& command, CommonOptions& common) {

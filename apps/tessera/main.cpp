@@ -35,7 +35,7 @@ const Command kCommands[] = {
     {"gallery", "Render every example and algorithm as a picture, with an index.html", setup_gallery},
     {"canvas", "2D canvas: rasterize an SVG drawing", setup_canvas},
     {"color", "Color-model conversions", setup_color},
-    {"mesh", "Mesh processing: info, convert, normals, smooth, subdivide, triangulate", setup_mesh},
+    {"mesh", "Mesh processing: info, convert, normals, smooth, subdivide, triangulate, weld", setup_mesh},
     {"curve", "Bezier curves: draw curves, control polygons and subdivision steps", setup_curve},
     {"patch", "Bezier patches (.bpt) tessellated into a mesh", setup_patch},
     {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension", setup_fractal},
