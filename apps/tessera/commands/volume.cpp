@@ -272,7 +272,9 @@ void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, const Vo
   }
   for (const auto& p : image.pixels())
     if (p != o.background) return;
-  fmt::print(stderr, "tessera: warning: the picture shows only the background: is the volume in view (--eye, --center)?\n");
+  fmt::print(stderr,
+             "tessera: warning: the picture shows only the background: no ray meets a voxel that the transfer function "
+             "makes visible (is the volume in view? are the transfer function's values those of the volume?)\n");
 }
 
 void setup_render(CLI::App& volume, CommonOptions& common) {
