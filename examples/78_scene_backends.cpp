@@ -1,8 +1,8 @@
 // One scene description, two renderers (the scene module drives both): the whitted scene ray traced (reflection,
 // refraction, the checkerboard, every light's shadows by shadow rays), then rasterized with local shading: the same
-// checkerboard per pixel, the glass sphere blended over what lies behind it (no refraction), the mirror reflecting the
-// sky only (a rasterizer sees from one eye), with every light's shadows from a shadow map per light (the notes' 2-pass
-// z-buffer), and from stencil shadow volumes (one additive pass per light). The scene has two lights: the second casts
+// checkerboard per pixel, the glass sphere blended over what lies behind it (no refraction), the mirror reflecting a
+// cube map of the scene drawn from its center (one bounce), with every light's shadows from a shadow map per light
+// (the notes' 2-pass z-buffer), and from stencil shadow volumes (one additive pass per light). The scene has two lights: the second casts
 // the fainter shadows.
 #include "gallery.hpp"
 #include "tessera/scene/raster.hpp"
@@ -22,5 +22,6 @@ TESSERA_EXAMPLE(ex78_scene_backends, "78_scene_backends",
                                       rasterize_scene(scene, s.width, s.height, RasterShadows::volumes)}),
               "The built-in whitted scene ray traced; rasterized with a shadow map per light; rasterized with "
               "shadow volumes (the second light casts the fainter shadows). The rasterizer shows the checkerboard and "
-              "blends the glass over what lies behind it, unrefracted; its mirror reflects only the sky.");
+              "blends the glass over what lies behind it, unrefracted; its mirror reflects a cube map drawn from its "
+              "center, one bounce deep.");
 }

@@ -106,8 +106,8 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
   add_choice(cmd, "--backend", a->backend, {{"raytrace", Backend::raytrace}, {"raster", Backend::raster}},
-             "Renderer: raytrace (everything) or raster (z-buffer and local shading: mirrors reflect the background, "
-             "glass is blended without refraction; docs/raytrace.md)");
+             "Renderer: raytrace (everything) or raster (z-buffer, local shading, one bounce of reflection by cube maps, "
+             "glass blended without refraction; docs/raytrace.md)");
   CLI::Option* shadows = add_choice(cmd, "--shadow-method", a->shadow_method,
                                     {{"map", RasterShadows::map}, {"volumes", RasterShadows::volumes}},
                                     "Raster shadows of every light: map (a shadow map per light) or volumes (stencil "

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/frame.hpp"
@@ -155,12 +156,15 @@ struct ObjectShading {
   Mat3f normal_to_object{1.0f};  ///< eye-space normals to object space (the transposed model-view)
   Vec3f ambient_light{0.0f};     ///< the scene's C_a in the pass that adds the ambient term, else 0
   Vec3f environment{0.0f};       ///< what a mirror ray sees (the background), in that pass, else 0
+  /// In that pass, what a mirror ray sees instead: the other objects around the object's center (a dynamic cube map),
+  /// or null.
+  const CubeMap* reflection = nullptr;
 };
 
 /// The ray tracer's surface terms per pixel: the surface color C_r (the checkerboard of world-space cells, times the
 /// texture at the ray tracer's uv), the lighting and shadows of raster3d's surface shader, the ambient term
-/// C_r ambient C_a, and the mirror term K_refl environment(R): the background, which is all the environment a scene
-/// has. The normal faces the viewer, as the ray tracer faces it toward the ray. The alpha is 1 - K_trans (the mean of
+/// C_r ambient C_a, and the mirror term K_refl environment(R), R = 2 (N.E) N - E in world space: the object's cube map
+/// of the others, or the background. The normal faces the viewer, as the ray tracer faces it toward the ray. The alpha is 1 - K_trans (the mean of
 /// its channels; with fresnel, after Schlick's term moved weight to K_refl), the part of what lies behind that
 /// blending lets through: dst' = color + K_trans dst.
 struct SceneFragmentShader {
@@ -185,7 +189,7 @@ struct SceneFragmentShader {
     raster3d::SurfaceVaryings v = in;
     const Vec3f e = glm::normalize(Vec3f(u.viewer) - in.position * u.viewer.w);
     const bool front = glm::dot(in.normal, e) >= 0.0f;
-    if (!front) v.normal = -in.normal;
+    v.normal = glm::normalize(front ? in.normal : -in.normal);
     Vec3f cr = m.diffuse;
     if (m.checker > 0.0f) {
       const Vec3f world(u.eye_to_world * Vec4f(in.position, 1.0f));
@@ -203,7 +207,12 @@ struct SceneFragmentShader {
       k_refl += f * k_trans;
       k_trans *= 1.0f - f;
     }
-    c += cr * m.ambient * object->ambient_light + k_refl * object->environment;
+    Vec3f environment = object->environment;
+    if (object->reflection && k_refl != Vec3f(0.0f)) {
+      const Vec3f r = Mat3f(u.eye_to_world) * (2 * glm::dot(v.normal, e) * v.normal - e);
+      environment = Vec3f(object->reflection->lookup(r));
+    }
+    c += cr * m.ambient * object->ambient_light + k_refl * environment;
     color = Vec4f(glm::clamp(c, 0.0f, 1.0f), 1.0f - (k_trans.x + k_trans.y + k_trans.z) / 3.0f);
     return true;
   }
@@ -211,6 +220,9 @@ struct SceneFragmentShader {
 
 /// Whether a material lets light through (drawn blended, after the opaque objects).
 bool transparent(const Material& m) { return m.transmission != Vec3f(0.0f); }
+/// Whether a material reflects what is around it (a mirror, or glass whose Fresnel term reflects).
+bool reflective(const Material& m) { return m.reflection != Vec3f(0.0f) || (m.fresnel && transparent(m)); }
+
 
 }  // namespace
 
@@ -226,23 +238,27 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
   const bool zfail = shadows == RasterShadows::volumes && !ortho;
   const Mat4 projection = zfail ? infinite_perspective(camera.fovy, camera.aspect, camera.near) : camera.projection();
   const Mat4 view = camera.view();
-  const Mat3 view_linear(view);
 
-  // The lights in eye space, as glLight places them under the view matrix. The ambient term is the fragment
-  // shader's (C_r ambient C_a); the highlights see the eye where it is (a local viewer), as the ray tracer's do.
-  raster3d::Lighting lighting;
-  lighting.model_ambient = Vec3f(0.0f);
-  lighting.local_viewer = !ortho;
-  lighting.color_material = true;
-  lighting.light_count = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
-  for (int i = 0; i < lighting.light_count; ++i) {
-    const Light& l = scene.lights[size_t(i)];
-    raster3d::Light& gl = lighting.lights[size_t(i)];
-    gl.diffuse = gl.specular = l.color;
-    gl.position = l.type == LightType::directional
-                      ? Vec4f(Vec3f(view_linear * -glm::normalize(Vec3(l.direction))), 0.0f)
-                      : Vec4f(Vec3f(view * glm::dvec4(light_center(l), 1.0)), 1.0f);
-  }
+  // The lights in eye space for a view, as glLight places them under the view matrix. The ambient term is the fragment
+  // shader's (C_r ambient C_a); the highlights see the eye where it is (a local viewer) as the ray tracer's do, or
+  // along the gaze under an orthographic projection.
+  const auto lights_seen_by = [&](const Mat4& eye_view, bool local_viewer) {
+    raster3d::Lighting lighting;
+    lighting.model_ambient = Vec3f(0.0f);
+    lighting.local_viewer = local_viewer;
+    lighting.color_material = true;
+    lighting.light_count = std::min<int>(int(scene.lights.size()), raster3d::kMaxLights);
+    for (int i = 0; i < lighting.light_count; ++i) {
+      const Light& l = scene.lights[size_t(i)];
+      raster3d::Light& gl = lighting.lights[size_t(i)];
+      gl.diffuse = gl.specular = l.color;
+      gl.position = l.type == LightType::directional
+                        ? Vec4f(Vec3f(Mat3(eye_view) * -glm::normalize(Vec3(l.direction))), 0.0f)
+                        : Vec4f(Vec3f(eye_view * glm::dvec4(light_center(l), 1.0)), 1.0f);
+    }
+    return lighting;
+  };
+  const raster3d::Lighting lighting = lights_seen_by(view, !ortho);
 
   // Every object tessellated once; for a shadow map, the casters' world box (planes are infinite: they only receive).
   const auto casts = [](const SceneObject& o) {
@@ -268,9 +284,6 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
       for (const Vec3f& p : arrays.back().positions) radius = std::max(radius, glm::length(p));
       s.probe = 0.01f * radius;  // well beyond the tessellation's chords (0.2% of a radius at 48 segments)
     }
-    const Mat4 model_view = view * o.transform;
-    s.eye_to_object = Mat4f(glm::inverse(model_view));
-    s.normal_to_object = Mat3f(glm::transpose(Mat3(model_view)));
     shading.push_back(s);
     if (!casts(o) || shadows != RasterShadows::map) continue;
     for (const Vec3f& p : arrays.back().positions) {
@@ -287,13 +300,17 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
       for (size_t k = 0; k < scene.objects.size(); ++k)
         if (casts(scene.objects[k])) maps.back().draw(arrays[k], scene.objects[k].transform);
     }
+  std::vector<size_t> opaque, see_through;
+  for (size_t k = 0; k < scene.objects.size(); ++k)
+    (transparent(material(scene.objects[k])) ? see_through : opaque).push_back(k);
 
-  raster3d::Framebuffer fb(width, height);
-  fb.clear(scene.image.background);
-  // Draws object k under `lights` (the scene's, or one pass's) with its material's terms; the emission, ambient and
-  // mirror terms only when `ambient` (a light's pass adds that light alone).
-  const auto draw_object = [&](size_t k, const raster3d::RasterState& state, const raster3d::Lighting& lights,
-                               bool ambient) {
+  // Each mirror's surroundings (filled in below): what its reflected rays see.
+  std::vector<std::optional<CubeMap>> reflections(scene.objects.size());
+  // Draws object k into `target` through (projection, eye_view) under `lights` (the scene's, or one pass's) with its
+  // material's terms; the emission, ambient and mirror terms only when `ambient` (a light's pass adds that light
+  // alone).
+  const auto draw_object = [&](raster3d::Framebuffer& target, const Mat4& projection_k, const Mat4& eye_view, size_t k,
+                               const raster3d::RasterState& state, const raster3d::Lighting& lights, bool ambient) {
     const SceneObject& o = scene.objects[k];
     const Material& m = material(o);
     raster3d::Lighting l = lights;
@@ -303,68 +320,109 @@ ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadow
     l.specular_model =
         m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
     raster3d::SurfaceUniforms u;
-    u.set_camera(projection, view, o.transform);
+    u.set_camera(projection_k, eye_view, o.transform);
     u.lighting = raster3d::PreparedLighting(l);
     for (size_t i = 0; i < maps.size(); ++i) u.maps.shadows[i] = &maps[i];
     ObjectShading s = shading[k];
+    const Mat4 model_view = eye_view * o.transform;
+    s.eye_to_object = Mat4f(glm::inverse(model_view));
+    s.normal_to_object = Mat3f(glm::transpose(Mat3(model_view)));
     s.ambient_light = ambient ? scene.ambient : Vec3f(0.0f);
     s.environment = ambient ? scene.image.background : Vec3f(0.0f);
+    s.reflection = ambient && reflections[k] ? &*reflections[k] : nullptr;
     const raster3d::SurfaceVertexShader vs{arrays[k].attributes(), nullptr, nullptr, &u};
-    raster3d::draw_triangles(fb, state, uint32_t(arrays[k].positions.size()), arrays[k].indices, vs,
+    raster3d::draw_triangles(target, state, uint32_t(arrays[k].positions.size()), arrays[k].indices, vs,
                              SceneFragmentShader{&u, &s});
   };
-  std::vector<size_t> opaque, see_through;
-  for (size_t k = 0; k < scene.objects.size(); ++k)
-    (transparent(material(scene.objects[k])) ? see_through : opaque).push_back(k);
-  if (shadows == RasterShadows::map) {
-    for (const size_t k : opaque) draw_object(k, raster3d::RasterState{}, lighting, true);
-  } else {
-    // Shadow volumes: the casters' volumes for each light, then an ambient pass (ambient, emission, mirror term) and
-    // one pass per light adding its own diffuse and specular terms where no volume holds the surface.
-    std::vector<std::vector<raster3d::ShadowVolume>> volumes(size_t(lighting.light_count));
-    for (size_t k = 0; k < scene.objects.size(); ++k) {
-      if (!casts(scene.objects[k])) continue;
-      std::vector<Vec3f> world;
-      for (const Vec3f& p : arrays[k].positions)
-        world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
-      for (int i = 0; i < lighting.light_count; ++i) {
-        const Light& l = scene.lights[size_t(i)];
-        const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
-                                                             : Vec4f(Vec3f(light_center(l)), 1);
-        volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
-      }
+  // Transparency by blending (raster3d's sorted transparency): the see-through objects but `skip` after the opaque
+  // ones, far to near by their centers and each one's triangles sorted far to near, depth-tested against the opaque
+  // ones but not written, each blended over what lies behind it (dst' = color + K_trans dst).
+  const auto draw_see_through = [&](raster3d::Framebuffer& target, const Mat4& projection_k, const Mat4& eye_view,
+                                    const raster3d::Lighting& lights, size_t skip) {
+    const auto depth = [&](size_t k) {
+      Vec3 c(0.0);
+      for (const Vec3f& p : arrays[k].positions) c += Vec3(p);
+      return (eye_view * scene.objects[k].transform * glm::dvec4(c / double(arrays[k].positions.size()), 1.0)).z;
+    };
+    std::vector<size_t> order;
+    for (const size_t k : see_through)
+      if (k != skip) order.push_back(k);
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return depth(a) < depth(b); });
+    raster3d::RasterState blend;
+    blend.depth_write = false;
+    blend.blend = true;
+    blend.blend_function = {raster3d::BlendFactor::one, raster3d::BlendFactor::one_minus_src_alpha};
+    for (const size_t k : order) {
+      raster3d::sort_back_to_front(arrays[k], eye_view * scene.objects[k].transform);
+      draw_object(target, projection_k, eye_view, k, blend, lights, true);
     }
-    raster3d::draw_lights_with_shadow_volumes(
-        fb, volumes, Mat4f(projection * view), zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
-        [&](const raster3d::RasterState& state, int light) {
-          raster3d::Lighting pass = lighting;
-          if (light >= 0) {
-            pass.lights[0] = lighting.lights[size_t(light)];
-            pass.light_count = 1;
-          } else {
-            pass.light_count = 0;
-          }
-          for (const size_t k : opaque) draw_object(k, state, pass, light < 0);
-        });
-  }
-  // Transparency by blending (raster3d's sorted transparency): the see-through objects after the opaque ones, far to
-  // near by their centers and each one's triangles sorted far to near, depth-tested against the opaque ones but not
-  // written, each blended over what lies behind it (dst' = color + K_trans dst). Their surfaces are unshadowed with
-  // shadow volumes (those count only the opaque surfaces' pixels).
-  const auto depth = [&](size_t k) {
+  };
+  // The whole scene but object `skip`, shadowed by the maps (if any).
+  const auto draw_all = [&](raster3d::Framebuffer& target, const Mat4& projection_k, const Mat4& eye_view,
+                            const raster3d::Lighting& lights, size_t skip) {
+    for (const size_t k : opaque)
+      if (k != skip) draw_object(target, projection_k, eye_view, k, raster3d::RasterState{}, lights, true);
+    draw_see_through(target, projection_k, eye_view, lights, skip);
+  };
+
+  // Environment mapping of the other objects (the notes' cube mapping: "render scene 6 times, eye at center of
+  // cube"): each reflective object sees the rest of the scene, drawn from its center, one bounce deep (the objects in
+  // its cube map reflect only the background).
+  std::vector<std::optional<CubeMap>> surroundings(scene.objects.size());
+  // About a texel per pixel where a mirror fills the picture (its visible half shows a face across half the width).
+  const int reflection_size = std::clamp(std::max(width, height) / 2, 16, 256);
+  for (size_t k = 0; k < scene.objects.size(); ++k) {
+    if (!reflective(material(scene.objects[k])) || (scene.objects[k].shape &&
+                                                    std::holds_alternative<Plane>(*scene.objects[k].shape)))
+      continue;
     Vec3 c(0.0);
     for (const Vec3f& p : arrays[k].positions) c += Vec3(p);
-    return (view * scene.objects[k].transform * glm::dvec4(c / double(arrays[k].positions.size()), 1.0)).z;
-  };
-  std::stable_sort(see_through.begin(), see_through.end(), [&](size_t a, size_t b) { return depth(a) < depth(b); });
-  raster3d::RasterState blend;
-  blend.depth_write = false;
-  blend.blend = true;
-  blend.blend_function = {raster3d::BlendFactor::one, raster3d::BlendFactor::one_minus_src_alpha};
-  for (const size_t k : see_through) {
-    raster3d::sort_back_to_front(arrays[k], view * scene.objects[k].transform);
-    draw_object(k, blend, lighting, true);
+    const Vec3 center = transform_point(scene.objects[k].transform, c / double(arrays[k].positions.size()));
+    surroundings[k] = raster3d::render_cube_map(
+        center, reflection_size,
+        [&](raster3d::Framebuffer& face, const Mat4& face_projection, const Mat4& face_view) {
+          face.clear(scene.image.background);
+          draw_all(face, face_projection, face_view, lights_seen_by(face_view, true), k);
+        },
+        0.01, 4000);
   }
+  reflections = std::move(surroundings);
+  raster3d::Framebuffer fb(width, height);
+  fb.clear(scene.image.background);
+  const size_t none = scene.objects.size();
+  if (shadows == RasterShadows::map) {
+    draw_all(fb, projection, view, lighting, none);
+    return fb.color_rgb();
+  }
+  // Shadow volumes: the casters' volumes for each light, then an ambient pass (ambient, emission, mirror term) and
+  // one pass per light adding its own diffuse and specular terms where no volume holds the surface; the see-through
+  // objects over that, unshadowed (the volumes count only the opaque surfaces' pixels).
+  std::vector<std::vector<raster3d::ShadowVolume>> volumes(size_t(lighting.light_count));
+  for (size_t k = 0; k < scene.objects.size(); ++k) {
+    if (!casts(scene.objects[k])) continue;
+    std::vector<Vec3f> world;
+    for (const Vec3f& p : arrays[k].positions)
+      world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
+    for (int i = 0; i < lighting.light_count; ++i) {
+      const Light& l = scene.lights[size_t(i)];
+      const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
+                                                           : Vec4f(Vec3f(light_center(l)), 1);
+      volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
+    }
+  }
+  raster3d::draw_lights_with_shadow_volumes(
+      fb, volumes, Mat4f(projection * view), zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
+      [&](const raster3d::RasterState& state, int light) {
+        raster3d::Lighting pass = lighting;
+        if (light >= 0) {
+          pass.lights[0] = lighting.lights[size_t(light)];
+          pass.light_count = 1;
+        } else {
+          pass.light_count = 0;
+        }
+        for (const size_t k : opaque) draw_object(fb, projection, view, k, state, pass, light < 0);
+      });
+  draw_see_through(fb, projection, view, lighting, none);
   return fb.color_rgb();
 }
 

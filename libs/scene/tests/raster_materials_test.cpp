@@ -1,7 +1,7 @@
 // The two backends against analytic pictures and against each other: orthographic cameras (sizes in pixels that do
 // not change with distance), the checkerboard's cells at known pixels, textures at the ray tracer's uv, glass blended
-// (not black) and mirrors reflecting the background, each material's mean color within a tolerance of the ray
-// tracer's.
+// (not black), mirrors reflecting the background and the other objects, each material's mean color within a
+// tolerance of the ray tracer's.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -234,6 +234,25 @@ TEST(SceneMaterials, MirrorsReflectTheBackground) {
   const auto means = sphere_means(scene);
   const Vec3f expected = Vec3f(0.05f) + 0.8f * Vec3f(0.2f, 0.4f, 0.8f);
   for (const Vec3f& m : means) EXPECT_LT(glm::length(m - expected), 0.02f) << m.x << " " << m.y << " " << m.z;
+}
+
+TEST(SceneMaterials, MirrorsReflectTheOtherObjects) {
+  // A red wall behind the viewer: the mirror sphere's middle reflects it (the ray tracer's reflected rays; the
+  // rasterizer's cube map drawn from the sphere's center), the rim the sky beyond the sphere.
+  const Scene scene = unlit(
+      R"({"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4})",
+      R"({"m": {"diffuse": 0, "reflection": 0.8}, "red": {"diffuse": [1, 0, 0]}})",
+      R"([{"type": "sphere", "material": "m"},
+          {"type": "polygon", "material": "red", "vertices": [[-40, -40, 20], [-40, 40, 20], [40, 40, 20], [40, -40, 20]]}])",
+      64, "[0, 0, 1]");
+  const auto images = both(scene);
+  for (size_t k = 0; k < images.size(); ++k) {
+    const Vec3f middle = mean_over(images[k], [](int x, int y) {
+                           return std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 4;
+                         }).second;
+    EXPECT_LT(glm::length(middle - Vec3f(0.8f, 0, 0)), 0.03f) << "backend " << k;
+    EXPECT_LT(glm::length(images[k](32, 18) - Vec3f(0, 0, 0.8f)), 0.03f) << "backend " << k;  // near the rim
+  }
 }
 
 TEST(SceneMaterials, WhittedGlassIsNotBlack) {

@@ -2,8 +2,8 @@
 // Driving the rasterizer (raster3d) from a scene description: every object tessellated into triangles and drawn with
 // the z-buffer and per-pixel (Phong-interpolated) OpenGL lighting, with every light's hard shadows from shadow maps
 // (the notes' 2-pass z-buffer) or from shadow volumes, the ray tracer's surface colors (checkerboards, textures) per
-// pixel. Mirrors reflect only the background and glass is blended without refraction; no distribution effects (those
-// need the ray tracer). docs/raytrace.md lists what differs.
+// pixel. Mirrors reflect a cube map of the scene drawn from their centers (one bounce) and glass is blended without
+// refraction; no distribution effects (those need the ray tracer). docs/raytrace.md lists what differs.
 #include "tessera/image/image.hpp"
 #include "tessera/scene/scene.hpp"
 
@@ -28,9 +28,10 @@ enum class RasterShadows {
 /// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
 /// volumes) or orthographic projection, its lights (area lights as point lights at their centers; at most 8), and per
 /// pixel each material's surface color as the ray tracer computes it (the checkerboard's world-space cells, the
-/// texture at the ray tracer's uv), ambient, highlight and emission; mirrors add K_refl times the background (the
-/// environment seen by the reflected view vector: the other objects are not reflected), and transparent materials
-/// (transmission) are blended over what lies behind them, sorted far to near (no refraction). The background is the
+/// texture at the ray tracer's uv), ambient, highlight and emission; mirrors add K_refl times the environment seen by
+/// the reflected view vector (a cube map of the other objects drawn from the mirror's center, one bounce deep, and the
+/// background beyond them; planes reflect the background only), and transparent materials (transmission) are blended
+/// over what lies behind them, sorted far to near (no refraction). The background is the
 /// clear color. Shadows are hard, cast by the objects marked so (planes, being infinite, only receive them), as
 /// `shadows` says (volumes under an orthographic camera are counted z-pass). Throws InvalidInput for a bad image
 /// size, or a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn.
