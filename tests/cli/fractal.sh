@@ -184,7 +184,9 @@ expect_usage "picture" "$tessera" fractal terrain -o "$dir/x.obj" --method midpo
 expect_usage "mesh" "$tessera" fractal terrain -o "$dir/x.png" --method triangles
 expect_usage "diamond-square" "$tessera" fractal terrain -o "$dir/x.obj" --method volcano
 expect_usage "--roughness" "$tessera" fractal terrain -o "$dir/x.png" --roughness 1.5
-expect_usage "--depth" "$tessera" fractal terrain -o "$dir/x.obj" --depth 20
+expect_usage "--depth: diamond-square goes up to depth 12, got 20" "$tessera" fractal terrain -o "$dir/x.obj" --depth 20
+expect_usage "--depth: the triangle mountain goes up to depth 10" "$tessera" fractal terrain -o "$dir/x.obj" \
+  --method triangles --depth 11
 expect_usage "--factor" "$tessera" fractal dimension "$dir/carpet.png" --factor 1
 expect_usage "--min-box" "$tessera" fractal dimension "$dir/carpet.png" --min-box 0.5
 expect_usage "--max-box: 0.5 is smaller than --min-box 1" "$tessera" fractal dimension "$dir/carpet.png" --max-box 0.5

@@ -341,11 +341,10 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       throw CLI::ValidationError("--method", "the 1D midpoint profile is a picture: give -o a .png");
     if (o->method == TerrainMethod::Triangles && !mesh_out)
       throw CLI::ValidationError("--method", "the triangle mountain is a mesh: give -o a .obj, .ply, .off or .stl");
-    check_depth(o->depth,
-                o->method == TerrainMethod::Midpoint    ? kMaxTerrainDepth1D
-                : o->method == TerrainMethod::Triangles ? kMaxTerrainDepthTriangles
-                                                        : kMaxTerrainDepthGrid,
-                "--method");
+    if (o->method == TerrainMethod::Midpoint) check_depth(o->depth, kMaxTerrainDepth1D, "the midpoint profile");
+    if (o->method == TerrainMethod::Triangles)
+      check_depth(o->depth, kMaxTerrainDepthTriangles, "the triangle mountain");
+    if (o->method == TerrainMethod::DiamondSquare) check_depth(o->depth, kMaxTerrainDepthGrid, "diamond-square");
     TerrainOptions options;
     options.depth = o->depth;
     options.roughness = o->roughness;
