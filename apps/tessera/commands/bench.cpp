@@ -67,7 +67,7 @@ void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   if (a.random_rays < 0 || a.random_rays > kMaxRandomRays)
     throw InvalidInput(fmt::format("--random-rays: expected N in [0, {}], got {}", kMaxRandomRays, a.random_rays));
   PhaseTimer timer;
-  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh(a.mesh); });
+  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to cast rays at", a.mesh));
   const Bounds3 b = bounding_box(poly);

@@ -14,6 +14,7 @@
 #include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
@@ -278,6 +279,7 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
   };
   std::optional<CubeMap> cube;
   raster3d::Framebuffer fb(width, height);
+  Progress progress("raster", int64_t(a.repeat) * a.samples);
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < a.repeat; ++frame) {
     if (shadow) {
@@ -311,6 +313,7 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
             a.shadow_method == "zfail" ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass, draw_scene);
       else
         draw_scene(raster3d::RasterState{}, 1.0f);
+      progress.advance();
       if (frame + 1 < a.repeat) continue;
       if (environment) raster3d::fill_background(fb, *environment, jittered * view);
       resolve.add(fb, false);
@@ -392,6 +395,7 @@ void render_fixed_function(const RasterArgs& a, const PolyMesh& poly, const TriM
   // Edges dark on a light background, light on a dark one.
   const Vec3f wire_color = (bg.x + bg.y + bg.z) > 1.5f ? Vec3f(0.1f, 0.1f, 0.15f) : Vec3f(0.9f, 0.9f, 0.8f);
 
+  Progress progress("raster", int64_t(a.repeat) * a.samples);
   const auto start = std::chrono::steady_clock::now();
   for (int frame = 0; frame < a.repeat; ++frame)
     for (int sample = 0; sample < a.samples; ++sample) {
@@ -427,6 +431,7 @@ void render_fixed_function(const RasterArgs& a, const PolyMesh& poly, const TriM
         ctx.matrix_mode(raster3d::MatrixMode::model_view);
       }
       ctx.flush();
+      progress.advance();
       if (frame + 1 == a.repeat) resolve.add(ctx.framebuffer(), painter);
     }
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -465,7 +470,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     throw InvalidInput("--hidden-surface painter keeps no depth buffer to write with --depth-out");
 
   PhaseTimer timer;
-  PolyMesh poly = timer.time("read_s", [&] { return read_mesh(a.mesh); });
+  PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
   if (poly.face_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to draw", a.mesh));
   double seconds = 0;
   SampleResolve resolve(width, height);

@@ -11,6 +11,7 @@
 #include "tessera/color/colormap.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -45,7 +46,7 @@ void run_trace(const TraceArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
   PhaseTimer timer;
-  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh(a.mesh); });
+  const PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
   const TriMesh mesh = to_tri_mesh(poly);
   if (mesh.triangle_count() == 0) throw InvalidInput(fmt::format("{}: the mesh has no faces to trace", a.mesh));
   const Bounds3 b = bounding_box(poly);
@@ -57,6 +58,7 @@ void run_trace(const TraceArgs& a, const CommonOptions& common) {
     const MeshAccel accel(mesh);
     const EyeRays eye(camera, width, height);
     // Each pixel averages its --samples rays (stratified, a pattern of its own), or (cost) their traversal costs.
+    Progress progress("trace", int64_t(width) * height);
     parallel_tiles(width, height, 16, [&](const Tile& tile) {
       for (int y = tile.y0; y < tile.y1; ++y)
         for (int x = tile.x0; x < tile.x1; ++x) {
@@ -68,7 +70,9 @@ void run_trace(const TraceArgs& a, const CommonOptions& common) {
           }
           image(x, y) = sum / float(a.samples);
         }
+      progress.advance(int64_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
     });
+    progress.done();
     if (a.shade == "cost") {
       float most = 0;
       for (const Vec3f& c : image.pixels()) most = std::max(most, c.x);
