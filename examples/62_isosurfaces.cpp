@@ -36,14 +36,15 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   options.camera->near = 1;
   options.camera->far = 1e4;
   options.color = {0.9f, 0.72f, 0.62f};
+  const std::string subject = head ? "CT head" : "Phantom head";
   const auto caption = [&](const std::string& text) {
     return head ? text : stand_in_caption("a procedural phantom (an ellipsoid around a shell)", "the CT head", text);
   };
   gallery.add("62_ct_skin.png", render_mesh(marching_cubes(ct, {.iso = skin}), options),
-              caption(fmt::format("CT head, skin iso-surface (marching cubes at {:g}).", skin)));
+              caption(fmt::format("{}, skin iso-surface (marching cubes at {:g}).", subject, skin)));
   options.color = {0.95f, 0.93f, 0.85f};
   gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options),
-              caption(fmt::format("CT head, bone iso-surface (marching cubes at {:g}).", bone)));
+              caption(fmt::format("{}, bone iso-surface (marching cubes at {:g}).", subject, bone)));
   MeshViewOptions g;
   g.wireframe = false;
   gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");

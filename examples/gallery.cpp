@@ -118,7 +118,7 @@ DataFolder locate_shared_data(const std::filesystem::path& option) {
 }
 
 std::string stand_in_caption(const std::string& what, const std::string& real, const std::string& caption) {
-  return fmt::format("STAND-IN (shared data not found: {} is drawn instead of {}): {}", what, real, caption);
+  return fmt::format("STAND-IN (shared data not found; drawn instead of {}: {}): {}", real, what, caption);
 }
 
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {

@@ -78,8 +78,8 @@ void paste(ImageRGB& sheet, const ImageRGB& tile, int x0, int y0 = 0);
 /// Panels placed left to right, top-aligned, on a white sheet as tall as the tallest. Precondition: not empty.
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels);
 
-/// The caption of a picture drawn with a stand-in for missing shared data: "STAND-IN (shared data not found: `what`
-/// is drawn instead of `real`): " + caption.
+/// The caption of a picture drawn with a stand-in for missing shared data: "STAND-IN (shared data not found; drawn
+/// instead of `real`: `what`): " + caption.
 std::string stand_in_caption(const std::string& what, const std::string& real, const std::string& caption);
 
 /// A registered example: `name` is its file stem ("01_pixels"), `title` a line for the gallery.

@@ -250,8 +250,8 @@ TEST(Gallery, MissingDataFileWarnsAndCountsAStandIn) {
   EXPECT_NE(err.find("meshes/bunny/bun_zipper_res2.ply"), std::string::npos) << err;
   EXPECT_NE(err.find((root / "data").string()), std::string::npos) << err;
   EXPECT_NE(err.find("a torus"), std::string::npos) << err;
-  EXPECT_EQ(stand_in_caption("a torus", "the bunny", "BVH."), "STAND-IN (shared data not found: a torus is drawn "
-                                                               "instead of the bunny): BVH.");
+  EXPECT_EQ(stand_in_caption("a torus", "the bunny", "BVH."),
+            "STAND-IN (shared data not found; drawn instead of the bunny: a torus): BVH.");
 }
 
 }  // namespace

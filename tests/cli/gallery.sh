@@ -22,7 +22,7 @@ expect_stand_in() {  # expect_stand_in OUT WHERE: a warning on stderr naming the
   grep -q "warning: shared data file bezier/teapot.bpt" "$1.stderr" || fail "$1: no stand-in warning: $(cat "$1.stderr")"
   grep -qF -- "$2" "$1.stderr" || fail "$1: the warning does not name '$2': $(cat "$1.stderr")"
   grep -qx "stand_ins=1" "$1.stdout" || fail "$1: --stats lacks stand_ins=1: $(cat "$1.stdout")"
-  grep -q "STAND-IN (shared data not found: a dome of 4 patches" "$1/index.html" || fail "$1: caption lacks STAND-IN"
+  grep -q "STAND-IN (shared data not found; drawn instead of the Utah teapot: a dome of 4 patches)" "$1/index.html" || fail "$1: caption lacks STAND-IN"
   [ -s "$1/42_bezier_patches.png" ] || fail "$1: no picture"
 }
 expect_real() {  # expect_real OUT: no warning, the teapot's caption
