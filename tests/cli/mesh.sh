@@ -152,6 +152,8 @@ for path in sys.argv[2:]:
     worst = max(abs(a - b) for r, g in zip(ref, got) for a, b in zip(r, g))
     assert worst < 1e-6, f"{path}: a corner's position or uv moved by {worst}"
 EOF
+  "$tessera" mesh convert "$spot" -o spot_again.obj
+  [ "$(grep -c '^vt ' spot_again.obj)" = "$(grep -c '^vt ' "$spot")" ] || fail "OBJ writes each distinct uv once"
   "$tessera" mesh convert "$spot" -o spot.stl 2>err.txt
   grep -q "warning: spot.stl: the format cannot hold texture coordinates" err.txt || fail "STL warns: $(cat err.txt)"
   "$tessera" mesh info "$spot" --progress plain 2>err.txt >/dev/null

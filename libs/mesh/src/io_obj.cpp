@@ -2,7 +2,9 @@
 // stream per line): about 10x less work per line than a tokenizing stream parser.
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <ostream>
+#include <unordered_map>
 
 #include "io_common.hpp"
 #include "tessera/mesh/mesh_io.hpp"
@@ -161,6 +163,16 @@ void resolve_refs(const CornerRefs& refs, const std::vector<T>& items, const Pol
   for (size_t c = 0; c < refs.refs.size(); ++c) per_corner[c] = items[size_t(refs.refs[c])];
 }
 
+/// The bit patterns of a uv or normal, for writing each distinct value once.
+using BitKey = std::array<uint64_t, 3>;
+struct BitKeyHash {
+  size_t operator()(const BitKey& k) const {
+    uint64_t h = 0x9E3779B97F4A7C15ULL;
+    for (uint64_t w : k) h = (h ^ w) * 0xBF58476D1CE4E5B9ULL, h ^= h >> 31;
+    return size_t(h);
+  }
+};
+
 }  // namespace
 
 PolyMesh read_obj(std::string_view data, const std::string& name, Progress* progress) {
@@ -248,15 +260,31 @@ void write_obj(std::ostream& out, const PolyMesh& mesh) {
   const bool vertex_uv = !corner_uv && mesh.uvs.size() == mesh.vertex_count() && !mesh.uvs.empty();
   const bool corner_n = mesh.corner_normals.size() == mesh.face_vertices.size() && !mesh.corner_normals.empty();
   const bool vertex_n = !corner_n && mesh.normals.size() == mesh.vertex_count() && !mesh.normals.empty();
-  if (corner_uv || vertex_uv)
-    for (const Vec2& t : corner_uv ? mesh.corner_uvs : mesh.uvs) w.print("vt {} {}\n", t.x, t.y);
-  if (corner_n || vertex_n)
-    for (const Vec3& n : corner_n ? mesh.corner_normals : mesh.normals) w.print("vn {} {} {}\n", n.x, n.y, n.z);
+  // Per-corner values are written once each (a seam's corners share few distinct values): corner -> 1-based index.
+  const auto write_distinct = [&](const auto& values, auto&& print) {
+    std::vector<uint32_t> index(values.size());
+    std::unordered_map<BitKey, uint32_t, BitKeyHash> seen;
+    for (size_t c = 0; c < values.size(); ++c) {
+      BitKey key{};
+      for (int i = 0; i < values[c].length(); ++i) key[size_t(i)] = std::bit_cast<uint64_t>(values[c][i]);
+      const auto [it, inserted] = seen.try_emplace(key, uint32_t(seen.size() + 1));
+      if (inserted) print(values[c]);
+      index[c] = it->second;
+    }
+    return index;
+  };
+  std::vector<uint32_t> uv_index, normal_index;
+  const auto print_uv = [&](const Vec2& t) { w.print("vt {} {}\n", t.x, t.y); };
+  const auto print_normal = [&](const Vec3& n) { w.print("vn {} {} {}\n", n.x, n.y, n.z); };
+  if (corner_uv) uv_index = write_distinct(mesh.corner_uvs, print_uv);
+  if (vertex_uv) std::for_each(mesh.uvs.begin(), mesh.uvs.end(), print_uv);
+  if (corner_n) normal_index = write_distinct(mesh.corner_normals, print_normal);
+  if (vertex_n) std::for_each(mesh.normals.begin(), mesh.normals.end(), print_normal);
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     w.print("f");
     for (uint32_t c = mesh.face_offsets[f]; c < mesh.face_offsets[f + 1]; ++c) {
       const uint32_t v = mesh.face_vertices[c] + 1;
-      const uint32_t t = corner_uv ? c + 1 : v, n = corner_n ? c + 1 : v;
+      const uint32_t t = corner_uv ? uv_index[c] : v, n = corner_n ? normal_index[c] : v;
       if ((corner_uv || vertex_uv) && (corner_n || vertex_n))
         w.print(" {}/{}/{}", v, t, n);
       else if (corner_uv || vertex_uv)

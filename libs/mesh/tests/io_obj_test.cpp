@@ -1,7 +1,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <set>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "shared_data.hpp"
 #include "tessera/core/error.hpp"
@@ -104,6 +107,14 @@ TEST(ObjWriter, RoundTripsPositionsFaceVaryingDataAndTags) {
   ASSERT_EQ(back.creases.size(), 1u);
   EXPECT_FLOAT_EQ(back.creases[0].sharpness, 2.5f);
   EXPECT_EQ(back.corners[0].v, 3u);
+  // Each distinct uv is written once (not once per corner): as many vt lines as distinct corner uvs.
+  std::set<std::pair<double, double>> distinct;
+  for (const Vec2& t : sphere.corner_uvs) distinct.emplace(t.x, t.y);
+  size_t vt_lines = 0;
+  std::istringstream lines(out.str());
+  for (std::string line; std::getline(lines, line);) vt_lines += line.rfind("vt ", 0) == 0;
+  EXPECT_EQ(vt_lines, distinct.size());
+  EXPECT_LT(distinct.size(), sphere.corner_uvs.size());
 }
 
 TEST(ObjReader, SharedDataSpotAndBobHaveTheManifestTopology) {
