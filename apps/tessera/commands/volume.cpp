@@ -72,10 +72,8 @@ void print_volume_stats(StatRows rows, const PhaseTimer& timer) {
   print_stats(rows);
 }
 
-/// --stats rows for an image written: width, height, pixels.
-StatRows image_rows(int width, int height) {
-  return {{"width", stat_value(width)}, {"height", stat_value(height)}, {"pixels", stat_value(double(width) * height)}};
-}
+/// --stats rows for an image written: width, height.
+StatRows image_rows(int width, int height) { return {{"width", stat_value(width)}, {"height", stat_value(height)}}; }
 
 void setup_info(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand(
@@ -336,7 +334,14 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     });
     warn_if_empty(image, o, v);
     timer.time("write_s", [&] { write_image(a->output, image, common.write_options()); });
-    if (common.stats) print_volume_stats(image_rows(image.width(), image.height()), timer);
+    if (common.stats) {
+      // pixels: those the volume covers (docs/cli.md), i.e. not left at the background.
+      StatRows rows = image_rows(image.width(), image.height());
+      const auto covered = std::count_if(image.pixels().begin(), image.pixels().end(),
+                                         [&](const Vec3f& p) { return p != o.background; });
+      rows.emplace_back("pixels", stat_value(double(covered)));
+      print_volume_stats(rows, timer);
+    }
   });
 }
 
