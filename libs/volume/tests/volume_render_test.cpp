@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -331,6 +332,20 @@ TEST(TransferFunction, AutomaticShowsEveryProceduralVolume) {
     o.width = o.height = 48;
     o.transfer = TransferFunction::automatic(profile_values(v));
     EXPECT_GT(lit_fraction(render_volume(v, o)), 0.04) << spec;  // the metaballs, smallest in their box: 0.06
+  }
+}
+
+TEST(VolumeRender, ProgressCountsEveryPixelOnce) {
+  const auto v = make_sphere(16);
+  VolumeRenderOptions o;
+  o.width = 37, o.height = 21;  // tiles cut at the edges
+  o.transfer = TransferFunction::automatic(profile_values(v));
+  for (const bool mip : {false, true}) {
+    std::atomic<int64_t> pixels = 0;
+    o.mip = mip;
+    o.progress = [&](int64_t n) { pixels += n; };
+    render_volume(v, o);
+    EXPECT_EQ(pixels.load(), 37 * 21) << mip;
   }
 }
 
