@@ -78,20 +78,32 @@ std::string unknown_command(const CLI::App& parent, const std::string& word) {
   return message + fmt::format("; 'tessera {}--help' lists the commands", prefix);
 }
 
+/// "'tessera fractal' needs a subcommand: mandelbrot, julia, …" (CLI11 says only "A subcommand is required").
+std::string missing_subcommand(const CLI::App& parent) {
+  std::string names;
+  for (const CLI::App* sub : parent.get_subcommands([](const CLI::App*) { return true; }))
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+  return fmt::format("'tessera {}' needs a subcommand: {}; 'tessera {} SUBCOMMAND --help' for its options",
+                     parent.get_name(), names, parent.get_name());
+}
+
 /// Checks the command words of argv against the command tree before CLI11 sees them (CLI11 would call an unknown
 /// word an extra positional argument). Returns the error message, or "" when every command word is known.
 std::string check_command_words(const CLI::App& app, int argc, char** argv) {
   const CLI::App* parent = &app;
   for (int i = 1; i < argc; ++i) {
-    if (parent->get_subcommands([](const CLI::App*) { return true; }).empty()) break;
     const std::string word = argv[i];
-    if (word.empty() || word[0] == '-') break;
+    if (word == "--help" || word == "-h" || word == "--version") break;
+    if (parent->get_subcommands([](const CLI::App*) { return true; }).empty()) break;
+    if (word.empty() || word[0] == '-') return parent == &app ? "" : missing_subcommand(*parent);
     // CLI11 2.1 has no get_subcommand_no_throw: look the word up among the subcommands' names.
     const auto named = parent->get_subcommands([&](const CLI::App* sub) { return sub->check_name(word); });
     if (named.empty()) return unknown_command(*parent, word);
     parent = named.front();
   }
-  return "";
+  const bool needs_subcommand = parent != &app && !parent->get_subcommands([](const CLI::App*) { return true; }).empty();
+  const bool asks_help = argc > 1 && (std::string(argv[argc - 1]) == "--help" || std::string(argv[argc - 1]) == "-h");
+  return needs_subcommand && !asks_help ? missing_subcommand(*parent) : "";
 }
 
 /// The list of commands, for a bare `tessera`.
