@@ -323,6 +323,20 @@ void check_settings(const RayScene& scene, const RenderSettings& s) {
 
 }  // namespace
 
+Shape light_surface(const Light& light) {
+  const Vec3f a = light.position;
+  switch (light.type) {
+    case LightType::rect:
+      return Polygon{{a, a + light.edge_u, a + light.edge_u + light.edge_v, a + light.edge_v}};
+    case LightType::disk:
+      return Disk{a, glm::normalize(light.direction), light.radius};
+    case LightType::sphere:
+      return Sphere{a, light.radius};
+    default:
+      throw InvalidInput("light_surface: a point or directional light has no surface");
+  }
+}
+
 void add_light_surfaces(RayScene& scene) {
   for (const Light& light : scene.lights) {
     if (!light.is_area() || !light.visible) continue;
@@ -331,16 +345,7 @@ void add_light_surfaces(RayScene& scene) {
     glow.emission = light.color;
     scene.materials.push_back(glow);
     const int material = int(scene.materials.size()) - 1;
-    Shape shape;
-    if (light.type == LightType::rect) {
-      const Vec3f a = light.position;
-      shape = Polygon{{a, a + light.edge_u, a + light.edge_u + light.edge_v, a + light.edge_v}};
-    } else if (light.type == LightType::disk) {
-      shape = Disk{light.position, glm::normalize(light.direction), light.radius};
-    } else {
-      shape = Sphere{light.position, light.radius};
-    }
-    scene.world.set_casts_shadows(scene.world.add_shape(shape, Mat4(1.0), material), false);
+    scene.world.set_casts_shadows(scene.world.add_shape(light_surface(light), Mat4(1.0), material), false);
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <limits>
 #include <optional>
+#include <string>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/frame.hpp"
@@ -13,8 +14,9 @@
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
-#include "tessera/raster3d/surface_shader.hpp"
 #include "tessera/image/texture.hpp"
+#include "tessera/raster3d/surface_shader.hpp"
+#include "tessera/raytrace/render.hpp"
 
 namespace tessera {
 namespace {
@@ -224,9 +226,32 @@ bool transparent(const Material& m) { return m.transmission != Vec3f(0.0f); }
 bool reflective(const Material& m) { return m.reflection != Vec3f(0.0f) || (m.fresnel && transparent(m)); }
 
 
+/// The scene with each visible area light's surface as an object that glows with the light's color and casts no
+/// shadow, as the ray tracer's add_light_surfaces adds them.
+Scene with_light_surfaces(const Scene& scene) {
+  Scene out = scene;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const Light& light = scene.lights[i];
+    if (!light.is_area() || !light.visible) continue;
+    std::string name = fmt::format("(area light {})", i);
+    while (out.materials.count(name)) name += "'";  // a name no material of the file has
+    Material glow;
+    glow.diffuse = Vec3f(0.0f);
+    glow.emission = light.color;
+    out.materials[name] = glow;
+    SceneObject surface;
+    surface.shape = light_surface(light);
+    surface.material = name;
+    surface.casts_shadows = false;
+    out.objects.push_back(std::move(surface));
+  }
+  return out;
+}
+
 }  // namespace
 
-ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows, int shadow_map_size) {
+ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterShadows shadows, int shadow_map_size) {
+  const Scene scene = with_light_surfaces(described);
   if (width <= 0 || height <= 0) throw InvalidInput(fmt::format("rasterize: bad image size {}x{}", width, height));
   if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > raster3d::ShadowMap::kMaxSize))
     throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, {}]", shadow_map_size,

@@ -255,6 +255,28 @@ TEST(SceneMaterials, MirrorsReflectTheOtherObjects) {
   }
 }
 
+TEST(SceneMaterials, VisibleAreaLightsGlowInBothBackends) {
+  // A rect light of color (1, 0.5, 0) facing the camera, 2 x 1 units at 16 pixels per unit: 32 x 16 pixels of its
+  // color (columns 16..47, rows 24..39), and a hidden one nowhere.
+  for (const char* visible : {"true", "false"}) {
+    const Scene scene = parse_scene(
+        std::string(R"({"image": {"size": [64, 64]}, "ambient": 0,
+            "camera": {"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4},
+            "lights": [{"type": "rect", "corner": [-1, -0.5, 0], "edge_u": [0, 1, 0], "edge_v": [2, 0, 0],
+                        "color": [1, 0.5, 0], "visible": )") +
+            visible + R"(}],
+            "materials": {"m": {"diffuse": 0}},
+            "objects": [{"type": "sphere", "center": [0, 0, -50], "radius": 0.1, "material": "m"}]})",
+        "lights.json", ".");
+    const auto images = both(scene);
+    for (size_t k = 0; k < images.size(); ++k) {
+      const auto [count, mean] = mean_over(images[k], [&](int x, int y) { return images[k](x, y).x > 0.5f; });
+      EXPECT_EQ(count, std::string(visible) == "true" ? 32 * 16 : 0) << "backend " << k;
+      if (count) EXPECT_LT(glm::length(mean - Vec3f(1, 0.5f, 0)), 0.01f) << "backend " << k;
+    }
+  }
+}
+
 TEST(SceneMaterials, WhittedGlassIsNotBlack) {
   // Gallery 78's scene: the glass sphere's pixels were black in the rasterized picture; now they show the floor and
   // the sky through the glass, as bright on average as the ray tracer's within a fifth.

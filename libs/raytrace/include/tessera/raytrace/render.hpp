@@ -52,6 +52,10 @@ struct RenderStats {
   double seconds = 0;     ///< wall time of the render
 };
 
+/// The surface of an area light: its rectangle (corner, + edge_u, + edge_u + edge_v, + edge_v), disk or sphere. Throws
+/// InvalidInput for a point or directional light, which has none.
+Shape light_surface(const Light& light);
+
 /// Adds the surface of every visible area light to the world (a rectangle, disk or sphere that emits the light's color
 /// and casts no shadow), with one new emissive material each. Call before scene.world.build().
 void add_light_surfaces(RayScene& scene);

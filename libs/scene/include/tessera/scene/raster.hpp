@@ -26,7 +26,8 @@ enum class RasterShadows {
 };
 
 /// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
-/// volumes) or orthographic projection, its lights (area lights as point lights at their centers; at most 8), and per
+/// volumes) or orthographic projection, its lights (area lights as point lights at their centers, their surfaces
+/// glowing where visible; at most 8), and per
 /// pixel each material's surface color as the ray tracer computes it (the checkerboard's world-space cells, the
 /// texture at the ray tracer's uv), ambient, highlight and emission; mirrors add K_refl times the environment seen by
 /// the reflected view vector (a cube map of the other objects drawn from the mirror's center, one bounce deep, and the
