@@ -14,20 +14,38 @@
 namespace tessera::cli {
 namespace {
 
-/// The model's front F, right R and up U for its up axis (R x U = F; see CameraOptions).
+/// The model's front F, right R = U x F and up U (R x U = F; see CameraOptions). Throws InvalidInput when the front
+/// axis is the up axis or its opposite.
 struct ModelFrame {
   Vec3 front, right, up;
 };
-ModelFrame model_frame(UpAxis axis) {
-  switch (axis) {
-    case UpAxis::x:
-      return {{0, 0, 1}, {0, -1, 0}, {1, 0, 0}};
-    case UpAxis::z:
-      return {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}};
-    case UpAxis::y:
+ModelFrame model_frame(UpAxis up_axis, FrontAxis front_axis) {
+  const Vec3 up = up_axis == UpAxis::x ? Vec3(1, 0, 0) : up_axis == UpAxis::y ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
+  Vec3 front = up_axis == UpAxis::z ? Vec3(0, -1, 0) : Vec3(0, 0, 1);
+  switch (front_axis) {
+    case FrontAxis::automatic:
+      break;
+    case FrontAxis::pos_x:
+      front = {1, 0, 0};
+      break;
+    case FrontAxis::neg_x:
+      front = {-1, 0, 0};
+      break;
+    case FrontAxis::pos_y:
+      front = {0, 1, 0};
+      break;
+    case FrontAxis::neg_y:
+      front = {0, -1, 0};
+      break;
+    case FrontAxis::pos_z:
+      front = {0, 0, 1};
+      break;
+    case FrontAxis::neg_z:
+      front = {0, 0, -1};
       break;
   }
-  return {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}};
+  if (glm::dot(front, up) != 0) throw InvalidInput("--front-axis: expected an axis perpendicular to --up-axis");
+  return {front, glm::cross(up, front), up};
 }
 
 /// The named views' azimuth and elevation, degrees. iso looks down the cube's diagonal (elevation atan(1/sqrt 2));
@@ -95,6 +113,15 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
           ->check(CLI::Range(-90.0, 90.0));
   add_choice(command, "--up-axis", up_axis, {{"x", UpAxis::x}, {"y", UpAxis::y}, {"z", UpAxis::z}},
              "The model's up axis (meshes are usually y-up; the teapot .bpt is z-up)");
+  add_choice(command, "--front-axis", front_axis,
+             {{"auto", FrontAxis::automatic},
+              {"+x", FrontAxis::pos_x},
+              {"-x", FrontAxis::neg_x},
+              {"+y", FrontAxis::pos_y},
+              {"-y", FrontAxis::neg_y},
+              {"+z", FrontAxis::pos_z},
+              {"-z", FrontAxis::neg_z}},
+             "Where the model's front faces, for the views (auto: +z, or -y for z-up; Spot faces -z)");
   CLI::Option* ortho_option =
       command.add_flag("--ortho", ortho, "Orthographic (parallel) projection instead of perspective");
   command
@@ -131,7 +158,7 @@ Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi) const {
   const double half = std::min(c.fovy, 2 * std::atan(std::tan(c.fovy / 2) * c.aspect)) / 2;
   const double dist = 1.1 * radius / std::sin(half);
   // The view's direction from the center to the eye, and the image's up: that direction turned 90 degrees upward.
-  const auto [front, right, model_up] = model_frame(up_axis);
+  const auto [front, right, model_up] = model_frame(up_axis, front_axis);
   const double az = radians(view_azimuth()), el = radians(view_elevation());
   const Vec3 level = std::cos(az) * front + std::sin(az) * right;
   const Vec3 view_dir = std::cos(el) * level + std::sin(el) * model_up;

@@ -16,12 +16,16 @@ enum class View { three_quarter, front, back, left, right, top, bottom, iso };
 /// The model's up axis (--up-axis): meshes are y-up by OpenGL's convention, CAD data and the teapot (.bpt) are z-up.
 enum class UpAxis { x, y, z };
 
+/// The direction the model's front faces (--front-axis): automatic is +z (glTF's and Blender's OBJ convention), or
+/// -y for z-up models (Blender's front view).
+enum class FrontAxis { automatic, pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
+
 /// The camera options shared by every 3D command (DESIGN.md section 4): `--eye x,y,z --center x,y,z --up x,y,z
 /// --fovy DEG --near N --far F --size WxH`, the framed views `--view NAME --azimuth DEG --elevation DEG --up-axis
 /// x|y|z`, and `--ortho [--ortho-size H]`.
 ///
-/// The model's frame: up U is the --up-axis; front F and right R are (+z, +x) for y-up, (-y, +x) for z-up (Blender's
-/// front view) and (+z, -y) for x-up, so that R x U = F in every case. The framed eye lies on
+/// The model's frame: up U is the --up-axis, front F the --front-axis (by default +z, or -y for z-up: Blender's front
+/// view), right R = U x F (+x for the defaults of y-up and z-up, -y for x-up), so that R x U = F. The framed eye lies on
 /// cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
 /// up (U at elevation 0; -F on the top view: the front at the bottom of the image, as in Blender).
 struct CameraOptions {
@@ -30,6 +34,7 @@ struct CameraOptions {
   View view = View::three_quarter;           ///< the default view: set before add() to change a command's default
   std::optional<double> azimuth, elevation;  ///< degrees; given, they replace the view's
   UpAxis up_axis = UpAxis::y;
+  FrontAxis front_axis = FrontAxis::automatic;
   bool ortho = false;       ///< --ortho: parallel projection
   double ortho_size = 0;    ///< --ortho-size: the view's height in world units; 0 frames the bounds
   bool clip_planes = true;  ///< offer --near and --far (a rasterizer's clipping planes; ray casters have none)

@@ -218,12 +218,16 @@ with open('sphere.obj', 'w') as f:
             a, b = i * m + j + 1, i * m + (j + 1) % m + 1
             f.write(f'f {a}//{a} {a + m}//{a + m} {b + m}//{b + m} {b}//{b}\n')
 PY
-views="front:y back:y left:y right:y top:y bottom:y iso:y three-quarter:y front:z top:z right:z front:x"
-for vu in $views; do
-  "$tessera" trace sphere.obj -o "view_${vu/:/_}.png" --shade normal --ortho --ortho-size 2 --size 65x65 \
-    --view "${vu%:*}" --up-axis "${vu#*:}"
-  "$tessera" bench raycast cube.obj --size 1x1 --random-rays 0 --view "${vu%:*}" --up-axis "${vu#*:}" \
-    --hits-out "hits_${vu/:/_}.txt" > /dev/null
+# view:up-axis[:front-axis]
+views="front:y back:y left:y right:y top:y bottom:y iso:y three-quarter:y front:z top:z right:z front:x front:y:-z
+       right:y:-z front:z:+x top:z:+x"
+for vuf in $views; do
+  IFS=: read -r view up front <<< "$vuf"
+  name="${view}_$up${front:+_$front}"
+  "$tessera" trace sphere.obj -o "view_$name.png" --shade normal --ortho --ortho-size 2 --size 65x65 \
+    --view "$view" --up-axis "$up" --front-axis "${front:-auto}"
+  "$tessera" bench raycast cube.obj --size 1x1 --random-rays 0 --view "$view" --up-axis "$up" \
+    --front-axis "${front:-auto}" --hits-out "hits_$name.txt" > /dev/null
 done
 "$tessera" trace sphere.obj -o view_default.png --shade normal --ortho --ortho-size 2 --size 65x65
 "$tessera" trace sphere.obj -o view_angles.png --shade normal --ortho --ortho-size 2 --size 65x65 --azimuth -60 \
@@ -247,6 +251,9 @@ expected = {
                 (-s(r(30)) * s(r(20)), c(r(20)), -c(r(30)) * s(r(20)))),
     'front_z': ((0, -1, 0), (0, 0, 1)), 'top_z': ((0, 0, 1), (0, 1, 0)), 'right_z': ((1, 0, 0), (0, 0, 1)),
     'front_x': ((0, 0, 1), (1, 0, 0)),
+    # --front-axis: Spot's -z (its right is then -x), and +x for z-up (right +y, top view's image up -x).
+    'front_y_-z': ((0, 0, -1), (0, 1, 0)), 'right_y_-z': ((-1, 0, 0), (0, 1, 0)),
+    'front_z_+x': ((1, 0, 0), (0, 0, 1)), 'top_z_+x': ((0, 0, 1), (-1, 0, 0)),
     # azimuth -60 (toward the left), elevation 45, z up: D = cos 45 (cos 60 (-y) - sin 60 (+x)) + sin 45 z.
     'angles': ((-s(r(60)) * c(r(45)), -c(r(60)) * c(r(45)), s(r(45))),
                (s(r(60)) * s(r(45)), c(r(60)) * s(r(45)), c(r(45)))),
@@ -435,6 +442,8 @@ expect_error 2 "eye" cube.obj -o bad.png --eye 1,2
 expect_error 2 "light-dir" cube.obj -o bad.png --light-dir 1,x,2
 expect_error 2 "view" cube.obj -o bad.png --view diagonal
 expect_error 2 "up-axis" cube.obj -o bad.png --up-axis w
+expect_error 2 "front-axis" cube.obj -o bad.png --front-axis w
+expect_error 1 "perpendicular" cube.obj -o bad.png --front-axis -y
 expect_error 2 "eye" cube.obj -o bad.png --view top --eye 0,5,0
 expect_error 2 "ortho" cube.obj -o bad.png --ortho-size 3
 expect_error 2 "fovy" cube.obj -o bad.png --ortho --fovy 30
