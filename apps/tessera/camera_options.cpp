@@ -86,8 +86,9 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
       ->check(numbers_format(3));
   command.add_option("--up", up, "Image up vector x,y,z (default: from the view and --up-axis)")
       ->check(numbers_format(3));
-  CLI::Option* fovy_option =
-      command.add_option("--fovy", fovy, "Vertical field of view, degrees")->capture_default_str();
+  CLI::Option* fovy_option = command.add_option("--fovy", fovy, "Vertical field of view, degrees")
+                                 ->check(CLI::Range(0.001, 179.999))
+                                 ->capture_default_str();
   if (clip_planes) {
     command.add_option("--near", near, "Near-plane distance (default: from the scene's bounds)")->check(non_negative());
     command.add_option("--far", far, "Far-plane distance (default: from the scene's bounds)")->check(non_negative());

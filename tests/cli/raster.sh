@@ -373,6 +373,15 @@ aa=(--view front --ortho --ortho-size 2 --center 0,0,0 --size 11x11 --shading un
 "$tessera" raster half.obj -o aa_1.png "${aa[@]}" --samples 1
 cmp -s aa_default.png aa_1.png || { echo "--samples 1 differs from the default"; exit 1; }
 for n in 4 9 16 64; do "$tessera" raster half.obj -o "aa_$n.png" "${aa[@]}" --samples "$n"; done
+# --depth-out with samples: each pixel's nearest depth; the head-on square's is the same at every sample (0.875).
+"$tessera" raster quad.obj -o quad_s4.png --size 33x33 --eye 0,0,4 --center 0,0,0 --near 1 --far 7 --fovy 60 \
+  --shading unlit --samples 4 --depth-out quad_s4.pfm
+$py - <<'PY'
+import numpy as np
+depth = np.frombuffer(open('quad_s4.pfm', 'rb').read().split(b'\n', 3)[3], dtype='<f4').reshape(33, 33)
+assert abs(depth[16, 16] - round(0.875 * (2**24 - 1)) / (2**24 - 1)) < 1e-6, depth[16, 16]
+assert depth[0, 0] == 1.0
+PY
 "$tessera" raster cube.obj -o cube_s1.png --size 64x48 --samples 1
 "$tessera" raster cube.obj -o cube_s0.png --size 64x48
 cmp -s cube_s0.png cube_s1.png || { echo "--samples 1 differs from the default (cube)"; exit 1; }
@@ -449,6 +458,7 @@ expect_error 2 "ortho" cube.obj -o bad.png --ortho-size 3
 expect_error 2 "fovy" cube.obj -o bad.png --ortho --fovy 30
 expect_error 2 "elevation" cube.obj -o bad.png --elevation 100
 expect_error 2 "samples" cube.obj -o bad.png --samples 0
+expect_error 2 "fovy" cube.obj -o bad.png --fovy 200
 # Options that would change nothing are refused, not ignored.
 expect_error 2 "texture" cube.obj -o bad.png --filter nearest
 expect_error 2 "bump" cube.obj -o bad.png --bump-scale 0.1

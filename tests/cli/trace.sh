@@ -188,5 +188,5 @@ expect_error 1 "random-rays" bad_hits.txt bench raycast sphere.obj --random-rays
 expect_error 1 "expected N in \[0, 134217728\]" bad_hits.txt bench raycast sphere.obj --random-rays 100000000000 \
   --hits-out bad_hits.txt
 expect_error 1 "no faces" bad_hits.txt bench raycast empty.obj --hits-out bad_hits.txt
-expect_error 2 "subcommand is required" none bench
+expect_error 2 "needs a subcommand" none bench
 echo "trace CLI ok"
