@@ -28,22 +28,32 @@ struct VolumeInput {
   VoxelType dtype = VoxelType::UInt8;
   Endian endian = Endian::Little;
   long long header_skip = 0;
+  std::vector<const CLI::Option*> raw_options;  ///< the raw layout options, to refuse them where they mean nothing
 
   void add(CLI::App& app) {
     app.add_option("volume", path, "Volume: FILE.nrrd|.nhdr|.mhd, a raw file with --dims, or sphere:N, torus:N, gyroid:N, "
                                    "metaballs:N, noise:N[:SEED]")
         ->required();
-    app.add_option("--dims", dims, "Raw voxels along x,y,z")->check(numbers_format(3));
-    add_choice(app, "--dtype", dtype,
-               {{"uint8", VoxelType::UInt8}, {"uint16", VoxelType::UInt16}, {"int16", VoxelType::Int16},
-                {"float32", VoxelType::Float32}},
-               "Raw voxel type");
-    add_choice(app, "--endian", endian, {{"little", Endian::Little}, {"big", Endian::Big}}, "Raw byte order");
-    app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz")->check(numbers_format(3));
-    app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(non_negative());
+    raw_options = {
+        app.add_option("--dims", dims, "Raw voxels along x,y,z")->check(numbers_format(3)),
+        add_choice(app, "--dtype", dtype,
+                   {{"uint8", VoxelType::UInt8}, {"uint16", VoxelType::UInt16}, {"int16", VoxelType::Int16},
+                    {"float32", VoxelType::Float32}},
+                   "Raw voxel type"),
+        add_choice(app, "--endian", endian, {{"little", Endian::Little}, {"big", Endian::Big}}, "Raw byte order"),
+        app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz")->check(numbers_format(3)),
+        app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(non_negative())};
   }
 
   AnyVolume read() const {
+    // A header file or a procedural name brings its own layout: raw options given with it would be ignored.
+    const std::string ext = CLI::detail::to_lower(std::filesystem::path(path).extension().string());
+    if (ext == ".nrrd" || ext == ".nhdr" || ext == ".mhd" ||
+        (!std::filesystem::exists(path) && path.find(':') != std::string::npos))
+      for (const CLI::Option* o : raw_options)
+        if (o->count() > 0)
+          throw InvalidInput(fmt::format("{}: {} describes raw files only; this volume brings its own layout", path,
+                                         o->get_name()));
     RawLayout layout;
     if (!dims.empty()) {
       const auto d = parse_doubles(dims, 3, "--dims");
