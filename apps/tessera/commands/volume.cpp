@@ -297,7 +297,8 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   auto a = std::make_shared<Args>();
   in->add(*cmd);
   cmd->add_option("-o,--output", a->output, "Output image")->required();
-  a->camera.fovy = 30;  // a volume's box fills a narrower view better
+  a->camera.fovy = 30;         // a volume's box fills a narrower view better
+  a->camera.clip_planes = false;  // rays run through the whole box: --near/--far would change nothing
   a->camera.add(*cmd, "256x256");
   auto* tf = cmd->add_option("--tf", a->tf, "Transfer function file (.json or .csv)");
   auto* preset = cmd->add_option("--preset", a->preset,
