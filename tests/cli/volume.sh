@@ -208,4 +208,5 @@ expect_error "describes raw files only" bad4.obj volume isosurface sphere:8 --di
 "$tessera" volume info head.mhd | grep -q '^max=200$'
 expect_error "dtype describes raw files only" bad5.png volume slice head.mhd --dtype int16 -o bad5.png
 expect_error "outside" bad.png volume slice sphere:8 --slice 9 -o bad.png
+expect_error "SVG's colors are not encoded" bad.svg volume contour sphere:8 --iso 0 --srgb -o bad.svg
 echo "volume CLI ok"

@@ -179,6 +179,9 @@ void setup_contour(CLI::App& volume, CommonOptions& common) {
   add_common_options(*cmd, common);
   add_srgb_option(*cmd, common);
   cmd->callback([in, args, iso, &common] {
+    const std::string ext = std::filesystem::path(args->output).extension().string();
+    if (ext == ".svg" && common.srgb)
+      throw InvalidInput(fmt::format("{}: --srgb encodes 8-bit images; an SVG's colors are not encoded", args->output));
     PhaseTimer timer;
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     std::vector<Polyline> lines;
@@ -204,7 +207,6 @@ void setup_contour(CLI::App& volume, CommonOptions& common) {
       }
       print_volume_stats(rows, timer);
     };
-    const std::string ext = std::filesystem::path(args->output).extension().string();
     if (ext == ".svg") {
       timer.time("write_s", [&] { write_contours_svg(args->output, lines, s.width(), s.height()); });
       stats(0, 0);
