@@ -2,8 +2,8 @@
 // refraction, the checkerboard, every light's shadows by shadow rays), then rasterized with local shading: the same
 // checkerboard per pixel, the glass sphere blended over what lies behind it (no refraction), the mirror reflecting a
 // cube map of the scene drawn from its center (one bounce), with every light's shadows from a shadow map per light
-// (the notes' 2-pass z-buffer), and from stencil shadow volumes (one additive pass per light). The scene has two lights: the second casts
-// the fainter shadows.
+// (the notes' 2-pass z-buffer), and from stencil shadow volumes (one additive pass per light). The scene has two
+// lights: the second casts the fainter shadows.
 #include "gallery.hpp"
 #include "tessera/scene/raster.hpp"
 #include "tessera/scene/trace.hpp"

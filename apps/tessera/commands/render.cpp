@@ -11,8 +11,8 @@
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
-#include "tessera/core/parse.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/raster.hpp"
 #include "tessera/scene/trace.hpp"
@@ -105,9 +105,10 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)")->check(size_format());
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");
   cmd.add_option("--seed", a->seed, "Seed of the sampling patterns (same seed, same picture)");
-  add_choice(cmd, "--backend", a->backend, {{"raytrace", Backend::raytrace}, {"raster", Backend::raster}},
-             "Renderer: raytrace (everything) or raster (z-buffer, local shading, one bounce of reflection by cube maps, "
-             "glass blended without refraction; docs/raytrace.md)");
+  add_choice(
+      cmd, "--backend", a->backend, {{"raytrace", Backend::raytrace}, {"raster", Backend::raster}},
+      "Renderer: raytrace (everything) or raster (z-buffer, local shading, one bounce of reflection by cube maps, "
+      "glass blended without refraction; docs/raytrace.md)");
   CLI::Option* shadows = add_choice(cmd, "--shadow-method", a->shadow_method,
                                     {{"map", RasterShadows::map}, {"volumes", RasterShadows::volumes}},
                                     "Raster shadows of every light: map (a shadow map per light) or volumes (stencil "

@@ -293,8 +293,8 @@ TEST(Render, OrthographicEyeRaysAreTheNotesEyeRays) {
   Camera cam = scene.camera;
   cam.aspect = 2;
   const EyeRays rays(cam, 64, 32);
-  for (const auto& [x, y, dx, dy] : {std::tuple{0, 0, 0.0f, 0.0f}, std::tuple{63, 31, 0.99f, 0.99f},
-                                     std::tuple{20, 17, 0.25f, 0.75f}}) {
+  for (const auto& [x, y, dx, dy] :
+       {std::tuple{0, 0, 0.0f, 0.0f}, std::tuple{63, 31, 0.99f, 0.99f}, std::tuple{20, 17, 0.25f, 0.75f}}) {
     const Ray want = rays.ray(x, y, dx, dy);
     const Ray got = eye_ray(scene, 64, 32, x, y, {dx, dy}, Vec2f(0.5f), 0.0f);
     EXPECT_NEAR(glm::length(got.origin - want.origin), 0.0f, 1e-5f) << x << " " << y;

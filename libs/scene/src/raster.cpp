@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tessera/core/error.hpp"
+#include "tessera/image/texture.hpp"
 #include "tessera/math/frame.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
@@ -14,7 +15,6 @@
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
-#include "tessera/image/texture.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 #include "tessera/raytrace/render.hpp"
 
@@ -166,9 +166,9 @@ struct ObjectShading {
 /// The ray tracer's surface terms per pixel: the surface color C_r (the checkerboard of world-space cells, times the
 /// texture at the ray tracer's uv), the lighting and shadows of raster3d's surface shader, the ambient term
 /// C_r ambient C_a, and the mirror term K_refl environment(R), R = 2 (N.E) N - E in world space: the object's cube map
-/// of the others, or the background. The normal faces the viewer, as the ray tracer faces it toward the ray. The alpha is 1 - K_trans (the mean of
-/// its channels; with fresnel, after Schlick's term moved weight to K_refl), the part of what lies behind that
-/// blending lets through: dst' = color + K_trans dst.
+/// of the others, or the background. The normal faces the viewer, as the ray tracer faces it toward the ray. The alpha
+/// is 1 - K_trans (the mean of its channels; with fresnel, after Schlick's term moved weight to K_refl), the part of
+/// what lies behind that blending lets through: dst' = color + K_trans dst.
 struct SceneFragmentShader {
   const raster3d::SurfaceUniforms* uniforms;
   const ObjectShading* object;
@@ -224,7 +224,6 @@ struct SceneFragmentShader {
 bool transparent(const Material& m) { return m.transmission != Vec3f(0.0f); }
 /// Whether a material reflects what is around it (a mirror, or glass whose Fresnel term reflects).
 bool reflective(const Material& m) { return m.reflection != Vec3f(0.0f) || (m.fresnel && transparent(m)); }
-
 
 /// The scene with each visible area light's surface as an object that glows with the light's color and casts no
 /// shadow, as the ray tracer's add_light_surfaces adds them.
@@ -297,10 +296,10 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
     // A mesh without normals shows its facets, as the ray tracer shades it with the geometric normal; a textured mesh
     // without uvs gets the ray tracer's, each triangle's barycentrics.
     const bool barycentric = o.mesh && o.mesh->uvs.empty() && material(o).texture;
-    arrays.push_back(raster3d::VertexArrays::from_mesh(
-        o.shape                                   ? tessellate(*o.shape)
-        : o.mesh->normals.empty() || barycentric ? unwelded(*o.mesh, o.mesh->normals.empty())
-                                                  : *o.mesh));
+    arrays.push_back(raster3d::VertexArrays::from_mesh(o.shape ? tessellate(*o.shape)
+                                                       : o.mesh->normals.empty() || barycentric
+                                                           ? unwelded(*o.mesh, o.mesh->normals.empty())
+                                                           : *o.mesh));
     ObjectShading s;
     s.material = &material(o);
     if (o.shape) {
@@ -392,19 +391,29 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
 
   // Environment mapping of the other objects (the notes' cube mapping: "render scene 6 times, eye at center of
   // cube"): each reflective object sees the rest of the scene, drawn from its center, one bounce deep (the objects in
-  // its cube map reflect only the background).
+  // its cube map reflect only the background). A mirror plane's cube map is drawn from the eye's mirror image instead,
+  // through which every ray it reflects passes: exact but for the texels (under an orthographic camera the reflected
+  // rays are parallel and share no point, so a plane reflects the background there).
   std::vector<std::optional<CubeMap>> surroundings(scene.objects.size());
-  // About a texel per pixel where a mirror fills the picture (its visible half shows a face across half the width).
+  // About a texel per pixel where a mirror fills the picture (its visible half shows a face across half the width; a
+  // plane's reflection spans about the view's own angles).
   const int reflection_size = std::clamp(std::max(width, height) / 2, 16, 256);
+  const int plane_reflection_size = std::clamp(std::max(width, height), 16, 512);
   for (size_t k = 0; k < scene.objects.size(); ++k) {
-    if (!reflective(material(scene.objects[k])) || (scene.objects[k].shape &&
-                                                    std::holds_alternative<Plane>(*scene.objects[k].shape)))
-      continue;
-    Vec3 c(0.0);
-    for (const Vec3f& p : arrays[k].positions) c += Vec3(p);
-    const Vec3 center = transform_point(scene.objects[k].transform, c / double(arrays[k].positions.size()));
+    const SceneObject& o = scene.objects[k];
+    const Plane* plane = o.shape ? std::get_if<Plane>(&*o.shape) : nullptr;
+    if (!reflective(material(o)) || (plane && ortho)) continue;
+    Vec3 center(0.0);
+    if (plane) {
+      const Vec3 q = transform_point(o.transform, Vec3(plane->point));
+      const Vec3 n = glm::normalize(glm::transpose(glm::inverse(Mat3(o.transform))) * Vec3(plane->normal));
+      center = camera.eye - 2 * glm::dot(camera.eye - q, n) * n;
+    } else {
+      for (const Vec3f& p : arrays[k].positions) center += Vec3(p);
+      center = transform_point(o.transform, center / double(arrays[k].positions.size()));
+    }
     surroundings[k] = raster3d::render_cube_map(
-        center, reflection_size,
+        center, plane ? plane_reflection_size : reflection_size,
         [&](raster3d::Framebuffer& face, const Mat4& face_projection, const Mat4& face_view) {
           face.clear(scene.image.background);
           draw_all(face, face_projection, face_view, lights_seen_by(face_view, true), k);
@@ -430,23 +439,24 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
       world.push_back(Vec3f(transform_point(scene.objects[k].transform, Vec3(p))));
     for (int i = 0; i < lighting.light_count; ++i) {
       const Light& l = scene.lights[size_t(i)];
-      const Vec4f light = l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0)
-                                                           : Vec4f(Vec3f(light_center(l)), 1);
+      const Vec4f light =
+          l.type == LightType::directional ? Vec4f(-glm::normalize(l.direction), 0) : Vec4f(Vec3f(light_center(l)), 1);
       volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
     }
   }
-  raster3d::draw_lights_with_shadow_volumes(
-      fb, volumes, Mat4f(projection * view), zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
-      [&](const raster3d::RasterState& state, int light) {
-        raster3d::Lighting pass = lighting;
-        if (light >= 0) {
-          pass.lights[0] = lighting.lights[size_t(light)];
-          pass.light_count = 1;
-        } else {
-          pass.light_count = 0;
-        }
-        for (const size_t k : opaque) draw_object(fb, projection, view, k, state, pass, light < 0);
-      });
+  raster3d::draw_lights_with_shadow_volumes(fb, volumes, Mat4f(projection * view),
+                                            zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
+                                            [&](const raster3d::RasterState& state, int light) {
+                                              raster3d::Lighting pass = lighting;
+                                              if (light >= 0) {
+                                                pass.lights[0] = lighting.lights[size_t(light)];
+                                                pass.light_count = 1;
+                                              } else {
+                                                pass.light_count = 0;
+                                              }
+                                              for (const size_t k : opaque)
+                                                draw_object(fb, projection, view, k, state, pass, light < 0);
+                                            });
   draw_see_through(fb, projection, view, lighting, none);
   return fb.color_rgb();
 }

@@ -83,9 +83,9 @@ TEST(SceneCamera, OrthographicSquareIsExactlyItsSizeInPixels) {
   // columns and rows 24..39 (centers at -2 + (i + 1/2) / 16), none of them on an edge: exactly 16 x 16 pixels, from
   // near and from far.
   for (const double distance : {1.5, 40.0}) {
-    const Scene scene =
-        unlit(R"({"eye": [0, 0, )" + std::to_string(distance) + R"(], "projection": "orthographic", "ortho_height": 4})",
-              kWhite, R"([{"type": "polygon", "material": "m",
+    const Scene scene = unlit(
+        R"({"eye": [0, 0, )" + std::to_string(distance) + R"(], "projection": "orthographic", "ortho_height": 4})",
+        kWhite, R"([{"type": "polygon", "material": "m",
                            "vertices": [[-0.5, -0.5, 0], [0.5, -0.5, 0], [0.5, 0.5, 0], [-0.5, 0.5, 0]]}])");
     const auto images = both(scene);
     for (size_t k = 0; k < images.size(); ++k) {
@@ -159,8 +159,7 @@ TEST(SceneMaterials, TexturesUseTheRayTracersCoordinatesOnEveryShape) {
                       128);
   ImageRGBA texels(8, 4);
   for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 8; ++x)
-      texels(x, y) = glm::vec4(float(x % 3) / 2, float((x + y) % 4) / 3, float(y) / 3, 1);
+    for (int x = 0; x < 8; ++x) texels(x, y) = glm::vec4(float(x % 3) / 2, float((x + y) % 4) / 3, float(y) / 3, 1);
   Sampler nearest;
   nearest.filter = Filter::nearest;
   scene.materials["m"].texture = std::make_shared<Texture2D>(texels, nearest);
@@ -177,8 +176,7 @@ TEST(SceneMaterials, TexturesUseTheRayTracersCoordinatesOnEveryShape) {
   EXPECT_LT(differ, object / 15);
   // The mean color over the objects agrees closely.
   const auto mean = [&](const ImageRGB& img) {
-    return mean_over(img, [&](int x, int y) { return ray(x, y) != Vec3f(0.0f) && raster(x, y) != Vec3f(0.0f); })
-        .second;
+    return mean_over(img, [&](int x, int y) { return ray(x, y) != Vec3f(0.0f) && raster(x, y) != Vec3f(0.0f); }).second;
   };
   EXPECT_LT(glm::length(mean(ray) - mean(raster)), 0.03f);
 }
@@ -188,9 +186,7 @@ TEST(SceneMaterials, TexturesUseTheRayTracersCoordinatesOnEveryShape) {
 std::vector<Vec3f> sphere_means(const Scene& scene) {
   std::vector<Vec3f> means;
   for (const ImageRGB& img : both(scene))
-    means.push_back(mean_over(img, [](int x, int y) {
-                      return std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 14;
-                    }).second);
+    means.push_back(mean_over(img, [](int x, int y) { return std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 14; }).second);
   return means;
 }
 
@@ -201,10 +197,10 @@ TEST(SceneMaterials, GlassIsBlendedNotBlack) {
   // 0.9 x 0.9 x 0.5; the rasterizer blends the back and the front surfaces over it, the same. With Fresnel's term the
   // rim reflects more and transmits less, in both.
   for (const char* fresnel : {"false", "true"}) {
-    const Scene scene = unlit(kOrthoSphereCamera,
-                              std::string(R"({"m": {"diffuse": 0, "ambient": 0, "transmission": 0.9, "fresnel": )") +
-                                  fresnel + "}}",
-                              R"([{"type": "sphere", "material": "m"}])", 64, "0.5");
+    const Scene scene =
+        unlit(kOrthoSphereCamera,
+              std::string(R"({"m": {"diffuse": 0, "ambient": 0, "transmission": 0.9, "fresnel": )") + fresnel + "}}",
+              R"([{"type": "sphere", "material": "m"}])", 64, "0.5");
     const auto means = sphere_means(scene);
     EXPECT_NEAR(means[0].x, 0.81 * 0.5, 0.05) << fresnel;
     for (const Vec3f& m : means) {
@@ -217,7 +213,8 @@ TEST(SceneMaterials, GlassIsBlendedNotBlack) {
 TEST(SceneMaterials, GlassShowsWhatLiesBehindIt) {
   // A glass pane (no refraction through a thin slab) before a red wall: the wall shows through at 0.9 of its color.
   const Scene scene = unlit(
-      kOrthoSphereCamera, R"({"glass": {"diffuse": 0, "ambient": 0, "transmission": 0.9}, "red": {"diffuse": [1, 0, 0]}})",
+      kOrthoSphereCamera,
+      R"({"glass": {"diffuse": 0, "ambient": 0, "transmission": 0.9}, "red": {"diffuse": [1, 0, 0]}})",
       R"([{"type": "polygon", "material": "red", "vertices": [[-3, -3, -1], [3, -3, -1], [3, 3, -1], [-3, 3, -1]]},
           {"type": "polygon", "material": "glass", "vertices": [[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]]}])");
   const auto images = both(scene);
@@ -239,35 +236,55 @@ TEST(SceneMaterials, MirrorsReflectTheBackground) {
 TEST(SceneMaterials, MirrorsReflectTheOtherObjects) {
   // A red wall behind the viewer: the mirror sphere's middle reflects it (the ray tracer's reflected rays; the
   // rasterizer's cube map drawn from the sphere's center), the rim the sky beyond the sphere.
-  const Scene scene = unlit(
-      R"({"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4})",
-      R"({"m": {"diffuse": 0, "reflection": 0.8}, "red": {"diffuse": [1, 0, 0]}})",
-      R"([{"type": "sphere", "material": "m"},
-          {"type": "polygon", "material": "red", "vertices": [[-40, -40, 20], [-40, 40, 20], [40, 40, 20], [40, -40, 20]]}])",
-      64, "[0, 0, 1]");
+  const Scene scene = unlit(R"({"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4})",
+                            R"({"m": {"diffuse": 0, "reflection": 0.8}, "red": {"diffuse": [1, 0, 0]}})",
+                            R"([{"type": "sphere", "material": "m"},
+                                {"type": "polygon", "material": "red",
+                                 "vertices": [[-40, -40, 20], [-40, 40, 20], [40, 40, 20], [40, -40, 20]]}])",
+                            64, "[0, 0, 1]");
   const auto images = both(scene);
   for (size_t k = 0; k < images.size(); ++k) {
-    const Vec3f middle = mean_over(images[k], [](int x, int y) {
-                           return std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 4;
-                         }).second;
+    const Vec3f middle =
+        mean_over(images[k], [](int x, int y) { return std::hypot(x + 0.5 - 32, y + 0.5 - 32) < 4; }).second;
     EXPECT_LT(glm::length(middle - Vec3f(0.8f, 0, 0)), 0.03f) << "backend " << k;
     EXPECT_LT(glm::length(images[k](32, 18) - Vec3f(0, 0, 0.8f)), 0.03f) << "backend " << k;  // near the rim
   }
+}
+
+TEST(SceneMaterials, MirrorFloorsReflectTheObjectsAboveThem) {
+  // A red sphere over a half-mirror floor: the ray tracer's reflected rays and the rasterizer's cube map drawn from the
+  // eye's mirror image show the sphere's reflection on the same floor pixels, but along its outline.
+  const Scene scene = unlit(R"({"eye": [0, 1.5, 6], "center": [0, 0.5, 0], "fovy": 40})",
+                            R"({"floor": {"diffuse": 0.2, "reflection": 0.5}, "red": {"diffuse": [1, 0, 0]}})",
+                            R"([{"type": "plane", "material": "floor"},
+                                {"type": "sphere", "center": [0, 1, 0], "radius": 0.8, "material": "red"}])",
+                            96, "[0, 0, 1]");
+  const ImageRGB ray = traced(scene), raster = rasterized(scene);
+  // The floor pixels that show the red reflection, (0.2, 0.2, 0.2) + 0.5 (1, 0, 0): not the sky's reflection
+  // (0.2, 0.2, 0.7), nor the sphere's own red (1, 0, 0).
+  const auto reflected = [](const Vec3f& c) { return c.x > 0.5f && c.x < 0.8f && c.z > 0.1f && c.z < 0.4f; };
+  int both_red = 0, differ = 0;
+  for (int y = 48; y < 96; ++y)
+    for (int x = 0; x < 96; ++x) {
+      both_red += reflected(ray(x, y)) && reflected(raster(x, y));
+      differ += reflected(ray(x, y)) != reflected(raster(x, y));
+    }
+  EXPECT_GT(both_red, 150);
+  EXPECT_LT(differ, both_red / 5);
 }
 
 TEST(SceneMaterials, VisibleAreaLightsGlowInBothBackends) {
   // A rect light of color (1, 0.5, 0) facing the camera, 2 x 1 units at 16 pixels per unit: 32 x 16 pixels of its
   // color (columns 16..47, rows 24..39), and a hidden one nowhere.
   for (const char* visible : {"true", "false"}) {
-    const Scene scene = parse_scene(
-        std::string(R"({"image": {"size": [64, 64]}, "ambient": 0,
+    const Scene scene = parse_scene(std::string(R"({"image": {"size": [64, 64]}, "ambient": 0,
             "camera": {"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4},
             "lights": [{"type": "rect", "corner": [-1, -0.5, 0], "edge_u": [0, 1, 0], "edge_v": [2, 0, 0],
                         "color": [1, 0.5, 0], "visible": )") +
-            visible + R"(}],
+                                        visible + R"(}],
             "materials": {"m": {"diffuse": 0}},
             "objects": [{"type": "sphere", "center": [0, 0, -50], "radius": 0.1, "material": "m"}]})",
-        "lights.json", ".");
+                                    "lights.json", ".");
     const auto images = both(scene);
     for (size_t k = 0; k < images.size(); ++k) {
       const auto [count, mean] = mean_over(images[k], [&](int x, int y) { return images[k](x, y).x > 0.5f; });

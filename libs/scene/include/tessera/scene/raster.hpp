@@ -27,15 +27,15 @@ enum class RasterShadows {
 
 /// Rasterizes the scene at width x height: the camera's perspective (near 0.05, far 4000; at infinity with shadow
 /// volumes) or orthographic projection, its lights (area lights as point lights at their centers, their surfaces
-/// glowing where visible; at most 8), and per
-/// pixel each material's surface color as the ray tracer computes it (the checkerboard's world-space cells, the
-/// texture at the ray tracer's uv), ambient, highlight and emission; mirrors add K_refl times the environment seen by
-/// the reflected view vector (a cube map of the other objects drawn from the mirror's center, one bounce deep, and the
-/// background beyond them; planes reflect the background only), and transparent materials (transmission) are blended
-/// over what lies behind them, sorted far to near (no refraction). The background is the
-/// clear color. Shadows are hard, cast by the objects marked so (planes, being infinite, only receive them), as
-/// `shadows` says (volumes under an orthographic camera are counted z-pass). Throws InvalidInput for a bad image
-/// size, or a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn.
+/// glowing where visible; at most 8), and per pixel each material's surface color as the ray tracer computes it (the
+/// checkerboard's world-space cells, the texture at the ray tracer's uv), ambient, highlight and emission. Mirrors add
+/// K_refl times the environment seen by the reflected view vector: a cube map of the other objects drawn from the
+/// mirror's center (for a plane, from the eye's mirror image), one bounce deep, and the background beyond them.
+/// Transparent materials (transmission) are blended over what lies behind them, sorted far to near (no refraction).
+/// The background is the clear color. Shadows are hard, cast by the objects marked so (planes, being infinite, only
+/// receive them), as `shadows` says (volumes under an orthographic camera are counted z-pass). docs/raytrace.md lists
+/// what differs from the ray tracer. Throws InvalidInput for a bad image size, or a shadow_map_size outside
+/// [1, ShadowMap::kMaxSize] when the maps are drawn.
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map,
                          int shadow_map_size = 2048);
 
