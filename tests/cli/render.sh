@@ -99,4 +99,6 @@ grep -q "raytrace" help.txt && grep -q "volumes" help.txt
 printf '{"camera": {"projection": "fisheye"}, "materials": {"m": {}}, "objects": [{"type": "sphere", "material": "m"}]}' \
   > fish.json
 expect_error 1 "camera.projection: expected perspective or orthographic" bad12.png render fish.json -o bad12.png
+expect_error 1 "shadow volumes need a perspective camera" bad13.png \
+  render gray.json -o bad13.png --backend raster --shadow-method volumes
 echo "render CLI ok"

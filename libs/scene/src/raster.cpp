@@ -256,11 +256,17 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
     throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, {}]", shadow_map_size,
                                    raster3d::ShadowMap::kMaxSize));
   const bool ortho = scene.camera.orthographic;
-  const Camera camera = scene.camera.camera(double(width) / height, 0.05, 4000);
   // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity. An
-  // orthographic projection cannot put it there (a point at infinity has w = 0 after it): z-pass counting instead.
-  const bool zfail = shadows == RasterShadows::volumes && !ortho;
-  const Mat4 projection = zfail ? infinite_perspective(camera.fovy, camera.aspect, camera.near) : camera.projection();
+  // orthographic projection cannot put it there (a point at infinity has w = 0 after it), and z-pass counting goes
+  // wrong wherever the near plane, as wide as the scene, cuts a volume open.
+  if (shadows == RasterShadows::volumes && ortho)
+    throw InvalidInput(
+        "rasterize: shadow volumes need a perspective camera (an orthographic projection cannot keep their far caps "
+        "at infinity); use shadow maps");
+  const Camera camera = scene.camera.camera(double(width) / height, 0.05, 4000);
+  const Mat4 projection = shadows == RasterShadows::volumes
+                              ? infinite_perspective(camera.fovy, camera.aspect, camera.near)
+                              : camera.projection();
   const Mat4 view = camera.view();
 
   // The lights in eye space for a view, as glLight places them under the view matrix. The ambient term is the fragment
@@ -444,8 +450,7 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
       volumes[size_t(i)].push_back(raster3d::shadow_volume(world, arrays[k].indices, light));
     }
   }
-  raster3d::draw_lights_with_shadow_volumes(fb, volumes, Mat4f(projection * view),
-                                            zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
+  raster3d::draw_lights_with_shadow_volumes(fb, volumes, Mat4f(projection * view), raster3d::ShadowCount::zfail,
                                             [&](const raster3d::RasterState& state, int light) {
                                               raster3d::Lighting pass = lighting;
                                               if (light >= 0) {

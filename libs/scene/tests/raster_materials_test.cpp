@@ -37,8 +37,9 @@ ImageRGB rasterized(const Scene& scene, RasterShadows method = RasterShadows::ma
   return rasterize_scene(scene, scene.image.width, scene.image.height, method);
 }
 
-/// Both backends' pictures (the rasterizer with either shadow method).
+/// Both backends' pictures (the rasterizer with either shadow method; shadow volumes need a perspective camera).
 std::vector<ImageRGB> both(const Scene& scene) {
+  if (scene.camera.orthographic) return {traced(scene), rasterized(scene)};
   return {traced(scene), rasterized(scene), rasterized(scene, RasterShadows::volumes)};
 }
 
@@ -97,6 +98,11 @@ TEST(SceneCamera, OrthographicSquareIsExactlyItsSizeInPixels) {
       EXPECT_LT(img(40, 30).x, 0.5f);
     }
   }
+}
+
+TEST(SceneCamera, ShadowVolumesNeedAPerspectiveCamera) {
+  const Scene scene = unlit(R"({"projection": "orthographic"})", kWhite, R"([{"type": "sphere", "material": "m"}])");
+  EXPECT_THROW(rasterized(scene, RasterShadows::volumes), InvalidInput);
 }
 
 TEST(SceneCamera, OrthographicSilhouetteDoesNotChangeWithDistance) {

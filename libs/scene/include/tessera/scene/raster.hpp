@@ -33,9 +33,9 @@ enum class RasterShadows {
 /// mirror's center (for a plane, from the eye's mirror image), one bounce deep, and the background beyond them.
 /// Transparent materials (transmission) are blended over what lies behind them, sorted far to near (no refraction).
 /// The background is the clear color. Shadows are hard, cast by the objects marked so (planes, being infinite, only
-/// receive them), as `shadows` says (volumes under an orthographic camera are counted z-pass). docs/raytrace.md lists
-/// what differs from the ray tracer. Throws InvalidInput for a bad image size, or a shadow_map_size outside
-/// [1, ShadowMap::kMaxSize] when the maps are drawn.
+/// receive them), as `shadows` says. docs/raytrace.md lists what differs from the ray tracer. Throws InvalidInput for a
+/// bad image size, a shadow_map_size outside [1, ShadowMap::kMaxSize] when the maps are drawn, or shadow volumes
+/// under an orthographic camera (they need a perspective one).
 ImageRGB rasterize_scene(const Scene& scene, int width, int height, RasterShadows shadows = RasterShadows::map,
                          int shadow_map_size = 2048);
 
