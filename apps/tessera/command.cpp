@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/raster2d/svg.hpp"
@@ -61,6 +62,15 @@ CLI::Validator non_negative() {
       "NONNEGATIVE");
 }
 
+CLI::Validator positive() {
+  return CLI::Validator(
+      [](std::string& text) {
+        const auto v = number_in(text);
+        return v && !(*v > 0) ? "expected a number > 0, got " + text : std::string();
+      },
+      "POSITIVE");
+}
+
 CLI::Validator size_format() {
   return parses_with([](const std::string& text) { parse_size(text, ""); }, "WxH");
 }
@@ -86,6 +96,13 @@ void add_common_options(CLI::App& command, CommonOptions& common) {
         ->capture_default_str();
   if (command.get_option_no_throw("--stats") == nullptr)
     command.add_flag("--stats", common.stats, "Print key=value figures on stdout (docs/cli.md)");
+  if (command.get_option_no_throw("--max-memory") == nullptr)
+    command
+        .add_option_function<std::string>(
+            "--max-memory", [](const std::string& text) { MemoryBudget::set_limit(parse_memory_size(text, "")); },
+            "Refuse requests estimated to need more memory than SIZE (e.g. 512M, 4G; default: 3/4 of the memory "
+            "this process may use)")
+        ->check(parses_with([](const std::string& text) { parse_memory_size(text, ""); }, "SIZE"));
   // Nested commands (`tessera mesh info`) get them too, so that their --help lists them.
   for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) add_common_options(*sub, common);
 }

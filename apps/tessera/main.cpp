@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -10,6 +12,7 @@
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 
@@ -113,6 +116,16 @@ void print_command_list(const CLI::App& app) {
   fmt::print(stderr, "\n{}\n", app.get_footer());
 }
 
+/// The command words that were parsed, e.g. "mesh subdivide" (for messages that name what was running).
+std::string command_path(const CLI::App& app) {
+  std::string path;
+  for (const CLI::App* sub = &app; !sub->get_subcommands().empty();) {
+    sub = sub->get_subcommands().front();
+    path += (path.empty() ? "" : " ") + sub->get_name();
+  }
+  return path;
+}
+
 Progress::Mode progress_mode(const CommonOptions& common) {
   if (common.quiet || common.progress == "none") return Progress::Mode::None;
   if (common.progress == "plain") return Progress::Mode::Plain;
@@ -129,7 +142,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Tessera: a computer-graphics toolkit (rasterization, ray tracing, meshes, curves, volumes)", "tessera"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "tessera 0.1.0");
-  app.footer("Every command accepts --threads N, --quiet, --progress MODE and --stats; docs/cli.md has the contract.");
+  app.footer(
+      "Every command accepts --threads N, --quiet, --progress MODE, --stats and --max-memory SIZE; docs/cli.md has the "
+      "contract.");
   CommonOptions common;
   for (const Command& c : kCommands) {
     CLI::App* sub = app.add_subcommand(c.name, c.summary);
@@ -159,6 +174,18 @@ int main(int argc, char** argv) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     fmt::print(stderr, "run with --help for the options\n");
     return 2;
+  } catch (const std::bad_alloc&) {
+    // A request that the budget's estimates missed: say what ran out instead of a bare "std::bad_alloc".
+    fmt::print(stderr,
+               "tessera: error: out of memory while running 'tessera {}' (the memory budget is {}; --max-memory SIZE "
+               "sets it)\n",
+               command_path(app), tessera::format_bytes(tessera::MemoryBudget::bytes()));
+    return 1;
+  } catch (const std::length_error&) {
+    // A container asked for more elements than it can hold: the same condition, as std::vector reports it.
+    fmt::print(stderr, "tessera: error: out of memory while running 'tessera {}' (a request larger than any memory)\n",
+               command_path(app));
+    return 1;
   } catch (const std::exception& e) {
     fmt::print(stderr, "tessera: error: {}\n", e.what());
     return 1;

@@ -1,5 +1,7 @@
 #include "tessera/core/memory_budget.hpp"
 
+#include <unistd.h>
+
 #include <atomic>
 #include <cctype>
 #include <charconv>
@@ -7,8 +9,6 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
-
-#include <unistd.h>
 
 #include "tessera/core/parse.hpp"
 
@@ -101,9 +101,10 @@ uint64_t parse_memory_size(std::string_view text, std::string_view what) {
     if (suffix == u || suffix == u + "B" || suffix == u + "IB") shift = 10 * int(i + 1);
   }
   const auto invalid = [&] {
-    return InvalidInput(fmt::format("{}: expected a memory size such as 512M or 4G (suffixes K, M, G, T; 1K = 1024), "
-                                    "got '{}'",
-                                    what, text));
+    return InvalidInput(
+        fmt::format("{}: expected a memory size such as 512M or 4G (suffixes K, M, G, T; 1K = 1024), "
+                    "got '{}'",
+                    what, text));
   };
   double number = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + digits, number);
@@ -126,8 +127,10 @@ uint64_t saturating_product(std::initializer_list<uint64_t> factors) {
   uint64_t product = 1;
   for (const uint64_t f : factors) {
     if (f == 0) return 0;
-    if (product > std::numeric_limits<uint64_t>::max() / f) product = std::numeric_limits<uint64_t>::max();
-    else product *= f;
+    if (product > std::numeric_limits<uint64_t>::max() / f)
+      product = std::numeric_limits<uint64_t>::max();
+    else
+      product *= f;
   }
   return product;
 }

@@ -1,10 +1,10 @@
 #include "tessera/core/memory_budget.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <fstream>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 namespace tessera {
 namespace {
