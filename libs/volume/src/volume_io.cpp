@@ -2,7 +2,9 @@
 
 #include <zlib.h>
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <sstream>
 
@@ -98,12 +100,34 @@ AnyVolume decode_raw(std::string_view bytes, const RawLayout& layout, const std:
                                    "has {} bytes",
                                    name, layout.dims.x, layout.dims.y, layout.dims.z, voxel_type_name(layout.type), need,
                                    layout.header_skip, bytes.size()));
+  // The box must be finite: spacings near DBL_MAX put the far corner at infinity, and every mesh vertex or ray
+  // distance computed from it would be too.
+  const Vec3 far = layout.origin + layout.spacing * Vec3(layout.dims - 1);
+  for (int a = 0; a < 3; ++a)
+    if (!std::isfinite(layout.origin[a]) || !std::isfinite(layout.spacing[a]) || !std::isfinite(far[a]))
+      throw InvalidInput(fmt::format("{}: origin ({}, {}, {}) and spacing ({}, {}, {}) put the volume's box beyond the "
+                                     "finite numbers",
+                                     name, layout.origin.x, layout.origin.y, layout.origin.z, layout.spacing.x,
+                                     layout.spacing.y, layout.spacing.z));
   const std::string_view voxels = bytes.substr(size_t(layout.header_skip));
   switch (layout.type) {
     case VoxelType::UInt8: return decode_typed<uint8_t>(voxels, layout);
     case VoxelType::UInt16: return decode_typed<uint16_t>(voxels, layout);
     case VoxelType::Int16: return decode_typed<int16_t>(voxels, layout);
-    case VoxelType::Float32: return decode_typed<float>(voxels, layout);
+    case VoxelType::Float32: {
+      // NaN or infinite voxels would reach value ranges, transfer functions and mesh vertices (NaN output, exit 0).
+      Volume<float> v = decode_typed<float>(voxels, layout);
+      const auto bad = std::find_if(v.voxels().begin(), v.voxels().end(), [](float x) { return !std::isfinite(x); });
+      if (bad != v.voxels().end()) {
+        const size_t i = size_t(bad - v.voxels().begin());
+        const size_t nx = size_t(layout.dims.x), nxy = nx * size_t(layout.dims.y);
+        throw InvalidInput(fmt::format("{}: voxel ({}, {}, {}) at byte offset {} is {}: float volumes must hold finite "
+                                       "values",
+                                       name, i % nx, i / nx % size_t(layout.dims.y), i / nxy,
+                                       layout.header_skip + i * sizeof(float), *bad));
+      }
+      return v;
+    }
   }
   throw InvalidInput(fmt::format("{}: unknown voxel type", name));
 }

@@ -327,7 +327,10 @@ struct TransferTable {
     const float span = hi > lo ? hi - lo : 0.0f;
     for (int i = 0; i < kSize; ++i) {
       const Vec4f c = tf(lo + span * float(i) / float(kSize - 1));
-      entries[size_t(i)] = Vec4f(Vec3f(c), 1.0f - std::pow(1.0f - c.w, step));
+      // 1 - (1 - a)^step in double, as -expm1(step log1p(-a)): in float, 1 - pow rounds to 0 for small steps and
+      // the volume would vanish.
+      const double alpha = c.w >= 1 ? 1.0 : -std::expm1(double(step) * std::log1p(-double(c.w)));
+      entries[size_t(i)] = Vec4f(Vec3f(c), float(alpha));
       lit_before[size_t(i) + 1] = lit_before[size_t(i)] + (entries[size_t(i)].w > 0);
     }
   }
@@ -450,7 +453,7 @@ struct Caster {
       // No branch on a clear sample (alpha 0 adds nothing): in noisy data its outcome is a coin toss.
       const Vec4f s = volume.interpolate(cell, offset);
       Vec4f c = table(s.x);
-      if (last) c.w = 1.0f - std::pow(1.0f - c.w, ray.last_fraction);
+      if (last) c.w = float(-std::expm1(double(ray.last_fraction) * std::log1p(-double(c.w))));
       Vec3f rgb(c);
       if (options.shading) {
         const Vec3f g(s.y, s.z, s.w);
@@ -669,6 +672,23 @@ struct Caster {
 
 namespace {
 
+/// The sample distance of `options` on `volume` (options.step, or half the smallest spacing when 0). Throws
+/// InvalidInput for a negative or non-finite step, or one giving more than kMaxSamplesPerRay samples across the box.
+float sample_step(const Volume<float>& volume, const VolumeRenderOptions& options) {
+  if (!(options.step >= 0) || !std::isfinite(options.step))
+    throw InvalidInput(fmt::format("step {} must be a finite distance >= 0 (0: half the smallest spacing)", options.step));
+  const Vec3 sp = volume.spacing();
+  const double step = options.step > 0 ? double(options.step) : 0.5 * std::min({sp.x, sp.y, sp.z});
+  const double diagonal = glm::length(volume.to_world(Vec3(volume.dims() - 1)) - volume.origin());
+  const double samples = std::ceil(diagonal / step);
+  if (!(samples <= double(VolumeRenderOptions::kMaxSamplesPerRay)))
+    throw InvalidInput(fmt::format("step {} gives {:.3g} samples per ray across the volume's box (diagonal {:.6g}); at "
+                                   "most {} are allowed: use a step of at least {:.3g}",
+                                   step, samples, diagonal, VolumeRenderOptions::kMaxSamplesPerRay,
+                                   diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay)));
+  return float(step);
+}
+
 /// The ray caster: MIP from the float volume, compositing from the prepared one (`packed`, unused for MIP).
 ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& options, double vlo, double vhi,
                    const PackedVolume* packed_volume) {
@@ -676,7 +696,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
   camera.aspect = double(options.width) / double(options.height);
   const EyeRays rays(camera, options.width, options.height);
   const Vec3 sp = volume.spacing();
-  const float step = options.step > 0 ? options.step : float(0.5 * std::min({sp.x, sp.y, sp.z}));
+  const float step = sample_step(volume, options);
   AABB box;
   box.expand(Vec3f(volume.origin()));
   box.expand(Vec3f(volume.to_world(Vec3(volume.dims() - 1))));
@@ -694,8 +714,14 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
           float t0 = 0, t1 = 0;
           if (!intersect_slabs(box, ray, 1.0f / ray.dir, t0, t1)) continue;
           float best = -INFINITY;
-          for (float t = t0 + 0.5f * step; t < t1; t += step)
+          // Sample k at t0 + (k + 1/2) step: an integer count always ends, where t += step stalls once step is
+          // below half an ulp of t.
+          const int n = int(std::ceil((t1 - t0) / step));
+          for (int k = 0; k < n; ++k) {
+            const float t = t0 + (float(k) + 0.5f) * step;
+            if (t >= t1) break;
             best = std::max(best, volume.sample((ray.at(t) - origin) * inv_spacing));
+          }
           if (best > -INFINITY) image(i, j) = Vec3f(float((best - vlo) / std::max(vhi - vlo, 1e-12)));
         }
       report(tile);

@@ -86,6 +86,36 @@ TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
   EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
 }
 
+// Issue 24, class 2: NaN and infinite float voxels were accepted and reached value ranges, pictures and meshes; a
+// spacing near DBL_MAX put the box (and every vertex) at infinity. Each reader refuses them, naming the voxel.
+TEST(VolumeIo, NonFiniteVoxelsAndBoxesAreRefused) {
+  const auto message = [](const auto& read) {
+    try {
+      read();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  for (float bad : {NAN, INFINITY, -INFINITY}) {
+    Volume<float> v(glm::ivec3(3, 2, 2), 1.0f);
+    v(1, 0, 1) = bad;  // voxel 7: byte offset 28 of the data
+    const std::string bytes(reinterpret_cast<const char*>(v.voxels().data()), v.voxel_count() * sizeof(float));
+    const RawLayout layout{.dims = {3, 2, 2}, .type = VoxelType::Float32};
+    const std::string what = fmt::format("{}", bad);
+    EXPECT_EQ(message([&] { decode_raw(bytes, layout, "v.raw"); }),
+              fmt::format("v.raw: voxel (1, 0, 1) at byte offset 28 is {}: float volumes must hold finite values", what));
+    write_nrrd(scratch("nan.nrrd"), v);
+    EXPECT_NE(message([&] { read_volume(scratch("nan.nrrd").string()); }).find("voxel (1, 0, 1)"), std::string::npos);
+  }
+  RawLayout huge{.dims = {3, 3, 3}, .type = VoxelType::UInt8, .spacing = {1e308, 1, 1}};
+  EXPECT_NE(message([&] { decode_raw(std::string(27, '\0'), huge, "h.raw"); }).find("h.raw: origin"), std::string::npos);
+  huge.spacing = {1, 1, 1};
+  huge.origin = {0, NAN, 0};
+  EXPECT_NE(message([&] { decode_raw(std::string(27, '\0'), huge, "h.raw"); }).find("beyond the finite numbers"),
+            std::string::npos);
+}
+
 TEST(VolumeIo, FuzzCorpusParsesOrThrowsErrors) {
   const auto dir = std::filesystem::path(TESSERA_SOURCE_DIR) / "fuzz/corpus/nrrd";
   int parsed = 0;

@@ -401,5 +401,55 @@ TEST(TransferFunction, RefusesNumbersBeyondFloatAndInterpolatesExtremePoints) {
   EXPECT_FLOAT_EQ(tf(0).x, 0.5f);
 }
 
+// Issue 24, class 2: with a step of 1e-5 the per-step opacity 1 - (1 - a)^step rounded to 0 in float, and the
+// volume vanished (a black picture, exit 0). Beer-Lambert holds for any step the renderer accepts.
+TEST(VolumeRender, TinyStepsStillMatchBeerLambert) {
+  Volume<float> v(glm::ivec3(11), 1.0f);
+  auto o = looking_down_z(1);  // the central ray only: it crosses 10 units
+  o.transfer = TransferFunction({{0, {1, 0.5f, 0.25f}, 0.1f}, {2, {1, 0.5f, 0.25f}, 0.1f}});
+  o.termination = 1.0f;
+  const float transmittance = std::pow(0.9f, 10.0f);
+  for (float step : {1e-3f, 1e-4f, 2e-5f}) {
+    o.step = step;
+    EXPECT_NEAR(render_volume(v, o)(0, 0).x, 1 - transmittance, 1e-3) << step;  // float opacity: off by 4e-3 at 2e-5
+  }
+}
+
+// Issue 24, classes 1 and 2: a step giving more than kMaxSamplesPerRay samples across the box is refused with the
+// limit in the message (it hung with --mip, where t += step stopped advancing, and overflowed the int sample count
+// otherwise), and so are negative and non-finite steps.
+TEST(VolumeRender, RefusesStepsThatGiveTooManySamples) {
+  Volume<float> v(glm::ivec3(11), 1.0f);
+  for (bool mip : {false, true}) {
+    auto o = looking_down_z(8);
+    o.mip = mip;
+    for (float step : {1e-9f, -1.0f, NAN, INFINITY}) {
+      o.step = step;
+      EXPECT_THROW(render_volume(v, o), InvalidInput) << step << " mip " << mip;
+    }
+    o.step = 1e-9f;
+    try {
+      render_volume(v, o);
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("at most 1048576"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Issue 24, class 1: the MIP loop advanced t += step, which stalls once the step is below half an ulp of t (an eye
+// 1e5 units away, a step of 2e-5: the loop never ended). Sample indices are integers now.
+TEST(VolumeRender, MipEndsWhenTheStepIsBelowTheUlpOfTheDistance) {
+  Volume<float> v(glm::ivec3(11));
+  for (int z = 0; z < 11; ++z)
+    for (int y = 0; y < 11; ++y)
+      for (int x = 0; x < 11; ++x) v(x, y, z) = float(z);
+  auto o = looking_down_z(1);
+  o.camera.eye = {5, 5, 1e5};
+  o.camera.fovy = radians(1e-4);
+  o.mip = true;
+  o.step = 2e-5f;
+  EXPECT_NEAR(render_volume(v, o)(0, 0).x, 1.0f, 1e-3f);  // the front face, z = 10, is the maximum
+}
+
 }  // namespace
 }  // namespace tessera

@@ -27,7 +27,9 @@ struct RawLayout {
 };
 
 /// Decodes voxels from `bytes` (the whole file; the voxels start at layout.header_skip). `name` is used in messages.
-/// Throws InvalidInput when the bytes are fewer than the layout needs (extra trailing bytes are ignored).
+/// Throws InvalidInput when the bytes are fewer than the layout needs (extra trailing bytes are ignored), when a float
+/// voxel is NaN or infinite (naming the voxel and its byte offset), or when origin and spacing put the box's far
+/// corner beyond the finite numbers. Every reader below decodes through it.
 AnyVolume decode_raw(std::string_view bytes, const RawLayout& layout, const std::string& name);
 /// Reads a raw file. Throws IoError when it cannot be read, InvalidInput as decode_raw.
 AnyVolume read_raw(const std::filesystem::path& path, const RawLayout& layout);

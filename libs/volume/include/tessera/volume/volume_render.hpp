@@ -79,9 +79,12 @@ class TransferFunction {
 
 /// Settings of render_volume().
 struct VolumeRenderOptions {
+  /// The most samples a ray may take across the volume's box (its diagonal / step): a step so small that it asks
+  /// for more is refused (it would take hours, and float sample positions stop advancing below half an ulp).
+  static constexpr int64_t kMaxSamplesPerRay = int64_t(1) << 20;
   Camera camera;                 ///< camera.aspect is set from width / height
   int width = 256, height = 256;
-  float step = 0;                ///< world distance between samples; 0 = half the smallest spacing
+  float step = 0;                ///< world distance between samples; 0 = half the smallest spacing (see kMaxSamplesPerRay)
   TransferFunction transfer;     ///< used unless mip
   bool mip = false;              ///< maximum-intensity projection: gray = (max - lo) / (hi - lo) of the volume range
   bool shading = true;           ///< gradient shading: ambient + diffuse + Blinn specular, headlight
@@ -96,7 +99,8 @@ struct VolumeRenderOptions {
 };
 
 /// Ray-casts `volume` into an image (parallel tiles; identical for any thread count). Throws InvalidInput for an
-/// empty volume or a non-positive size. The same as VolumeRenderer(volume).render(options).
+/// empty volume, a non-positive size, a negative or non-finite step, or a step that gives more than
+/// VolumeRenderOptions::kMaxSamplesPerRay samples across the volume's box. The same as VolumeRenderer(volume).render(options).
 ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& options);
 
 /// A volume prepared for ray casting (its values and central-difference gradients quantized to 16 bits and
@@ -109,7 +113,8 @@ class VolumeRenderer {
   ~VolumeRenderer();
   VolumeRenderer(VolumeRenderer&&) noexcept;
   VolumeRenderer& operator=(VolumeRenderer&&) noexcept;
-  /// Ray-casts the volume (see render_volume). Throws InvalidInput for a non-positive size.
+  /// Ray-casts the volume (see render_volume). Throws InvalidInput for a non-positive size or a step that
+  /// render_volume refuses.
   ImageRGB render(const VolumeRenderOptions& options) const;
 
  private:
