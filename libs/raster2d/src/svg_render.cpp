@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/curves/bezier.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/raster2d/svg.hpp"
@@ -242,6 +243,10 @@ std::vector<SvgPolyline> flatten_svg_subpaths(const std::vector<SvgSubpath>& sub
 
 ImageRGBA render_svg(const SvgDocument& document, const SvgRenderOptions& options) {
   const Size2 size = svg_output_size(document, options);
+  // Per pixel: the float RGBA image (16 bytes), one shape's coverage accumulator (4) and the 8-bit copy a writer makes.
+  constexpr uint64_t kBytesPerPixel = sizeof(ImageRGBA::Pixel) + sizeof(float) + 4;
+  MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), kBytesPerPixel}),
+                      fmt::format("{}: rendering at {}x{} pixels", document.source, size.width, size.height));
   ImageRGBA image(size.width, size.height, options.background);
   const Mat3 view = svg_viewport_transform(document, size.width, size.height);
   for (const SvgShape& shape : document.shapes) draw_shape(image, document.source, shape, view * shape.transform, options);
