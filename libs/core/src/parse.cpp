@@ -26,6 +26,40 @@ std::vector<std::string_view> split(std::string_view text, char delimiter) {
   return parts;
 }
 
+std::string printable(std::string_view text, size_t max_chars) {
+  std::string out;
+  size_t chars = 0, i = 0;
+  for (; i < text.size() && chars < max_chars; ++chars) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    // Length of a well-formed UTF-8 sequence starting here (0: not one); C1 controls (U+0080..U+009F) are escaped.
+    size_t len = c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3 : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+    if (len > 1 && i + len <= text.size()) {
+      for (size_t k = 1; k < len; ++k)
+        if ((static_cast<unsigned char>(text[i + k]) & 0xc0) != 0x80) len = 0;
+      if (c == 0xc2 && static_cast<unsigned char>(text[i + 1]) < 0xa0) len = 0;
+    } else {
+      len = 0;
+    }
+    if (len > 1) {
+      out.append(text.substr(i, len));
+      i += len;
+      continue;
+    }
+    switch (c) {
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\\': out += "\\\\"; break;
+      default:
+        if (c < 0x20 || c >= 0x7f) out += fmt::format("\\x{:02x}", c);
+        else out += char(c);
+    }
+    ++i;
+  }
+  if (i < text.size()) out += fmt::format("... ({} bytes)", text.size());
+  return out;
+}
+
 double parse_double(std::string_view text, std::string_view what) {
   const std::string_view t = trim(text);
   double value = 0;
@@ -33,7 +67,7 @@ double parse_double(std::string_view text, std::string_view what) {
   if (!t.empty() && *first == '+') ++first;
   const auto [end, ec] = std::from_chars(first, t.data() + t.size(), value);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(value))
-    throw InvalidInput(fmt::format("{}: expected a number, got '{}'", what, text));
+    throw InvalidInput(fmt::format("{}: expected a number, got '{}'", what, printable(text)));
   return value;
 }
 
@@ -44,14 +78,14 @@ long long parse_int(std::string_view text, std::string_view what) {
   if (!t.empty() && *first == '+') ++first;
   const auto [end, ec] = std::from_chars(first, t.data() + t.size(), value);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size())
-    throw InvalidInput(fmt::format("{}: expected an integer, got '{}'", what, text));
+    throw InvalidInput(fmt::format("{}: expected an integer, got '{}'", what, printable(text)));
   return value;
 }
 
 std::vector<double> parse_doubles(std::string_view text, size_t count, std::string_view what) {
   const auto parts = split(text, ',');
   if (count != 0 && parts.size() != count)
-    throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, count, text));
+    throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", what, count, printable(text)));
   std::vector<double> values;
   values.reserve(parts.size());
   for (auto p : parts) values.push_back(parse_double(p, what));
@@ -61,11 +95,11 @@ std::vector<double> parse_doubles(std::string_view text, size_t count, std::stri
 Size2 parse_size(std::string_view text, std::string_view what) {
   const size_t x = text.find_first_of("xX");
   if (x == std::string_view::npos)
-    throw InvalidInput(fmt::format("{}: expected WIDTHxHEIGHT, got '{}'", what, text));
+    throw InvalidInput(fmt::format("{}: expected WIDTHxHEIGHT, got '{}'", what, printable(text)));
   const long long w = parse_int(text.substr(0, x), what);
   const long long h = parse_int(text.substr(x + 1), what);
   if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
-    throw InvalidInput(fmt::format("{}: width and height must be in 1..65536, got '{}'", what, text));
+    throw InvalidInput(fmt::format("{}: width and height must be in 1..65536, got '{}'", what, printable(text)));
   return {int(w), int(h)};
 }
 

@@ -35,5 +35,35 @@ TEST(Parse, ListsAndSizes) {
   }
 }
 
+TEST(Parse, PrintableEscapesControlBytesAndTruncates) {
+  EXPECT_EQ(printable("plain text"), "plain text");
+  EXPECT_EQ(printable("\x1b[31mred\x1b[0m"), "\\x1b[31mred\\x1b[0m");
+  EXPECT_EQ(printable("a\nb\tc\r\\"), "a\\nb\\tc\\r\\\\");
+  EXPECT_EQ(printable(std::string_view("\0\x7f\xff", 3)), "\\x00\\x7f\\xff");
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // valid UTF-8 stays readable
+  EXPECT_EQ(printable("\xc2\x9b"), "\\xc2\\x9b");                          // a C1 control (CSI) does not
+  EXPECT_EQ(printable("\xc3"), "\\xc3");                                    // nor a cut sequence
+  const std::string line(10'000'000, '7');
+  EXPECT_EQ(printable(line, 5), "77777... (10000000 bytes)");
+  EXPECT_LT(printable(line).size(), 100u);
+}
+
+TEST(Parse, ErrorsQuoteInputPrintably) {
+  try {
+    parse_doubles(std::string(1'000'000, '1') + "\x1b]0;pwned\x07", 3, "--values");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    const std::string what = e.what();
+    EXPECT_LT(what.size(), 200u) << what;
+    EXPECT_EQ(what.find('\x1b'), std::string::npos);
+  }
+  try {
+    parse_double("1\x1b[2J", "--near");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(), "--near: expected a number, got '1\\x1b[2J'");
+  }
+}
+
 }  // namespace
 }  // namespace tessera

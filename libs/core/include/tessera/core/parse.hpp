@@ -7,7 +7,13 @@
 
 namespace tessera {
 
-/// Parses a finite double ("1.5", "-2e3"). Throws InvalidInput "<what>: expected a number, got '<text>'".
+/// Input text made safe to quote in a message: control bytes, DEL and bytes that are not valid UTF-8 become escapes
+/// (\n, \t, \x1b, ...), so an error can never send escape sequences to a terminal, and text longer than
+/// `max_chars` characters is cut there with "... (N bytes)" appended, so a 10 MB line cannot flood it.
+std::string printable(std::string_view text, size_t max_chars = 60);
+
+/// Parses a finite double ("1.5", "-2e3"). Throws InvalidInput "<what>: expected a number, got '<text>'" (the text
+/// through printable(), as in every message below).
 double parse_double(std::string_view text, std::string_view what);
 
 /// Parses a base-10 integer that fits in long long.
@@ -16,7 +22,7 @@ long long parse_int(std::string_view text, std::string_view what);
 /// Parses `count` comma-separated finite doubles ("1,2,3"); count 0 accepts any number of at least one.
 std::vector<double> parse_doubles(std::string_view text, size_t count, std::string_view what);
 
-/// Parses "WxH" with both positive (at most 65536 each).
+/// Parses "WxH" with both positive (at most 65536 each); the message of a rejected size states that range.
 struct Size2 {
   int width, height;
 };
