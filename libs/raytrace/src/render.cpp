@@ -138,7 +138,7 @@ class CameraRays {
     // eye's plane, scaled to the view's height (orthographic).
     const double d = orthographic_ ? 0.0 : check.focal_length(), s = orthographic_ ? 0.5 * camera.ortho_height : 1.0;
     origin_ = Vec3f(camera.eye);
-    corner_ = Vec3f(-d * w + s * (-camera.aspect * u + v));
+    corner_ = Vec3f(-d * w - s * camera.aspect * u + s * v);  // for perspective (s = 1) bit for bit the notes' sum
     step_x_ = Vec3f((2.0 * s * camera.aspect / width) * u);
     step_y_ = Vec3f((-2.0 * s / height) * v);
     lens_u_ = Vec3f(u);
