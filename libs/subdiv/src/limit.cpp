@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "scale.hpp"
 #include "sharpness.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -88,8 +89,21 @@ LimitSurface limit_surface(const PolyMesh& mesh, const SubdivisionOptions& optio
                                : "limit_surface: Loop limit masks need triangles");
   const TopologyTables topology(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
   const detail::LevelSharpness sharpness(topology, mesh, options.boundary);
-  if (catmark) return limit_with(topology, sharpness, CatmarkRules{options.triangles}, mesh.positions);
-  return limit_with(topology, sharpness, LoopRules{options.loop_weights}, mesh.positions);
+  // Tangents of coordinates beyond 2^128 would overflow their cross product's length (and below 2^-128 underflow it): such
+  // meshes are evaluated scaled by a power of two (detail::rescale_exponent).
+  const int e = detail::rescale_exponent(mesh.positions);
+  std::vector<Vec3> scaled;
+  if (e) {
+    scaled = mesh.positions;
+    detail::scale_by_power_of_two(scaled, -e);
+  }
+  const std::vector<Vec3>& p = e ? scaled : mesh.positions;
+  LimitSurface out = catmark ? limit_with(topology, sharpness, CatmarkRules{options.triangles}, p)
+                             : limit_with(topology, sharpness, LoopRules{options.loop_weights}, p);
+  detail::scale_by_power_of_two(out.positions, e);
+  detail::require_finite(out.positions, "limit_surface", "vertex");
+  detail::require_finite(out.normals, "limit_surface", "normal");
+  return out;
 }
 
 }  // namespace tessera

@@ -130,5 +130,45 @@ TEST(Limit, RejectsWrongFaces) {
   EXPECT_THROW(limit_surface(test::cube(), {.scheme = SubdivisionScheme::midpoint}), InvalidInput);
 }
 
+// Issue 24, class 2: a cube with coordinates of 1e308 (finite) gave NaN vertices (4 corners summed to infinity, then
+// inf - inf), and one of 1e-300 zero normals (the tangents' cross product underflowed). Subdivision and limit masks
+// are affine, so the result must be the unit mesh's, scaled: positions times the scale, the same normals.
+TEST(Limit, HugeAndTinyCoordinatesGiveTheScaledResult) {
+  const struct {
+    PolyMesh mesh;
+    SubdivisionScheme scheme;
+  } cases[] = {{test::cube(), SubdivisionScheme::catmull_clark}, {test::icosahedron(), SubdivisionScheme::loop}};
+  for (const auto& c : cases) {
+    const SubdivisionOptions options{.scheme = c.scheme, .levels = 2};
+    const PolyMesh unit = subdivide(c.mesh, options);
+    const LimitSurface unit_limit = limit_surface(unit, options);
+    for (double scale : {1e308, -1e308, 1e-300, 3e200}) {
+      PolyMesh scaled = c.mesh;
+      for (Vec3& p : scaled.positions) p *= scale;
+      const PolyMesh refined = subdivide(scaled, options);
+      const LimitSurface limit = limit_surface(refined, options);
+      ASSERT_EQ(refined.vertex_count(), unit.vertex_count());
+      for (size_t v = 0; v < unit.vertex_count(); ++v) {
+        for (int a = 0; a < 3; ++a) {
+          EXPECT_NEAR(refined.positions[v][a] / scale, unit.positions[v][a], 1e-12) << scale << " vertex " << v;
+          EXPECT_NEAR(limit.positions[v][a] / scale, unit_limit.positions[v][a], 1e-12) << scale << " vertex " << v;
+        }
+        // A negative scale negates both tangents, which leaves their cross product as it is.
+        EXPECT_NEAR(glm::distance(limit.normals[v], unit_limit.normals[v]), 0.0, 1e-12) << scale << " vertex " << v;
+      }
+    }
+  }
+}
+
+// Issue 24, class 2: a result that is not finite is an error, never returned.
+TEST(Limit, NonFiniteInputIsRefusedNotPropagated) {
+  PolyMesh mesh = test::cube();
+  mesh.positions[3].y = INFINITY;
+  EXPECT_THROW(subdivide(mesh, {.scheme = SubdivisionScheme::catmull_clark, .levels = 1}), InvalidInput);
+  PolyMesh quads = subdivide(test::cube(), {.scheme = SubdivisionScheme::catmull_clark, .levels = 1});
+  quads.positions[5].x = NAN;
+  EXPECT_THROW(limit_surface(quads, {.scheme = SubdivisionScheme::catmull_clark}), InvalidInput);
+}
+
 }  // namespace
 }  // namespace tessera
