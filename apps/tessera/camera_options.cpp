@@ -129,7 +129,7 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
       .add_option("--ortho-size", ortho_size,
                   "With --ortho: the view's height in world units (default: frames "
                   "the bounds)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->needs(ortho_option);
   // The framed views place the eye: with --eye they would be ignored. --fovy means nothing to a parallel projection.
   for (CLI::Option* o : {view_option, azimuth_option, elevation_option}) o->excludes(eye_option);

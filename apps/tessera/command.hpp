@@ -32,6 +32,9 @@ struct CommonOptions {
 /// Checks that a number option is >= 0 ("expected a number >= 0, got -1"; CLI::NonNegativeNumber's message lists its
 /// range up to the largest double, digit by digit).
 CLI::Validator non_negative();
+/// Checks that a number option is > 0 ("expected a number > 0, got 0"; CLI::PositiveNumber's message lists its range up
+/// to the largest double, digit by digit).
+CLI::Validator positive();
 /// Checks that an option is an image size "WxH" (both positive, at most 65536), so that `--size 800` is a usage error.
 CLI::Validator size_format();
 /// Checks that an option is a color that parse_color accepts, so that a misspelt color is a usage error.

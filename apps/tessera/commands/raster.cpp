@@ -529,7 +529,7 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->capture_default_str();
   cmd.add_option("--depth-out", a->depth_out, "Also write the depth buffer (window z in [0,1], 1 = background) as PFM");
   cmd.add_option("--repeat", a->repeat, "Render N frames (for timing with --stats)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive())
       ->capture_default_str();
   CLI::Option* texture =
       cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
