@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
+
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parse.hpp"
@@ -28,8 +30,8 @@ class Tokenizer {
     skip_space();
     if (pos_ != text_.size()) {
       token_line_ = line_;
-      const std::string_view rest = text_.substr(pos_, 20);
-      throw InvalidInput(located(where(), fmt::format("expected end of file after the last patch, got '{}'", rest)));
+      throw InvalidInput(located(where(), fmt::format("expected end of file after the last patch, got '{}'",
+                                                      printable(text_.substr(pos_), 20))));
     }
   }
   /// "name:LINE" of the last token read.
@@ -60,8 +62,12 @@ std::vector<BezierPatch> parse_bpt(std::string_view text, const std::string& nam
   const long long count = parse_int(count_text, located(tokens.where(), "the patch count"));
   if (count < 0) throw InvalidInput(located(tokens.where(), fmt::format("expected a patch count >= 0, got {}", count)));
   if (size_t(count) > tokens.remaining() / kMinPatchBytes)
-    throw InvalidInput(located(tokens.where(), fmt::format("patch count {} needs at least {} bytes, {} are left", count,
-                                                           kMinPatchBytes, tokens.remaining())));
+    throw InvalidInput(located(
+        tokens.where(),
+        fmt::format("patch count {} needs at least {} bytes ({} per patch), {} are left", count,
+                    size_t(count) <= SIZE_MAX / kMinPatchBytes ? fmt::format("{}", size_t(count) * kMinPatchBytes)
+                                                               : fmt::format("more than {}", SIZE_MAX),
+                    kMinPatchBytes, tokens.remaining())));
   std::vector<BezierPatch> patches(static_cast<size_t>(count));
   for (size_t p = 0; p < patches.size(); ++p) {
     for (const char* axis : {"u", "v"}) {

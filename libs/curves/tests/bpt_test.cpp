@@ -81,6 +81,12 @@ TEST(Bpt, ErrorsSayWhereAndWhatWasExpected) {
 TEST(Bpt, HostileCountsAreRejectedBeforeAllocating) {
   EXPECT_THAT(parse_error("-1\n"), HasSubstr("expected a patch count >= 0"));
   EXPECT_THAT(parse_error("2000000000\n3 3\n"), HasSubstr("patch count 2000000000 needs at least"));
+  // The total the count needs (count x 100 bytes), not the per-patch minimum.
+  EXPECT_THAT(parse_error("3\n3 3\n"), HasSubstr("patch count 3 needs at least 300 bytes (100 per patch), 5 are left"));
+  EXPECT_THAT(parse_error("9000000000000000000\n3 3\n"),
+              HasSubstr("needs at least more than 18446744073709551615 bytes"));
+  // Trailing garbage is quoted with control bytes escaped, never sent raw to the terminal.
+  EXPECT_THAT(parse_error(one_patch() + "\x1b[2J"), HasSubstr("got '\\x1b[2J'"));
   EXPECT_THAT(parse_error("99999999999999999999999\n"), HasSubstr("expected an integer"));
   EXPECT_THAT(parse_error("2\n" + one_patch().substr(2)), HasSubstr("patch count 2 needs at least"));
 }

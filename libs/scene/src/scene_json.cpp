@@ -1,11 +1,11 @@
 // The JSON scene loader (docs/scene-format.md): every value is checked where it is read, and errors name the JSON
 // path of the bad value.
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <sstream>
 
+#include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/image/texture.hpp"
 #include "tessera/math/transform.hpp"
@@ -21,17 +21,71 @@ namespace {
 
 using Json = nlohmann::json;
 
-/// nlohmann's DOM parser, also remembering the byte where parsing failed: a parse_error carries its byte, but a number
-/// out of range ("1e999") is reported as an out_of_range exception without one. The parser calls parse_error on this
-/// type, so the member below is the one it calls.
+/// nlohmann's DOM parser, also remembering the byte where parsing failed (a parse_error carries its byte, but a number
+/// out of range ("1e999") is reported as an out_of_range exception without one) and refusing duplicate keys (the DOM
+/// would silently keep the last one, so `"radius": 1, ..., "radius": 2` would ignore a value the user wrote).
+/// sax_parse calls the members below on this type, so they hide the base's: each tracks the path of the value it
+/// sees ("objects[3].material"), then forwards.
 struct LocatingParser : nlohmann::detail::json_sax_dom_parser<Json> {
-  using json_sax_dom_parser::json_sax_dom_parser;
+  using Base = nlohmann::detail::json_sax_dom_parser<Json>;
+  LocatingParser(Json& doc, std::string name) : Base(doc), name_(std::move(name)) {}
   size_t error_byte = 0;
   template <class Exception>
   bool parse_error(size_t byte, const std::string& token, const Exception& e) {
     error_byte = byte;
-    return json_sax_dom_parser::parse_error(byte, token, e);
+    return Base::parse_error(byte, token, e);
   }
+  bool start_object(size_t n) {
+    frames_.push_back({child_path(), false});
+    return Base::start_object(n);
+  }
+  bool start_array(size_t n) {
+    frames_.push_back({child_path(), true});
+    return Base::start_array(n);
+  }
+  bool end_object() {
+    frames_.pop_back();
+    return Base::end_object();
+  }
+  bool end_array() {
+    frames_.pop_back();
+    return Base::end_array();
+  }
+  bool key(string_t& k) {
+    Frame& f = frames_.back();
+    if (!f.keys.insert(k).second)
+      throw InvalidInput(located(name_, fmt::format("{}: duplicate key '{}' (each key may appear once in an object)",
+                                                    f.path.empty() ? "(top level)" : f.path, printable(k))));
+    f.last_key = k;
+    return Base::key(k);
+  }
+  bool null() { return scalar(), Base::null(); }
+  bool boolean(bool v) { return scalar(), Base::boolean(v); }
+  bool number_integer(number_integer_t v) { return scalar(), Base::number_integer(v); }
+  bool number_unsigned(number_unsigned_t v) { return scalar(), Base::number_unsigned(v); }
+  bool number_float(number_float_t v, const string_t& s) { return scalar(), Base::number_float(v, s); }
+  bool string(string_t& v) { return scalar(), Base::string(v); }
+
+ private:
+  struct Frame {
+    std::string path;
+    bool array;
+    size_t count = 0;
+    std::set<std::string> keys;
+    std::string last_key;
+  };
+  /// The path of the value that starts now; counts it when it is an array element.
+  std::string child_path() {
+    if (frames_.empty()) return "";
+    Frame& f = frames_.back();
+    if (f.array) return fmt::format("{}[{}]", f.path, f.count++);
+    return f.path.empty() ? f.last_key : f.path + "." + f.last_key;
+  }
+  void scalar() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
+  }
+  std::string name_;
+  std::vector<Frame> frames_;
 };
 
 /// A JSON value and its path in the document ("objects[3].radius"), with typed, checked accessors.
@@ -425,7 +479,7 @@ SceneObject read_object(const Node& n, const Scene& scene, const std::filesystem
 
 Scene parse_scene(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
   Json doc;
-  LocatingParser parser(doc);
+  LocatingParser parser(doc, name);
   try {
     Json::sax_parse(text.begin(), text.end(), &parser);
   } catch (const Json::exception& e) {
@@ -475,12 +529,7 @@ Camera SceneCamera::camera(double aspect, double near, double far) const {
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(fmt::format("{}: cannot open the scene file", path.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw IoError(fmt::format("{}: cannot read the scene file", path.string()));
-  return parse_scene(text.str(), path.string(), path.parent_path());
+  return parse_scene(read_file(path), path.string(), path.parent_path());
 }
 
 }  // namespace tessera

@@ -66,6 +66,33 @@ std::string error_of(const std::string& json) {
   return "(no error)";
 }
 
+TEST(Scene, DuplicateKeysAreRefusedWithTheirPath) {
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"},
+                                      {"type": "sphere", "radius": 1, "radius": 2, "material": "m"}])")),
+            "test.json: objects[1]: duplicate key 'radius' (each key may appear once in an object)");
+  EXPECT_EQ(error_of(R"({"objects": [], "objects": []})"),
+            "test.json: (top level): duplicate key 'objects' (each key may appear once in an object)");
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m", "center": [0, 0, 0]}])",
+                                  R"("camera": {"eye": [0, 0, 5], "center": [0, 0, 0], "eye": [1, 1, 1]}, )")),
+            "test.json: camera: duplicate key 'eye' (each key may appear once in an object)");
+  // The same key in sibling objects and nested arrays is fine.
+  EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m", "center": [0, 0, 0]},
+                                      {"type": "sphere", "material": "m", "center": [[1], 0, 0]}])")).find("duplicate"),
+            std::string::npos);
+}
+
+TEST(Scene, AFolderIsNotAScene) {
+  const auto dir = std::filesystem::temp_directory_path() / ("tessera_scene_dir_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  try {
+    load_scene(dir);
+    ADD_FAILURE() << "no error";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory, expected a file"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(dir);
+}
+
 TEST(Scene, ErrorsNameTheJsonPath) {
   EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m"},
                                       {"type": "sphere", "radius": -1, "material": "m"}])")),
