@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The memory budget (issue 24, class 3) end to end: every large-request site refuses, before allocating and before
+# writing anything, a request whose estimate is over --max-memory, with the estimate and the budget in the message
+# (exit 1); the same request under a budget large enough runs. A tiny budget (1M) keeps every request modest.
+# Usage: memory.sh TESSERA_BINARY SCRATCH_DIR
+set -euo pipefail
+bin=$1
+dir=$2
+mkdir -p "$dir"
+
+fail() {
+  echo "memory.sh: $*" >&2
+  exit 1
+}
+
+# refuse OUT WHAT CMD...: CMD exits 1, says "WHAT ... needs about X, the memory budget is 1.0 MiB", and leaves no OUT.
+refuse() {
+  local out=$1 what=$2
+  shift 2
+  rm -f "$out"
+  local rc=0
+  "$@" --max-memory 1M 2>"$dir/err" >/dev/null || rc=$?
+  [ "$rc" = 1 ] || fail "$*: expected exit 1 under --max-memory 1M, got $rc: $(cat "$dir/err")"
+  grep -q "tessera: error: .*$what.* needs about [0-9.]* [KMGT]iB, the memory budget is 1.0 MiB (raise it with --max-memory SIZE)" \
+    "$dir/err" || fail "$*: unexpected message: $(cat "$dir/err")"
+  [ ! -e "$out" ] || fail "$*: left $out behind"
+}
+
+# --max-memory values: sizes with binary suffixes; anything else is a usage error (exit 2).
+rc=0
+"$bin" mesh info "$dir/none.obj" --max-memory 12Q 2>"$dir/err" || rc=$?
+[ "$rc" = 2 ] || fail "--max-memory 12Q: expected exit 2, got $rc"
+grep -q "expected a memory size such as 512M or 4G" "$dir/err" || fail "--max-memory 12Q: $(cat "$dir/err")"
+"$bin" canvas --help | grep -q -- "--max-memory" || fail "canvas --help does not list --max-memory"
+
+# SVG: width x height x 24 bytes (float RGBA, a coverage row buffer, the 8-bit copy). 300x300 = 2.1 MiB.
+printf '<svg xmlns="http://www.w3.org/2000/svg" width="46000" height="46000"><rect width="10" height="10"/></svg>' \
+  >"$dir/bomb.svg"
+refuse "$dir/svg.png" "rendering at 300x300 pixels" "$bin" canvas render "$dir/bomb.svg" -o "$dir/svg.png" --size 300x300
+"$bin" canvas render "$dir/bomb.svg" -o "$dir/svg.png" --size 300x300 --max-memory 3M --quiet
+[ -s "$dir/svg.png" ] || fail "canvas render under a 3M budget wrote nothing"
+# The 103-byte SVG's own size: 46000 x 46000 x 24 bytes = 47.3 GiB, refused in a 4 GiB budget.
+rc=0
+"$bin" canvas render "$dir/bomb.svg" -o "$dir/svg46k.png" --max-memory 4G 2>"$dir/err" || rc=$?
+[ "$rc" = 1 ] && grep -q "46000x46000 pixels needs about 47.3 GiB, the memory budget is 4.0 GiB" "$dir/err" ||
+  fail "46000x46000 SVG: $(cat "$dir/err")"
+
+# Subdivision: faces x 4^levels. The cube's 6 quads, 3 Catmull-Clark levels = 384 faces (~60 KiB): fits in 1M;
+# 6 levels = 24576 faces (~3.8 MiB): refused.
+cube=$(dirname "$0")/../data/cube.obj
+refuse "$dir/sub.obj" "subdivide: 6 levels of 6 faces (24576 faces)" \
+  "$bin" mesh subdivide "$cube" -o "$dir/sub.obj" --levels 6
+"$bin" mesh subdivide "$cube" -o "$dir/sub.obj" --levels 3 --max-memory 1M --quiet
+[ "$(grep -c '^f ' "$dir/sub.obj")" = 384 ] || fail "subdivide --levels 3 under 1M: wrong output"
