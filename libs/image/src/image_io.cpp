@@ -18,6 +18,7 @@
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 
 #include "png_encode.hpp"
@@ -56,10 +57,15 @@ Format format_of(const std::filesystem::path& path, bool writing) {
                                  writing ? "writing" : "reading", supported));
 }
 
-void check_pixel_count(const std::string& name, long long width, long long height) {
+// Refuses an image size that is invalid, or whose decoding needs more than the memory budget: `bytes_per_pixel` is
+// what the reader holds at its peak (the decoder's samples plus the float RGBA image, 16 bytes), counted from the
+// header before any pixel is decoded (a 746 KB PNG can declare 16000x16000 pixels).
+void check_pixel_count(const std::string& name, long long width, long long height, uint64_t bytes_per_pixel) {
   if (width < 1 || height < 1 || width > kMaxReadPixels / height)
     throw InvalidInput(fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width,
                                    height, kMaxReadPixels));
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), bytes_per_pixel}),
+                      fmt::format("'{}': decoding {}x{} pixels", name, width, height));
 }
 
 // Decoded pixels before they become RGBA: `channels` (1 or 3) floats per pixel, top row first.
@@ -172,7 +178,7 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
   const bool binary = magic == "P5" || magic == "P6";
   d.width = int(in.integer("width", 1, INT_MAX));
   d.height = int(in.integer("height", 1, INT_MAX));
-  check_pixel_count(name, d.width, d.height);
+  check_pixel_count(name, d.width, d.height, sizeof(float) * d.channels + sizeof(ImageRGBA::Pixel));
   const long long maxval = in.integer("maxval", 1, 65535);
   const unsigned long long count = (unsigned long long)d.width * (unsigned long long)d.height * d.channels;
   const float divisor = float(maxval);
@@ -216,7 +222,7 @@ Decoded read_pfm_data(std::string_view data, const std::string& name) {
   d.channels = magic == "PF" ? 3 : 1;
   d.width = int(in.integer("width", 1, INT_MAX));
   d.height = int(in.integer("height", 1, INT_MAX));
-  check_pixel_count(name, d.width, d.height);
+  check_pixel_count(name, d.width, d.height, sizeof(float) * d.channels + sizeof(ImageRGBA::Pixel));
   const double scale = in.real("the scale (negative for little endian)");
   if (scale == 0.0) in.fail(in.token_start(), "the scale must be nonzero (its sign gives the byte order)");
   in.end_of_header();
@@ -257,13 +263,14 @@ ImageRGBA read_stb(std::string_view data, const std::string& name) {
     return InvalidInput(fmt::format("'{}': cannot decode image: {}", name, reason ? reason : "unknown error"));
   };
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) throw failed();
-  check_pixel_count(name, width, height);
-  if (stbi_is_hdr_from_memory(bytes, size)) {
+  const bool hdr = stbi_is_hdr_from_memory(bytes, size), wide = !hdr && stbi_is_16_bit_from_memory(bytes, size);
+  check_pixel_count(name, width, height, 4 * (hdr ? sizeof(float) : wide ? 2 : 1) + sizeof(ImageRGBA::Pixel));
+  if (hdr) {
     std::unique_ptr<float, StbFree> p(stbi_loadf_from_memory(bytes, size, &width, &height, &channels, 4));
     if (!p) throw failed();
     return from_interleaved_rgba(p.get(), width, height, 1.f);
   }
-  if (stbi_is_16_bit_from_memory(bytes, size)) {
+  if (wide) {
     std::unique_ptr<stbi_us, StbFree> p(stbi_load_16_from_memory(bytes, size, &width, &height, &channels, 4));
     if (!p) throw failed();
     return from_interleaved_rgba(p.get(), width, height, 65535.f);
