@@ -52,3 +52,23 @@ refuse "$dir/sub.obj" "subdivide: 6 levels of 6 faces (24576 faces)" \
   "$bin" mesh subdivide "$cube" -o "$dir/sub.obj" --levels 6
 "$bin" mesh subdivide "$cube" -o "$dir/sub.obj" --levels 3 --max-memory 1M --quiet
 [ "$(grep -c '^f ' "$dir/sub.obj")" = 384 ] || fail "subdivide --levels 3 under 1M: wrong output"
+
+# Image readers: width x height x (decoded samples + 16 bytes of float RGBA) from the header, before decoding.
+# A 600x600 8-bit PNG (8 KB) needs 600*600*20 bytes = 6.9 MiB; a 19-byte PPM header declaring 16000x16000 RGB is
+# refused before its (missing) pixel data is looked at.
+python3 - "$dir/white.png" <<'PY'
+import struct, sys, zlib
+w = h = 600
+raw = b"".join(b"\0" + b"\xff" * (3 * w) for _ in range(h))
+chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+open(sys.argv[1], "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                              chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+PY
+refuse "$dir/none" "'$dir/white.png': decoding 600x600 pixels" "$bin" fractal dimension "$dir/white.png" --invert
+"$bin" fractal dimension "$dir/white.png" --invert --max-memory 8M --stats | grep -q '^width=600$' ||
+  fail "fractal dimension under an 8M budget"
+printf 'P6\n16000 16000\n255\n' >"$dir/bomb.ppm"
+rc=0
+"$bin" fractal dimension "$dir/bomb.ppm" --max-memory 4G 2>"$dir/err" || rc=$?
+[ "$rc" = 1 ] && grep -q "decoding 16000x16000 pixels needs about 6.7 GiB, the memory budget is 4.0 GiB" "$dir/err" ||
+  fail "16000x16000 PPM: $(cat "$dir/err")"
