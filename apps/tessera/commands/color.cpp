@@ -31,7 +31,7 @@ std::vector<double> parse_row(const std::string& row, ColorModel model, const st
   try {
     return parse_doubles(row, n, where);
   } catch (const InvalidInput&) {
-    throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", where, n, row));
+    throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", where, n, printable(row)));
   }
 }
 

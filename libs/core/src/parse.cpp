@@ -100,6 +100,11 @@ Size2 parse_size(std::string_view text, std::string_view what) {
   const long long h = parse_int(text.substr(x + 1), what);
   if (w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw InvalidInput(fmt::format("{}: width and height must be in 1..65536, got '{}'", what, printable(text)));
+  // The most pixels one Image holds (image.hpp); larger sizes pass the per-side range but could never be allocated.
+  constexpr long long kMaxPixels = 1LL << 31;
+  if (w * h > kMaxPixels)
+    throw InvalidInput(fmt::format("{}: {}x{} is {} pixels, more than the {} (2^31) an image can hold", what, w, h,
+                                   w * h, kMaxPixels));
   return {int(w), int(h)};
 }
 

@@ -65,5 +65,16 @@ TEST(Parse, ErrorsQuoteInputPrintably) {
   }
 }
 
+TEST(Parse, SizeBeyondWhatAnImageHoldsNamesTheLimit) {
+  EXPECT_EQ(parse_size("65536x32768", "--size").height, 32768);  // exactly 2^31 pixels
+  try {
+    parse_size("65536x65536", "--size");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_STREQ(e.what(),
+                 "--size: 65536x65536 is 4294967296 pixels, more than the 2147483648 (2^31) an image can hold");
+  }
+}
+
 }  // namespace
 }  // namespace tessera

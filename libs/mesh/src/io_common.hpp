@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 
@@ -143,11 +144,12 @@ class TextCursor {
     p_ = next;
     return v;
   }
-  /// The rest of the current token, for messages (at most 40 characters).
+  /// The rest of the current token, for messages (at most 40 characters, through printable()).
   std::string preview() const {
     const char* e = p_;
     while (e != end_ && e - p_ < 40 && *e != ' ' && *e != '\t' && *e != '\r' && *e != '\n') ++e;
-    return e == p_ ? std::string(p_ == end_ ? "end of file" : "end of line") : std::string(p_, e);
+    if (e == p_) return p_ == end_ ? "end of file" : "end of line";
+    return printable(std::string_view(p_, size_t(e - p_)));
   }
   /// Bytes left.
   size_t remaining() const { return size_t(end_ - p_); }

@@ -235,7 +235,7 @@ PolyMesh read_obj(std::string_view data, const std::string& name, Progress* prog
     } else if (is_ignored_statement(key)) {
       in.next_line();
     } else {
-      in.fail(fmt::format("unknown OBJ statement '{}'", key.substr(0, 40)));
+      in.fail(fmt::format("unknown OBJ statement '{}'", printable(key, 40)));
     }
   }
   if (!mesh.colors.empty()) mesh.colors.resize(mesh.positions.size(), Vec3(1.0));

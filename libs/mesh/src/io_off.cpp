@@ -27,7 +27,7 @@ OffLayout parse_keyword(TextCursor& in, std::string_view key) {
   if (k != "OFF")
     in.fail(fmt::format(
         "expected the keyword OFF (optionally ST, C, N prefixes; 4OFF and nOFF are not supported), got '{}'",
-        key.substr(0, 40)));
+        printable(key, 40)));
   return layout;
 }
 

@@ -171,7 +171,7 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
       }
       e.properties.push_back(std::move(p));
     } else {
-      in.fail(fmt::format("unknown PLY header line '{}'", key.substr(0, 40)));
+      in.fail(fmt::format("unknown PLY header line '{}'", printable(key, 40)));
     }
     in.end_line("a header line");
   }

@@ -37,7 +37,7 @@ void expect(TextCursor& in, std::string_view word) {
   in.skip_empty_lines();
   const std::string_view got = in.token();
   if (got != word)
-    in.fail(fmt::format("expected '{}', got '{}'", word, got.empty() ? in.preview() : std::string(got.substr(0, 40))));
+    in.fail(fmt::format("expected '{}', got '{}'", word, got.empty() ? in.preview() : printable(got, 40)));
 }
 
 PolygonSoup read_ascii(std::string_view data, const std::string& name, mesh_io::ByteProgress& bytes) {
@@ -56,7 +56,7 @@ PolygonSoup read_ascii(std::string_view data, const std::string& name, mesh_io::
         in.next_line();
         break;
       }
-      if (key != "facet") in.fail(fmt::format("expected 'facet' or 'endsolid', got '{}'", key.substr(0, 40)));
+      if (key != "facet") in.fail(fmt::format("expected 'facet' or 'endsolid', got '{}'", printable(key, 40)));
       expect(in, "normal");
       for (int i = 0; i < 3; ++i) in.number("a facet normal component");
       in.end_line("the facet normal");

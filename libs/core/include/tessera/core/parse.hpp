@@ -22,7 +22,8 @@ long long parse_int(std::string_view text, std::string_view what);
 /// Parses `count` comma-separated finite doubles ("1,2,3"); count 0 accepts any number of at least one.
 std::vector<double> parse_doubles(std::string_view text, size_t count, std::string_view what);
 
-/// Parses "WxH" with both positive (at most 65536 each); the message of a rejected size states that range.
+/// Parses "WxH" with both positive, at most 65536 each and at most 2^31 pixels in all (what an Image holds); the
+/// message of a rejected size states the limit it breaks.
 struct Size2 {
   int width, height;
 };
