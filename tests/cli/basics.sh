@@ -92,4 +92,57 @@ stats_of "$tessera" gallery --only 01 -o g2
 cd - >/dev/null
 [ -s "$scratch/gallery/index.html" ] || { echo "no index.html"; exit 1; }
 ls "$scratch"/gallery/*.png >/dev/null
+
+# Issue 24, class 4: a write interrupted by SIGTERM or SIGINT leaves no temporary, and the exit status reports the
+# signal. The writer is frozen (SIGSTOP) as soon as its temporary appears, so the signal always lands mid-write.
+for sig in TERM INT; do
+  rm -rf "$scratch/sig" && mkdir -p "$scratch/sig"
+  # A background job of a non-interactive shell ignores SIGINT; `set -m` gives it default signal handling.
+  set -m
+  "$tessera" mesh subdivide "$scratch/ball.ply" -o "$scratch/sig/out.obj" --scheme loop --levels 4 --quiet &
+  pid=$!
+  set +m
+  for _ in $(seq 2000); do
+    compgen -G "$scratch/sig/out.obj.tmp-*" >/dev/null && break
+    sleep 0.01
+  done
+  kill -STOP "$pid"
+  compgen -G "$scratch/sig/out.obj.tmp-*" >/dev/null || { echo "SIG$sig: the write never started"; exit 1; }
+  kill "-$sig" "$pid"
+  kill -CONT "$pid"
+  status=0
+  wait "$pid" || status=$?
+  expected=$((128 + $(kill -l "$sig")))
+  [ "$status" -eq "$expected" ] || { echo "SIG$sig: exit status $status, expected $expected"; exit 1; }
+  leftover=$(ls -A "$scratch/sig")
+  [ -z "$leftover" ] || { echo "SIG$sig left files behind: $leftover"; exit 1; }
+done
+
+# Issue 24, class 5: clear messages. A folder given where a file is expected says so (was std::bad_alloc or a JSON
+# syntax error), with exit 1.
+mkdir -p "$scratch/folder.obj" "$scratch/folder.svg" "$scratch/folder.nrrd" "$scratch/folder.json" "$scratch/folder.bpt"
+expect_exit 1 "'$scratch/folder.obj': is a directory, expected a file" "$tessera" mesh info "$scratch/folder.obj"
+expect_exit 1 "is a directory, expected a file" "$tessera" canvas render "$scratch/folder.svg" -o "$scratch/x.png"
+expect_exit 1 "is a directory, expected a file" "$tessera" volume info "$scratch/folder.nrrd"
+expect_exit 1 "is a directory, expected a file" "$tessera" volume render sphere:8 --tf "$scratch/folder.json" \
+  -o "$scratch/x.png" --size 8x8
+expect_exit 1 "is a directory, expected a file" "$tessera" render "$scratch/folder.json" -o "$scratch/x.png"
+expect_exit 2 "is actually a directory" "$tessera" patch "$scratch/folder.bpt" -o "$scratch/x.obj"
+# Ranges read as people write them, not the largest double in 309 digits; sizes beyond an image state the limit.
+expect_exit 2 "expected a number > 0, got 0" "$tessera" raster "$scratch/ball.ply" -o "$scratch/x.png" --repeat 0
+[ "$(wc -c <"$scratch/stderr")" -lt 300 ] || { echo "--repeat 0: a long message"; cat "$scratch/stderr"; exit 1; }
+expect_exit 2 "more than the 2147483648 (2^31) an image can hold" "$tessera" fractal mandelbrot -o "$scratch/m.png" \
+  --size 65536x65536
+# Input echoed in messages is escaped (no escape sequence reaches the terminal) and truncated (not a 10 MB line).
+expect_exit 2 'got .1\\x1b\[2J' "$tessera" fractal mandelbrot -o "$scratch/m.png" --size $'1\e[2Jx5'
+grep -q $'\e' "$scratch/stderr" && { echo "an escape byte reached stderr"; exit 1; }
+printf 'v 0 0 0\nv 1 \033[2J 0\n' >"$scratch/esc.obj"
+expect_exit 1 'got .\\x1b\[2J' "$tessera" mesh info "$scratch/esc.obj"
+grep -q $'\e' "$scratch/stderr" && { echo "an escape byte from a mesh reached stderr"; exit 1; }
+head -c 10000000 /dev/zero | tr '\0' '7' >"$scratch/long.csv"
+expect_exit 1 "bytes)" "$tessera" color convert --from rgb --to hsv <"$scratch/long.csv"
+[ "$(wc -c <"$scratch/stderr")" -lt 1000 ] || { echo "a long line echoed in full"; exit 1; }
+# Duplicate keys in a scene are refused, naming the key and where it is.
+printf '{"objects": [{"type": "sphere", "radius": 1, "radius": 2}]}' >"$scratch/dup.json"
+expect_exit 1 "objects\[0\]: duplicate key 'radius'" "$tessera" render "$scratch/dup.json" -o "$scratch/x.png"
 echo "cli basics: ok"
