@@ -209,4 +209,30 @@ expect_error "describes raw files only" bad4.obj volume isosurface sphere:8 --di
 expect_error "dtype describes raw files only" bad5.png volume slice head.mhd --dtype int16 -o bad5.png
 expect_error "outside" bad.png volume slice sphere:8 --slice 9 -o bad.png
 expect_error "SVG's colors are not encoded" bad.svg volume contour sphere:8 --iso 0 --srgb -o bad.svg
+# Issue 24, class 1: a step below half an ulp of the ray distance hung (t += step stopped advancing); class 2: a tiny
+# step rendered black (the per-step opacity rounded to 0) with exit 0. Both are refused with the limit named.
+for mode in --mip ""; do
+  set +e
+  timeout 60 "$tessera" volume render sphere:16 -o step.pfm --size 8x8 $mode --step 1e-9 2> err.txt
+  rc=$?
+  set -e
+  [ "$rc" -eq 1 ] || { echo "--step 1e-9 $mode: expected exit 1, got $rc (124: it hung)"; cat err.txt; exit 1; }
+  grep -q "samples per ray.*at most 1048576" err.txt || { echo "--step 1e-9: unclear message:"; cat err.txt; exit 1; }
+  [ ! -e step.pfm ] || { echo "--step 1e-9 wrote step.pfm"; exit 1; }
+done
+# Class 2: NaN and infinite voxels, and a box beyond the finite numbers, are errors naming the input, never a file.
+/usr/bin/python3 -c "
+import struct
+for name, bad in (('nan.raw', float('nan')), ('inf.raw', float('inf'))):
+    v = [0.0] * 8
+    v[5] = bad  # voxel (1, 0, 1) of 2x2x2: byte offset 20
+    open(name, 'wb').write(struct.pack('<8f', *v))
+"
+for bad in nan inf; do
+  expect_error "$bad.raw: voxel (1, 0, 1) at byte offset 20 is $bad" bad.obj \
+    volume isosurface $bad.raw --dims 2,2,2 --dtype float32 --iso 0.5 -o bad.obj
+  expect_error "$bad.raw: voxel (1, 0, 1)" bad.pfm volume render $bad.raw --dims 2,2,2 --dtype float32 -o bad.pfm --size 8x8
+  expect_error "$bad.raw: voxel (1, 0, 1)" bad.pfm volume slice $bad.raw --dims 2,2,2 --dtype float32 -o bad.pfm
+done
+expect_error "beyond the finite numbers" bad.obj volume isosurface cube.raw "${raw[@]}" --spacing 1e308,1,1 --iso 100 -o bad.obj
 echo "volume CLI ok"
