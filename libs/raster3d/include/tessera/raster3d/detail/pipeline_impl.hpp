@@ -808,10 +808,12 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
     }
   if (records == 0) return;
   const int isa = span_isa();
+  // A depth-only target (a shadow map) has no color rows: null + i would be undefined behaviour (clang's UBSan).
+  const bool has_color = fb.has_color();
   for (int j = tile_y0; j < tile_y1; ++j)
     for (int i = tile_x0; i < tile_x1; i += 16) {
       __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
-      __builtin_prefetch(color.row(height - 1 - j) + i, 1);
+      if (has_color) __builtin_prefetch(color.row(height - 1 - j) + i, 1);
     }
   for (const SetupChunk& chunk : binned) {
     const std::vector<uint32_t>& bin = chunk.bins[tile];
