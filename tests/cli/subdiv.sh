@@ -103,6 +103,30 @@ if "$bin" mesh info --help >/dev/null 2>&1; then
   "$bin" mesh info "$dir/stats.obj" --stats | grep -qx 'faces=384' || fail "mesh info disagrees on the face count"
 fi
 
+# Issue 24, class 2: finite but huge coordinates (1e308) gave nan vertices with --limit (exit 0; Tessera then refused
+# to read the file) and zero normals when the input has normals. Subdivision is affine: the result must be the unit
+# cube's, times 1e308, with the same normals.
+awk '/^v /{printf "v %.17g %.17g %.17g\n", $2*1e308, $3*1e308, $4*1e308} /^f /{print}' "$dir/cube.obj" >"$dir/huge.obj"
+for mesh in cube huge; do
+  { grep '^v ' "$dir/$mesh.obj"; echo "vn 0 0 1"; grep '^f' "$dir/$mesh.obj" | sed 's#\([0-9][0-9]*\)#\1//1#g'; } >"$dir/${mesh}_n.obj"
+done
+"$bin" mesh subdivide "$dir/cube.obj" -o "$dir/unit_limit.obj" --levels 2 --limit --quiet
+"$bin" mesh subdivide "$dir/huge.obj" -o "$dir/huge_limit.obj" --levels 2 --limit --quiet
+"$bin" mesh subdivide "$dir/cube_n.obj" -o "$dir/unit_n.obj" --levels 1 --quiet
+"$bin" mesh subdivide "$dir/huge_n.obj" -o "$dir/huge_n_out.obj" --levels 1 --quiet
+/usr/bin/python3 - "$dir" <<'PY' || fail "huge coordinates: the result is not the scaled unit result"
+import math, sys
+d = sys.argv[1]
+def read(name, key):
+    return [[float(x) for x in line.split()[1:4]] for line in open(f"{d}/{name}") if line.startswith(key + " ")]
+for unit, huge, key, scale in (("unit_limit.obj", "huge_limit.obj", "v", 1e308), ("unit_limit.obj", "huge_limit.obj", "vn", 1),
+                               ("unit_n.obj", "huge_n_out.obj", "v", 1e308), ("unit_n.obj", "huge_n_out.obj", "vn", 1)):
+    a, b = read(unit, key), read(huge, key)
+    assert len(a) == len(b) > 0, (unit, key, len(a), len(b))
+    for p, q in zip(a, b):
+        assert all(math.isfinite(y) and abs(y / scale - x) < 1e-9 for x, y in zip(p, q)), (huge, key, p, q)
+PY
+
 # Errors: exit 1 with a clear message; usage errors exit 2.
 expect_error() {  # CODE PATTERN COMMAND...
   local code=$1 pattern=$2 status=0

@@ -1,11 +1,17 @@
 // tessera mesh subdivide IN -o OUT --scheme midpoint|loop|catmull-clark --levels N [--boundary edge-only|edge-and-corner]
 //                        [--crease-method uniform|chaikin] [--loop-beta notes|loop] [--limit] [--ascii] [--double]
 //                        [--stats]
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <fmt/format.h>
 
 #include "command.hpp"
 #include "commands/mesh_output.hpp"
+#include "tessera/core/error.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/mesh/normals.hpp"
@@ -21,6 +27,23 @@ struct SubdivideArgs {
   SubdivisionOptions options;
   bool limit = false;
 };
+
+/// The area-weighted vertex normals of `mesh`, computed on its positions scaled by a power of two to a largest
+/// coordinate of about 1: area weights are cross products of edges, which overflow (or underflow) for coordinates
+/// beyond about 1e154 (or below 1e-154) and left zero normals; a positive scale does not change a normal.
+std::vector<Vec3> normals_at_unit_scale(const PolyMesh& mesh) {
+  double largest = 0;
+  for (const Vec3& p : mesh.positions) largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+  int e = 0;
+  std::frexp(largest, &e);
+  PolyMesh scaled;
+  scaled.positions.reserve(mesh.positions.size());
+  for (const Vec3& p : mesh.positions) scaled.positions.push_back({std::ldexp(p.x, -e), std::ldexp(p.y, -e), std::ldexp(p.z, -e)});
+  scaled.face_offsets = mesh.face_offsets;
+  scaled.face_vertices = mesh.face_vertices;
+  compute_vertex_normals(scaled, NormalWeighting::Area);
+  return std::move(scaled.normals);
+}
 
 }  // namespace
 
@@ -62,16 +85,21 @@ void setup_mesh_subdivide(CLI::App& mesh, CommonOptions& common) {
     PolyMesh result = timer.time("compute_s", [&] {
       Progress progress("subdivide", options.levels);
       options.progress = &progress;
-      PolyMesh refined = subdivide(input, options);
-      if (args->limit) {
-        LimitSurface limit = limit_surface(refined, options);
-        refined.positions = std::move(limit.positions);
-        refined.normals = std::move(limit.normals);
-      } else if (!input.normals.empty() || !input.corner_normals.empty()) {
-        compute_vertex_normals(refined, NormalWeighting::Area);
+      try {
+        PolyMesh refined = subdivide(input, options);
+        if (args->limit) {
+          LimitSurface limit = limit_surface(refined, options);
+          refined.positions = std::move(limit.positions);
+          refined.normals = std::move(limit.normals);
+        } else if (!input.normals.empty() || !input.corner_normals.empty()) {
+          refined.normals = normals_at_unit_scale(refined);
+        }
+        progress.done();
+        return refined;
+      } catch (const InvalidInput& e) {
+        // A result that is not finite is an error that names the input, never a file.
+        throw InvalidInput(fmt::format("{}: {}", args->input, e.what()));
       }
-      progress.done();
-      return refined;
     });
     timer.time("write_s", [&] { write_mesh_output(args->output, result); });
     if (common.stats) {
