@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/volume/procedural.hpp"
@@ -56,6 +57,14 @@ std::string inflate_exact(std::string_view in, uint64_t size, const std::string&
 }
 
 uint64_t byte_count(const RawLayout& layout) { return checked_voxel_count(layout.dims) * voxel_size(layout.type); }
+
+// Refuses, before the voxel data is read, a volume that needs more than the memory budget: the file's voxel bytes
+// (or the inflated gzip data) and the volume built from them, twice the voxel bytes. Also rejects bad dims.
+void check_voxel_memory(const RawLayout& layout, const std::string& name) {
+  MemoryBudget::check(saturating_product({byte_count(layout), 2}),
+                      fmt::format("{}: reading {}x{}x{} {} voxels", name, layout.dims.x, layout.dims.y, layout.dims.z,
+                                  voxel_type_name(layout.type)));
+}
 
 Vec3 parse_vector3(std::string_view text, const std::string& where) {
   std::string cleaned(text);
@@ -133,7 +142,7 @@ AnyVolume decode_raw(std::string_view bytes, const RawLayout& layout, const std:
 }
 
 AnyVolume read_raw(const std::filesystem::path& path, const RawLayout& layout) {
-  byte_count(layout);  // reject bad dims before reading
+  check_voxel_memory(layout, path.string());  // bad dims and requests over the budget, before reading
   return decode_raw(read_file(path), layout, path.string());
 }
 
@@ -221,6 +230,7 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
     throw InvalidInput(located(name, "the header needs type, dimension: 3 and sizes"));
   if (!have_endian && voxel_size(layout.type) > 1 && encoding != "ascii")
     throw InvalidInput(located(name, "the header needs endian for multi-byte voxels"));
+  check_voxel_memory(layout, name);
   std::string detached;
   std::string_view payload;
   uint64_t payload_offset = pos;
