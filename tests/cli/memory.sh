@@ -72,3 +72,10 @@ rc=0
 "$bin" fractal dimension "$dir/bomb.ppm" --max-memory 4G 2>"$dir/err" || rc=$?
 [ "$rc" = 1 ] && grep -q "decoding 16000x16000 pixels needs about 6.7 GiB, the memory budget is 4.0 GiB" "$dir/err" ||
   fail "16000x16000 PPM: $(cat "$dir/err")"
+
+# Volumes: a header's dims x voxel size x 2 (the voxel bytes read and the volume), before any voxel is read; a
+# procedural name's n^3 floats. The NRRD below has a header only: the budget speaks before "file is too short".
+printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 100 100 100\nencoding: raw\nendian: little\n\n' >"$dir/v.nrrd"
+refuse "$dir/none" "$dir/v.nrrd: reading 100x100x100 float32 voxels" "$bin" volume info "$dir/v.nrrd"
+refuse "$dir/none" "a procedural volume of 100^3 voxels" "$bin" volume info sphere:100
+"$bin" volume info sphere:60 --max-memory 1M | grep -qx 'dims=60,60,60' || fail "sphere:60 under a 1M budget"
