@@ -139,6 +139,9 @@ grep -q $'\e' "$scratch/stderr" && { echo "an escape byte reached stderr"; exit 
 printf 'v 0 0 0\nv 1 \033[2J 0\n' >"$scratch/esc.obj"
 expect_exit 1 'got .\\x1b\[2J' "$tessera" mesh info "$scratch/esc.obj"
 grep -q $'\e' "$scratch/stderr" && { echo "an escape byte from a mesh reached stderr"; exit 1; }
+printf '<svg width="9" height="9"><rect width="5" height="5" fill="\033[2Jred"/></svg>' >"$scratch/esc.svg"
+expect_exit 1 "unknown color '\\\\x1b\[2Jred'" "$tessera" canvas render "$scratch/esc.svg" -o "$scratch/x.png"
+grep -q $'\e' "$scratch/stderr" && { echo "an escape byte from an SVG reached stderr"; exit 1; }
 head -c 10000000 /dev/zero | tr '\0' '7' >"$scratch/long.csv"
 expect_exit 1 "bytes)" "$tessera" color convert --from rgb --to hsv <"$scratch/long.csv"
 [ "$(wc -c <"$scratch/stderr")" -lt 1000 ] || { echo "a long line echoed in full"; exit 1; }

@@ -9,6 +9,7 @@
 
 #include "svg_syntax.hpp"
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/math/matrix_stack.hpp"
 #include "tessera/raster2d/svg.hpp"
 
@@ -132,7 +133,8 @@ class XmlReader {
 
  private:
   [[noreturn]] void fail(size_t offset, const std::string& what) const {
-    throw InvalidInput(located(map_.where(offset), what));
+    // The message quotes the document's own bytes: printable() keeps escape sequences off the terminal.
+    throw InvalidInput(located(map_.where(offset), printable(what, 400)));
   }
 
   bool starts_with(std::string_view s) const { return text_.substr(pos_, s.size()) == s; }
@@ -402,7 +404,8 @@ class DocumentBuilder {
 
  private:
   [[noreturn]] void fail(size_t offset, const std::string& what) const {
-    throw InvalidInput(located(map_.where(offset), what));
+    // The message quotes the document's own bytes: printable() keeps escape sequences off the terminal.
+    throw InvalidInput(located(map_.where(offset), printable(what, 400)));
   }
 
   static const XmlAttribute* find(const XmlEvent& e, std::string_view name) {
