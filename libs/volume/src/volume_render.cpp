@@ -684,7 +684,7 @@ float sample_step(const Volume<float>& volume, const VolumeRenderOptions& option
   if (!(samples <= double(VolumeRenderOptions::kMaxSamplesPerRay)))
     throw InvalidInput(fmt::format("step {} gives {:.3g} samples per ray across the volume's box (diagonal {:.6g}); at "
                                    "most {} are allowed: use a step of at least {:.3g}",
-                                   step, samples, diagonal, VolumeRenderOptions::kMaxSamplesPerRay,
+                                   float(step), samples, diagonal, VolumeRenderOptions::kMaxSamplesPerRay,
                                    diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay)));
   return float(step);
 }
