@@ -172,7 +172,7 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
   HeaderReader in(data, name, true);
   const std::string_view magic = in.token("the magic number P2, P3, P5 or P6");
   if (magic != "P2" && magic != "P3" && magic != "P5" && magic != "P6")
-    in.fail(0, fmt::format("expected the magic number P2, P3, P5 or P6, got '{}'", magic.substr(0, 8)));
+    in.fail(0, fmt::format("expected the magic number P2, P3, P5 or P6, got '{}'", printable(magic, 8)));
   Decoded d;
   d.channels = magic == "P2" || magic == "P5" ? 1 : 3;
   const bool binary = magic == "P5" || magic == "P6";
@@ -217,7 +217,7 @@ float float_from_bytes(const unsigned char* p, bool little_endian) {
 Decoded read_pfm_data(std::string_view data, const std::string& name) {
   HeaderReader in(data, name, false);
   const std::string_view magic = in.token("the magic number PF or Pf");
-  if (magic != "PF" && magic != "Pf") in.fail(0, fmt::format("expected PF or Pf, got '{}'", magic.substr(0, 8)));
+  if (magic != "PF" && magic != "Pf") in.fail(0, fmt::format("expected PF or Pf, got '{}'", printable(magic, 8)));
   Decoded d;
   d.channels = magic == "PF" ? 3 : 1;
   d.width = int(in.integer("width", 1, INT_MAX));
