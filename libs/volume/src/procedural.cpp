@@ -91,7 +91,13 @@ bool make_procedural(const std::string& spec, Volume<float>& out) {
   const auto parts = split(spec, ':');
   if (parts.size() < 2) return false;
   const std::string name(parts[0]);
-  const auto size = [&] { return int(parse_int(parts[1], fmt::format("size of procedural volume '{}'", spec))); };
+  const auto size = [&] {
+    // Checked before the conversion to int: sphere:99999999999 wrapped to another size.
+    const auto n = parse_int(parts[1], fmt::format("size of procedural volume '{}'", spec));
+    if (n < 2 || n > (1 << 30))
+      throw InvalidInput(fmt::format("size of procedural volume '{}' must be in 2..{}", spec, 1 << 30));
+    return int(n);
+  };
   if (parts.size() == 2 && name == "sphere") out = make_sphere(size());
   else if (parts.size() == 2 && name == "torus") out = make_torus(size());
   else if (parts.size() == 2 && name == "gyroid") out = make_gyroid(size());

@@ -145,6 +145,13 @@ TEST(VolumeIo, ProceduralNamesAndRawWithoutDims) {
   const AnyVolume v = read_volume("torus:12");
   EXPECT_EQ(dims_of(v), glm::ivec3(12));
   EXPECT_THROW(read_volume("noise:1"), InvalidInput);
+  // Issue 24: a size beyond int was converted anyway (sphere:99999999999 became 1215752191^3 in the message).
+  try {
+    read_volume("sphere:99999999999");
+    ADD_FAILURE() << "no error";
+  } catch (const InvalidInput& e) {
+    EXPECT_EQ(std::string(e.what()), "size of procedural volume 'sphere:99999999999' must be in 2..1073741824");
+  }
   write_file_atomic(scratch("x.raw"), std::string(8, '\0'));
   EXPECT_THROW(read_volume(scratch("x.raw").string()), InvalidInput);
 }
