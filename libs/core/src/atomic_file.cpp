@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -156,6 +157,15 @@ AtomicFile::AtomicFile(std::filesystem::path target) : state_(std::make_unique<S
   State& s = *state_;
   s.target = std::move(target);
   install_signal_cleanup();
+  // The cleanup signals wait while the file is created and registered, so none can strand it in between.
+  sigset_t cleanup_signals, previous;
+  sigemptyset(&cleanup_signals);
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&cleanup_signals, sig);
+  ::pthread_sigmask(SIG_BLOCK, &cleanup_signals, &previous);
+  struct Restore {
+    const sigset_t& mask;
+    ~Restore() { ::pthread_sigmask(SIG_SETMASK, &mask, nullptr); }
+  } restore{previous};
   // O_EXCL fails on any existing name, a symlink included, and O_NOFOLLOW makes sure no link is ever followed; a
   // collision (a planted file or link) just draws another name.
   for (int attempt = 0; attempt < 16 && s.fd < 0; ++attempt) {
