@@ -14,6 +14,7 @@
 #include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/math/transform.hpp"
@@ -440,6 +441,9 @@ void render_fixed_function(const RasterArgs& a, const PolyMesh& poly, const TriM
 void run_raster(const RasterArgs& a, const CommonOptions& common) {
   // Every option is checked before the mesh is read or anything is drawn.
   const auto [width, height] = a.camera.image_size();
+  // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured).
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 44}),
+                      fmt::format("rasterizing {}x{} pixels", width, height));
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
   if (!a.light_dir.empty() && !a.light_pos.empty())
     throw InvalidInput("--light-dir and --light-pos: give one light, not both");

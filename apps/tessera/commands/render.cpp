@@ -11,6 +11,7 @@
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
@@ -37,10 +38,18 @@ std::string builtin_list() {
   return list;
 }
 
+// Refuses an image over the memory budget. Per pixel: the float image, the depth image and the 8-bit copy (25 bytes
+// measured with either backend).
+void check_render_memory(Size2 size) {
+  MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 28}),
+                      fmt::format("rendering {}x{} pixels", size.width, size.height));
+}
+
 void run_render(const RenderArgs& a, const CommonOptions& common) {
   // Every option and the output format are checked before the scene is built or anything is written.
   Size2 size{0, 0};
   if (!a.size.empty()) size = parse_size(a.size, "--size");
+  check_render_memory(size);
   if (a.spp && (*a.spp < 1 || *a.spp > SceneImage::kMaxSamples))
     throw InvalidInput(
         fmt::format("--spp: expected a number of samples in [1, {}], got {}", SceneImage::kMaxSamples, *a.spp));
@@ -60,6 +69,7 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   const Scene scene = timer.time("read_s", [&] { return load_scene_or_builtin(a.scene); });
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
+  check_render_memory({settings.width, settings.height});  // a scene file's own size
   if (a.spp) settings.samples = *a.spp;
   if (a.depth) settings.max_depth = *a.depth;
   settings.seed = a.seed;

@@ -11,6 +11,7 @@
 #include "tessera/color/colormap.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/convert.hpp"
@@ -44,6 +45,9 @@ Vec3f shade_ray(const TraceArgs& a, const MeshAccel& accel, const TriMesh& mesh,
 
 void run_trace(const TraceArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
+  // Per pixel: the float image, the depth image and the 8-bit copy (22 bytes measured).
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 24}),
+                      fmt::format("tracing {}x{} pixels", width, height));
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
   PhaseTimer timer;
   const PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
