@@ -79,3 +79,25 @@ printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 100 100 100\nencoding: raw\n
 refuse "$dir/none" "$dir/v.nrrd: reading 100x100x100 float32 voxels" "$bin" volume info "$dir/v.nrrd"
 refuse "$dir/none" "a procedural volume of 100^3 voxels" "$bin" volume info sphere:100
 "$bin" volume info sphere:60 --max-memory 1M | grep -qx 'dims=60,60,60' || fail "sphere:60 under a 1M budget"
+
+# Rendered images: width x height x bytes per pixel (raster 44, trace 24, render 28), before the mesh or scene is read.
+cube=$(dirname "$0")/../data/cube.obj
+refuse "$dir/r.png" "rasterizing 300x300 pixels" "$bin" raster "$cube" -o "$dir/r.png" --size 300x300
+refuse "$dir/t.png" "tracing 300x300 pixels" "$bin" trace "$cube" -o "$dir/t.png" --size 300x300
+refuse "$dir/s.png" "rendering 300x300 pixels" "$bin" render cornell -o "$dir/s.png" --size 300x300
+"$bin" render cornell -o "$dir/s.png" --size 100x100 --spp 1 --max-memory 1M --quiet
+[ -s "$dir/s.png" ] || fail "render 100x100 under a 1M budget wrote nothing"
+# The issue's 4 GB container: 20000x20000 is refused with a message, not killed by the kernel.
+rc=0
+"$bin" render cornell -o "$dir/s.png" --size 20000x20000 --max-memory 4G 2>"$dir/err" || rc=$?
+[ "$rc" = 1 ] && grep -q "rendering 20000x20000 pixels needs about 10.4 GiB, the memory budget is 4.0 GiB" "$dir/err" ||
+  fail "render 20000x20000: $(cat "$dir/err")"
+
+# What the estimates miss ends as a message naming the command, never a bare std::bad_alloc: a 1 GiB address-space
+# limit with the budget raised past it.
+rc=0
+(ulimit -v 1048576 && exec "$bin" canvas render "$dir/bomb.svg" -o "$dir/oom.png" --size 20000x20000 --max-memory 1T) \
+  2>"$dir/err" || rc=$?
+[ "$rc" = 1 ] && grep -q "^tessera: error: out of memory while running 'tessera canvas render'" "$dir/err" ||
+  fail "bad_alloc: expected exit 1 and 'out of memory while running', got $rc: $(cat "$dir/err")"
+[ ! -e "$dir/oom.png" ] || fail "bad_alloc left $dir/oom.png"
