@@ -10,6 +10,7 @@
 #include "command.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/curves/figure.hpp"
 #include "tessera/image/image_io.hpp"
@@ -36,6 +37,9 @@ Bezier2 parse_curve(const std::string& text) {
 
 void run_curve(const CurveOptions& opt, const CommonOptions& common) {
   const Size2 size = parse_size(opt.size, "--size");
+  // Per pixel: the float RGBA picture (16 bytes) and the 8-bit copy a writer makes (4), with a float to spare.
+  MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
+                      fmt::format("drawing {}x{} pixels", size.width, size.height));
   CurveFigure figure{.width = size.width, .height = size.height, .curves = {parse_curve(opt.points)}};
   figure.construction = opt.t;
   figure.show_split = opt.split;

@@ -10,6 +10,7 @@
 
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/fractal/coloring.hpp"
 #include "tessera/fractal/dimension.hpp"
@@ -22,6 +23,15 @@
 
 namespace tessera::cli {
 namespace {
+
+/// --size, refused when the picture is over the memory budget: per pixel the float RGBA picture (16 bytes), the 8-bit
+/// copy a writer makes (4) and a float of working data (4).
+Size2 picture_size(const std::string& text) {
+  const Size2 size = parse_size(text, "--size");
+  MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
+                      fmt::format("drawing {}x{} pixels", size.width, size.height));
+  return size;
+}
 
 enum class SierpinskiShape { Carpet, Triangle };
 enum class KochShape { Snowflake, Curve };
@@ -94,7 +104,7 @@ void print_all(StatRows rows, const StatRows& picture, const PhaseTimer& timer) 
 }
 
 ComplexView complex_view(const FractalOptions& o) {
-  const Size2 size = parse_size(o.size, "--size");
+  const Size2 size = picture_size(o.size);
   const auto center = parse_doubles(o.center, 2, "--center");
   return ComplexView{{center[0], center[1]}, o.scale, size.width, size.height};
 }
@@ -198,7 +208,7 @@ void add_line_width(CLI::App& sub, FractalOptions& o) {
 }
 
 PictureFrame square_frame(const FractalOptions& o) {
-  const Size2 size = parse_size(o.size, "--size");
+  const Size2 size = picture_size(o.size);
   return PictureFrame{size.width, size.height, o.margin, {0, 0, 1, 1}};
 }
 
@@ -206,7 +216,7 @@ PictureFrame square_frame(const FractalOptions& o) {
 /// error, like a malformed --margin.
 void finish_figure(const FractalOptions& o, const CommonOptions& common, const std::function<ImageRGBA()>& draw,
                    size_t elements, double measure, const char* measure_name, double dimension) {
-  const Size2 size = parse_size(o.size, "--size");
+  const Size2 size = picture_size(o.size);
   if (2 * o.margin >= std::min(size.width, size.height))
     throw CLI::ValidationError("--margin", fmt::format("a margin of {} pixels leaves nothing of a {}x{} picture",
                                                        o.margin, size.width, size.height));
@@ -276,7 +286,7 @@ void setup_koch(CLI::App& fractal, CommonOptions& common) {
   sub->callback([o, &common] {
     const bool closed = o->koch == KochShape::Snowflake;
     const std::vector<Vec2> points = closed ? koch_snowflake(o->depth) : koch_curve(o->depth);
-    const Size2 size = parse_size(o->size, "--size");
+    const Size2 size = picture_size(o->size);
     DrawStyle style;
     style.line_width = o->line_width;
     style.antialias = true;
@@ -362,7 +372,7 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       for (size_t i = 0; i < heights.size(); ++i)
         outline.push_back({double(i) / double(heights.size() - 1), heights[i]});
       outline.push_back({1.0, -0.6}), outline.push_back({0.0, -0.6});
-      const Size2 size = parse_size(o->size, "--size");
+      const Size2 size = picture_size(o->size);
       DrawStyle style;
       style.ink = {0.35f, 0.3f, 0.25f}, style.paper = {0.85f, 0.92f, 1.0f}, style.antialias = true;
       const ImageRGBA picture = timer.time("compute_s", [&] {

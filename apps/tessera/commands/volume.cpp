@@ -8,6 +8,7 @@
 #include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
@@ -320,6 +321,9 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     VolumeRenderOptions o;
     const auto size = a->camera.image_size();
+    // Per pixel: the float RGBA picture (16 bytes), the 8-bit copy a writer makes (4) and a float to spare.
+    MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
+                        fmt::format("rendering {}x{} pixels", size.width, size.height));
     o.width = size.width;
     o.height = size.height;
     o.step = a->step;
