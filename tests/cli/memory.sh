@@ -101,3 +101,11 @@ rc=0
 [ "$rc" = 1 ] && grep -q "^tessera: error: out of memory while running 'tessera canvas render'" "$dir/err" ||
   fail "bad_alloc: expected exit 1 and 'out of memory while running', got $rc: $(cat "$dir/err")"
 [ ! -e "$dir/oom.png" ] || fail "bad_alloc left $dir/oom.png"
+
+# The other pictures with a --size: fractals, curves, volume renderings (24 bytes per pixel).
+refuse "$dir/m.png" "drawing 300x300 pixels" "$bin" fractal mandelbrot -o "$dir/m.png" --size 300x300
+refuse "$dir/k.png" "drawing 300x300 pixels" "$bin" fractal koch -o "$dir/k.png" --size 300x300
+refuse "$dir/c.png" "drawing 300x300 pixels" "$bin" curve --points 40,260,80,40,260,40 -o "$dir/c.png" --size 300x300
+refuse "$dir/v.png" "rendering 300x300 pixels" "$bin" volume render sphere:16 -o "$dir/v.png" --size 300x300
+"$bin" fractal mandelbrot -o "$dir/m.png" --size 100x100 --max-memory 1M --quiet
+[ -s "$dir/m.png" ] || fail "fractal mandelbrot 100x100 under a 1M budget wrote nothing"
