@@ -53,7 +53,8 @@ printf '0.3,0.3,1\n0.3,0,1\n' | convert --from xyy --to rgb >/dev/null 2>"$scrat
   { echo "xyY row: exit $status"; cat "$scratch/err"; exit 1; }
 # --values is an option: a malformed one is a usage error (exit 2) that says what was expected.
 for case in "cmyk 0,0,0 expected 4 comma-separated numbers" "rgb 1,x,0 expected 3 comma-separated numbers" \
-            "xyy 0.3,0,1 --values: "; do
+            "xyy 0.3,0,1 --values: " "rgb 5,-1,0 rgb components must be in \[0, 1\]" \
+            "hsv 30,1.5,1 hsv components must be in \[0, 1\] (but the hue)" "cmyk 0,0,0,2 cmyk components must be"; do
   read -r model values pattern <<<"$case"
   status=0
   convert --from "$model" --to rgb --values "$values" >/dev/null 2>"$scratch/err" || status=$?

@@ -25,14 +25,28 @@ struct ConvertOptions {
   HueUnit hue = HueUnit::Degrees;
 };
 
-// Parses one row of component_count(model) comma-separated numbers; `where` names it in the error.
+// Whether the model's components (but a hue, which wraps) all lie in [0, 1]: RGB, CMY(K), sRGB, HSV, HLS. YIQ's
+// chroma is signed and XYZ/xyY are unbounded, so they are not checked.
+bool unit_range(ColorModel model) {
+  return model != ColorModel::Yiq && model != ColorModel::Xyz && model != ColorModel::Xyy;
+}
+
+// Parses one row of component_count(model) comma-separated numbers, each in the model's range; `where` names it in the
+// error.
 std::vector<double> parse_row(const std::string& row, ColorModel model, const std::string& where) {
   const size_t n = size_t(component_count(model));
+  std::vector<double> values;
   try {
-    return parse_doubles(row, n, where);
+    values = parse_doubles(row, n, where);
   } catch (const InvalidInput&) {
     throw InvalidInput(fmt::format("{}: expected {} comma-separated numbers, got '{}'", where, n, printable(row)));
   }
+  if (unit_range(model))
+    for (size_t i = 0; i < n; ++i)
+      if (int(i) != hue_index(model) && !(values[i] >= 0 && values[i] <= 1))
+        throw InvalidInput(fmt::format("{}: {} components must be in [0, 1]{}, got '{}'", where, model_name(model),
+                                       hue_index(model) >= 0 ? " (but the hue)" : "", printable(row)));
+  return values;
 }
 
 // One number with up to 9 significant digits; magnitudes below 1e-12 (round-off around 0) print as 0.
