@@ -45,7 +45,7 @@ for words in "mesh subdivide" "mesh smooth" "mesh normals" "raster" "trace" "ren
 done
 # Floating-point options refuse NaN and infinities (CLI11's range checks let NaN through).
 expect_exit 2 "expected a finite number, got 'nan'" "$tessera" volume render sphere:8 -o "$scratch/nan.png" --fovy nan
-expect_exit 2 "expected a finite number, got 'inf'" "$tessera" volume render sphere:8 -o "$scratch/inf.png" --fovy inf
+expect_exit 2 "expected a finite number, got 'inf'" "$tessera" volume render sphere:8 -o "$scratch/inf.png" --step inf
 [ ! -e "$scratch/nan.png" ] && [ ! -e "$scratch/inf.png" ] || { echo "a picture was written"; exit 1; }
 expect_exit 1 "tessera: error:" "$tessera" gallery -o /proc/forbidden/gallery
 
