@@ -361,13 +361,7 @@ PY
 # --samples: a white half plane x < 0 seen orthographically on 11 pixels across 2 units: the edge runs through the
 # centers of column 5, which N samples cover by 1/2 within 1/N (stratified in 1/N strata along x); columns left of it
 # stay white, right of it black. --samples 1 is the unsampled picture, byte for byte.
-cat > half.obj <<'OBJ'
-v -5 -5 0
-v 0 -5 0
-v 0 5 0
-v -5 5 0
-f 1 2 3 4
-OBJ
+cp "$data/half_plane.obj" half.obj
 aa=(--view front --ortho --ortho-size 2 --center 0,0,0 --size 11x11 --shading unlit --color 1,1,1)
 "$tessera" raster half.obj -o aa_default.png "${aa[@]}"
 "$tessera" raster half.obj -o aa_1.png "${aa[@]}" --samples 1

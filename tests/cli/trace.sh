@@ -4,6 +4,7 @@
 set -euo pipefail
 tessera="$1"
 scratch="$2"
+data="$(cd "$(dirname "$0")/../data" && pwd)"
 rm -rf "$scratch" && mkdir -p "$scratch"
 cd "$scratch"
 
@@ -122,13 +123,7 @@ EOF
 # --samples: a square x < 0 seen orthographically on 11 pixels across 2 units (--shade normal: blue 1 on a black
 # background): the edge x = 0 runs through the centers of column 5, covered by 1/2 within 1/N with N stratified
 # samples. --samples 1 is the picture without the option, byte for byte.
-cat > half.obj <<'OBJ'
-v -5 -5 0
-v 0 -5 0
-v 0 5 0
-v -5 5 0
-f 1 2 3 4
-OBJ
+cp "$data/half_plane.obj" half.obj
 aa=(--eye 0,0,5 --center 0,0,0 --ortho --ortho-size 2 --size 11x11 --shade normal --background black)
 "$tessera" trace half.obj -o aa_default.png "${aa[@]}"
 "$tessera" trace half.obj -o aa_1.png "${aa[@]}" --samples 1
