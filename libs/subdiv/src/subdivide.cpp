@@ -7,6 +7,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "scale.hpp"
 #include "sharpness.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
@@ -391,6 +392,14 @@ PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options) {
   const bool quads = options.scheme == SubdivisionScheme::catmull_clark ||
                      (options.scheme == SubdivisionScheme::midpoint && !mesh.is_triangle_mesh());
   check_memory(mesh, options, quads);
+  if (const int e = detail::rescale_exponent(mesh.positions)) {
+    PolyMesh scaled = mesh;
+    detail::scale_by_power_of_two(scaled.positions, -e);
+    PolyMesh out = subdivide(scaled, options);
+    detail::scale_by_power_of_two(out.positions, e);
+    detail::require_finite(out.positions, "subdivide", "vertex");
+    return out;
+  }
   // Only the cage's tables are built from its faces; every later level's are derived from its parent's.
   auto topology = std::make_unique<TopologyTables>(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
   PolyMesh current;  // the level `topology` describes from level 1 on
@@ -403,6 +412,10 @@ PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options) {
     current = std::move(child);  // the vectors keep their storage, which the new tables view
     if (options.progress) options.progress->advance();
   }
+  detail::require_finite(current.positions, "subdivide", "vertex");
+  detail::require_finite(current.uvs, "subdivide", "texture coordinate");
+  detail::require_finite(current.corner_uvs, "subdivide", "face-varying texture coordinate");
+  detail::require_finite(current.colors, "subdivide", "color");
   return current;
 }
 
