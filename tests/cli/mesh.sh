@@ -5,6 +5,7 @@
 set -euo pipefail
 tessera=$1
 dir=$2
+cli_dir="$(cd "$(dirname "$0")" && pwd)"  # obj_corners.py
 rm -rf "$dir"
 mkdir -p "$dir"
 cd "$dir"
@@ -131,23 +132,12 @@ if [ -f "$spot" ]; then
   head -1 spot.off | grep -qx "STOFF" || fail "OFF keeps the uvs (STOFF)"
   "$tessera" mesh convert spot.ply -o spot_from_ply.obj
   "$tessera" mesh convert spot.off -o spot_from_off.obj
-  /usr/bin/python3 - "$spot" spot_from_ply.obj spot_from_off.obj <<'EOF'
+  PYTHONPATH="$cli_dir" /usr/bin/python3 - "$spot" spot_from_ply.obj spot_from_off.obj <<'EOF'
 import sys
-def corners(path):
-    v, vt, out = [], [], []
-    for line in open(path):
-        w = line.split()
-        if not w: continue
-        if w[0] == 'v': v.append(tuple(map(float, w[1:4])))
-        elif w[0] == 'vt': vt.append(tuple(map(float, w[1:3])))
-        elif w[0] == 'f':
-            for c in w[1:]:
-                i = c.split('/')
-                out.append(v[int(i[0]) - 1] + vt[int(i[1]) - 1])
-    return out
-ref = corners(sys.argv[1])
+from obj_corners import obj_corners
+ref = obj_corners(sys.argv[1])
 for path in sys.argv[2:]:
-    got = corners(path)
+    got = obj_corners(path)
     assert len(got) == len(ref), path
     worst = max(abs(a - b) for r, g in zip(ref, got) for a, b in zip(r, g))
     assert worst < 1e-6, f"{path}: a corner's position or uv moved by {worst}"

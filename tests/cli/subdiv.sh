@@ -5,6 +5,7 @@
 set -euo pipefail
 bin=$1
 dir=$2
+cli_dir="$(cd "$(dirname "$0")" && pwd)"  # obj_corners.py
 mkdir -p "$dir"
 
 fail() {
@@ -80,21 +81,13 @@ OBJ
 "$bin" mesh subdivide "$dir/plane.obj" -o "$dir/plane_sub.obj" --scheme midpoint --levels 2 --quiet
 expect_faces "$dir/plane_sub.obj" 32
 [ "$(grep -c '^vn ' "$dir/plane_sub.obj")" -gt 0 ] || fail "normals are dropped"
-/usr/bin/python3 - "$dir/plane_sub.obj" <<'EOF'
+PYTHONPATH="$cli_dir" /usr/bin/python3 - "$dir/plane_sub.obj" <<'EOF'
 import sys
-v, vt, n = [], [], 0
-for line in open(sys.argv[1]):
-    w = line.split()
-    if not w: continue
-    if w[0] == 'v': v.append(tuple(map(float, w[1:4])))
-    elif w[0] == 'vt': vt.append(tuple(map(float, w[1:3])))
-    elif w[0] == 'f':
-        for c in w[1:]:
-            i = c.split('/')
-            p, t = v[int(i[0]) - 1], vt[int(i[1]) - 1]
-            assert abs(t[0] - p[0] / 2) < 1e-12 and abs(t[1] - p[1]) < 1e-12, (p, t)
-            n += 1
-assert n == 128, n
+from obj_corners import obj_corners
+corners = obj_corners(sys.argv[1])
+for x, y, z, u, v in corners:
+    assert abs(u - x / 2) < 1e-12 and abs(v - y) < 1e-12, (x, y, u, v)
+assert len(corners) == 128, len(corners)
 EOF
 "$bin" mesh subdivide "$dir/plane.obj" -o "$dir/plane_cc.ply" --levels 1 --quiet 2>"$dir/err.txt"
 [ ! -s "$dir/err.txt" ] || fail "PLY holds the uvs: no warning expected: $(cat "$dir/err.txt")"
