@@ -254,6 +254,14 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
     inner.header_skip = 0;
     return decode_raw(raw, inner, data_name);
   }
+  // Data beyond what the sizes and type say means the header does not describe the file (a wrong type or size): refused
+  // rather than read in part. (A short file is decode_raw's error.)
+  const uint64_t need = byte_count(layout);
+  if (layout.header_skip <= payload.size() && payload.size() - layout.header_skip > need)
+    throw InvalidInput(fmt::format("{}: the data holds {} bytes from byte offset {}, more than the {} bytes that the "
+                                   "header's sizes and type say",
+                                   data_name, payload.size() - layout.header_skip, payload_offset + layout.header_skip,
+                                   need));
   try {
     return decode_raw(payload, layout, data_name);
   } catch (const InvalidInput& e) {

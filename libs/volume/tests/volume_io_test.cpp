@@ -81,6 +81,10 @@ TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
             std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1000 1000 1000\nencoding: gzip\n\nxx").find("cannot hold"),
             std::string::npos);
+  // Issue 24, class 5: data longer than the header says was read in part, silently.
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1 1 2\nencoding: raw\n\nabc")
+                .find("h.nrrd: the data holds 3 bytes from byte offset 62, more than the 2 bytes"),
+            std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: double\n").find("h.nrrd:2"), std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"), std::string::npos);
   EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
