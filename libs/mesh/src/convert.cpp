@@ -5,20 +5,13 @@
 #include <unordered_map>
 
 #include "tessera/mesh/triangulate.hpp"
+#include "bit_key.hpp"
 
 namespace tessera {
 namespace {
 
 /// A split vertex: the original vertex and the bit patterns of its corner's uv and normal.
 using CornerKey = std::array<uint64_t, 6>;
-
-struct CornerKeyHash {
-  size_t operator()(const CornerKey& k) const {
-    uint64_t h = 0x9E3779B97F4A7C15ULL;
-    for (uint64_t w : k) h = (h ^ w) * 0xBF58476D1CE4E5B9ULL, h ^= h >> 31;
-    return size_t(h);
-  }
-};
 
 }  // namespace
 
@@ -33,7 +26,7 @@ PolyMesh split_seams(const PolyMesh& mesh) {
   out.face_offsets = mesh.face_offsets;
   out.face_vertices.reserve(mesh.face_vertices.size());
   std::vector<uint32_t> first_copy(nv, UINT32_MAX);
-  std::unordered_map<CornerKey, uint32_t, CornerKeyHash> split;
+  std::unordered_map<CornerKey, uint32_t, detail::BitKeyHash> split;
   split.reserve(mesh.face_vertices.size());
   for (size_t c = 0; c < mesh.face_vertices.size(); ++c) {
     const uint32_t v = mesh.face_vertices[c];

@@ -6,6 +6,7 @@
 #include <ostream>
 #include <unordered_map>
 
+#include "bit_key.hpp"
 #include "io_common.hpp"
 #include "tessera/mesh/mesh_io.hpp"
 
@@ -165,13 +166,7 @@ void resolve_refs(const CornerRefs& refs, const std::vector<T>& items, const Pol
 
 /// The bit patterns of a uv or normal, for writing each distinct value once.
 using BitKey = std::array<uint64_t, 3>;
-struct BitKeyHash {
-  size_t operator()(const BitKey& k) const {
-    uint64_t h = 0x9E3779B97F4A7C15ULL;
-    for (uint64_t w : k) h = (h ^ w) * 0xBF58476D1CE4E5B9ULL, h ^= h >> 31;
-    return size_t(h);
-  }
-};
+using detail::BitKeyHash;
 
 }  // namespace
 
