@@ -5,6 +5,7 @@
 #include "tessera/color/color.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parse.hpp"
 
 namespace tessera {
 namespace {
@@ -59,7 +60,7 @@ std::string_view model_name(ColorModel model) { return info(model).name; }
 ColorModel parse_color_model(std::string_view name) {
   for (ColorModel m : kColorModels)
     if (info(m).name == name) return m;
-  throw InvalidInput(fmt::format("unknown color model '{}' (expected one of {})", name, model_list()));
+  throw InvalidInput(fmt::format("unknown color model '{}' (expected one of {})", printable(name), model_list()));
 }
 
 int component_count(ColorModel model) { return info(model).components; }
@@ -111,7 +112,7 @@ HueUnit parse_hue_unit(std::string_view name) {
   if (name == "degrees") return HueUnit::Degrees;
   if (name == "turns") return HueUnit::Turns;
   if (name == "radians") return HueUnit::Radians;
-  throw InvalidInput(fmt::format("unknown hue unit '{}' (expected degrees, turns or radians)", name));
+  throw InvalidInput(fmt::format("unknown hue unit '{}' (expected degrees, turns or radians)", printable(name)));
 }
 
 }  // namespace tessera

@@ -304,6 +304,15 @@ TEST(ColorModels, NamesCountsAndErrors) {
   } catch (const InvalidInput& e) {
     EXPECT_STREQ(e.what(), "unknown color model 'lab' (expected one of rgb, cmy, cmyk, hsv, hls, yiq, xyz, xyy, srgb)");
   }
+  // Names are quoted through printable(): an escape sequence in --from/--to/--hue never reaches the terminal.
+  for (const auto& parse :
+       {+[](std::string_view s) { parse_color_model(s); }, +[](std::string_view s) { parse_hue_unit(s); }})
+    try {
+      parse("\x1b[2Jlab");
+      FAIL() << "no exception";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("'\\x1b[2Jlab'"), std::string::npos) << e.what();
+    }
   const std::vector<double> cmyk = convert(ColorModel::Rgb, ColorModel::Cmyk, std::vector<double>{1.0, 0.5, 0.0});
   ASSERT_EQ(cmyk.size(), 4u);
   EXPECT_EQ(cmyk, (std::vector<double>{0.0, 0.5, 1.0, 0.0}));

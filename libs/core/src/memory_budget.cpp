@@ -104,7 +104,7 @@ uint64_t parse_memory_size(std::string_view text, std::string_view what) {
     return InvalidInput(
         fmt::format("{}: expected a memory size such as 512M or 4G (suffixes K, M, G, T; 1K = 1024), "
                     "got '{}'",
-                    what, text));
+                    what, printable(text)));
   };
   double number = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + digits, number);

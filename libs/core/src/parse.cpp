@@ -36,7 +36,12 @@ std::string printable(std::string_view text, size_t max_chars) {
     if (len > 1 && i + len <= text.size()) {
       for (size_t k = 1; k < len; ++k)
         if ((static_cast<unsigned char>(text[i + k]) & 0xc0) != 0x80) len = 0;
-      if (c == 0xc2 && static_cast<unsigned char>(text[i + 1]) < 0xa0) len = 0;
+      // C1 controls, and the forms RFC 3629 forbids (overlong, surrogates, past U+10FFFF): a lenient terminal could
+      // decode the overlong E0 80 9B as ESC.
+      const auto c1 = static_cast<unsigned char>(text[i + 1]);
+      if ((c == 0xc2 && c1 < 0xa0) || (c == 0xe0 && c1 < 0xa0) || (c == 0xed && c1 >= 0xa0) ||
+          (c == 0xf0 && c1 < 0x90) || (c == 0xf4 && c1 >= 0x90))
+        len = 0;
     } else {
       len = 0;
     }

@@ -22,6 +22,12 @@ TEST(MemoryBudget, ParsesSizesWithBinarySuffixes) {
   EXPECT_EQ(parse_memory_size("1000000", "--max-memory"), 1000000u);
   for (const char* bad : {"", "M", "0", "0M", "-1G", "4X", "1e3", "4 G G", "1.2.3M", "99999999999T"})
     EXPECT_THROW(parse_memory_size(bad, "--max-memory"), InvalidInput) << bad;
+  try {  // the message quotes the value through printable(): no escape sequence reaches the terminal
+    parse_memory_size("\x1b[2J4G", "--max-memory");
+    FAIL() << "no exception";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("got '\\x1b[2J4G'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MemoryBudget, ParsesCgroupAndMeminfoText) {

@@ -43,6 +43,13 @@ TEST(Parse, PrintableEscapesControlBytesAndTruncates) {
   EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // valid UTF-8 stays readable
   EXPECT_EQ(printable("\xc2\x9b"), "\\xc2\\x9b");                          // a C1 control (CSI) does not
   EXPECT_EQ(printable("\xc3"), "\\xc3");                                    // nor a cut sequence
+  // Forms RFC 3629 forbids are escaped byte by byte: an overlong ESC (E0 80 9B, which a lenient terminal decodes as
+  // ESC), a surrogate (U+D800) and a code point past U+10FFFF; the smallest valid 3- and 4-byte forms stay.
+  EXPECT_EQ(printable("\xe0\x80\x9b[2J"), "\\xe0\\x80\\x9b[2J");
+  EXPECT_EQ(printable("\xed\xa0\x80"), "\\xed\\xa0\\x80");
+  EXPECT_EQ(printable("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");
+  EXPECT_EQ(printable("\xf0\x8f\xbf\xbf"), "\\xf0\\x8f\\xbf\\xbf");
+  EXPECT_EQ(printable("\xe0\xa0\x80 \xf0\x90\x80\x80"), "\xe0\xa0\x80 \xf0\x90\x80\x80");
   const std::string line(10'000'000, '7');
   EXPECT_EQ(printable(line, 5), "77777... (10000000 bytes)");
   EXPECT_LT(printable(line).size(), 100u);

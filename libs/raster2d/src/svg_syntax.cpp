@@ -476,7 +476,7 @@ Vec4f parse_svg_color(std::string_view text) {
       ++digits;
     }
     if (digits != 3 && digits != 6)
-      s.fail_at(start, fmt::format("expected a color #rgb or #rrggbb, got '{}'", trim(text)));
+      s.fail_at(start, fmt::format("expected a color #rgb or #rrggbb, got '{}'", printable(trim(text))));
     s.expect_end();
     if (digits == 3)  // #abc is #aabbcc
       rgb = ((rgb & 0xf00) << 12) | ((rgb & 0xf00) << 8) | ((rgb & 0xf0) << 8) | ((rgb & 0xf0) << 4) |
@@ -508,7 +508,7 @@ Vec4f parse_svg_color(std::string_view text) {
                                    [](const svg::NamedColor& c, const std::string& n) { return c.name < n; });
   if (name.empty() || it == std::end(svg::kNamedColors) || it->name != name)
     s.fail_at(start, fmt::format("unknown color '{}' (expected #rgb, #rrggbb, rgb(r, g, b), rgba(r, g, b, a) or a "
-                                 "CSS color keyword)", trim(text)));
+                                 "CSS color keyword)", printable(trim(text))));
   s.expect_end();
   return svg::from_rgb24(it->rgb);
 }

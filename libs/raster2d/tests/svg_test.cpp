@@ -219,6 +219,9 @@ TEST(SvgColor, Syntaxes) {
   EXPECT_THAT(error_of([] { parse_svg_color("#12"); }), HasSubstr("expected a color #rgb or #rrggbb, got '#12'"));
   EXPECT_THAT(error_of([] { parse_svg_color("rgb(1,2)"); }), HasSubstr("expected ','"));
   EXPECT_THAT(error_of([] { parse_svg_color("bleu"); }), HasSubstr("unknown color 'bleu'"));
+  // The CLI's --color values reach these messages: control bytes are escaped (printable()).
+  EXPECT_THAT(error_of([] { parse_svg_color("#\x1b[2J"); }), HasSubstr("got '#\\x1b[2J'"));
+  EXPECT_THAT(error_of([] { parse_svg_color("re\x1b[2Jd"); }), HasSubstr("unknown color 're\\x1b[2Jd'"));
   EXPECT_THAT(error_of([] { parse_svg_color("red blue"); }), HasSubstr("unexpected 'blue' after the value"));
 }
 
