@@ -18,6 +18,8 @@ test_packages=(
   libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
   # a virtual X server: Debian's VTK needs a display for its volume ray-cast mapper (bench_volume under xvfb-run)
   xvfb xauth
+  # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang
+  clang libclang-rt-14-dev
 )
 
 case "${1:-all}" in
