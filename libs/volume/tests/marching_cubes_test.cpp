@@ -9,6 +9,7 @@
 #include <set>
 
 #include "reference.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -130,6 +131,38 @@ TEST(MarchingCubes, SphereIsClosedGenusZeroWithOutwardNormals) {
     EXPECT_GT(glm::dot(m.normals[i], glm::normalize(m.positions[i])), 0.99);
     EXPECT_NEAR(glm::length(m.positions[i]), 0.7, 0.01);
   }
+}
+
+// Issue 24, class 3: the output was allocated whatever its size. Pass 1 counts it exactly, and the budget is checked
+// there: three times the arrays' bytes (a PolyMesh: 24-byte positions and normals, 3 indices and an offset per triangle;
+// an IsoSurface: 12-byte vectors and 3 indices), refused one byte below and accepted at the bound.
+TEST(MarchingCubes, OutputOverTheMemoryBudgetIsRefusedAfterCounting) {
+  const auto v = make_sphere(40, 0.7);
+  const PolyMesh mesh = marching_cubes(v, {});
+  const uint64_t vertices = mesh.positions.size(), triangles = mesh.face_count();
+  ASSERT_GT(triangles, 1000u);
+  const uint64_t poly_bytes = 3 * (vertices * (24 + 24) + triangles * (12 + 4));
+  const uint64_t iso_bytes = 3 * (vertices * (12 + 12) + triangles * 12);
+  const uint64_t plain_bytes = 3 * (vertices * 24 + triangles * (12 + 4));  // no normals
+  const auto refused = [](uint64_t budget, const auto& run) {
+    MemoryBudget::set_limit(budget);
+    std::string message = "no error";
+    try {
+      run();
+    } catch (const MemoryBudgetError& e) {
+      message = e.what();
+    }
+    MemoryBudget::set_limit(0);
+    return message;
+  };
+  const std::string what = fmt::format("marching cubes: an iso-surface of {} triangles and {} vertices needs about ",
+                                       triangles, vertices);
+  EXPECT_NE(refused(poly_bytes - 1, [&] { marching_cubes(v, {}); }).find(what), std::string::npos);
+  EXPECT_EQ(refused(poly_bytes, [&] { marching_cubes(v, {}); }), "no error");
+  EXPECT_NE(refused(iso_bytes - 1, [&] { extract_iso_surface(v, {}); }).find(what), std::string::npos);
+  EXPECT_EQ(refused(iso_bytes, [&] { extract_iso_surface(v, {}); }), "no error");
+  EXPECT_NE(refused(plain_bytes - 1, [&] { marching_cubes(v, {.normals = false}); }).find(what), std::string::npos);
+  EXPECT_EQ(refused(plain_bytes, [&] { marching_cubes(v, {.normals = false}); }), "no error");
 }
 
 TEST(MarchingCubes, EachCutEdgeGivesOneVertex) {
