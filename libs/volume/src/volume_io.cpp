@@ -72,7 +72,7 @@ Vec3 parse_vector3(std::string_view text, const std::string& where) {
     if (c == '(' || c == ')' || c == ',') c = ' ';
   std::istringstream in(cleaned);
   std::string a, b, c;
-  if (!(in >> a >> b >> c)) throw InvalidInput(located(where, fmt::format("expected 3 numbers, got '{}'", text)));
+  if (!(in >> a >> b >> c)) throw InvalidInput(located(where, fmt::format("expected 3 numbers, got '{}'", printable(text))));
   return {parse_double(a, where), parse_double(b, where), parse_double(c, where)};
 }
 
@@ -93,6 +93,32 @@ glm::ivec3 parse_dims(const std::vector<std::string>& w, const std::string& wher
   }
   checked_voxel_count(d);
   return d;
+}
+
+// A data file that a header names, for messages: its name is input like any other line of the header (control
+// bytes, 10 KB of it), so it is quoted through printable(), a little longer than a value for a real path to fit.
+constexpr size_t kShownPathChars = 200;
+std::string shown_path(const std::filesystem::path& path) { return printable(path.string(), kShownPathChars); }
+
+// read_file() for a data file that a header names: its messages quote the path raw, so they quote shown_path().
+std::string read_data_file(const std::filesystem::path& path) {
+  try {
+    return read_file(path);
+  } catch (const IoError& e) {
+    std::string message = e.what();
+    const std::string raw = path.string(), shown = shown_path(path);
+    if (!raw.empty())
+      for (size_t at = message.find(raw); at != std::string::npos; at = message.find(raw, at + shown.size()))
+        message.replace(at, raw.size(), shown);
+    throw IoError(message);
+  }
+}
+
+// read_raw() of a data file that a header names, quoted as shown_path() in every message.
+AnyVolume read_named_raw(const std::filesystem::path& path, const RawLayout& layout) {
+  const std::string name = shown_path(path);
+  check_voxel_memory(layout, name);
+  return decode_raw(read_data_file(path), layout, name);
 }
 
 std::string lower(std::string s) {
@@ -172,7 +198,7 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
     if (line.find(":=") != std::string_view::npos) continue;  // key/value pairs
     const size_t colon = line.find(": ");
     const std::string where = at_line(name, line_no);
-    if (colon == std::string_view::npos) throw InvalidInput(located(where, fmt::format("expected 'field: value', got '{}'", line)));
+    if (colon == std::string_view::npos) throw InvalidInput(located(where, fmt::format("expected 'field: value', got '{}'", printable(line))));
     const std::string field = lower(std::string(trim(line.substr(0, colon))));
     const std::string_view value = trim(line.substr(colon + 2));
     if (field == "type") {
@@ -181,7 +207,7 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
       else if (t == "ushort" || t == "unsigned short" || t == "uint16" || t == "uint16_t" || t == "unsigned short int") layout.type = VoxelType::UInt16;
       else if (t == "short" || t == "signed short" || t == "int16" || t == "int16_t" || t == "short int") layout.type = VoxelType::Int16;
       else if (t == "float") layout.type = VoxelType::Float32;
-      else throw InvalidInput(located(where, fmt::format("unsupported type '{}' (uchar, ushort, short, float)", value)));
+      else throw InvalidInput(located(where, fmt::format("unsupported type '{}' (uchar, ushort, short, float)", printable(value))));
       have_type = true;
     } else if (field == "dimension") {
       dimension = int(parse_int(value, where));
@@ -193,10 +219,10 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
       encoding = lower(std::string(value));
       if (encoding == "gz") encoding = "gzip";
       if (encoding != "raw" && encoding != "gzip")
-        throw InvalidInput(located(where, fmt::format("unsupported encoding '{}' (raw, gzip)", value)));
+        throw InvalidInput(located(where, fmt::format("unsupported encoding '{}' (raw, gzip)", printable(value))));
     } else if (field == "endian") {
       const std::string e = lower(std::string(value));
-      if (e != "little" && e != "big") throw InvalidInput(located(where, fmt::format("endian must be little or big, got '{}'", value)));
+      if (e != "little" && e != "big") throw InvalidInput(located(where, fmt::format("endian must be little or big, got '{}'", printable(value))));
       layout.endian = e == "big" ? Endian::Big : Endian::Little;
       have_endian = true;
     } else if (field == "spacings") {
@@ -236,15 +262,14 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
   uint64_t payload_offset = pos;
   if (!data_file.empty()) {
     if (base_dir.empty()) throw InvalidInput(located(name, "detached data files are not allowed here"));
-    const auto file = base_dir / data_file;
-    detached = read_file(file);
+    detached = read_data_file(base_dir / data_file);
     payload = detached;
     payload_offset = 0;
   } else {
     if (!attached) throw InvalidInput(located(name, "no blank line before the data and no data file"));
     payload = data.substr(std::min(pos, data.size()));
   }
-  const std::string data_name = data_file.empty() ? name : (base_dir / data_file).string();
+  const std::string data_name = data_file.empty() ? name : shown_path(base_dir / data_file);
   if (encoding == "gzip") {
     if (layout.header_skip > payload.size())
       throw InvalidInput(fmt::format("{}: byte skip {} is past the end ({} bytes)", data_name, layout.header_skip, payload.size()));
@@ -286,7 +311,7 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
     const std::string where = at_line(name, line_no);
     const size_t eq = line.find('=');
     if (trim(line).empty()) continue;
-    if (eq == std::string::npos) throw InvalidInput(located(where, fmt::format("expected 'Key = Value', got '{}'", line)));
+    if (eq == std::string::npos) throw InvalidInput(located(where, fmt::format("expected 'Key = Value', got '{}'", printable(line))));
     const std::string key(trim(std::string_view(line).substr(0, eq)));
     const std::string value(trim(std::string_view(line).substr(eq + 1)));
     if (key == "NDims") {
@@ -300,7 +325,7 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
                                                                  {"MET_SHORT", VoxelType::Int16},
                                                                  {"MET_FLOAT", VoxelType::Float32}};
       const auto it = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const auto& t) { return value == t.first; });
-      if (it == std::end(kTypes)) throw InvalidInput(located(where, fmt::format("unsupported ElementType '{}'", value)));
+      if (it == std::end(kTypes)) throw InvalidInput(located(where, fmt::format("unsupported ElementType '{}'", printable(value))));
       layout.type = it->second;
       have_type = true;
     } else if (key == "ElementSpacing" || key == "ElementSize") {
@@ -324,15 +349,27 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
   }
   if (!have_dims || !have_type || data_file.empty())
     throw InvalidInput(located(name, "the header needs DimSize, ElementType and ElementDataFile"));
-  return read_raw(path.parent_path() / data_file, layout);
+  return read_named_raw(path.parent_path() / data_file, layout);
 }
 
 Volume<uint8_t> read_slices(const std::vector<std::filesystem::path>& files, const Vec3& spacing) {
   if (files.empty()) throw InvalidInput("a slice stack needs at least one image");
+  if (files.size() > size_t(1) << 30)
+    throw InvalidInput(fmt::format("a slice stack of {} images is more than the {} a volume holds", files.size(),
+                                   1 << 30));
   Volume<uint8_t> v;
   for (size_t z = 0; z < files.size(); ++z) {
-    const ImageRGBA image = read_image(files[z]);
-    if (z == 0) v = Volume<uint8_t>(glm::ivec3(image.width(), image.height(), int(files.size())), 0, spacing);
+    const ImageRGBA image = read_image(files[z]);  // the reader refuses one slice over the budget from its header
+    if (z == 0) {
+      // The whole stack, estimated from the first slice before the others are decoded (each fits the budget alone,
+      // their volume may not): a byte per voxel, and the slice being decoded (at most 32 bytes a pixel: a 16-bit
+      // or HDR decoder's samples and the float RGBA image).
+      const uint64_t pixels = uint64_t(image.width()) * uint64_t(image.height());
+      MemoryBudget::check(saturating_product({pixels, files.size()}) + saturating_product({pixels, 32}),
+                          fmt::format("{}: a stack of {} slices of {}x{} pixels", shown_path(files[0]), files.size(),
+                                      image.width(), image.height()));
+      v = Volume<uint8_t>(glm::ivec3(image.width(), image.height(), int(files.size())), 0, spacing);
+    }
     if (image.width() != v.dims().x || image.height() != v.dims().y)
       throw InvalidInput(fmt::format("{}: slice is {}x{}, the first slice is {}x{}", files[z].string(), image.width(),
                                      image.height(), v.dims().x, v.dims().y));

@@ -7,6 +7,8 @@
 #include <filesystem>
 
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/memory_budget.hpp"
+#include "tessera/image/image_io.hpp"
 #include "tessera/volume/procedural.hpp"
 
 namespace tessera {
@@ -88,6 +90,76 @@ TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
   EXPECT_NE(message("NRRD0004\ntype: double\n").find("h.nrrd:2"), std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"), std::string::npos);
   EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
+}
+
+// Issue 24, class 5: header lines and values were quoted raw (escape sequences reached the terminal, a 10 KB value
+// filled it). Every quoted piece goes through printable(): escaped, and cut after 60 characters (200 for a data file
+// name).
+TEST(VolumeIo, HeaderValuesAreQuotedEscapedAndShort) {
+  const std::string hostile = "\x1b[31m" + std::string(10240, 'A');
+  const auto check = [&](const std::string& message, const std::string& start) {
+    SCOPED_TRACE(message.substr(0, 300));
+    EXPECT_NE(message.find(start), std::string::npos);
+    EXPECT_NE(message.find("\\x1b[31mAAAA"), std::string::npos);  // the escape byte, spelled out
+    EXPECT_EQ(message.find('\x1b'), std::string::npos);
+    EXPECT_NE(message.find("bytes)"), std::string::npos);  // cut, saying how long the value was
+    EXPECT_LT(message.size(), 400u);
+  };
+  const auto nrrd = [](const std::string& text) {
+    try {
+      parse_nrrd(text, "h.nrrd", scratch(""));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string head = "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\n";
+  check(nrrd("NRRD0004\ntype: " + hostile + "\n"), "h.nrrd:2: unsupported type '");
+  check(nrrd("NRRD0004\n" + hostile + "\n"), "h.nrrd:2: expected 'field: value', got '");
+  check(nrrd(head + "encoding: " + hostile + "\n"), "h.nrrd:5: unsupported encoding '");
+  check(nrrd(head + "endian: " + hostile + "\n"), "h.nrrd:5: endian must be little or big, got '");
+  check(nrrd(head + "space origin: " + hostile + "\n"), "h.nrrd:5: expected 3 numbers, got '");
+  check(nrrd(head + "data file: " + hostile + "\n"), "cannot open '");
+  const auto mhd = [](const std::string& text) {
+    write_file_atomic(scratch("h.mhd"), text);
+    try {
+      read_mhd(scratch("h.mhd"));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  check(mhd("NDims = 3\nElementType = " + hostile + "\n"), "h.mhd:2: unsupported ElementType '");
+  check(mhd("NDims = 3\n" + hostile + "\n"), "h.mhd:2: expected 'Key = Value', got '");
+  check(mhd("NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = " + hostile + "\n"),
+        "cannot open '");
+}
+
+// Issue 24, class 3: each slice of a stack was checked alone by the image reader, never the volume they make. The
+// stack is estimated from the first slice (a byte a voxel, and 32 bytes a pixel of the slice being decoded) before the
+// second is read: the missing files after the first are never opened.
+TEST(VolumeIo, SliceStacksOverTheMemoryBudgetAreRefusedAfterTheFirstSlice) {
+  ImageRGBA slice(64, 64, Vec4f(1.0f));
+  write_image(scratch("slice.png"), slice);
+  std::vector<std::filesystem::path> files(1000, scratch("missing.png"));
+  files[0] = scratch("slice.png");
+  MemoryBudget::set_limit(1 << 20);  // one slice decodes in 64 * 64 * 20 bytes; the stack needs 64 * 64 * 1032
+  std::string message = "no error";
+  try {
+    read_slices(files);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  MemoryBudget::set_limit(0);
+  EXPECT_NE(message.find("a stack of 1000 slices of 64x64 pixels needs about 4.0 MiB, the memory budget is 1.0 MiB"),
+            std::string::npos)
+      << message;
+  // Within the budget the stack is read: 3 slices of white are voxels of 255.
+  MemoryBudget::set_limit(1 << 20);
+  const Volume<uint8_t> v = read_slices({scratch("slice.png"), scratch("slice.png"), scratch("slice.png")});
+  MemoryBudget::set_limit(0);
+  EXPECT_EQ(v.dims(), glm::ivec3(64, 64, 3));
+  EXPECT_EQ(v(63, 63, 2), 255);
 }
 
 // Issue 24, class 2: NaN and infinite float voxels were accepted and reached value ranges, pictures and meshes; a
