@@ -88,7 +88,7 @@ TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured S
   const auto spot_png = gallery.data_file("meshes/spot/spot_texture.png", "a checker-textured torus for Spot");
   const auto bunny = gallery.data_file("meshes/bunny/bun_zipper_res2.ply", "a quad sphere for the bunny");
   const bool have_spot = spot && spot_png;
-  const ImageRGB left = have_spot ? textured(read_mesh(*spot), Texture2D(read_image(*spot_png)), rotate_y(radians(145)))
+  const ImageRGB left = have_spot ? textured(read_mesh(*spot), load_texture(*spot_png), rotate_y(radians(145)))
                                   : textured(make_torus(0.72, 0.3, 64, 32), checker_texture(), rotate_x(radians(50)));
   const PolyMesh right_mesh = bunny ? read_mesh(*bunny) : make_quad_sphere(12);
   examples::MeshViewOptions o;

@@ -9,7 +9,7 @@
 
 #include "gallery.hpp"
 #include "mesh_view.hpp"
-#include "tessera/image/image_io.hpp"
+#include "tessera/image/texture.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -42,16 +42,16 @@ ImageRGBA procedural_sky() {
 }
 
 // The environment and whether it is the real one (else the stand-in).
-std::pair<ImageRGBA, bool> environment_image(examples::Gallery& gallery) {
+std::pair<EnvironmentMap, bool> environment_map(examples::Gallery& gallery) {
   const auto hdr = gallery.data_file("env/venice_sunset_1k.hdr", "a procedural sky over a checkered ground");
-  return hdr ? std::pair(read_image(*hdr), true) : std::pair(procedural_sky(), false);
+  return hdr ? std::pair(load_environment_map(*hdr), true) : std::pair(EnvironmentMap(procedural_sky()), false);
 }
 
 }  // namespace
 
 TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping: reflections looked up in a lat-long map") {
-  const std::pair<ImageRGBA, bool> loaded = environment_image(gallery);
-  const EnvironmentMap environment(loaded.first);
+  const std::pair<EnvironmentMap, bool> loaded = environment_map(gallery);
+  const EnvironmentMap& environment = loaded.first;
   const bool real_environment = loaded.second;
   const auto caption = [&](const std::string& text) {
     return real_environment ? text

@@ -8,7 +8,7 @@
 
 #include "gallery.hpp"
 #include "mesh_view.hpp"
-#include "tessera/image/image_io.hpp"
+#include "tessera/image/texture.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -47,16 +47,16 @@ ImageRGBA procedural_bricks() {
 }
 
 // The brick heights and whether they are the shared data's photo (else the stand-in).
-std::pair<ImageRGBA, bool> brick_heights(examples::Gallery& gallery) {
+std::pair<Texture2D, bool> brick_heights(examples::Gallery& gallery) {
   const auto png = gallery.data_file("textures/brick.png", "procedural bricks");
-  return png ? std::pair(read_image(*png), true) : std::pair(procedural_bricks(), false);
+  return png ? std::pair(load_texture(*png), true) : std::pair(Texture2D(procedural_bricks()), false);
 }
 
 }  // namespace
 
 TESSERA_EXAMPLE(ex24_bump_map, "24_bump_map", "Bump mapping: normals tilted by a height map's slopes") {
-  const auto [bricks, real_bricks] = brick_heights(gallery);
-  const Texture2D dimple_map(dimples()), brick_map(bricks);
+  const auto [brick_map, real_bricks] = brick_heights(gallery);
+  const Texture2D dimple_map(dimples());
   const raster3d::VertexArrays sphere = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(128, 64)));
   const raster3d::UvTangents sphere_tangents = raster3d::uv_tangents(sphere.positions, sphere.uvs, sphere.indices);
   const raster3d::VertexArrays wall = raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1)));

@@ -196,9 +196,9 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
   // Everything is read before drawing.
   std::optional<Texture2D> texture, bump;
   std::optional<EnvironmentMap> environment;
-  if (!a.texture.empty()) texture.emplace(read_image(a.texture), Sampler{.filter = kFilters.at(a.filter)});
-  if (!a.bump.empty()) bump.emplace(read_image(a.bump));
-  if (!a.env.empty()) environment.emplace(read_image(a.env));
+  if (!a.texture.empty()) texture.emplace(load_texture(a.texture, Sampler{.filter = kFilters.at(a.filter)}));
+  if (!a.bump.empty()) bump.emplace(load_texture(a.bump));
+  if (!a.env.empty()) environment.emplace(load_environment_map(a.env));
 
   const auto [width, height] = a.camera.image_size();
   Bounds3 scene = box;

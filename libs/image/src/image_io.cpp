@@ -58,8 +58,9 @@ Format format_of(const std::filesystem::path& path, bool writing) {
 }
 
 // Refuses an image size that is invalid, or whose decoding needs more than the memory budget: `bytes_per_pixel` is
-// what the reader holds at its peak (the decoder's samples plus the float RGBA image, 16 bytes), counted from the
-// header before any pixel is decoded (a 746 KB PNG can declare 16000x16000 pixels).
+// what the reader holds at its peak (the decoder's samples plus the image: 16 bytes of float RGBA, or 4 of 8-bit
+// RGBA when an 8-bit file is read natively), counted from the header before any pixel is decoded (a 746 KB PNG can
+// declare 16000x16000 pixels).
 void check_pixel_count(const std::string& name, long long width, long long height, uint64_t bytes_per_pixel) {
   if (width < 1 || height < 1 || width > kMaxReadPixels / height)
     throw InvalidInput(fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width,
@@ -68,20 +69,34 @@ void check_pixel_count(const std::string& name, long long width, long long heigh
                       fmt::format("'{}': decoding {}x{} pixels", name, width, height));
 }
 
-// Decoded pixels before they become RGBA: `channels` (1 or 3) floats per pixel, top row first.
+// Decoded pixels before they become RGBA: `channels` (1 or 3) floats per pixel, top row first; a pixel's value is
+// values / divisor (Netpbm samples are kept as integers with divisor = maxval, PFM values with divisor 1).
 struct Decoded {
   int width = 0, height = 0, channels = 0;
+  float divisor = 1.f;
   std::vector<float> values;
 };
 
-ImageRGBA to_rgba_image(const Decoded& d) {
-  ImageRGBA image(d.width, d.height);
+// The pixels as RGBA: gray expanded to RGB, alpha `opaque`.
+template <class Pixel, class Convert>
+Image<Pixel> expand_rgba(const Decoded& d, Convert convert, typename Pixel::value_type opaque) {
+  Image<Pixel> image(d.width, d.height);
   auto pixels = image.pixels();
   for (size_t i = 0; i < pixels.size(); ++i) {
     const float* v = &d.values[i * size_t(d.channels)];
-    pixels[i] = d.channels == 1 ? glm::vec4(v[0], v[0], v[0], 1.f) : glm::vec4(v[0], v[1], v[2], 1.f);
+    const int g = d.channels == 1 ? 0 : 1, b = d.channels == 1 ? 0 : 2;
+    pixels[i] = Pixel(convert(v[0]), convert(v[g]), convert(v[b]), opaque);
   }
   return image;
+}
+
+ImageRGBA to_rgba_image(const Decoded& d) {
+  return expand_rgba<glm::vec4>(d, [&](float v) { return v / d.divisor; }, 1.f);
+}
+
+// Netpbm samples of maxval 255 as they are.
+ImageRGBA8 to_rgba8_image(const Decoded& d) {
+  return expand_rgba<glm::u8vec4>(d, [](float v) { return uint8_t(v); }, uint8_t(255));
 }
 
 // Reads the whitespace-separated header of the Netpbm formats and PFM, tracking byte offsets for messages.
@@ -167,8 +182,9 @@ class HeaderReader {
   size_t token_start_ = 0;
 };
 
-// PPM/PGM: P2/P5 gray and P3/P6 RGB, ASCII or binary, maxval 1..65535 (16-bit samples big-endian).
-Decoded read_netpbm(std::string_view data, const std::string& name) {
+// PPM/PGM: P2/P5 gray and P3/P6 RGB, ASCII or binary, maxval 1..65535 (16-bit samples big-endian). `keep_8bit`:
+// the budget counts an 8-bit image for maxval 255.
+Decoded read_netpbm(std::string_view data, const std::string& name, bool keep_8bit) {
   HeaderReader in(data, name, true);
   const std::string_view magic = in.token("the magic number P2, P3, P5 or P6");
   if (magic != "P2" && magic != "P3" && magic != "P5" && magic != "P6")
@@ -178,10 +194,11 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
   const bool binary = magic == "P5" || magic == "P6";
   d.width = int(in.integer("width", 1, INT_MAX));
   d.height = int(in.integer("height", 1, INT_MAX));
-  check_pixel_count(name, d.width, d.height, sizeof(float) * d.channels + sizeof(ImageRGBA::Pixel));
   const long long maxval = in.integer("maxval", 1, 65535);
+  const size_t image_bytes = keep_8bit && maxval == 255 ? sizeof(ImageRGBA8::Pixel) : sizeof(ImageRGBA::Pixel);
+  check_pixel_count(name, d.width, d.height, sizeof(float) * d.channels + image_bytes);
   const unsigned long long count = (unsigned long long)d.width * (unsigned long long)d.height * d.channels;
-  const float divisor = float(maxval);
+  d.divisor = float(maxval);
   if (binary) {
     in.end_of_header();
     const int bytes = maxval > 255 ? 2 : 1;
@@ -191,13 +208,13 @@ Decoded read_netpbm(std::string_view data, const std::string& name) {
     for (size_t i = 0; i < count; ++i) {
       const unsigned v = bytes == 2 ? (unsigned(p[2 * i]) << 8 | p[2 * i + 1]) : p[i];
       if (v > maxval) in.fail(in.offset() + i * bytes, fmt::format("sample {} exceeds maxval {}", v, maxval));
-      d.values[i] = float(v) / divisor;
+      d.values[i] = float(v);
     }
   } else {
     // Every ASCII sample takes at least one byte: a cheap bound before allocating.
     in.require(count, "the ASCII pixel data");
     d.values.resize(count);
-    for (size_t i = 0; i < count; ++i) d.values[i] = float(in.integer("a sample", 0, maxval)) / divisor;
+    for (size_t i = 0; i < count; ++i) d.values[i] = float(in.integer("a sample", 0, maxval));
   }
   return d;
 }
@@ -252,8 +269,9 @@ ImageRGBA from_interleaved_rgba(const Sample* p, int width, int height, float di
   return image;
 }
 
-// PNG, JPG, BMP, TGA, HDR through stb_image: 8-bit and 16-bit files scaled to [0, 1], HDR as stored.
-ImageRGBA read_stb(std::string_view data, const std::string& name) {
+// PNG, JPG, BMP, TGA, HDR through stb_image: 16-bit files scaled to [0, 1], HDR as stored, 8-bit files scaled to
+// [0, 1] or, with `keep_8bit`, copied as they are.
+FileImage read_stb(std::string_view data, const std::string& name, bool keep_8bit) {
   if (data.size() > size_t(INT_MAX)) throw InvalidInput(fmt::format("'{}': file is larger than 2 GiB", name));
   const auto* bytes = reinterpret_cast<const stbi_uc*>(data.data());
   const int size = int(data.size());
@@ -264,7 +282,10 @@ ImageRGBA read_stb(std::string_view data, const std::string& name) {
   };
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) throw failed();
   const bool hdr = stbi_is_hdr_from_memory(bytes, size), wide = !hdr && stbi_is_16_bit_from_memory(bytes, size);
-  check_pixel_count(name, width, height, 4 * (hdr ? sizeof(float) : wide ? 2 : 1) + sizeof(ImageRGBA::Pixel));
+  keep_8bit = keep_8bit && !hdr && !wide;
+  check_pixel_count(name, width, height,
+                    4 * (hdr ? sizeof(float) : wide ? 2 : 1) +
+                        (keep_8bit ? sizeof(ImageRGBA8::Pixel) : sizeof(ImageRGBA::Pixel)));
   if (hdr) {
     std::unique_ptr<float, StbFree> p(stbi_loadf_from_memory(bytes, size, &width, &height, &channels, 4));
     if (!p) throw failed();
@@ -277,7 +298,25 @@ ImageRGBA read_stb(std::string_view data, const std::string& name) {
   }
   std::unique_ptr<stbi_uc, StbFree> p(stbi_load_from_memory(bytes, size, &width, &height, &channels, 4));
   if (!p) throw failed();
-  return from_interleaved_rgba(p.get(), width, height, 255.f);
+  if (!keep_8bit) return from_interleaved_rgba(p.get(), width, height, 255.f);
+  ImageRGBA8 image(width, height);
+  std::memcpy(image.pixels().data(), p.get(), image.pixels().size_bytes());
+  return image;
+}
+
+// Every reader; `keep_8bit` keeps 8-bit files 8-bit (read_image_native).
+FileImage decode(std::string_view data, const std::filesystem::path& path, bool keep_8bit) {
+  const Format format = format_of(path, false);
+  const std::string name = name_of(path);
+  switch (format) {
+    case Format::ppm: {
+      const Decoded d = read_netpbm(data, name, keep_8bit);
+      if (keep_8bit && d.divisor == 255.f) return to_rgba8_image(d);
+      return to_rgba_image(d);
+    }
+    case Format::pfm: return to_rgba_image(read_pfm_data(data, name));
+    default: return read_stb(data, name, keep_8bit);
+  }
 }
 
 // ---- writing ----
@@ -376,13 +415,16 @@ ImageRGBA read_image(const std::filesystem::path& path) {
 }
 
 ImageRGBA decode_image(std::string_view data, const std::filesystem::path& path) {
-  const Format format = format_of(path, false);
-  const std::string name = name_of(path);
-  switch (format) {
-    case Format::ppm: return to_rgba_image(read_netpbm(data, name));
-    case Format::pfm: return to_rgba_image(read_pfm_data(data, name));
-    default: return read_stb(data, name);
-  }
+  return std::get<ImageRGBA>(decode(data, path, false));
+}
+
+FileImage read_image_native(const std::filesystem::path& path) {
+  format_of(path, false);  // an unknown extension fails before the file is read
+  return decode_image_native(read_file(path), path);
+}
+
+FileImage decode_image_native(std::string_view data, const std::filesystem::path& path) {
+  return decode(data, path, true);
 }
 
 void write_image(const std::filesystem::path& path, const ImageRGB& image, const WriteOptions& options) {

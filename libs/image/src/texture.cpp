@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <variant>
 
 #include "tessera/core/error.hpp"
+#include "tessera/image/image_io.hpp"
 #include "tessera/math/types.hpp"
 
 namespace tessera {
@@ -62,18 +65,51 @@ double bilinear_coordinate(float t, int n, Wrap wrap) {
   return x;
 }
 
+// A stored texel as float: an 8-bit texel reads v/255 (a division, as read_image and to_float compute it, so an
+// 8-bit texture samples the same values as the float texture of the same file).
+inline glm::vec4 texel_value(const glm::vec4& texel) { return texel; }
+inline glm::vec4 texel_value(const glm::u8vec4& texel) { return glm::vec4(texel) / 255.f; }
+
 // The notes' bilinear interpolation on one level (Texture2D::bilinear).
-[[gnu::always_inline]] inline glm::vec4 bilinear_sample(const ImageRGBA& image, const Sampler& sampler, glm::vec2 uv) {
+template <class Texel>
+[[gnu::always_inline]] inline glm::vec4 bilinear_sample(const Image<Texel>& image, const Sampler& sampler,
+                                                        glm::vec2 uv) {
   const int w = image.width(), h = image.height();
   // Texel centers sit at integer + 0.5: (i, j) is the bottom-left texel of the four, (a, b) the offset from it.
   const auto [i, a] = split(bilinear_coordinate(uv.x, w, sampler.wrap_u));
   const auto [j, b] = split(bilinear_coordinate(uv.y, h, sampler.wrap_v));
   const IndexPair x = wrap_pair(i, w, sampler.wrap_u), y = wrap_pair(j, h, sampler.wrap_v);
-  const glm::vec4* lower = image.row(h - 1 - y.lo);  // texel rows count from the bottom
-  const glm::vec4* upper = image.row(h - 1 - y.hi);
-  const glm::vec4 bottom = glm::mix(lower[x.lo], lower[x.hi], a);
-  const glm::vec4 top = glm::mix(upper[x.lo], upper[x.hi], a);
+  const Texel* lower = image.row(h - 1 - y.lo);  // texel rows count from the bottom
+  const Texel* upper = image.row(h - 1 - y.hi);
+  const glm::vec4 bottom = glm::mix(texel_value(lower[x.lo]), texel_value(lower[x.hi]), a);
+  const glm::vec4 top = glm::mix(texel_value(upper[x.lo]), texel_value(upper[x.hi]), a);
   return glm::mix(bottom, top, b);
+}
+
+// The texel of `image` containing (u, v) (Texture2D::nearest).
+template <class Texel>
+glm::vec4 nearest_sample(const Image<Texel>& image, const Sampler& sampler, glm::vec2 uv) {
+  const long long x = wrap_index(split(double(uv.x) * image.width()).index, image.width(), sampler.wrap_u);
+  const long long y = wrap_index(split(double(uv.y) * image.height()).index, image.height(), sampler.wrap_v);
+  return texel_value(image(int(x), image.height() - 1 - int(y)));
+}
+
+// Texture2D::sample on a pyramid of either storage.
+template <class Texel>
+glm::vec4 sample_levels(const std::vector<Image<Texel>>& levels, const Sampler& sampler, glm::vec2 uv, float lod) {
+  switch (sampler.filter) {
+    case Filter::nearest: return nearest_sample(levels.front(), sampler, uv);
+    case Filter::bilinear: return bilinear_sample(levels.front(), sampler, uv);
+    case Filter::trilinear: break;
+  }
+  const float last = float(levels.size() - 1);
+  const float clamped = lod > 0.f ? std::min(lod, last) : 0.f;  // NaN and -infinity read level 0
+  const int lower = int(clamped);
+  const float blend = clamped - float(lower);
+  // The two levels' samples inlined here: as calls, their results went through memory.
+  const glm::vec4 near = bilinear_sample(levels[size_t(lower)], sampler, uv);
+  if (blend == 0.f) return near;
+  return glm::mix(near, bilinear_sample(levels[size_t(lower) + 1], sampler, uv), blend);
 }
 
 // One output sample of a 1D reduction: up to three source indices and their weights.
@@ -98,86 +134,133 @@ std::vector<Taps> reduction_taps(int n) {
   return taps;
 }
 
-// The next MIPmap level: reduce along x, then along y (separable, so even sizes give the notes' 2x2 average).
-ImageRGBA reduce(const ImageRGBA& image) {
+// The filter works on texels as stored: floats as they are, 8-bit values in [0, 255]; a float result is stored as
+// is, an 8-bit one rounded to nearest, halves up (GL's unorm conversion).
+inline glm::vec4 filter_value(const glm::vec4& texel) { return texel; }
+inline glm::vec4 filter_value(const glm::u8vec4& texel) { return glm::vec4(texel); }
+inline void store(const glm::vec4& value, glm::vec4& texel) { texel = value; }
+inline void store(const glm::vec4& value, glm::u8vec4& texel) {
+  texel = glm::u8vec4(glm::clamp(value + 0.5f, glm::vec4(0.f), glm::vec4(255.f)));
+}
+
+// The next MIPmap level: reduce along x, then along y (separable, so even sizes give the notes' 2x2 average). Row
+// by row, the x-reduced rows in a 3-row cache (an output row reads source rows 2y..2y+2), so no image-sized
+// intermediate is allocated.
+template <class Texel>
+Image<Texel> reduce(const Image<Texel>& image) {
   const std::vector<Taps> tx = reduction_taps(image.width()), ty = reduction_taps(image.height());
-  ImageRGBA half_x(int(tx.size()), image.height());
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < half_x.width(); ++x) {
-      const Taps& t = tx[size_t(x)];
-      half_x(x, y) = image(t.index[0], y) * t.weight[0] + image(t.index[1], y) * t.weight[1] +
-                     image(t.index[2], y) * t.weight[2];
+  Image<Texel> out(int(tx.size()), int(ty.size()));
+  std::vector<glm::vec4> cache[3];
+  int cached[3] = {-1, -1, -1};
+  const auto reduced_row = [&](int y) -> const std::vector<glm::vec4>& {
+    const size_t slot = size_t(y % 3);
+    std::vector<glm::vec4>& row = cache[slot];
+    if (cached[slot] == y) return row;
+    row.resize(tx.size());
+    const Texel* source = image.row(y);
+    for (size_t x = 0; x < tx.size(); ++x) {
+      const Taps& t = tx[x];
+      row[x] = filter_value(source[t.index[0]]) * t.weight[0] + filter_value(source[t.index[1]]) * t.weight[1] +
+               filter_value(source[t.index[2]]) * t.weight[2];
     }
-  ImageRGBA out(half_x.width(), int(ty.size()));
+    cached[slot] = y;
+    return row;
+  };
   for (int y = 0; y < out.height(); ++y) {
     const Taps& t = ty[size_t(y)];
+    const std::vector<glm::vec4>&r0 = reduced_row(t.index[0]), &r1 = reduced_row(t.index[1]),
+                                  &r2 = reduced_row(t.index[2]);
+    Texel* row = out.row(y);
     for (int x = 0; x < out.width(); ++x)
-      out(x, y) = half_x(x, t.index[0]) * t.weight[0] + half_x(x, t.index[1]) * t.weight[1] +
-                  half_x(x, t.index[2]) * t.weight[2];
+      store(r0[size_t(x)] * t.weight[0] + r1[size_t(x)] * t.weight[1] + r2[size_t(x)] * t.weight[2], row[x]);
   }
   return out;
 }
 
-void check_nonempty(const ImageRGBA& image, const char* what) {
+template <class Texel>
+void check_nonempty(const Image<Texel>& image, const char* what) {
   if (image.empty()) throw InvalidInput(fmt::format("{}: the image is empty", what));
 }
 
-}  // namespace
-
-std::vector<ImageRGBA> build_mipmaps(ImageRGBA image) {
+template <class Texel>
+std::vector<Image<Texel>> mipmaps(Image<Texel> image) {
   check_nonempty(image, "build_mipmaps");
-  std::vector<ImageRGBA> levels;
+  std::vector<Image<Texel>> levels;
   levels.push_back(std::move(image));
   while (levels.back().width() > 1 || levels.back().height() > 1) levels.push_back(reduce(levels.back()));
   return levels;
 }
 
-Texture2D::Texture2D(ImageRGBA image, const Sampler& sampler) : sampler_(sampler) {
+template <class Texel>
+size_t level_bytes(const std::vector<Image<Texel>>& levels) {
+  size_t bytes = 0;
+  for (const Image<Texel>& level : levels) bytes += level.pixels().size_bytes();
+  return bytes;
+}
+
+}  // namespace
+
+std::vector<ImageRGBA> build_mipmaps(ImageRGBA image) { return mipmaps(std::move(image)); }
+std::vector<ImageRGBA8> build_mipmaps(ImageRGBA8 image) { return mipmaps(std::move(image)); }
+
+Texture2D::Texture2D(ImageRGBA image, const Sampler& sampler)
+    : width_(image.width()), height_(image.height()), sampler_(sampler) {
   check_nonempty(image, "Texture2D");
   levels_ = build_mipmaps(std::move(image));
 }
 
-const ImageRGBA& Texture2D::level(int i) const {
-  if (i < 0 || i >= levels())
-    throw InvalidInput(fmt::format("MIPmap level {} is outside [0, {})", i, levels()));
-  return levels_[size_t(i)];
+Texture2D::Texture2D(ImageRGBA8 image, const Sampler& sampler)
+    : width_(image.width()), height_(image.height()), rgba8_(true), sampler_(sampler) {
+  check_nonempty(image, "Texture2D");
+  levels8_ = build_mipmaps(std::move(image));
 }
 
-glm::vec4 Texture2D::texel(const ImageRGBA& image, long long i, long long j) const {
-  const long long x = wrap_index(i, image.width(), sampler_.wrap_u);
-  const long long y = wrap_index(j, image.height(), sampler_.wrap_v);
-  return image(int(x), image.height() - 1 - int(y));
+size_t Texture2D::bytes() const { return rgba8_ ? level_bytes(levels8_) : level_bytes(levels_); }
+
+void Texture2D::check_level(int i) const {
+  if (i < 0 || i >= levels())
+    throw InvalidInput(fmt::format("MIPmap level {} is outside [0, {})", i, levels()));
+}
+
+ImageRGBA Texture2D::level(int i) const {
+  check_level(i);
+  if (!rgba8_) return levels_[size_t(i)];
+  const ImageRGBA8& stored = levels8_[size_t(i)];
+  ImageRGBA out(stored.width(), stored.height());
+  std::transform(stored.pixels().begin(), stored.pixels().end(), out.pixels().begin(),
+                 [](const glm::u8vec4& texel) { return texel_value(texel); });
+  return out;
+}
+
+const ImageRGBA8& Texture2D::level_rgba8(int i) const {
+  if (!rgba8_) throw InvalidInput("level_rgba8: the texture stores float texels");
+  check_level(i);
+  return levels8_[size_t(i)];
 }
 
 glm::vec4 Texture2D::nearest(glm::vec2 uv, int level) const {
-  const ImageRGBA& image = levels_[size_t(level)];
-  return texel(image, split(double(uv.x) * image.width()).index, split(double(uv.y) * image.height()).index);
+  return rgba8_ ? nearest_sample(levels8_[size_t(level)], sampler_, uv)
+                : nearest_sample(levels_[size_t(level)], sampler_, uv);
 }
 
 glm::vec4 Texture2D::bilinear(glm::vec2 uv, int level) const {
-  return bilinear_sample(levels_[size_t(level)], sampler_, uv);
+  return rgba8_ ? bilinear_sample(levels8_[size_t(level)], sampler_, uv)
+                : bilinear_sample(levels_[size_t(level)], sampler_, uv);
 }
 
+// One branch on the storage per sample, not per texel (measured in docs/image.md).
 glm::vec4 Texture2D::sample(glm::vec2 uv, float lod) const {
-  switch (sampler_.filter) {
-    case Filter::nearest: return nearest(uv, 0);
-    case Filter::bilinear: return bilinear_sample(levels_.front(), sampler_, uv);
-    case Filter::trilinear: break;
-  }
-  const float last = float(levels() - 1);
-  const float clamped = lod > 0.f ? std::min(lod, last) : 0.f;  // NaN and -infinity read level 0
-  const int lower = int(clamped);
-  const float blend = clamped - float(lower);
-  // The two levels' samples inlined here: as calls, their results went through memory.
-  const glm::vec4 near = bilinear_sample(levels_[size_t(lower)], sampler_, uv);
-  if (blend == 0.f) return near;
-  return glm::mix(near, bilinear_sample(levels_[size_t(lower) + 1], sampler_, uv), blend);
+  return rgba8_ ? sample_levels(levels8_, sampler_, uv, lod) : sample_levels(levels_, sampler_, uv, lod);
 }
 
 float Texture2D::lod(glm::vec2 duv_dx, glm::vec2 duv_dy) const {
   const glm::vec2 size{float(width()), float(height())};
   const float rho = std::max(glm::length(duv_dx * size), glm::length(duv_dy * size));
   return std::log2(rho);
+}
+
+Texture2D load_texture(const std::filesystem::path& path, const Sampler& sampler) {
+  return std::visit([&](auto&& image) { return Texture2D(std::move(image), sampler); }, read_image_native(path));
 }
 
 glm::vec2 latlong_uv(glm::vec3 direction) {
@@ -192,6 +275,13 @@ glm::vec3 latlong_direction(glm::vec2 uv) {
 
 EnvironmentMap::EnvironmentMap(ImageRGBA latlong, Filter filter)
     : texture_(std::move(latlong), Sampler{Wrap::repeat, Wrap::clamp, filter}) {}
+
+EnvironmentMap::EnvironmentMap(ImageRGBA8 latlong, Filter filter)
+    : texture_(std::move(latlong), Sampler{Wrap::repeat, Wrap::clamp, filter}) {}
+
+EnvironmentMap load_environment_map(const std::filesystem::path& path, Filter filter) {
+  return std::visit([&](auto&& image) { return EnvironmentMap(std::move(image), filter); }, read_image_native(path));
+}
 
 glm::vec4 EnvironmentMap::lookup(glm::vec3 direction, float lod) const {
   return texture_.sample(latlong_uv(direction), lod);

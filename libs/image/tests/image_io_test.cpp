@@ -14,6 +14,7 @@
 
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/metrics.hpp"
 
@@ -466,6 +467,91 @@ TEST_F(ImageIo, WritingReplacesAnExistingFileWhole) {
   EXPECT_EQ(back.width(), 2);
   EXPECT_EQ(back(1, 0), glm::vec4(1.f));
   EXPECT_EQ(files_in_dir(), 1u);
+}
+
+// read_image_native: 8-bit files give their bytes (a PNG from an independent encoder, and Tessera's PNG, TGA, BMP,
+// JPG and PPM/PGM of maxval 255), and read_image's floats are exactly those bytes / 255; everything else is
+// read_image's float image.
+TEST_F(ImageIo, NativeReadsKeepEightBitFilesEightBit) {
+  // v / 255 as read_image documents it, for each byte of `bytes`.
+  const auto expect_floats_are_bytes_over_255 = [](const ImageRGBA& floats, const ImageRGBA8& bytes) {
+    ASSERT_EQ(floats.pixels().size(), bytes.pixels().size());
+    for (size_t i = 0; i < bytes.pixels().size(); ++i)
+      for (int c = 0; c < 4; ++c) ASSERT_EQ(floats.pixels()[i][c], float(bytes.pixels()[i][c]) / 255.f) << i;
+  };
+  if (run(kPngReference + " encode " + path("ref.png").string() + " 11 6")) {
+    const FileImage native = read_image_native(path("ref.png"));
+    ASSERT_TRUE(std::holds_alternative<ImageRGBA8>(native));
+    const ImageRGBA8& got = std::get<ImageRGBA8>(native);
+    for (int y = 0; y < 6; ++y)
+      for (int x = 0; x < 11; ++x)  // the pattern of png_reference.py
+        ASSERT_EQ(got(x, y), glm::u8vec4((7 * x + 3 * y) % 256, (x * y) % 256, 255 - x, 200 + y)) << x << "," << y;
+    expect_floats_are_bytes_over_255(read_image(path("ref.png")), got);
+    ASSERT_TRUE(run(kPngReference + " encode16 " + path("g16.png").string() + " 9 4"));
+    const FileImage wide = read_image_native(path("g16.png"));  // 16-bit: float, read_image's values
+    ASSERT_TRUE(std::holds_alternative<ImageRGBA>(wide));
+    EXPECT_EQ(max_abs_difference(std::get<ImageRGBA>(wide), read_image(path("g16.png"))), 0.0);
+  }
+  const ImageRGBA8 image = random_rgba8(13, 7, 21);
+  for (const char* name : {"a.png", "a.tga", "a.bmp", "a.jpg", "a.ppm"}) {
+    write_image(path(name), image);
+    const FileImage native = read_image_native(path(name));
+    ASSERT_TRUE(std::holds_alternative<ImageRGBA8>(native)) << name;
+    const ImageRGBA8& got = std::get<ImageRGBA8>(native);
+    if (std::string(name) == "a.png" || std::string(name) == "a.tga") {
+      EXPECT_EQ(count_differing_pixels(got, image), 0) << name;
+    }
+    if (std::string(name) == "a.bmp" || std::string(name) == "a.ppm") {
+      EXPECT_EQ(count_differing_pixels(got, opaque(image)), 0) << name;
+    }
+    expect_floats_are_bytes_over_255(read_image(path(name)), got);
+  }
+  write_bytes("p5.pgm", std::string("P5 2 1 255\n") + char(51) + char(255));
+  const FileImage gray = read_image_native(path("p5.pgm"));
+  ASSERT_TRUE(std::holds_alternative<ImageRGBA8>(gray));
+  EXPECT_EQ(std::get<ImageRGBA8>(gray)(0, 0), glm::u8vec4(51, 51, 51, 255));
+  EXPECT_EQ(std::get<ImageRGBA8>(gray)(1, 0), glm::u8vec4(255));
+  // maxval 10, 16-bit PPM, PFM and HDR: float, exactly read_image's image.
+  write_bytes("p3.ppm", "P3 2 1 10 10 0 5 0 10 1\n");
+  write_bytes("p6.ppm", std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) + char(0) +
+                            char(0));
+  write_image(path("a.pfm"), random_rgb(5, 3, 4, -10.f, 10.f));
+  write_image(path("a.hdr"), random_rgb(5, 3, 5, 0.f, 10.f));
+  for (const char* name : {"p3.ppm", "p6.ppm", "a.pfm", "a.hdr"}) {
+    const FileImage native = read_image_native(path(name));
+    ASSERT_TRUE(std::holds_alternative<ImageRGBA>(native)) << name;
+    EXPECT_EQ(max_abs_difference(std::get<ImageRGBA>(native), read_image(path(name))), 0.0) << name;
+  }
+}
+
+// The budget of a native 8-bit read counts the decoder's 4 samples and the 4-byte pixel, 8 bytes per pixel, where
+// read_image counts 4 + 16 = 20; a P6 PPM of maxval 255: 3 floats and the 4-byte pixel, 16 (read_image: 28).
+TEST_F(ImageIo, NativeEightBitReadsBudgetFourBytesPerPixel) {
+  struct Restore {
+    ~Restore() { MemoryBudget::set_limit(0); }
+  } restore;
+  write_image(path("a.png"), ImageRGB(100, 100, glm::vec3(0.5f)));
+  write_image(path("a.ppm"), ImageRGB(100, 100, glm::vec3(0.5f)));
+  const auto refusal = [](const auto& read, const fs::path& file) -> std::string {
+    try {
+      read(file);
+    } catch (const MemoryBudgetError& e) {
+      return e.what();
+    }
+    return "no refusal";
+  };
+  const auto native = [](const fs::path& file) { return read_image_native(file); };
+  const auto floats = [](const fs::path& file) { return read_image(file); };
+  MemoryBudget::set_limit(100 * 100 * 8);  // exactly the native PNG's estimate
+  EXPECT_TRUE(std::holds_alternative<ImageRGBA8>(read_image_native(path("a.png"))));
+  EXPECT_THAT(refusal(floats, path("a.png")), HasSubstr("decoding 100x100 pixels needs about " +
+                                                        format_bytes(100 * 100 * 20)));
+  EXPECT_THAT(refusal(native, path("a.ppm")), HasSubstr("needs about " + format_bytes(100 * 100 * 16)));
+  MemoryBudget::set_limit(100 * 100 * 8 - 1);
+  EXPECT_THAT(refusal(native, path("a.png")), HasSubstr("needs about " + format_bytes(100 * 100 * 8)));
+  MemoryBudget::set_limit(100 * 100 * 16);
+  EXPECT_TRUE(std::holds_alternative<ImageRGBA8>(read_image_native(path("a.ppm"))));
+  EXPECT_THAT(refusal(floats, path("a.ppm")), HasSubstr("needs about " + format_bytes(100 * 100 * 28)));
 }
 
 }  // namespace

@@ -1,9 +1,14 @@
 #include "tessera/image/texture.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <random>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include "tessera/image/image_io.hpp"
 
 namespace tessera {
 namespace {
@@ -322,6 +327,123 @@ TEST(EnvironmentMap, LatLongAndCubeMapAgreeWithTheFunction) {
 TEST(EnvironmentMap, IsContinuousAcrossTheSeam) {
   const EnvironmentMap env(random_image(32, 16, 29));
   expect_near(env.lookup({1e-4f, 0.1f, 1.f}), env.lookup({-1e-4f, 0.1f, 1.f}), 1e-3f);
+}
+
+// ---- 8-bit textures ----
+
+ImageRGBA8 random_rgba8(int width, int height, unsigned seed) {
+  std::mt19937 rng(seed);
+  ImageRGBA8 image(width, height);
+  for (glm::u8vec4& p : image.pixels()) p = glm::u8vec4(rng() & 255, rng() & 255, rng() & 255, rng() & 255);
+  return image;
+}
+
+TEST(Texture2D, EightBitImagesAreStoredEightBit) {
+  const Texture2D eight(random_rgba8(64, 32, 1)), full(ImageRGBA(64, 32));
+  EXPECT_EQ(eight.format(), TexelFormat::rgba8);
+  EXPECT_EQ(eight.bytes_per_texel(), 4u);
+  EXPECT_EQ(full.format(), TexelFormat::rgba32f);
+  EXPECT_EQ(full.bytes_per_texel(), 16u);
+  // 64x32 + 32x16 + 16x8 + 8x4 + 4x2 + 2x1 + 1x1 = 2731 texels.
+  EXPECT_EQ(eight.levels(), 7);
+  EXPECT_EQ(eight.bytes(), 2731u * 4);
+  EXPECT_EQ(full.bytes(), 2731u * 16);
+  EXPECT_EQ(eight.level_rgba8(6).width(), 1);
+  EXPECT_THROW(eight.level_rgba8(7), InvalidInput);
+  EXPECT_THROW(full.level_rgba8(0), InvalidInput);
+}
+
+// A PNG loaded by load_texture (8-bit texels) samples level 0 exactly as the float texture of read_image's image of
+// the same file did: nearest and bilinear, every wrap mode, coordinates far outside [0, 1]; so does an environment
+// map.
+TEST(Texture2D, EightBitLevelZeroSamplesAreTheFloatTexturesBitForBit) {
+  const std::filesystem::path png =
+      std::filesystem::temp_directory_path() / ("tessera-texture-" + std::to_string(::getpid()) + ".png");
+  write_image(png, random_rgba8(37, 23, 2));
+  const ImageRGBA floats = read_image(png);
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> coord(-3.f, 3.f);
+  for (Wrap wrap : {Wrap::repeat, Wrap::clamp, Wrap::mirror})
+    for (Filter filter : {Filter::nearest, Filter::bilinear, Filter::trilinear}) {
+      const Sampler sampler{wrap, wrap, filter};
+      const Texture2D eight = load_texture(png, sampler), full(floats, sampler);
+      ASSERT_EQ(eight.format(), TexelFormat::rgba8);
+      for (int i = 0; i < 2000; ++i) {
+        const glm::vec2 uv(coord(rng), coord(rng));
+        ASSERT_EQ(eight.sample(uv), full.sample(uv)) << uv.x << "," << uv.y;  // lod 0 for trilinear
+        ASSERT_EQ(eight.nearest(uv, 0), full.nearest(uv, 0));
+        ASSERT_EQ(eight.bilinear(uv, 0), full.bilinear(uv, 0));
+      }
+    }
+  const EnvironmentMap eight = load_environment_map(png), full(floats);
+  std::normal_distribution<float> normal;
+  for (int i = 0; i < 1000; ++i) {
+    const glm::vec3 d(normal(rng), normal(rng), normal(rng));
+    ASSERT_EQ(eight.lookup(d), full.lookup(d));
+  }
+  std::filesystem::remove(png);
+}
+
+// The integer taps of a 1D reduction of n samples: indices, integer weights and their sum (the three-tap box of odd
+// sizes has weights (m - i, m, i + 1) / n with m = n / 2).
+struct IntegerTaps {
+  int index[3], weight[3], sum;
+};
+
+IntegerTaps integer_taps(int n, int i) {
+  const int m = n / 2;
+  if (n == 1) return {{0, 0, 0}, {1, 0, 0}, 1};
+  if (n % 2 == 0) return {{2 * i, 2 * i + 1, 2 * i}, {1, 1, 0}, 2};
+  return {{2 * i, 2 * i + 1, 2 * i + 2}, {m - i, m, i + 1}, n};
+}
+
+// Every 8-bit level against an exact computation from the 8-bit level above, in integers: the filtered value is
+// num / den, and the level holds it rounded to nearest (halves up; at an exact half, either neighbor, since the
+// float filter can land on either side).
+TEST(Mipmaps, EightBitLevelsRoundTheExactFilterOfTheLevelAbove) {
+  for (const auto& [w, h] : {std::pair{16, 8}, std::pair{7, 5}, std::pair{13, 1}, std::pair{1, 6}, std::pair{37, 20},
+                             std::pair{64, 64}}) {
+    const std::vector<ImageRGBA8> levels = build_mipmaps(random_rgba8(w, h, unsigned(w * 100 + h)));
+    ASSERT_EQ(levels.size(), build_mipmaps(ImageRGBA(w, h)).size());
+    for (size_t k = 1; k < levels.size(); ++k) {
+      const ImageRGBA8 &above = levels[k - 1], &level = levels[k];
+      ASSERT_EQ(level.width(), std::max(1, above.width() / 2));
+      ASSERT_EQ(level.height(), std::max(1, above.height() / 2));
+      for (int y = 0; y < level.height(); ++y)
+        for (int x = 0; x < level.width(); ++x) {
+          const IntegerTaps tx = integer_taps(above.width(), x), ty = integer_taps(above.height(), y);
+          for (int c = 0; c < 4; ++c) {
+            long long num = 0;
+            for (int b = 0; b < 3; ++b)
+              for (int a = 0; a < 3; ++a)
+                num += (long long)ty.weight[b] * tx.weight[a] * above(tx.index[a], ty.index[b])[c];
+            const long long den = (long long)tx.sum * ty.sum, rounded = (2 * num + den) / (2 * den);
+            const int got = level(x, y)[c];
+            if ((2 * num + den) % (2 * den) == 0)
+              EXPECT_TRUE(got == rounded || got == rounded - 1) << w << "x" << h << " level " << k;
+            else
+              EXPECT_EQ(got, rounded) << w << "x" << h << " level " << k << " texel " << x << "," << y;
+          }
+        }
+    }
+  }
+}
+
+// Rounding at each level: level k of an 8-bit texture lies within k x 0.5/255 of the float texture's level k (each
+// rounding adds at most half a step, and the filter, a convex combination, does not grow earlier errors).
+TEST(Mipmaps, EightBitLevelsStayWithinHalfAStepPerLevelOfTheFloatPyramid) {
+  const ImageRGBA8 bytes = random_rgba8(256, 96, 5);
+  const Texture2D eight(bytes), full(to_float(bytes));
+  double worst = 0;
+  for (int k = 1; k < eight.levels(); ++k) {
+    const ImageRGBA a = eight.level(k), b = full.level(k);
+    double largest = 0;
+    for (size_t i = 0; i < a.pixels().size(); ++i)
+      for (int c = 0; c < 4; ++c) largest = std::max(largest, double(std::abs(a.pixels()[i][c] - b.pixels()[i][c])));
+    EXPECT_LE(largest, k * 0.5 / 255 + 1e-6) << "level " << k;
+    worst = std::max(worst, largest * 255);
+  }
+  std::printf("largest difference of the 8-bit and float levels: %.3f / 255\n", worst);
 }
 
 }  // namespace

@@ -294,7 +294,7 @@ Material read_material(const Node& n, const std::filesystem::path& base_dir) {
     m.checker = float(c["size"].positive());
     m.checker_color = c["color"].color();
   }
-  if (n.has("texture")) m.texture = std::make_shared<Texture2D>(read_image(base_dir / n["texture"].string()));
+  if (n.has("texture")) m.texture = std::make_shared<Texture2D>(load_texture(base_dir / n["texture"].string()));
   return m;
 }
 

@@ -9,6 +9,7 @@
 // InvalidInput (malformed file, unknown extension), naming the file.
 #include <filesystem>
 #include <string_view>
+#include <variant>
 
 #include "tessera/image/image.hpp"
 
@@ -32,6 +33,16 @@ ImageRGBA read_image(const std::filesystem::path& path);
 /// read_image on bytes already in memory: `name`'s extension picks the format and names the data in messages (for
 /// data that does not come from a file, and for fuzzing).
 ImageRGBA decode_image(std::string_view data, const std::filesystem::path& name);
+
+/// An image in the precision of its file: 8-bit RGBA or float RGBA.
+using FileImage = std::variant<ImageRGBA8, ImageRGBA>;
+/// Reads an image file keeping 8-bit files 8-bit, for textures: 8-bit PNG, JPG, BMP, TGA and PPM/PGM with maxval
+/// 255 give ImageRGBA8 with the file's values (to_float of it is read_image's image, bit for bit), without a float
+/// image in between; 16-bit PNG and PPM, other maxvals, HDR and PFM give read_image's float image. The memory
+/// budget is checked as in read_image with 4 bytes per pixel instead of 16 for the 8-bit image. Throws as read_image.
+FileImage read_image_native(const std::filesystem::path& path);
+/// read_image_native on bytes already in memory (as decode_image).
+FileImage decode_image_native(std::string_view data, const std::filesystem::path& name);
 
 /// Writes float RGB to PNG, PPM (P6), PFM, HDR, JPG, BMP or TGA by extension. Throws InvalidInput (unknown
 /// extension, empty image) before creating anything, IoError when the file cannot be written.

@@ -6,7 +6,14 @@
 // corner, so v grows upward while image rows grow downward (row 0 is the top). Texel (i, j), counted from the
 // bottom-left, covers [i, i+1)/width x [j, j+1)/height in (u, v) and its center is ((i + 0.5)/width,
 // (j + 0.5)/height); it is image pixel (i, height - 1 - j). Values are filtered as stored (no gamma).
+//
+// A texture keeps the precision of its image, as an OpenGL texture keeps its internal format: from ImageRGBA8 (an
+// 8-bit file, load_texture) every level is 8-bit RGBA (GL_RGBA8, 4 bytes per texel), from ImageRGBA float RGBA
+// (GL_RGBA32F, 16 bytes). Sampling returns float either way: an 8-bit texel reads v/255, the value read_image gives,
+// so nearest and bilinear samples of level 0 are the float texture's bit for bit.
 #include <array>
+#include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <vector>
 
@@ -33,19 +40,36 @@ struct Sampler {
   Filter filter = Filter::bilinear;  ///< reconstruction filter
 };
 
+/// How a texture stores its texels (OpenGL's internal formats of the same names).
+enum class TexelFormat {
+  rgba8,    ///< 8-bit RGBA, 4 bytes per texel; a texel reads v/255
+  rgba32f,  ///< float RGBA, 16 bytes per texel
+};
+
 /// A 2D texture: an RGBA image, its MIPmap pyramid, and a Sampler.
 class Texture2D {
  public:
-  /// Builds the texture and its MIPmap pyramid (see build_mipmaps). Throws InvalidInput for an empty image.
+  /// Builds a float texture and its MIPmap pyramid (see build_mipmaps). Throws InvalidInput for an empty image.
   explicit Texture2D(ImageRGBA image, const Sampler& sampler = {});
+  /// Builds an 8-bit texture (TexelFormat::rgba8) and its 8-bit MIPmap pyramid, as OpenGL keeps a GL_RGBA8
+  /// texture's generated levels 8-bit (see build_mipmaps). Throws InvalidInput for an empty image.
+  explicit Texture2D(ImageRGBA8 image, const Sampler& sampler = {});
 
   /// Size of level 0 in texels.
-  int width() const { return levels_.front().width(); }
-  int height() const { return levels_.front().height(); }
+  int width() const { return width_; }
+  int height() const { return height_; }
   /// Number of MIPmap levels, 1 + floor(log2(max(width, height))).
-  int levels() const { return int(levels_.size()); }
-  /// MIPmap level `i` (0 is the full image); throws InvalidInput when i is not in [0, levels()).
-  const ImageRGBA& level(int i) const;
+  int levels() const { return int(rgba8_ ? levels8_.size() : levels_.size()); }
+  /// How the texels are stored, and the bytes of one texel (4 for rgba8, 16 for rgba32f).
+  TexelFormat format() const { return rgba8_ ? TexelFormat::rgba8 : TexelFormat::rgba32f; }
+  size_t bytes_per_texel() const { return rgba8_ ? sizeof(ImageRGBA8::Pixel) : sizeof(ImageRGBA::Pixel); }
+  /// The bytes that all levels' texels hold.
+  size_t bytes() const;
+  /// MIPmap level `i` (0 is the full image) as float RGBA: a copy, 8-bit texels as v/255. Throws InvalidInput when
+  /// i is not in [0, levels()).
+  ImageRGBA level(int i) const;
+  /// MIPmap level `i` of an rgba8 texture as stored. Throws InvalidInput for a float texture or a bad i.
+  const ImageRGBA8& level_rgba8(int i) const;
   /// The sampling state.
   const Sampler& sampler() const { return sampler_; }
   void set_sampler(const Sampler& sampler) { sampler_ = sampler; }
@@ -68,9 +92,12 @@ class Texture2D {
   glm::vec4 bilinear(glm::vec2 uv, int level) const;
 
  private:
-  glm::vec4 texel(const ImageRGBA& image, long long i, long long j) const;
+  void check_level(int i) const;
 
-  std::vector<ImageRGBA> levels_;
+  int width_ = 0, height_ = 0;
+  bool rgba8_ = false;
+  std::vector<ImageRGBA> levels_;     // rgba32f
+  std::vector<ImageRGBA8> levels8_;   // rgba8
   Sampler sampler_;
 };
 
@@ -79,6 +106,17 @@ class Texture2D {
 /// the three-tap box of width (2n+1)/n, weights (n - i, n, i + 1)/(2n + 1), so every level keeps the image's mean
 /// exactly. Throws InvalidInput for an empty image.
 std::vector<ImageRGBA> build_mipmaps(ImageRGBA image);
+/// The 8-bit pyramid: each level is the same filter evaluated in float on the 8-bit level above, rounded to the
+/// nearest 8-bit value (halves up), as OpenGL builds a GL_RGBA8 texture's levels from the level above as stored.
+/// A level is within 0.5/255 of the exact filter of the level above; level k within k x 0.5/255 of the float
+/// pyramid of the same image (docs/image.md).
+std::vector<ImageRGBA8> build_mipmaps(ImageRGBA8 image);
+
+/// Reads an image file as a texture without a float copy of an 8-bit file (read_image_native): 8-bit PNG, JPG, BMP,
+/// TGA and PPM/PGM with maxval 255 give an rgba8 texture (4 bytes per texel and a third more for the MIPmaps,
+/// instead of 16 and a third), 16-bit, HDR and PFM files a float one. Level 0 reads exactly read_image's values.
+/// Throws as read_image (the memory budget included).
+Texture2D load_texture(const std::filesystem::path& path, const Sampler& sampler = {});
 
 /// Lat-long (equirectangular) mapping of unit directions, right-handed, y up: the image center (0.5, 0.5) looks
 /// down -z, u grows with the azimuth toward +x (u = 0.75 is +x, u = 0 and 1 are +z), v = 1 is +y (top row) and v = 0
@@ -91,8 +129,10 @@ glm::vec3 latlong_direction(glm::vec2 uv);
 /// image: u repeats, v clamps at the poles.
 class EnvironmentMap {
  public:
-  /// Wraps a lat-long image (any aspect; 2:1 is usual). Throws InvalidInput for an empty image.
+  /// Wraps a lat-long image (any aspect; 2:1 is usual), float or 8-bit (see Texture2D). Throws InvalidInput for an
+  /// empty image.
   explicit EnvironmentMap(ImageRGBA latlong, Filter filter = Filter::bilinear);
+  explicit EnvironmentMap(ImageRGBA8 latlong, Filter filter = Filter::bilinear);
   /// The color seen in `direction` (nonzero, need not be normalized), at level of detail lod (trilinear only).
   glm::vec4 lookup(glm::vec3 direction, float lod = 0.f) const;
   /// The underlying texture.
@@ -101,6 +141,9 @@ class EnvironmentMap {
  private:
   Texture2D texture_;
 };
+
+/// Reads a lat-long image file as an environment map, 8-bit files staying 8-bit (as load_texture).
+EnvironmentMap load_environment_map(const std::filesystem::path& path, Filter filter = Filter::bilinear);
 
 /// Cube-map faces in OpenGL order: GL_TEXTURE_CUBE_MAP_POSITIVE_X + face.
 enum class CubeFace { pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
