@@ -1,6 +1,6 @@
 #include "tessera/mesh/measure.hpp"
 
-#include "tessera/mesh/normals.hpp"
+#include "normal_scale.hpp"
 
 namespace tessera {
 
@@ -15,7 +15,7 @@ Bounds3 bounding_box(const PolyMesh& mesh) {
 
 double surface_area(const PolyMesh& mesh) {
   double area = 0;
-  for (size_t f = 0; f < mesh.face_count(); ++f) area += glm::length(face_area_vector(mesh, f));
+  for (size_t f = 0; f < mesh.face_count(); ++f) area += detail::face_area(mesh, f);
   return area;
 }
 

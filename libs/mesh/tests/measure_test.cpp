@@ -23,5 +23,15 @@ TEST(Measure, VolumeIsIndependentOfTheOriginForClosedMeshes) {
   EXPECT_NEAR(signed_volume(box), 8.0, 1e-12);
 }
 
+// Issue 24, class 2: a face's area is the length of its vector area, whose squared components overflowed once they
+// passed about 1e154 (the box at 1e150 had an infinite area) and underflowed below 1e-154 (zero area at 1e-150).
+TEST(Measure, AreaOfHugeAndTinyMeshesIsTheScaledUnitArea) {
+  for (const double scale : {1e150, 1e-150, 1e100, 1e-100, 1e-153, 1.0}) {
+    PolyMesh box = make_box();  // [-1, 1]^3: area 24
+    for (Vec3& p : box.positions) p *= scale;
+    EXPECT_NEAR(surface_area(box) / scale / scale, 24.0, 1e-13) << scale;
+  }
+}
+
 }  // namespace
 }  // namespace tessera

@@ -46,5 +46,44 @@ TEST(Normals, AngleWeightingIgnoresHowAFaceIsSplit) {
   EXPECT_EQ(copy.normals.size(), copy.vertex_count());
 }
 
+// Issue 24, class 2: the cross products of coordinates beyond about 1e154 overflowed (and below 1e-154 underflowed),
+// so a mesh at 1e300 or 1e-300 got zero normals. Faces outside 2^+-128 are computed on points scaled by a power of two:
+// the cube's normals at any scale are the analytic ones, (+-1, +-1, +-1) / sqrt(3) at its corners (three equal faces
+// at right angles, for either weighting) and the axes for its faces; so are a tetrahedron's face normals, minus its
+// vertex directions (the opposite face's normal points away from the vertex).
+TEST(Normals, HugeAndTinyCoordinatesGiveTheUnitMeshsNormals) {
+  for (const double scale : {1.0, 1e300, 1e-300, 1e200, 1e-200, 1e154, 1e-154, 0x1p1000, 0x1p-1000}) {
+    SCOPED_TRACE(scale);
+    PolyMesh cube = make_cube(), tetra = make_tetrahedron();
+    for (Vec3& p : cube.positions) p *= scale;
+    for (Vec3& p : tetra.positions) p *= scale;
+    for (NormalWeighting w : {NormalWeighting::Area, NormalWeighting::Angle}) {
+      const auto n = vertex_normals(cube, w);
+      for (size_t v = 0; v < n.size(); ++v) {
+        const Vec3 analytic = glm::sign(cube.positions[v]) / std::sqrt(3.0);
+        EXPECT_NEAR(glm::length(n[v] - analytic), 0, 1e-15) << v;
+      }
+    }
+    for (size_t f = 0; f < cube.face_count(); ++f) {
+      Vec3 centroid(0.0);
+      for (uint32_t v : cube.face(f)) centroid += glm::sign(cube.positions[v]);  // on the face's axis, +-4
+      EXPECT_EQ(face_normal(cube, f), centroid / 4.0) << f;
+    }
+    for (size_t f = 0; f < tetra.face_count(); ++f) {
+      const auto face = tetra.face(f);
+      const uint32_t opposite = uint32_t(0 + 1 + 2 + 3 - face[0] - face[1] - face[2]);
+      EXPECT_NEAR(glm::length(face_normal(tetra, f) + glm::normalize(tetra.positions[opposite] / scale)), 0, 1e-15);
+    }
+  }
+  // Power-of-two scales are exact: the normals are those of the unit cube, bit for bit.
+  PolyMesh huge = make_cube();
+  for (Vec3& p : huge.positions) p *= 0x1p1000;
+  EXPECT_EQ(vertex_normals(huge), vertex_normals(make_cube()));
+  PolyMesh large = make_cube();
+  for (Vec3& p : large.positions) p *= 0x1p500;  // areas near 2^1000: still doubles, though the cross products were not
+  for (size_t f = 0; f < large.face_count(); ++f)
+    EXPECT_EQ(face_area_vector(large, f), 0x1p1000 * face_area_vector(make_cube(), f)) << f;
+}
+
 }  // namespace
 }  // namespace tessera
