@@ -2,7 +2,7 @@
 // The drawing (examples/data/tiger-lite.svg) is embedded at build time, so the gallery needs no source tree.
 #include "gallery.hpp"
 #include "tessera/image/image_io.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 #include "tiger_lite_svg.hpp"
 
 TESSERA_EXAMPLE(ex09_svg_drawing, "09_svg_drawing", "An SVG drawing rendered by the canvas") {

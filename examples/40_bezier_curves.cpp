@@ -7,7 +7,7 @@
 #include "gallery.hpp"
 #include "tessera/curves/figure.hpp"
 #include "tessera/image/image_io.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera::examples {
 namespace {

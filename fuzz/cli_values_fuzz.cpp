@@ -22,7 +22,7 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <string_view>
 
 #include "tessera/core/error.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

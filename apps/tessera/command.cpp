@@ -11,7 +11,7 @@
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/core/progress.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera::cli {
 

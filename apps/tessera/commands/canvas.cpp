@@ -8,7 +8,7 @@
 #include "command.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera::cli {
 namespace {

@@ -14,7 +14,7 @@
 #include "tessera/core/parse.hpp"
 #include "tessera/curves/figure.hpp"
 #include "tessera/image/image_io.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera::cli {
 namespace {

@@ -1,6 +1,6 @@
 #pragma once
-// The SVG front end: a strict parser for the subset of SVG 1.1 a person draws by hand, and a renderer that turns it
-// into fill_path/stroke_path calls (docs/svg.md lists the subset).
+// The SVG front end (the svg module, above raster2d): a strict parser for the subset of SVG 1.1 a person draws by hand,
+// and a renderer that turns it into raster2d's fill_path/stroke_path calls (docs/svg.md lists the subset).
 //
 // parse_svg() reads the document into shapes in user coordinates: every shape keeps the product of its ancestors'
 // `transform` lists (a matrix stack, CTM = CTM * T, so the transform written last acts first) and its resolved style.

@@ -1,8 +1,6 @@
-// The SVG document parser: a small strict XML tokenizer (XML 1.0 well-formedness for what an SVG file holds: elements,
-// attributes, the five predefined and numeric entities, comments, processing instructions, CDATA and a DOCTYPE that is
-// skipped) and the builder that turns its events into shapes with resolved styles and transforms.
+// The SVG document parser: the builder that turns the XML reader's events (xml.hpp) into shapes with resolved styles
+// and transforms.
 #include <algorithm>
-#include <charconv>
 #include <utility>
 
 #include <fmt/format.h>
@@ -11,309 +9,15 @@
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/math/matrix_stack.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
+#include "xml.hpp"
 
 namespace tessera {
 namespace {
 
-using svg::is_xml_space;
 using svg::SvgValueError;
-
-// Line and column (1-based, in bytes) of offsets in the source, for messages.
-class SourceMap {
- public:
-  SourceMap(std::string_view text, std::string name) : name_(std::move(name)) {
-    line_starts_.push_back(0);
-    for (size_t i = 0; i < text.size(); ++i)
-      if (text[i] == '\n') line_starts_.push_back(i + 1);
-  }
-  long line(size_t offset) const {
-    return long(std::upper_bound(line_starts_.begin(), line_starts_.end(), offset) - line_starts_.begin());
-  }
-  // "name:line:column"
-  std::string where(size_t offset) const {
-    const long l = line(offset);
-    return fmt::format("{}:{}:{}", name_, l, offset - line_starts_[size_t(l - 1)] + 1);
-  }
-  const std::string& name() const { return name_; }
-
- private:
-  std::string name_;
-  std::vector<size_t> line_starts_;
-};
-
-struct XmlAttribute {
-  std::string name;
-  std::string value;    // entities decoded, white space characters normalized to spaces
-  size_t name_offset;   // in the source
-  size_t value_offset;  // of the value's first character in the source
-  bool verbatim;        // no entity in the value: offsets inside it map one to one onto the source
-};
-
-struct XmlEvent {
-  enum class Kind { Start, End, Eof };
-  Kind kind;
-  std::string name;
-  size_t offset;  // of the tag's '<'
-  std::vector<XmlAttribute> attributes;
-};
-
-bool is_name_start(char c) {
-  return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_' || c == ':' || static_cast<unsigned char>(c) >= 0x80;
-}
-bool is_name_char(char c) { return is_name_start(c) || (c >= '0' && c <= '9') || c == '-' || c == '.'; }
-
-// Appends the UTF-8 encoding of a code point.
-void append_utf8(std::string& out, uint32_t cp) {
-  if (cp < 0x80) {
-    out.push_back(char(cp));
-  } else if (cp < 0x800) {
-    out.push_back(char(0xc0 | (cp >> 6)));
-    out.push_back(char(0x80 | (cp & 0x3f)));
-  } else if (cp < 0x10000) {
-    out.push_back(char(0xe0 | (cp >> 12)));
-    out.push_back(char(0x80 | ((cp >> 6) & 0x3f)));
-    out.push_back(char(0x80 | (cp & 0x3f)));
-  } else {
-    out.push_back(char(0xf0 | (cp >> 18)));
-    out.push_back(char(0x80 | ((cp >> 12) & 0x3f)));
-    out.push_back(char(0x80 | ((cp >> 6) & 0x3f)));
-    out.push_back(char(0x80 | (cp & 0x3f)));
-  }
-}
-
-// XML 1.0 Char production.
-bool is_xml_char(uint32_t cp) {
-  return cp == 0x9 || cp == 0xa || cp == 0xd || (cp >= 0x20 && cp <= 0xd7ff) || (cp >= 0xe000 && cp <= 0xfffd) ||
-         (cp >= 0x10000 && cp <= 0x10ffff);
-}
-
-// Pulls start and end tags out of the text, checking well-formedness: one root element, matching end tags, quoted
-// unique attributes, known entities, nothing but white space, comments and processing instructions outside the root.
-class XmlReader {
- public:
-  XmlReader(std::string_view text, const SourceMap& map) : text_(text), map_(map) {
-    if (text_.substr(0, 3) == "\xef\xbb\xbf") pos_ = 3;  // UTF-8 byte order mark
-  }
-
-  XmlEvent next() {
-    if (pending_end_) {
-      pending_end_ = false;
-      return close_top();
-    }
-    for (;;) {
-      if (pos_ >= text_.size()) {
-        if (!open_.empty())
-          fail(pos_, fmt::format("unexpected end of file: expected </{}> to close <{}> from line {}",
-                                 open_.back().name, open_.back().name, map_.line(open_.back().offset)));
-        if (!root_seen_) fail(pos_, "no root element: expected <svg>");
-        return {XmlEvent::Kind::Eof, {}, pos_, {}};
-      }
-      if (text_[pos_] != '<') {
-        text();
-      } else if (starts_with("<?")) {
-        skip_past("?>", "unterminated processing instruction (expected '?>')");
-      } else if (starts_with("<!--")) {
-        skip_past("-->", "unterminated comment (expected '-->')");
-      } else if (starts_with("<![CDATA[")) {
-        if (open_.empty()) fail(pos_, "CDATA section outside the root element");
-        skip_past("]]>", "unterminated CDATA section (expected ']]>')");
-      } else if (starts_with("<!DOCTYPE")) {
-        if (root_seen_) fail(pos_, "DOCTYPE after the root element");
-        skip_doctype();
-      } else if (starts_with("<!")) {
-        fail(pos_, "expected a comment '<!--', CDATA '<![CDATA[' or '<!DOCTYPE' after '<!'");
-      } else if (starts_with("</")) {
-        return end_tag();
-      } else {
-        return start_tag();
-      }
-    }
-  }
-
- private:
-  [[noreturn]] void fail(size_t offset, const std::string& what) const {
-    // The message quotes the document's own bytes: printable() keeps escape sequences off the terminal.
-    throw InvalidInput(located(map_.where(offset), printable(what, 400)));
-  }
-
-  bool starts_with(std::string_view s) const { return text_.substr(pos_, s.size()) == s; }
-
-  bool skip_space() {
-    const size_t start = pos_;
-    while (pos_ < text_.size() && is_xml_space(text_[pos_])) ++pos_;
-    return pos_ > start;
-  }
-
-  void skip_past(std::string_view marker, const char* unterminated) {
-    const size_t end = text_.find(marker, pos_);
-    if (end == std::string_view::npos) fail(pos_, unterminated);
-    pos_ = end + marker.size();
-  }
-
-  // <!DOCTYPE ...> with an optional internal subset [...] and quoted literals.
-  void skip_doctype() {
-    const size_t start = pos_;
-    int depth = 0;
-    char quote = 0;
-    for (pos_ += 2; pos_ < text_.size(); ++pos_) {
-      const char c = text_[pos_];
-      if (quote) {
-        if (c == quote) quote = 0;
-      } else if (c == '"' || c == '\'') {
-        quote = c;
-      } else if (c == '[') {
-        ++depth;
-      } else if (c == ']') {
-        --depth;
-      } else if (c == '>' && depth <= 0) {
-        ++pos_;
-        return;
-      }
-    }
-    fail(start, "unterminated DOCTYPE (expected '>')");
-  }
-
-  std::string read_name(const char* what) {
-    const size_t start = pos_;
-    if (pos_ >= text_.size() || !is_name_start(text_[pos_]))
-      fail(pos_, pos_ >= text_.size() ? fmt::format("expected {}, got the end of the file", what)
-                                      : fmt::format("expected {}, got '{}'", what, text_[pos_]));
-    while (pos_ < text_.size() && is_name_char(text_[pos_])) ++pos_;
-    return std::string(text_.substr(start, pos_ - start));
-  }
-
-  // &amp; &lt; &gt; &quot; &apos; &#N; &#xH; at pos_ (which holds '&'): appends the character and moves past ';'.
-  void entity(std::string& out) {
-    const size_t start = pos_;
-    const size_t semi = text_.find(';', pos_);
-    if (semi == std::string_view::npos || semi - pos_ > 12)
-      fail(start, "expected an entity such as '&amp;' (an '&' must be written '&amp;')");
-    const std::string_view name = text_.substr(pos_ + 1, semi - pos_ - 1);
-    pos_ = semi + 1;
-    static constexpr std::pair<std::string_view, char> kNamed[] = {
-        {"amp", '&'}, {"lt", '<'}, {"gt", '>'}, {"quot", '"'}, {"apos", '\''}};
-    for (const auto& [n, c] : kNamed)
-      if (name == n) return out.push_back(c);
-    if (name.size() >= 2 && name[0] == '#') {
-      const bool hex = name[1] == 'x';
-      const std::string_view digits = name.substr(hex ? 2 : 1);
-      uint32_t cp = 0;
-      const auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), cp, hex ? 16 : 10);
-      if (!digits.empty() && ec == std::errc() && end == digits.data() + digits.size() && is_xml_char(cp))
-        return append_utf8(out, cp);
-      fail(start, fmt::format("invalid character reference '&{};'", name));
-    }
-    fail(start, fmt::format("unknown entity '&{};' (XML knows &amp; &lt; &gt; &quot; &apos; and &#N;)", name));
-  }
-
-  // Character data: ignored, but entities must be valid and only white space may stand outside the root.
-  void text() {
-    std::string scratch;
-    while (pos_ < text_.size() && text_[pos_] != '<') {
-      if (text_[pos_] == '&') {
-        if (open_.empty()) fail(pos_, "text outside the root element");
-        entity(scratch);
-        continue;
-      }
-      if (open_.empty() && !is_xml_space(text_[pos_]))
-        fail(pos_, root_closed_ ? "content after the end of the root element" : "text before the root element");
-      ++pos_;
-    }
-  }
-
-  XmlEvent start_tag() {
-    const size_t start = pos_++;
-    if (root_closed_) fail(start, "content after the end of the root element");
-    XmlEvent event{XmlEvent::Kind::Start, read_name("an element name after '<'"), start, {}};
-    for (;;) {
-      const bool space = skip_space();
-      if (pos_ >= text_.size())
-        fail(pos_, fmt::format("unexpected end of file inside the <{}> tag (expected '>' or '/>')", event.name));
-      if (text_[pos_] == '>') {
-        ++pos_;
-        break;
-      }
-      if (starts_with("/>")) {
-        pos_ += 2;
-        pending_end_ = true;
-        break;
-      }
-      if (!space)
-        fail(pos_, fmt::format("expected white space, '>' or '/>' in the <{}> tag, got '{}'", event.name, text_[pos_]));
-      event.attributes.push_back(attribute(event));
-    }
-    root_seen_ = true;
-    open_.push_back({event.name, start});
-    return event;
-  }
-
-  XmlAttribute attribute(const XmlEvent& event) {
-    XmlAttribute a{{}, {}, pos_, 0, true};
-    a.name = read_name("an attribute name");
-    skip_space();
-    if (pos_ >= text_.size() || text_[pos_] != '=') fail(pos_, fmt::format("expected '=' after attribute '{}'", a.name));
-    ++pos_;
-    skip_space();
-    const char quote = pos_ < text_.size() ? text_[pos_] : '\0';
-    if (quote != '"' && quote != '\'') fail(pos_, fmt::format("expected a quoted value for attribute '{}'", a.name));
-    a.value_offset = ++pos_;
-    for (;;) {
-      if (pos_ >= text_.size())
-        fail(a.value_offset - 1, fmt::format("unterminated value of attribute '{}' (expected {})", a.name, quote));
-      const char c = text_[pos_];
-      if (c == quote) break;
-      if (c == '<') fail(pos_, fmt::format("'<' in the value of attribute '{}' (write &lt;)", a.name));
-      if (c == '&') {
-        entity(a.value);
-        a.verbatim = false;
-        continue;
-      }
-      a.value.push_back(is_xml_space(c) ? ' ' : c);
-      ++pos_;
-    }
-    ++pos_;
-    for (const XmlAttribute& other : event.attributes)
-      if (other.name == a.name) fail(a.name_offset, fmt::format("duplicate attribute '{}'", a.name));
-    return a;
-  }
-
-  XmlEvent end_tag() {
-    const size_t start = pos_;
-    pos_ += 2;
-    const std::string name = read_name("an element name after '</'");
-    skip_space();
-    if (pos_ >= text_.size() || text_[pos_] != '>') fail(pos_, fmt::format("expected '>' to end </{}>", name));
-    ++pos_;
-    if (open_.empty()) fail(start, fmt::format("unexpected </{}>: no element is open", name));
-    if (open_.back().name != name)
-      fail(start, fmt::format("expected </{}> to close <{}> from line {}, got </{}>", open_.back().name,
-                              open_.back().name, map_.line(open_.back().offset), name));
-    XmlEvent event = close_top();
-    event.offset = start;
-    return event;
-  }
-
-  XmlEvent close_top() {
-    XmlEvent event{XmlEvent::Kind::End, std::move(open_.back().name), open_.back().offset, {}};
-    open_.pop_back();
-    root_closed_ = open_.empty();
-    return event;
-  }
-
-  struct OpenElement {
-    std::string name;
-    size_t offset;
-  };
-  std::string_view text_;
-  const SourceMap& map_;
-  size_t pos_ = 0;
-  std::vector<OpenElement> open_;
-  bool root_seen_ = false, root_closed_ = false, pending_end_ = false;
-};
-
-// ---- The document builder --------------------------------------------------------------------------------------------
-
+using xml::Attribute;
+using xml::Event;
 // A paint as specified: currentColor is resolved when a shape is painted, from its `color` property.
 struct PaintSpec {
   enum class Kind { None, Color, CurrentColor };
@@ -380,16 +84,16 @@ class Tally {
 class DocumentBuilder {
  public:
   DocumentBuilder(std::string_view text, const std::string& source_name)
-      : map_(text, source_name), reader_(text, map_) {}
+      : map_(text, source_name), reader_(text, map_, "svg") {}
 
   SvgDocument build() {
     document_.source = map_.name();
-    XmlEvent event = reader_.next();
+    Event event = reader_.next();
     if (event.name != "svg")
       fail(event.offset, fmt::format("expected <svg> as the root element, got <{}>", event.name));
     root(event);
-    while ((event = reader_.next()).kind != XmlEvent::Kind::Eof) {
-      if (event.kind == XmlEvent::Kind::Start) start_element(event);
+    while ((event = reader_.next()).kind != Event::Kind::Eof) {
+      if (event.kind == Event::Kind::Start) start_element(event);
       else end_element();
     }
     if (!unsupported_elements_.empty())
@@ -403,13 +107,10 @@ class DocumentBuilder {
   }
 
  private:
-  [[noreturn]] void fail(size_t offset, const std::string& what) const {
-    // The message quotes the document's own bytes: printable() keeps escape sequences off the terminal.
-    throw InvalidInput(located(map_.where(offset), printable(what, 400)));
-  }
+  [[noreturn]] void fail(size_t offset, const std::string& what) const { map_.fail(offset, what); }
 
-  static const XmlAttribute* find(const XmlEvent& e, std::string_view name) {
-    for (const XmlAttribute& a : e.attributes)
+  static const Attribute* find(const Event& e, std::string_view name) {
+    for (const Attribute& a : e.attributes)
       if (a.name == name) return &a;
     return nullptr;
   }
@@ -417,7 +118,7 @@ class DocumentBuilder {
   // Runs a value grammar on `text`, which starts `base` bytes into attribute `a`'s value, turning its SvgValueError
   // into an error at file:line:column (the exact column when the value holds no entity).
   template <class Parse>
-  auto checked(const XmlEvent& e, const XmlAttribute& a, std::string_view context, size_t base, std::string_view text,
+  auto checked(const Event& e, const Attribute& a, std::string_view context, size_t base, std::string_view text,
                Parse&& parse) const {
     try {
       return parse(text);
@@ -427,13 +128,13 @@ class DocumentBuilder {
     }
   }
   template <class Parse>
-  auto checked(const XmlEvent& e, const XmlAttribute& a, Parse&& parse) const {
+  auto checked(const Event& e, const Attribute& a, Parse&& parse) const {
     return checked(e, a, fmt::format("attribute '{}'", a.name), 0, a.value, std::forward<Parse>(parse));
   }
 
   // A length attribute (px or unitless); `fallback` when absent. Negative values throw when !allow_negative.
-  double length(const XmlEvent& e, std::string_view name, double fallback, bool allow_negative = true) const {
-    const XmlAttribute* a = find(e, name);
+  double length(const Event& e, std::string_view name, double fallback, bool allow_negative = true) const {
+    const Attribute* a = find(e, name);
     if (!a) return fallback;
     const double v = checked(e, *a, svg::parse_length);
     if (!allow_negative && v < 0)
@@ -441,11 +142,11 @@ class DocumentBuilder {
     return v;
   }
 
-  void root(const XmlEvent& e) {
+  void root(const Event& e) {
     Frame frame;
     if (find(e, "width")) document_.width = length(e, "width", 0, false);
     if (find(e, "height")) document_.height = length(e, "height", 0, false);
-    if (const XmlAttribute* a = find(e, "viewBox")) {
+    if (const Attribute* a = find(e, "viewBox")) {
       const std::vector<double> v = checked(e, *a, svg::parse_number_list);
       if (v.size() != 4)
         fail(a->value_offset, fmt::format("attribute 'viewBox' of <svg>: expected 4 numbers (min-x min-y width "
@@ -455,7 +156,7 @@ class DocumentBuilder {
                                           "{} and {}", v[2], v[3]));
       document_.view_box = Vec4(v[0], v[1], v[2], v[3]);
     }
-    if (const XmlAttribute* a = find(e, "preserveAspectRatio")) document_.aspect = aspect(e, *a);
+    if (const Attribute* a = find(e, "preserveAspectRatio")) document_.aspect = aspect(e, *a);
     if (find(e, "transform")) unsupported_attributes_.add("transform on <svg>");
     bool display = true;
     apply_presentation(e, Frame{}, frame, display);
@@ -465,7 +166,7 @@ class DocumentBuilder {
     stack_.push();
   }
 
-  SvgAspect aspect(const XmlEvent& e, const XmlAttribute& a) const {
+  SvgAspect aspect(const Event& e, const Attribute& a) const {
     return checked(e, a, [](std::string_view text) {
       SvgAspect result;
       size_t pos = 0;
@@ -498,7 +199,7 @@ class DocumentBuilder {
     });
   }
 
-  void start_element(const XmlEvent& e) {
+  void start_element(const Event& e) {
     const Frame& parent = frames_.back();
     Frame frame = parent;
     frame.own_opacity = 1;
@@ -514,7 +215,7 @@ class DocumentBuilder {
     frame.group_opacity = parent.group_opacity * frame.own_opacity;
     stack_.push();
     if (frame.rendering)
-      if (const XmlAttribute* a = find(e, "transform")) stack_.multiply(checked(e, *a, parse_svg_transform));
+      if (const Attribute* a = find(e, "transform")) stack_.multiply(checked(e, *a, parse_svg_transform));
     frames_.push_back(frame);
     if (frame.rendering && frame.shape) add_shape(e, frame);
   }
@@ -525,10 +226,10 @@ class DocumentBuilder {
   }
 
   // Presentation attributes first, then the style attribute's declarations, which take precedence.
-  void apply_presentation(const XmlEvent& e, const Frame& parent, Frame& frame, bool& display) {
-    for (const XmlAttribute& a : e.attributes)
+  void apply_presentation(const Event& e, const Frame& parent, Frame& frame, bool& display) {
+    for (const Attribute& a : e.attributes)
       if (a.name != "style") property(e, a, a.name, 0, a.value, parent, frame, display);
-    const XmlAttribute* style = find(e, "style");
+    const Attribute* style = find(e, "style");
     if (!style) return;
     size_t pos = 0;
     for (std::string_view declaration : split(style->value, ';')) {
@@ -550,7 +251,7 @@ class DocumentBuilder {
   }
 
   // Applies one property. `value` starts `base` bytes into attribute `a`'s value (for error columns).
-  void property(const XmlEvent& e, const XmlAttribute& a, std::string_view name, size_t base, std::string_view value,
+  void property(const Event& e, const Attribute& a, std::string_view name, size_t base, std::string_view value,
                 const Frame& parent, Frame& frame, bool& display) {
     const std::string context =
         a.name == "style" ? fmt::format("property '{}' in style", name) : fmt::format("attribute '{}'", name);
@@ -629,7 +330,7 @@ class DocumentBuilder {
     return spec.kind == PaintSpec::Kind::Color ? spec.color : p.color;
   }
 
-  void add_shape(const XmlEvent& e, const Frame& frame) {
+  void add_shape(const Event& e, const Frame& frame) {
     SvgShape shape;
     shape.element = e.name;
     shape.line = map_.line(e.offset);
@@ -641,7 +342,7 @@ class DocumentBuilder {
     if (p.visible && !shape.subpaths.empty()) document_.shapes.push_back(std::move(shape));
   }
 
-  std::vector<SvgSubpath> geometry(const XmlEvent& e) const {
+  std::vector<SvgSubpath> geometry(const Event& e) const {
     std::vector<SvgSubpath> out;
     const auto closed_curve = [&](const Vec2& center, double rx, double ry) {
       SvgSubpath s{center + Vec2(rx, 0), {}, true};
@@ -649,7 +350,7 @@ class DocumentBuilder {
       out.push_back(std::move(s));
     };
     if (e.name == "path") {
-      if (const XmlAttribute* a = find(e, "d")) out = checked(e, *a, parse_svg_path_data);
+      if (const Attribute* a = find(e, "d")) out = checked(e, *a, parse_svg_path_data);
     } else if (e.name == "rect") {
       const double x = length(e, "x", 0), y = length(e, "y", 0);
       const double w = length(e, "width", 0, false), h = length(e, "height", 0, false);
@@ -685,7 +386,7 @@ class DocumentBuilder {
       out.push_back({{length(e, "x1", 0), length(e, "y1", 0)}, {{SvgSegment::Kind::Line, Vec2(0.0), Vec2(0.0), end}},
                      false});
     } else {  // polyline, polygon
-      const XmlAttribute* a = find(e, "points");
+      const Attribute* a = find(e, "points");
       const std::vector<double> v = a ? checked(e, *a, svg::parse_number_list) : std::vector<double>{};
       if (v.size() % 2 != 0)
         fail(a->value_offset, fmt::format("attribute 'points' of <{}>: expected pairs of coordinates, got {} numbers",
@@ -699,8 +400,8 @@ class DocumentBuilder {
     return out;
   }
 
-  SourceMap map_;
-  XmlReader reader_;
+  xml::SourceMap map_;
+  xml::Reader reader_;
   SvgDocument document_;
   std::vector<Frame> frames_;
   MatrixStack2 stack_;  // the CTM of the open elements: push per element, CTM = CTM * T for its transform

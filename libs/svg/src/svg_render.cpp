@@ -9,7 +9,7 @@
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/curves/bezier.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera {
 namespace {

@@ -11,7 +11,8 @@
 
 #include "svg_syntax.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
+#include "xml.hpp"
 
 namespace tessera::svg {
 
@@ -42,7 +43,7 @@ class Scanner {
   void advance() { ++pos_; }
 
   void skip_space() {
-    while (!at_end() && is_xml_space(text_[pos_])) ++pos_;
+    while (!at_end() && xml::is_space(text_[pos_])) ++pos_;
   }
   // wsp* (',' wsp*)?: returns true when a comma was consumed (then something must follow).
   bool skip_comma_space() {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "tessera/core/error.hpp"
-#include "tessera/raster2d/svg.hpp"
+#include "tessera/svg/svg.hpp"
 
 namespace tessera::svg {
 
@@ -40,8 +40,5 @@ float parse_opacity(std::string_view text);
 /// length 4/3 tan(delta/4)); the last piece ends exactly at `end`, which should be the arc's end point.
 void append_arc_cubics(std::vector<SvgSegment>& out, const Vec2& center, double rx, double ry, double phi,
                        double theta1, double dtheta, const Vec2& end);
-
-/// True for XML white space (space, tab, CR, LF).
-constexpr bool is_xml_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
 
 }  // namespace tessera::svg
