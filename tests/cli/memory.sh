@@ -109,3 +109,35 @@ refuse "$dir/c.png" "drawing 300x300 pixels" "$bin" curve --points 40,260,80,40,
 refuse "$dir/v.png" "rendering 300x300 pixels" "$bin" volume render sphere:16 -o "$dir/v.png" --size 300x300
 "$bin" fractal mandelbrot -o "$dir/m.png" --size 100x100 --max-memory 1M --quiet
 [ -s "$dir/m.png" ] || fail "fractal mandelbrot 100x100 under a 1M budget wrote nothing"
+
+# Textures from 8-bit files stay 8-bit: a 6000x6000 PNG (600 KB) as --texture. The budget counts its decoding at 8
+# bytes per pixel (stb's RGBA samples and the 8-bit image: 274.7 MiB), not read_image's 20 (686.6 MiB, which a float
+# read of the same file still needs); and the process fits in an address space of 500 MiB, where float texels (16
+# bytes each, a third more for the MIPmaps: 732 MiB with level 0 alone at 549 MiB) could not.
+python3 - "$dir/big.png" <<'PY'
+import struct, sys, zlib
+w = h = 6000
+z = zlib.compressobj(9)
+row = b"\0" + b"".join(bytes([37 * c % 256, 91 * c % 256, 151 * c % 256]) * 64 for c in range(94))[: 3 * w]
+data = b"".join(z.compress(row) for _ in range(h)) + z.flush()
+chunk = lambda t, d: struct.pack(">I", len(d)) + t + d + struct.pack(">I", zlib.crc32(t + d))
+open(sys.argv[1], "wb").write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0)) +
+                              chunk(b"IDAT", data) + chunk(b"IEND", b""))
+PY
+printf 'v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n' >"$dir/tquad.obj"
+tex=("$bin" raster "$dir/tquad.obj" -o "$dir/tex.png" --texture "$dir/big.png" --size 32x32 --eye 0,0,3 --center 0,0,0
+  --threads 1 --quiet)
+rm -f "$dir/tex.png"
+"${tex[@]}" --max-memory 400M || fail "a 6000x6000 PNG texture under a 400M budget failed"
+[ -s "$dir/tex.png" ] || fail "a 6000x6000 PNG texture under a 400M budget wrote nothing"
+rc=0
+"${tex[@]}" --max-memory 200M 2>"$dir/err" || rc=$?
+[ "$rc" = 1 ] && grep -q "big.png': decoding 6000x6000 pixels needs about 274.7 MiB, the memory budget is 200.0 MiB" \
+  "$dir/err" || fail "6000x6000 texture under 200M: $(cat "$dir/err")"
+rc=0
+"$bin" fractal dimension "$dir/big.png" --max-memory 400M 2>"$dir/err" >/dev/null || rc=$?
+[ "$rc" = 1 ] && grep -q "decoding 6000x6000 pixels needs about 686.6 MiB" "$dir/err" ||
+  fail "a float read of the 6000x6000 PNG under 400M: $(cat "$dir/err")"
+rm -f "$dir/tex.png"
+(ulimit -v 512000 && exec "${tex[@]}" --max-memory 1T) 2>"$dir/err" || fail "8-bit texture in 500 MiB: $(cat "$dir/err")"
+[ -s "$dir/tex.png" ] || fail "8-bit texture in 500 MiB wrote nothing"
