@@ -1,0 +1,46 @@
+// libFuzzer target for every image reader behind tessera::decode_image (what read_image, textures and slice stacks
+// use): the first byte picks the file name's extension (.png .jpg .jpeg .bmp .tga .hdr .ppm .pgm .pnm .pfm, or an
+// unknown .gif), the rest is the file. The extension picks Tessera's own reader for PPM/PGM and PFM and stb_image for
+// the others (stb_image then goes by the content, so any of its formats can arrive under any of those names). The
+// memory budget is 64 MiB, so that a header declaring a large image is refused before decoding (as a
+// decompression bomb would be) and one input stays well under a second.
+// tessera::Error is the expected outcome for a malformed file; anything else (a crash, another exception, a sanitizer
+// report) is a bug, and so is a decoded image that is empty, or one whose values are outside [0, 1] (8- and 16-bit
+// formats: stb_image's PNG/JPG/BMP/TGA/..., PPM/PGM) or negative or not finite (Radiance HDR). PFM holds any float.
+// stb_image comes from Debian's libstb, built without coverage instrumentation: libFuzzer is guided by Tessera's
+// code only, and ASan sees stb's memory errors only where they pass through intercepted calls (memcpy, free).
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+#include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
+#include "tessera/image/image_io.hpp"
+
+namespace {
+
+constexpr std::string_view kNames[] = {"fuzz.png", "fuzz.jpg", "fuzz.jpeg", "fuzz.bmp", "fuzz.tga", "fuzz.hdr",
+                                       "fuzz.ppm", "fuzz.pgm", "fuzz.pnm",  "fuzz.pfm", "fuzz.gif"};
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size == 0) return 0;
+  tessera::MemoryBudget::set_limit(uint64_t(64) << 20);
+  const std::string_view name = kNames[data[0] % std::size(kNames)];
+  const std::string_view file(reinterpret_cast<const char*>(data) + 1, size - 1);
+  try {
+    const tessera::ImageRGBA image = tessera::decode_image(file, name);
+    if (image.width() < 1 || image.height() < 1) __builtin_trap();
+    if (name.ends_with(".pfm")) return 0;
+    // stb_image decodes Radiance files (magic "#?") to linear floats, whatever the name says.
+    const bool netpbm = name.ends_with(".ppm") || name.ends_with(".pgm") || name.ends_with(".pnm");
+    const bool hdr = !netpbm && file.starts_with("#?");
+    for (const auto& p : image.pixels())
+      for (int c = 0; c < 4; ++c)
+        if (!(p[c] >= 0 && (hdr ? std::isfinite(p[c]) : p[c] <= 1))) __builtin_trap();
+  } catch (const tessera::Error&) {
+  }
+  return 0;
+}
