@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "tessera/core/error.hpp"
@@ -52,6 +53,19 @@ void cotangent_weights(const PolyMesh& tris, const EdgeTable& edges, std::vector
   for (double& x : w) x = std::max(x, 0.0);
 }
 
+/// The exponent e of a power of two that brings the largest coordinate into [0.5, 1) (0 when all are 0).
+int scale_exponent(const std::vector<Vec3>& points) {
+  double largest = 0;
+  for (const Vec3& p : points) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+  int exponent = 0;
+  if (largest > 0) std::frexp(largest, &exponent);
+  return exponent;
+}
+
+Vec3 scaled(const Vec3& p, int exponent) {
+  return {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
+}
+
 }  // namespace
 
 void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function<void(int)>& progress) {
@@ -62,6 +76,13 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
   if (options.method == SmoothingMethod::Taubin && !(options.mu < -options.lambda && options.mu >= -1))
     throw InvalidInput(
         fmt::format("Taubin mu must be in [-1, -lambda), got {} (lambda {})", options.mu, options.lambda));
+
+  // Every step is linear in the positions and cotangent weights depend on angles only, so the steps run on the
+  // positions scaled by a power of two (exact) to a largest coordinate below 1: differences and sums of coordinates
+  // near 1e308 would overflow to inf and NaN.
+  const int exponent = scale_exponent(mesh.positions);
+  std::vector<Vec3> positions(mesh.positions.size());
+  for (size_t v = 0; v < positions.size(); ++v) positions[v] = scaled(mesh.positions[v], -exponent);
 
   const bool cotangent = options.method == SmoothingMethod::Cotangent;
   const PolyMesh tris = cotangent ? triangulate(mesh) : PolyMesh{};
@@ -74,35 +95,44 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
     for (size_t v = 0; v < kinds.size(); ++v) fixed[v] = kinds[v] != VertexKind::Interior;
   }
   std::vector<double> weight(edges.size(), 1.0);
-  std::vector<Vec3> next(mesh.positions.size());
+  std::vector<Vec3> next(positions.size());
   PolyMesh weighted = cotangent ? tris : PolyMesh{};  // positions updated for the cotangent weights
 
   const auto step = [&](double factor) {
     if (cotangent) {
-      weighted.positions = mesh.positions;
+      weighted.positions = positions;
       cotangent_weights(weighted, edges, weight);
     }
     parallel_for(0, int64_t(mesh.vertex_count()), 4096, [&](int64_t begin, int64_t end) {
       for (auto v = size_t(begin); v < size_t(end); ++v) {
-        const Vec3& x = mesh.positions[v];
+        const Vec3& x = positions[v];
         next[v] = x;
         if (fixed[v]) continue;
         Vec3 sum(0.0);
         double total = 0;
         for (uint32_t i = nb.offsets[v]; i < nb.offsets[v + 1]; ++i) {
-          sum += weight[nb.edge[i]] * (mesh.positions[nb.vertex[i]] - x);
+          sum += weight[nb.edge[i]] * (positions[nb.vertex[i]] - x);
           total += weight[nb.edge[i]];
         }
         if (total > 0) next[v] = x + factor * (sum / total);
       }
     });
-    mesh.positions.swap(next);
+    positions.swap(next);
   };
   for (int i = 0; i < options.iterations; ++i) {
     step(options.lambda);
     if (options.method == SmoothingMethod::Taubin) step(options.mu);
     if (progress) progress(i + 1);
   }
+  // Taubin's inflating steps can move a vertex beyond the mesh's box, and so beyond the finite numbers near 1e308.
+  for (size_t v = 0; v < positions.size(); ++v) {
+    positions[v] = scaled(positions[v], exponent);
+    if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) || !std::isfinite(positions[v].z))
+      throw InvalidInput(fmt::format("smoothing moves vertex {} beyond the finite numbers (coordinates up to about "
+                                     "2^{}); scale the mesh down first",
+                                     v, exponent));
+  }
+  mesh.positions = std::move(positions);
   // Normals of the old shape would be silently wrong: give the smoothed shape its own.
   if (options.iterations > 0 && (!mesh.normals.empty() || !mesh.corner_normals.empty())) {
     mesh.corner_normals.clear();

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "tessera/core/error.hpp"
 #include "tessera/core/rng.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -70,6 +72,30 @@ TEST(Smoothing, TheNotesUniformStepWithLambdaOneIsTheNeighbourAverage) {
   smooth(grid, {SmoothingMethod::Laplacian, 1, 1.0});
   EXPECT_NEAR(grid.positions[4].y, 0, 1e-15);
   EXPECT_EQ(grid.positions[0], Vec3(-1, 0, -1));  // boundary vertices stay
+}
+
+// Coordinates near 1e308 (finite, as the readers accept them): the notes' step is the neighbour average, not inf or
+// NaN (differences and sums of such coordinates overflow); every method keeps them finite, or refuses them.
+TEST(Smoothing, HugeCoordinatesStayFinite) {
+  PolyMesh grid = make_grid(2, 2);
+  grid.positions[4].y = 1;
+  for (Vec3& p : grid.positions) p *= 1e308;
+  PolyMesh average = grid;
+  smooth(average, {SmoothingMethod::Laplacian, 1, 1.0});
+  EXPECT_EQ(average.positions[4], Vec3(0, 0, 0));  // the mean of (+-1e308, 0, 0) and (0, 0, +-1e308)
+  for (SmoothingMethod m : {SmoothingMethod::Laplacian, SmoothingMethod::Cotangent, SmoothingMethod::Taubin}) {
+    PolyMesh mesh = grid;
+    smooth(mesh, {.method = m, .iterations = 5, .fix_boundary = false});
+    for (const Vec3& p : mesh.positions)
+      EXPECT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) << int(m);
+  }
+  // A checkerboard of heights +-1.7e308 (every neighbour at -y): Taubin's pair of steps with lambda 0.1, mu -0.9
+  // multiplies y by (1 - 2 lambda)(1 - 2 mu) = 2.24, past DBL_MAX: refused, and the mesh is left as it was.
+  PolyMesh largest = make_grid(2, 2);
+  for (size_t v = 0; v < largest.vertex_count(); ++v) largest.positions[v].y = v % 2 ? 1.7e308 : -1.7e308;
+  const PolyMesh before = largest;
+  EXPECT_THROW(smooth(largest, {SmoothingMethod::Taubin, 1, 0.1, -0.9, false}), InvalidInput);
+  EXPECT_EQ(largest.positions, before.positions);
 }
 
 TEST(Smoothing, RejectsBadParameters) {
