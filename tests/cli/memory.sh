@@ -141,3 +141,37 @@ rc=0
 rm -f "$dir/tex.png"
 (ulimit -v 512000 && exec "${tex[@]}" --max-memory 1T) 2>"$dir/err" || fail "8-bit texture in 500 MiB: $(cat "$dir/err")"
 [ -s "$dir/tex.png" ] || fail "8-bit texture in 500 MiB wrote nothing"
+
+# volume render: the picture's size is refused before the volume is read (the header-only NRRD above would answer
+# "reading 100x100x100 float32 voxels" if it were read first).
+refuse "$dir/v.png" "rendering 300x300 pixels" "$bin" volume render "$dir/v.nrrd" -o "$dir/v.png" --size 300x300
+
+# Marching cubes: the output counted in its first pass, 3 x (24-byte positions and normals a vertex, 16 bytes a
+# triangle), before it is allocated. gyroid:60's volume (844 KiB) fits in 1M, its 67688 triangles (7.9 MiB) do not.
+refuse "$dir/g.obj" "marching cubes: an iso-surface of 67688 triangles and 34848 vertices" \
+  "$bin" volume isosurface gyroid:60 -o "$dir/g.obj" --quiet
+"$bin" volume isosurface gyroid:60 -o "$dir/g.obj" --max-memory 8M --quiet --stats | grep -qx 'triangles=67688' ||
+  fail "volume isosurface gyroid:60 under an 8M budget"
+
+# Canvases at a size a user chose: volume contour's PNG (4 times the slice: 240x240 x 20 bytes) is refused, its SVG
+# (no canvas) is written.
+refuse "$dir/c.png" "a 240x240 canvas" "$bin" volume contour sphere:60 -o "$dir/c.png" --quiet
+"$bin" volume contour sphere:60 -o "$dir/c.svg" --max-memory 1M --quiet
+[ -s "$dir/c.svg" ] || fail "volume contour to SVG under a 1M budget wrote nothing"
+
+# Shadow maps: 6 bytes a texel (4, times 1.5 for a point light's six faces) on top of the picture; raster's
+# --shadow-size and a scene's lights through the raster backend.
+refuse "$dir/r.png" "rasterizing 100x100 pixels with a 512x512 shadow map" \
+  "$bin" raster "$cube" -o "$dir/r.png" --size 100x100 --shadows --shadow-size 512
+"$bin" raster "$cube" -o "$dir/r.png" --size 100x100 --shadows --shadow-size 256 --max-memory 1M
+[ -s "$dir/r.png" ] || fail "raster --shadow-size 256 under a 1M budget wrote nothing"
+refuse "$dir/s.png" "rasterize: 1 shadow map of 2048x2048 texels" \
+  "$bin" render cornell -o "$dir/s.png" --size 32x32 --backend raster --quiet
+
+# bench raycast: 36 bytes a ray (primary and random), before the mesh (here missing) is read.
+refuse "$dir/none" "casting 300x300 primary rays and 0 random rays" \
+  "$bin" bench raycast "$dir/missing.obj" --size 300x300 --random-rays 0
+refuse "$dir/none" "casting 100x100 primary rays and 100000 random rays" \
+  "$bin" bench raycast "$dir/missing.obj" --size 100x100 --random-rays 100000
+"$bin" bench raycast "$cube" --size 100x100 --random-rays 1000 --max-memory 1M >/dev/null ||
+  fail "bench raycast 100x100 under a 1M budget"

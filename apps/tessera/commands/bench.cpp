@@ -13,6 +13,7 @@
 #include "tessera/accel/ray_workloads.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -66,6 +67,12 @@ void run_raycast(const RaycastArgs& a, const CommonOptions& common) {
   constexpr long long kMaxRandomRays = 1LL << 27;
   if (a.random_rays < 0 || a.random_rays > kMaxRandomRays)
     throw InvalidInput(fmt::format("--random-rays: expected N in [0, {}], got {}", kMaxRandomRays, a.random_rays));
+  // The rays against the memory budget, before the mesh is read: each ray, and with --hits-out each primary ray's
+  // distance and primitive (8 bytes).
+  const uint64_t per_primary = sizeof(Ray) + (a.hits_out.empty() ? 0 : sizeof(float) + sizeof(int));
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), per_primary}) +
+                          saturating_product({uint64_t(a.random_rays), sizeof(Ray)}),
+                      fmt::format("casting {}x{} primary rays and {} random rays", width, height, a.random_rays));
   PhaseTimer timer;
   const PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
   const TriMesh mesh = to_tri_mesh(poly);

@@ -441,9 +441,14 @@ void render_fixed_function(const RasterArgs& a, const PolyMesh& poly, const TriM
 void run_raster(const RasterArgs& a, const CommonOptions& common) {
   // Every option is checked before the mesh is read or anything is drawn.
   const auto [width, height] = a.camera.image_size();
-  // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured).
-  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 44}),
-                      fmt::format("rasterizing {}x{} pixels", width, height));
+  // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured). A
+  // shadow map: 4 bytes a texel, 1.5 times size^2 texels for a point light among the casters (six faces of size/2).
+  const bool shadow_map = a.shadows && a.shadow_method == "map";
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 44}) +
+                          (shadow_map ? saturating_product({uint64_t(a.shadow_size), uint64_t(a.shadow_size), 6}) : 0),
+                      shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height,
+                                               a.shadow_size, a.shadow_size)
+                                 : fmt::format("rasterizing {}x{} pixels", width, height));
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
   if (!a.light_dir.empty() && !a.light_pos.empty())
     throw InvalidInput("--light-dir and --light-pos: give one light, not both");

@@ -317,13 +317,14 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   add_srgb_option(*cmd, common);
   cmd->callback([in, a, &common] {
     const ThreadLimit limit(common.threads);
+    // The picture's size is refused before the volume is read (an absurd --size answers at once). Per pixel: the
+    // float RGBA picture (16 bytes), the 8-bit copy a writer makes (4) and a float to spare.
+    const auto size = a->camera.image_size();
+    MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
+                        fmt::format("rendering {}x{} pixels", size.width, size.height));
     PhaseTimer timer;
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     VolumeRenderOptions o;
-    const auto size = a->camera.image_size();
-    // Per pixel: the float RGBA picture (16 bytes), the 8-bit copy a writer makes (4) and a float to spare.
-    MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
-                        fmt::format("rendering {}x{} pixels", size.width, size.height));
     o.width = size.width;
     o.height = size.height;
     o.step = a->step;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/curves/flatten.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/math/transform.hpp"
@@ -18,12 +19,22 @@ constexpr double kBezierTolerance = 0.02;   // device pixels between a Bezier an
 
 float channel255(int v) { return float(std::clamp(v, 0, 255)) / 255.0f; }
 
+/// `width`, once a width x height canvas is known to fit the memory budget (a canvas's size comes from its user:
+/// volume contour's PNG is 4 times the slice). Per pixel: the float RGBA image (16 bytes) and the 8-bit copy that
+/// save() and write_image make (4). Sizes that are not positive are the image's errors.
+int budgeted_width(int width, int height) {
+  if (width > 0 && height > 0)
+    MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 20}),
+                        fmt::format("a {}x{} canvas", width, height));
+  return width;
+}
+
 }  // namespace
 
 Vec4f rgb255(int r, int g, int b, int a) { return {channel255(r), channel255(g), channel255(b), channel255(a)}; }
 Vec4f gray255(int v, int a) { return rgb255(v, v, v, a); }
 
-Canvas::Canvas(int width, int height) : image_(width, height, gray255(204)) {}
+Canvas::Canvas(int width, int height) : image_(budgeted_width(width, height), height, gray255(204)) {}
 
 void Canvas::save(const std::filesystem::path& path) const { write_image(path, image_); }
 

@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <optional>
 #include <random>
 
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/math/transform.hpp"
 
 namespace tessera {
@@ -262,6 +264,25 @@ TEST(Canvas, SaveWritesAFile) {
   c.save(path);
   EXPECT_GT(std::filesystem::file_size(path), 0u);
   std::filesystem::remove(path);
+}
+
+// Issue 24, class 3: a canvas of a user's size was allocated whatever it cost. 20 bytes a pixel (float RGBA and the
+// 8-bit copy a writer makes) are checked against the budget first: 300x300 (1.7 MiB) is refused in 1 MiB, 200x200
+// (0.76 MiB) is made.
+TEST(Canvas, SizesOverTheMemoryBudgetAreRefusedBeforeAllocating) {
+  MemoryBudget::set_limit(1 << 20);
+  std::string message = "no error";
+  try {
+    Canvas big(300, 300);
+  } catch (const MemoryBudgetError& e) {
+    message = e.what();
+  }
+  std::optional<Canvas> fits;
+  EXPECT_NO_THROW(fits.emplace(200, 200));
+  MemoryBudget::set_limit(0);
+  EXPECT_EQ(message, "a 300x300 canvas needs about 1.7 MiB, the memory budget is 1.0 MiB (raise it with --max-memory "
+                     "SIZE)");
+  EXPECT_THROW(Canvas(-1, 5), InvalidInput);
 }
 
 }  // namespace

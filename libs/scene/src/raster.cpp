@@ -7,6 +7,7 @@
 #include <string>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/image/texture.hpp"
 #include "tessera/math/frame.hpp"
 #include "tessera/math/transform.hpp"
@@ -255,6 +256,15 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
   if (shadows == RasterShadows::map && (shadow_map_size < 1 || shadow_map_size > raster3d::ShadowMap::kMaxSize))
     throw InvalidInput(fmt::format("rasterize: shadow map size {} is outside [1, {}]", shadow_map_size,
                                    raster3d::ShadowMap::kMaxSize));
+  // A shadow map per light, refused over the memory budget before any is drawn: 4 bytes a texel, 1.5 times size^2
+  // texels where a point light lies among the casters (six faces of size/2).
+  const int map_count =
+      shadows == RasterShadows::map ? std::min<int>(int(scene.lights.size()), raster3d::kMaxLights) : 0;
+  const uint64_t map_side = uint64_t(shadow_map_size);
+  if (map_count > 0)
+    MemoryBudget::check(saturating_product({uint64_t(map_count), map_side, map_side, 6}),
+                        fmt::format("rasterize: {} shadow map{} of {}x{} texels", map_count, map_count == 1 ? "" : "s",
+                                    shadow_map_size, shadow_map_size));
   const bool ortho = scene.camera.orthographic;
   // z-fail counting needs the volumes' far caps, at infinity, inside the view: the far plane at infinity. An
   // orthographic projection cannot put it there (a point at infinity has w = 0 after it), and z-pass counting goes

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/image/texture.hpp"
 #include "tessera/scene/raster.hpp"
 #include "tessera/scene/scene.hpp"
@@ -103,6 +104,30 @@ TEST(SceneCamera, OrthographicSquareIsExactlyItsSizeInPixels) {
 TEST(SceneCamera, ShadowVolumesNeedAPerspectiveCamera) {
   const Scene scene = unlit(R"({"projection": "orthographic"})", kWhite, R"([{"type": "sphere", "material": "m"}])");
   EXPECT_THROW(rasterized(scene, RasterShadows::volumes), InvalidInput);
+}
+
+// Issue 24, class 3: a shadow map per light was allocated whatever its size. Two lights' maps of 512^2 texels are
+// estimated at 2 x 512^2 x 6 bytes (4 a texel, 1.5 times the texels for a point light among the casters), 3 MiB,
+// and refused in a 2 MiB budget before anything is drawn.
+TEST(SceneCamera, ShadowMapsOverTheMemoryBudgetAreRefused) {
+  const Scene scene = parse_scene(
+      R"({"image": {"size": [16, 16]}, "camera": {}, "materials": {"m": {"diffuse": 1}},
+          "objects": [{"type": "sphere", "material": "m"}],
+          "lights": [{"type": "point", "position": [0, 3, 3]}, {"type": "point", "position": [3, 3, 0]}]})",
+      "test.json", ".");
+  MemoryBudget::set_limit(2 << 20);
+  std::string message = "no error";
+  try {
+    rasterize_scene(scene, 16, 16, RasterShadows::map, 512);
+  } catch (const MemoryBudgetError& e) {
+    message = e.what();
+  }
+  MemoryBudget::set_limit(4 << 20);
+  EXPECT_NO_THROW(rasterize_scene(scene, 16, 16, RasterShadows::map, 512));
+  EXPECT_NO_THROW(rasterize_scene(scene, 16, 16, RasterShadows::volumes, 16384));  // no maps
+  MemoryBudget::set_limit(0);
+  EXPECT_EQ(message, "rasterize: 2 shadow maps of 512x512 texels needs about 3.0 MiB, the memory budget is 2.0 MiB "
+                     "(raise it with --max-memory SIZE)");
 }
 
 TEST(SceneCamera, OrthographicSilhouetteDoesNotChangeWithDistance) {
