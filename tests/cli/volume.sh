@@ -235,4 +235,25 @@ for bad in nan inf; do
   expect_error "$bad.raw: voxel (1, 0, 1)" bad.pfm volume slice $bad.raw --dims 2,2,2 --dtype float32 -o bad.pfm
 done
 expect_error "beyond the finite numbers" bad.obj volume isosurface cube.raw "${raw[@]}" --spacing 1e308,1,1 --iso 100 -o bad.obj
+# Class 5: header lines and values are quoted through printable(): an escape byte is spelled \x1b, a 10 KB value is cut
+# with its length, and the message stays short (NRRD type, MetaImage ElementType, a MetaImage data file name).
+/usr/bin/python3 -c "
+hostile = b'\x1b[31m' + b'A' * 10240
+open('esc.nrrd', 'wb').write(b'NRRD0004\ntype: ' + hostile + b'\n')
+open('esc.mhd', 'wb').write(b'NDims = 3\nElementType = ' + hostile + b'\n')
+open('escfile.mhd', 'wb').write(b'NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = ' + hostile + b'\n')
+"
+for case in "esc.nrrd:esc.nrrd:2: unsupported type '" "esc.mhd:esc.mhd:2: unsupported ElementType '" \
+  "escfile.mhd:escfile.mhd: cannot open '"; do
+  expect_error "${case#*:}\\\\x1b\[31mAAAA.*bytes)" bad.png volume slice "${case%%:*}" -o bad.png
+  ! grep -q $'\x1b' err.txt || { echo "${case%%:*}: a raw escape byte reached the message"; exit 1; }
+  [ "$(wc -c < err.txt)" -lt 400 ] || { echo "${case%%:*}: the message is $(wc -c < err.txt) bytes"; exit 1; }
+done
+# Class 3: marching squares counts a slice's segments and checks 200 bytes each against the budget before storing
+# them. A 700x700 checkerboard (a 958 KiB volume: it fits in 1M) has 2 x 699^2 saddle segments (186 MiB).
+/usr/bin/python3 -c "
+open('checker.raw', 'wb').write(bytes(255 * ((x + y) % 2) for y in range(700) for x in range(700)))
+"
+expect_error "marching squares: 977202 contour segments of a 700x700 field needs about 186.4 MiB, the memory budget is 1.0 MiB" \
+  bad.svg volume contour checker.raw --dims 700,700,1 --iso 100 -o bad.svg --max-memory 1M
 echo "volume CLI ok"

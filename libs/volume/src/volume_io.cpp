@@ -100,8 +100,9 @@ glm::ivec3 parse_dims(const std::vector<std::string>& w, const std::string& wher
 constexpr size_t kShownPathChars = 200;
 std::string shown_path(const std::filesystem::path& path) { return printable(path.string(), kShownPathChars); }
 
-// read_file() for a data file that a header names: its messages quote the path raw, so they quote shown_path().
-std::string read_data_file(const std::filesystem::path& path) {
+// read_file() for a data file that the header `header` names: its messages quote the path raw, so here they quote
+// shown_path(), after the header's name.
+std::string read_data_file(const std::filesystem::path& path, const std::string& header) {
   try {
     return read_file(path);
   } catch (const IoError& e) {
@@ -110,15 +111,15 @@ std::string read_data_file(const std::filesystem::path& path) {
     if (!raw.empty())
       for (size_t at = message.find(raw); at != std::string::npos; at = message.find(raw, at + shown.size()))
         message.replace(at, raw.size(), shown);
-    throw IoError(message);
+    throw IoError(fmt::format("{}: {}", header, message));
   }
 }
 
-// read_raw() of a data file that a header names, quoted as shown_path() in every message.
-AnyVolume read_named_raw(const std::filesystem::path& path, const RawLayout& layout) {
+// read_raw() of a data file that the header `header` names, quoted as shown_path() in every message.
+AnyVolume read_named_raw(const std::filesystem::path& path, const RawLayout& layout, const std::string& header) {
   const std::string name = shown_path(path);
   check_voxel_memory(layout, name);
-  return decode_raw(read_data_file(path), layout, name);
+  return decode_raw(read_data_file(path, header), layout, name);
 }
 
 std::string lower(std::string s) {
@@ -262,7 +263,7 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
   uint64_t payload_offset = pos;
   if (!data_file.empty()) {
     if (base_dir.empty()) throw InvalidInput(located(name, "detached data files are not allowed here"));
-    detached = read_data_file(base_dir / data_file);
+    detached = read_data_file(base_dir / data_file, name);
     payload = detached;
     payload_offset = 0;
   } else {
@@ -349,7 +350,7 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
   }
   if (!have_dims || !have_type || data_file.empty())
     throw InvalidInput(located(name, "the header needs DimSize, ElementType and ElementDataFile"));
-  return read_named_raw(path.parent_path() / data_file, layout);
+  return read_named_raw(path.parent_path() / data_file, layout, name);
 }
 
 Volume<uint8_t> read_slices(const std::vector<std::filesystem::path>& files, const Vec3& spacing) {

@@ -119,7 +119,7 @@ TEST(VolumeIo, HeaderValuesAreQuotedEscapedAndShort) {
   check(nrrd(head + "encoding: " + hostile + "\n"), "h.nrrd:5: unsupported encoding '");
   check(nrrd(head + "endian: " + hostile + "\n"), "h.nrrd:5: endian must be little or big, got '");
   check(nrrd(head + "space origin: " + hostile + "\n"), "h.nrrd:5: expected 3 numbers, got '");
-  check(nrrd(head + "data file: " + hostile + "\n"), "cannot open '");
+  check(nrrd(head + "data file: " + hostile + "\n"), "h.nrrd: cannot open '");
   const auto mhd = [](const std::string& text) {
     write_file_atomic(scratch("h.mhd"), text);
     try {
@@ -132,7 +132,7 @@ TEST(VolumeIo, HeaderValuesAreQuotedEscapedAndShort) {
   check(mhd("NDims = 3\nElementType = " + hostile + "\n"), "h.mhd:2: unsupported ElementType '");
   check(mhd("NDims = 3\n" + hostile + "\n"), "h.mhd:2: expected 'Key = Value', got '");
   check(mhd("NDims = 3\nDimSize = 2 2 2\nElementType = MET_UCHAR\nElementDataFile = " + hostile + "\n"),
-        "cannot open '");
+        "h.mhd: cannot open '");
 }
 
 // Issue 24, class 3: each slice of a stack was checked alone by the image reader, never the volume they make. The
