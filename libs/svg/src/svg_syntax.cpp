@@ -108,7 +108,7 @@ class Scanner {
   }
   void expect_end() {
     skip_space();
-    if (!at_end()) fail(fmt::format("unexpected '{}' after the value", text_.substr(pos_)));
+    if (!at_end()) fail(fmt::format("unexpected '{}' after the value", printable(text_.substr(pos_))));
   }
 
   [[noreturn]] void fail(const std::string& what) const { throw SvgValueError(pos_, what); }

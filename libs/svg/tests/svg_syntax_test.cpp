@@ -169,6 +169,9 @@ TEST(SvgColor, Syntaxes) {
   EXPECT_THAT(error_of([] { parse_svg_color("#\x1b[2J"); }), HasSubstr("got '#\\x1b[2J'"));
   EXPECT_THAT(error_of([] { parse_svg_color("re\x1b[2Jd"); }), HasSubstr("unknown color 're\\x1b[2Jd'"));
   EXPECT_THAT(error_of([] { parse_svg_color("red blue"); }), HasSubstr("unexpected 'blue' after the value"));
+  // What follows the value is quoted through printable(): escaped, and cut after 60 characters.
+  EXPECT_THAT(error_of([] { parse_svg_color("#abc\x1b]0;x\x07"); }), HasSubstr("unexpected '\\x1b]0;x\\x07'"));
+  EXPECT_THAT(error_of([] { parse_svg_color("red " + std::string(100000, 'x')); }), HasSubstr("... (100000 bytes)"));
 }
 
 }  // namespace
