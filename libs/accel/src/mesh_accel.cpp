@@ -17,6 +17,7 @@
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "mesh_traversal.hpp"
+#include "mesh_tree.hpp"
 
 namespace tessera {
 
@@ -29,7 +30,7 @@ namespace {
 /// compressed wide BVHs"), by dynamic programming over the binary tree: see cost_tables(). A subtree of up to
 /// max_leaf triangles may become one leaf, so the binary tree is built with small leaves and the collapse merges them
 /// where the wide tree's cost says so.
-/// Layout (see MeshAccel::node_ref), depth first: a node, the blocks of its leaf children, then its interior children's
+/// Layout (mesh_tree.hpp), depth first: a node, the blocks of its leaf children, then its interior children's
 /// subtrees. Embree's allocator gives a similar order; here a node's reference also says how many lines of leaf blocks
 /// follow it, so that they are fetched with it.
 /// Two passes, each parallel over large subtrees: measure() sizes every subtree, so that place() knows where each
@@ -50,7 +51,7 @@ class WideTreeBuilder {
 
   /// Lays the tree out in tree (sized to fit); returns the root's reference and sets wide_nodes. Throws InvalidInput
   /// when the tree would pass the 2 GiB that references address.
-  int32_t build(RawVector<MeshAccel::CacheLine>& tree, size_t& wide_nodes) {
+  int32_t build(RawVector<mesh_tree::CacheLine>& tree, size_t& wide_nodes) {
     cost_tables();
     const Subtree root = child(0, int(bn_.size()));
     if (is_leaf(root)) {  // a mesh of one leaf
@@ -80,12 +81,12 @@ class WideTreeBuilder {
   struct Size {
     size_t bytes, nodes;
   };
-  static constexpr size_t kNodeBytes = sizeof(MeshAccel::WideNode<W>);
+  static constexpr size_t kNodeBytes = sizeof(mesh_tree::WideNode<W>);
 
   static constexpr float kNodeCost = MeshAccel::kNodeCost, kBlockCost = MeshAccel::kBlockCost;
 
   bool is_leaf(Subtree s) const { return s.count > 0; }
-  size_t leaf_bytes(Subtree s) const { return size_t(s.count + 3) / 4 * sizeof(MeshAccel::TriangleBlock); }
+  size_t leaf_bytes(Subtree s) const { return size_t(s.count + 3) / 4 * sizeof(mesh_tree::TriangleBlock); }
   float area(int node) const { return bn_[size_t(node)].box.area(); }
   float leaf_cost(int node, int count) const { return area(node) * kBlockCost * float((count + 3) / 4); }
   const float* cost(int node) const { return &cost_[size_t(node) * W]; }
@@ -208,7 +209,7 @@ class WideTreeBuilder {
   int32_t place(Subtree s, size_t line) {
     Subtree kids[W];
     const int k = widen(s, kids);
-    MeshAccel::WideNode<W> node;
+    mesh_tree::WideNode<W> node;
     for (int i = 0; i < W; ++i) {
       const AABB box = i < k ? bn_[size_t(kids[i].node)].box : AABB{};
       for (int a = 0; a < 3; ++a) {
@@ -232,15 +233,15 @@ class WideTreeBuilder {
         end = first_line[i] * 64 + subtree_bytes_[size_t(kids[i].node)];
       }
     each_interior(s, kids, k, [&](int i) { node.child[i] = place(kids[i], first_line[i]); });
-    *reinterpret_cast<MeshAccel::WideNode<W>*>(tree_ + line) = node;
-    return MeshAccel::node_ref(line, leaf_lines);
+    *reinterpret_cast<mesh_tree::WideNode<W>*>(tree_ + line) = node;
+    return mesh_tree::node_ref(line, leaf_lines);
   }
 
   /// Writes leaf s's triangles as blocks of 4 from byte `at` on; returns its reference.
   int32_t place_leaf(Subtree s, size_t at) {
-    auto* blocks = reinterpret_cast<MeshAccel::TriangleBlock*>(reinterpret_cast<char*>(tree_) + at);
+    auto* blocks = reinterpret_cast<mesh_tree::TriangleBlock*>(reinterpret_cast<char*>(tree_) + at);
     for (int k = 0; k < (s.count + 3) / 4 * 4; ++k) {
-      MeshAccel::TriangleBlock& b = blocks[k / 4];
+      mesh_tree::TriangleBlock& b = blocks[k / 4];
       const int lane = k % 4;
       Vec3f v0(0.0f), e1(0.0f), e2(0.0f);
       int index = -1;
@@ -258,7 +259,7 @@ class WideTreeBuilder {
       }
       b.index[lane] = index;
     }
-    return MeshAccel::leaf_ref(int(at / 32), (s.count + 3) / 4);
+    return mesh_tree::leaf_ref(int(at / 32), (s.count + 3) / 4);
   }
 
   std::span<const BvhNode> bn_;
@@ -272,19 +273,19 @@ class WideTreeBuilder {
   // build's).
   int64_t parallel_nodes_;
   RawVector<uint32_t> subtree_bytes_;  // by binary node: the bytes of the subtree of the wide node made of it
-  MeshAccel::CacheLine* tree_ = nullptr;
+  mesh_tree::CacheLine* tree_ = nullptr;
 };
 
 /// The SAH cost of the subtree under node reference ref (see MeshAccel::sah_cost), in units of area.
 template <int W>
-double subtree_cost(const MeshAccel::CacheLine* tree, int32_t ref) {
-  const auto& node = *reinterpret_cast<const MeshAccel::WideNode<W>*>(tree + MeshAccel::node_line(ref));
+double subtree_cost(const mesh_tree::CacheLine* tree, int32_t ref) {
+  const auto& node = *reinterpret_cast<const mesh_tree::WideNode<W>*>(tree + mesh_tree::node_line(ref));
   double cost = 0;
   for (int i = 0; i < W; ++i) {
     const AABB box{{node.box[0][i], node.box[1][i], node.box[2][i]}, {node.box[3][i], node.box[4][i], node.box[5][i]}};
     if (box.empty()) continue;
     const int32_t c = node.child[i];
-    cost += c < 0 ? double(box.area()) * MeshAccel::kBlockCost * MeshAccel::leaf_block_count(c)
+    cost += c < 0 ? double(box.area()) * MeshAccel::kBlockCost * mesh_tree::leaf_block_count(c)
                   : double(box.area()) * MeshAccel::kNodeCost + subtree_cost<W>(tree, c);
   }
   return cost;
@@ -329,7 +330,7 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
   // Two phases a user may wait seconds for on millions of triangles: the binary tree, then its collapse and layout.
   Progress progress("building BVH", 2);
   // The binary tree's leaves are single blocks at most; the collapse merges subtrees into leaves of up to max_leaf.
-  const int max_leaf = std::min(settings.max_leaf_size, 4 * kMaxLeafBlocks);
+  const int max_leaf = std::min(settings.max_leaf_size, 4 * mesh_tree::kMaxLeafBlocks);
   BvhSettings capped = settings;
   capped.max_leaf_size = std::min(settings.max_leaf_size, 4);
   capped.leaf_block = 4;  // the leaves' triangles are tested 4 at a time
@@ -354,7 +355,7 @@ MeshAccel::MeshAccel(const TriMesh& mesh, const BvhSettings& settings, int simd_
 
 double MeshAccel::sah_cost() const {
   if (width_ == 0) return 0;
-  if (root_ < 0) return kBlockCost * leaf_block_count(root_);
+  if (root_ < 0) return kBlockCost * mesh_tree::leaf_block_count(root_);
   const double root_area = bvh_.nodes()[0].box.area();
   const double below = width_ == 8 ? subtree_cost<8>(tree_.data(), root_) : subtree_cost<4>(tree_.data(), root_);
   return kNodeCost + below / root_area;

@@ -10,15 +10,16 @@
 #include <span>
 #include <utility>
 
+#include "mesh_tree.hpp"
 #include "tessera/accel/mesh_accel.hpp"
 
 namespace tessera::mesh_traversal {
 
 /// The entry points: 4 wide with SSE (mesh_accel.cpp), 8 wide with AVX2 (mesh_accel_avx2.cpp), over the tree's lines
-/// (see MeshAccel::node_ref). intersect fills hit as MeshAccel::intersect documents; intersect_stream fills hits[i] for
+/// (see mesh_tree::node_ref). intersect fills hit as MeshAccel::intersect documents; intersect_stream fills hits[i] for
 /// rays[i] the same way (Hit{} for a miss). far_tree: the tree mostly comes from memory, not from the caches, and what
 /// a walk needs later is fetched into L2 instead of L1 (see Traversal).
-using Tree = const MeshAccel::CacheLine*;
+using Tree = const mesh_tree::CacheLine*;
 bool intersect4(Tree tree, int32_t root, Ray& ray, Hit& hit, TraversalStats* stats, bool far_tree);
 void intersect_stream4(Tree tree, int32_t root, std::span<const Ray> rays, std::span<Hit> hits, bool far_tree);
 bool occluded4(Tree tree, int32_t root, const Ray& ray, bool far_tree);
@@ -72,7 +73,7 @@ struct RayLanes {
 
 /// Four triangles against one ray (Moller-Trumbore, operation by operation as a scalar float Moller-Trumbore with glm
 /// cross and dot: the same rounding). Returns the mask of lanes that hit with t in [tmin, tmax] and their t, b1, b2.
-inline int hit_block(const MeshAccel::TriangleBlock& b, const RayLanes& r, float tmin, float tmax, v4f& t, v4f& b1,
+inline int hit_block(const mesh_tree::TriangleBlock& b, const RayLanes& r, float tmin, float tmax, v4f& t, v4f& b1,
                      v4f& b2) {
   const auto row = [](const float (&v)[4]) { return *reinterpret_cast<const v4f*>(v); };
   const v4f e1x = row(b.e1[0]), e1y = row(b.e1[1]), e1z = row(b.e1[2]);
@@ -102,14 +103,14 @@ struct Nearest {
 
 /// The node of a node reference, and the block at a 32-byte unit.
 template <int W>
-const MeshAccel::WideNode<W>& node_at(Tree tree, int32_t ref) {
-  return *reinterpret_cast<const MeshAccel::WideNode<W>*>(tree + MeshAccel::node_line(ref));
+const mesh_tree::WideNode<W>& node_at(Tree tree, int32_t ref) {
+  return *reinterpret_cast<const mesh_tree::WideNode<W>*>(tree + mesh_tree::node_line(ref));
 }
-inline const MeshAccel::TriangleBlock& block_at(Tree tree, int unit) {
-  return *reinterpret_cast<const MeshAccel::TriangleBlock*>(reinterpret_cast<const char*>(tree) + size_t(unit) * 32);
+inline const mesh_tree::TriangleBlock& block_at(Tree tree, int unit) {
+  return *reinterpret_cast<const mesh_tree::TriangleBlock*>(reinterpret_cast<const char*>(tree) + size_t(unit) * 32);
 }
-constexpr int kBlockUnits = sizeof(MeshAccel::TriangleBlock) / 32;
-static_assert(sizeof(MeshAccel::TriangleBlock) % 32 == 0);
+constexpr int kBlockUnits = sizeof(mesh_tree::TriangleBlock) / 32;
+static_assert(sizeof(mesh_tree::TriangleBlock) % 32 == 0);
 
 /// One ray's walk through the wide tree, a node at a time: an interior node's children tested at once, the hit ones
 /// visited nearest entry first (the rest on a stack with their entry distances, skipped when popped beyond the current
@@ -176,8 +177,8 @@ class Traversal {
       prefetch<Hint>(cur_);
     } else {
       // All the leaf's blocks (measured 4% faster streams on the 1M torus than the first block alone).
-      prefetch_lines<Hint>(&block_at(tree_, MeshAccel::leaf_first_unit(cur_)),
-                     size_t(MeshAccel::leaf_block_count(cur_)) * sizeof(MeshAccel::TriangleBlock));
+      prefetch_lines<Hint>(&block_at(tree_, mesh_tree::leaf_first_unit(cur_)),
+                     size_t(mesh_tree::leaf_block_count(cur_)) * sizeof(mesh_tree::TriangleBlock));
     }
   }
 
@@ -213,18 +214,18 @@ class Traversal {
   template <int Hint = Children>
   void prefetch(int32_t ref) const {
     if (ref >= 0)
-      prefetch_lines<Hint>(&node_at<W>(tree_, ref), sizeof(MeshAccel::WideNode<W>) + 64 * size_t(leaf_lines(ref)));
+      prefetch_lines<Hint>(&node_at<W>(tree_, ref), sizeof(mesh_tree::WideNode<W>) + 64 * size_t(leaf_lines(ref)));
     else
-      prefetch_lines<Hint>(&block_at(tree_, MeshAccel::leaf_first_unit(ref)), sizeof(MeshAccel::TriangleBlock));
+      prefetch_lines<Hint>(&block_at(tree_, mesh_tree::leaf_first_unit(ref)), sizeof(mesh_tree::TriangleBlock));
   }
 
   /// The lines of leaf blocks fetched with node ref.
-  static int leaf_lines(int32_t ref) { return LeavesWithNode ? MeshAccel::node_leaf_lines(ref) : 0; }
+  static int leaf_lines(int32_t ref) { return LeavesWithNode ? mesh_tree::node_leaf_lines(ref) : 0; }
 
   /// Tests the children of interior node cur_ and moves to the nearest hit one (the others on the stack); false when
   /// none is hit.
   [[gnu::always_inline]] bool descend() {
-    const MeshAccel::WideNode<W>& n = node_at<W>(tree_, cur_);
+    const mesh_tree::WideNode<W>& n = node_at<W>(tree_, cur_);
     // The children's line is needed only once the box test is done: fetch it with the boxes, not after them. So are
     // the blocks of the leaf children, which follow the node: fetched now, they arrive with the node instead of one
     // miss later (measured 10-30% more incoherent rays on a 1M mesh; the node test takes a fraction of a miss).
@@ -290,12 +291,12 @@ class Traversal {
 
   /// Tests the triangles of leaf cur_: true when AnyHit and one is hit; else keeps the nearest hit.
   [[gnu::always_inline]] bool test_leaf() {
-    const int first = MeshAccel::leaf_first_unit(cur_), count = MeshAccel::leaf_block_count(cur_);
+    const int first = mesh_tree::leaf_first_unit(cur_), count = mesh_tree::leaf_block_count(cur_);
     // Splatted here from ray_, not kept in the walk: six fewer registers live across the node tests (no spills).
     const RayLanes lanes(ray_);
     for (int k = first; k < first + count * kBlockUnits; k += kBlockUnits) {
       v4f t, b1, b2;
-      const MeshAccel::TriangleBlock& block = block_at(tree_, k);
+      const mesh_tree::TriangleBlock& block = block_at(tree_, k);
       int m = hit_block(block, lanes, ray_.tmin, ray_.tmax, t, b1, b2);
       if constexpr (Stats) {
         const v4i used = *reinterpret_cast<const v4i*>(block.index) >= v4i{0, 0, 0, 0};
@@ -342,7 +343,7 @@ template <int W, bool Stats, int Children, bool LeavesWithNode>
                                             Hit& hit) {
   if (!walk.hit()) return false;
   const Nearest& nearest = walk.nearest();
-  const MeshAccel::TriangleBlock& b = block_at(walk.tree(), nearest.block);
+  const mesh_tree::TriangleBlock& b = block_at(walk.tree(), nearest.block);
   const int l = nearest.lane;
   const Vec3f e1(b.e1[0][l], b.e1[1][l], b.e1[2][l]), e2(b.e2[0][l], b.e2[1][l], b.e2[2][l]);
   const Ray& ray = walk.ray();

@@ -7,6 +7,7 @@
 
 #include "tessera/accel/bvh.hpp"
 #include "tessera/accel/mesh_accel.hpp"
+#include "tessera/accel/shape_t.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
 
@@ -52,38 +53,6 @@ bool occludes_object(const Object& o, const Ray& ray) {
   if (const auto* shape = std::get_if<Shape>(&o.geometry)) return occludes(*shape, r);
   if (const auto* inst = std::get_if<Instance>(&o.geometry)) return inst->occludes(r);
   return (*std::get_if<2>(&o.geometry))->accel.occluded(r);
-}
-
-/// The nearest t in [tmin, tmax] where the ray meets the sphere, or NaN: accel's sphere kernel (the notes' quadratic
-/// in the form of Haines et al., Ray Tracing Gems ch. 7) without the point, normal and uv, inlined into the world's
-/// flat loop, with the ray's 1 / (d . d) computed once per ray.
-inline float sphere_t(const Vec3f& center, float radius, const Ray& ray, float a, float inv_a) {
-  const Vec3f f = ray.origin - center;
-  const float b = glm::dot(f, ray.dir);
-  const float c = glm::dot(f, f) - radius * radius;
-  if (c > 0 && b > 0 && ray.tmin >= 0) return std::numeric_limits<float>::quiet_NaN();  // outside, moving away
-  const Vec3f l = f - (b * inv_a) * ray.dir;
-  const float disc = radius * radius - glm::dot(l, l);
-  if (disc < 0) return std::numeric_limits<float>::quiet_NaN();
-  const float q = -(b + std::copysign(std::sqrt(a * disc), b));
-  float t0 = c / q, t1 = q * inv_a;
-  if (t0 > t1) std::swap(t0, t1);
-  return ray.in_range(t0) ? t0 : t1;
-}
-
-/// Whether the segment [tmin, tmax] of the ray meets the sphere (shadow rays). From outside the sphere neither root
-/// nor division is needed: the ray must approach the center (b = f . d < 0) with its line within the radius
-/// (b^2 >= a c), and then the segment enters the sphere when it reaches the line's closest point to the center
-/// (t = -b / a <= tmax) or ends inside; otherwise as sphere_t.
-inline bool sphere_blocks(const Vec3f& center, float radius, const Ray& ray, float a) {
-  const Vec3f f = ray.origin - center;
-  const float b = glm::dot(f, ray.dir);
-  const float c = glm::dot(f, f) - radius * radius;
-  if (c <= 0 || ray.tmin < 0) return ray.in_range(sphere_t(center, radius, ray, a, 1.0f / a));
-  if (b >= 0 || b * b < a * c) return false;  // moving away, or the line misses
-  if (-b <= ray.tmax * a) return true;
-  const Vec3f end = f + ray.tmax * ray.dir;
-  return glm::dot(end, end) <= radius * radius;
 }
 
 }  // namespace
@@ -230,11 +199,7 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
   const FlatSphere* sphere = nullptr;
   const FlatPlane* plane = nullptr;
   for (const FlatPlane& f : flat_planes_) {
-    // The plane kernel's t = (n . (p - o)) / (n . d), divided only when it is positive (tmin >= 0: a negative t, e.g.
-    // a ray above a floor going up, is out of range anyway).
-    const float num = glm::dot(f.normal, f.point - ray.origin), denom = glm::dot(f.normal, ray.dir);
-    if (ray.tmin >= 0 && num * denom < 0.0f) continue;
-    const float t = denom == 0 ? std::numeric_limits<float>::quiet_NaN() : num / denom;
+    const float t = plane_t_ahead(f.point, f.normal, ray);
     if (ray.in_range(t)) {
       ray.tmax = t;
       plane = &f;
@@ -281,14 +246,8 @@ bool World::intersect(Ray& ray, SurfaceHit& out) const {
 
 bool World::occluded(const Ray& ray) const {
   TESSERA_CHECK(bvh_ != nullptr);
-  for (const FlatPlane& f : flat_planes_) {
-    // The segment's ends on the same side of the plane (the usual light and point above a floor): no division.
-    const float start = glm::dot(f.normal, ray.origin - f.point);
-    if (f.casts_shadows && !(ray.tmin >= 0 && std::isfinite(ray.tmax) &&
-                             start * glm::dot(f.normal, ray.at(ray.tmax) - f.point) > 0.0f) &&
-        ray.in_range(plane_t(f.point, f.normal, ray)))
-      return true;
-  }
+  for (const FlatPlane& f : flat_planes_)
+    if (f.casts_shadows && plane_blocks(f.point, f.normal, ray)) return true;
   const float a = glm::dot(ray.dir, ray.dir);
   for (const FlatSphere& f : flat_spheres_)
     if (f.casts_shadows && sphere_blocks(f.center, f.radius, ray, a)) return true;

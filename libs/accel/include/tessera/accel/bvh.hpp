@@ -119,6 +119,20 @@ class Bvh {
         nullptr);
   }
 
+  /// The flattened nodes, depth-first (node 0 is the root; empty when there are no primitives).
+  std::span<const BvhNode> nodes() const { return nodes_; }
+  /// Primitive indices in leaf order.
+  std::span<const int> prim_indices() const { return prim_indices_; }
+  /// The number of node levels (1 for a single leaf, 0 when empty).
+  int depth() const { return depth_; }
+  /// The SAH cost of the tree with the settings' costs (sum over nodes of area ratio times node cost).
+  float sah_cost() const;
+  /// The root box (empty when there are no primitives).
+  AABB bounds() const { return nodes_.empty() ? AABB{} : nodes_[0].box; }
+
+  static constexpr int kMaxDepth = 64;  ///< builds keep the depth below this (the traversal stack size)
+
+ private:
   /// The traversal underneath intersect/occluded, one call per leaf reached: leaf(first, count, ray) -> bool tests the
   /// slots [first, first + count) of prim_indices() (callers that store primitives in leaf order use the slots
   /// directly). AnyHit stops at the first leaf that reports a hit.
@@ -159,20 +173,6 @@ class Bvh {
     return hit;
   }
 
-  /// The flattened nodes, depth-first (node 0 is the root; empty when there are no primitives).
-  std::span<const BvhNode> nodes() const { return nodes_; }
-  /// Primitive indices in leaf order.
-  std::span<const int> prim_indices() const { return prim_indices_; }
-  /// The number of node levels (1 for a single leaf, 0 when empty).
-  int depth() const { return depth_; }
-  /// The SAH cost of the tree with the settings' costs (sum over nodes of area ratio times node cost).
-  float sah_cost() const;
-  /// The root box (empty when there are no primitives).
-  AABB bounds() const { return nodes_.empty() ? AABB{} : nodes_[0].box; }
-
-  static constexpr int kMaxDepth = 64;  ///< builds keep the depth below this (the traversal stack size)
-
- private:
   RawVector<BvhNode> nodes_;  // uninitialized growth on huge pages: written in full by the constructor
   RawVector<int> prim_indices_;
   int depth_ = 0;

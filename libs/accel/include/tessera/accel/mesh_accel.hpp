@@ -10,6 +10,14 @@
 
 namespace tessera {
 
+namespace detail {
+/// One 64-byte line of a MeshAccel's tree: storage only. The wide nodes and triangle blocks laid out in these lines
+/// are private to accel (src/mesh_tree.hpp).
+struct alignas(64) MeshTreeLine {
+  unsigned char bytes[64];
+};
+}  // namespace detail
+
 /// A triangle mesh ready for ray casting (a float copy of its geometry; the TriMesh need not outlive it).
 ///
 /// The binary BVH (bvh()) is built by the settings' method and then collapsed into a wide tree (4 or 8 children per
@@ -64,51 +72,18 @@ class MeshAccel {
   /// expected cost of a random line through the root box that visits every box it crosses). 0 for an empty mesh.
   double sah_cost() const;
 
-  /// A node of the wide tree: the boxes of its W children as rows lo.x, lo.y, lo.z, hi.x, hi.y, hi.z of W floats
-  /// (an unused child has an empty box, which no ray hits), and the children: >= 0 a node (see node_ref), < 0 a leaf
-  /// (see leaf_ref).
-  template <int W>
-  struct alignas(64) WideNode {
-    float box[6][W];
-    int32_t child[W];
-  };
-  /// Four triangles of a leaf, lane by lane: vertex 0, the edges to vertices 1 and 2, the mesh index (-1: unused lane,
-  /// whose zero edges make the determinant 0, so it never hits).
-  struct alignas(16) TriangleBlock {
-    float v0[3][4], e1[3][4], e2[3][4];
-    int32_t index[4];
-  };
-  static constexpr int kMaxLeafBlocks = 32;  ///< blocks of 4 triangles per leaf (128 triangles)
-  /// The tree lies in one array of cache lines, depth first: each node, then the blocks of its leaf children, then its
-  /// interior children's subtrees. A node's reference: its first line and how many lines of leaf blocks follow it
-  /// (up to 15), so that fetching a node can fetch its leaves with it.
-  static int32_t node_ref(size_t line, int leaf_lines) { return int32_t((line << 4) | size_t(leaf_lines)); }
-  /// The first line of a node reference, and the lines of leaf blocks after the node.
-  static size_t node_line(int32_t ref) { return size_t(uint32_t(ref) >> 4); }
-  static int node_leaf_lines(int32_t ref) { return int(ref & 15); }
-  /// A leaf's reference: the offset of its first block in 32-byte units and its block count, packed into a negative
-  /// number.
-  static int32_t leaf_ref(int first_unit, int blocks) { return ~((first_unit << 5) | (blocks - 1)); }
-  /// The first block (in 32-byte units) and the block count of a leaf reference.
-  static int leaf_first_unit(int32_t ref) { return int(~uint32_t(ref) >> 5); }
-  static int leaf_block_count(int32_t ref) { return int(~uint32_t(ref) & 31) + 1; }
-  /// One line of the tree's array.
-  struct alignas(64) CacheLine {
-    unsigned char bytes[64];
-  };
-
  private:
   Bvh bvh_;
   size_t triangle_count_ = 0;
   int width_ = 0;
   int32_t root_ = 0;  // the wide tree's root reference (a leaf for meshes of one leaf)
   size_t wide_nodes_ = 0;
-  RawVector<CacheLine> tree_;  // nodes and blocks (see node_ref); uninitialized growth on huge pages
+  RawVector<detail::MeshTreeLine> tree_;  // nodes and blocks (src/mesh_tree.hpp); uninitialized growth on huge pages
 
   /// Whether the tree mostly comes from memory, not from the caches: its walks then fetch for later steps into L2.
   /// The crossover measured on an AMD EPYC (1 MiB L2 per core) lay between trees of 15 and 29 MiB (tori of 270K and
   /// 540K triangles); see docs/accel.md, "Far trees".
-  bool far_tree() const { return tree_.size() * sizeof(CacheLine) >= (size_t(24) << 20); }
+  bool far_tree() const { return tree_.size() * sizeof(detail::MeshTreeLine) >= (size_t(24) << 20); }
 };
 
 /// The smooth normal at a mesh hit: the vertex normals interpolated by the barycentrics (hit.prim, hit.uv as MeshAccel
