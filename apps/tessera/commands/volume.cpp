@@ -127,9 +127,14 @@ struct SliceArgs {
     cmd.add_option("--slice", index, "Slice index along the axis (default: the middle one)");
     cmd.add_option("-o,--output", output, "Output file")->required();
   }
-  /// The slice asked for, or the middle one.
+  /// The slice asked for, or the middle one. Refused over the memory budget first (a flat volume's slice has as many
+  /// pixels as it has voxels): per pixel the float slice (4 bytes), the float RGB picture made of it (12), the 8-bit
+  /// copy a writer makes (4) and 4 to spare.
   DepthImage take(const Volume<float>& v) const {
-    return slice(v, axis, index ? *index : v.dims()[int(axis)] / 2);
+    const glm::ivec3 d = v.dims();
+    const int w = axis == Axis::X ? d.y : d.x, h = axis == Axis::Z ? d.y : d.z;
+    MemoryBudget::check(saturating_product({uint64_t(w), uint64_t(h), 24}), fmt::format("a {}x{} slice", w, h));
+    return slice(v, axis, index ? *index : d[int(axis)] / 2);
   }
 };
 

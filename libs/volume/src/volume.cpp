@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -64,6 +65,11 @@ Volume<float> to_float(const AnyVolume& any) {
         }
       },
       any);
+}
+
+Volume<float> to_float(AnyVolume&& any) {
+  if (auto* v = std::get_if<Volume<float>>(&any)) return std::move(*v);
+  return to_float(std::as_const(any));
 }
 
 const glm::ivec3& dims_of(const AnyVolume& v) {
