@@ -1,6 +1,7 @@
 #include "tessera/image/texture.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -65,10 +66,20 @@ double bilinear_coordinate(float t, int n, Wrap wrap) {
   return x;
 }
 
-// A stored texel as float: an 8-bit texel reads v/255 (a division, as read_image and to_float compute it, so an
-// 8-bit texture samples the same values as the float texture of the same file).
+// v/255 for every byte, the division read_image and to_float compute (a multiplication by 1/255 differs for 126 of
+// the 256 values), looked up: dividing on every fetch made an 8-bit bilinear sample about 1.7 times slower.
+constexpr std::array<float, 256> kByteToUnit = [] {
+  std::array<float, 256> table{};
+  for (size_t v = 0; v < table.size(); ++v) table[v] = float(v) / 255.f;
+  return table;
+}();
+
+// A stored texel as float: an 8-bit texel reads v/255, so an 8-bit texture samples the same values as the float
+// texture of the same file.
 inline glm::vec4 texel_value(const glm::vec4& texel) { return texel; }
-inline glm::vec4 texel_value(const glm::u8vec4& texel) { return glm::vec4(texel) / 255.f; }
+inline glm::vec4 texel_value(const glm::u8vec4& texel) {
+  return {kByteToUnit[texel.x], kByteToUnit[texel.y], kByteToUnit[texel.z], kByteToUnit[texel.w]};
+}
 
 // The notes' bilinear interpolation on one level (Texture2D::bilinear).
 template <class Texel>
@@ -88,7 +99,8 @@ template <class Texel>
 
 // The texel of `image` containing (u, v) (Texture2D::nearest).
 template <class Texel>
-glm::vec4 nearest_sample(const Image<Texel>& image, const Sampler& sampler, glm::vec2 uv) {
+[[gnu::always_inline]] inline glm::vec4 nearest_sample(const Image<Texel>& image, const Sampler& sampler,
+                                                       glm::vec2 uv) {
   const long long x = wrap_index(split(double(uv.x) * image.width()).index, image.width(), sampler.wrap_u);
   const long long y = wrap_index(split(double(uv.y) * image.height()).index, image.height(), sampler.wrap_v);
   return texel_value(image(int(x), image.height() - 1 - int(y)));
@@ -96,7 +108,8 @@ glm::vec4 nearest_sample(const Image<Texel>& image, const Sampler& sampler, glm:
 
 // Texture2D::sample on a pyramid of either storage.
 template <class Texel>
-glm::vec4 sample_levels(const std::vector<Image<Texel>>& levels, const Sampler& sampler, glm::vec2 uv, float lod) {
+[[gnu::always_inline]] inline glm::vec4 sample_levels(const std::vector<Image<Texel>>& levels, const Sampler& sampler,
+                                                      glm::vec2 uv, float lod) {
   switch (sampler.filter) {
     case Filter::nearest: return nearest_sample(levels.front(), sampler, uv);
     case Filter::bilinear: return bilinear_sample(levels.front(), sampler, uv);
