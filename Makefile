@@ -27,15 +27,18 @@ demo:
 	$(TESSERA) demo -o $(OUT)
 	@echo "demo pictures written to $(OUT)/ (open $(OUT)/index.html)"
 
+# The release build's tests, then the clang sanitizer build's unit tests and fuzz runs (make asan).
 test: build
 	ctest --preset release
+	@$(MAKE) --no-print-directory asan
 
 bench: deps
 	@$(CMAKE) --preset bench >/dev/null
 	@$(CMAKE) --build --preset bench -j $(JOBS)
 	scripts/run-benchmarks.sh build/bench
 
-# AddressSanitizer + UBSan: builds and runs every module's unit tests.
+# clang's AddressSanitizer + UBSan: builds and runs every module's unit tests, and each libFuzzer target for
+# TESSERA_FUZZ_SECONDS (60) from its seeds (fuzz/CMakeLists.txt).
 asan: deps
 	@$(CMAKE) --preset asan >/dev/null
 	@$(CMAKE) --build --preset asan -j $(JOBS) --target unit_tests
