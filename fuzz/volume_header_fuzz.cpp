@@ -29,10 +29,12 @@ namespace {
 namespace fs = std::filesystem;
 
 // The process's scratch folder, removed when the process exits normally (libFuzzer's -max_total_time and -runs do).
-// Never destroyed, so that the exit handler still has it.
+// Never destroyed, so that the exit handler still has it. In memory (/dev/shm) where there is one: ten times as many
+// runs per second as on the disk behind /tmp.
 const fs::path& scratch() {
   static const fs::path* dir = [] {
-    std::string pattern = (fs::temp_directory_path() / "tessera-fuzz-volume-header-XXXXXX").string();
+    const fs::path base = ::access("/dev/shm", W_OK) == 0 ? fs::path("/dev/shm") : fs::temp_directory_path();
+    std::string pattern = (base / "tessera-fuzz-volume-header-XXXXXX").string();
     if (!::mkdtemp(pattern.data())) std::abort();
     auto* path = new fs::path(pattern);
     std::atexit([] {
