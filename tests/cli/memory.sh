@@ -78,7 +78,7 @@ rc=0
 printf 'NRRD0004\ntype: float\ndimension: 3\nsizes: 100 100 100\nencoding: raw\nendian: little\n\n' >"$dir/v.nrrd"
 refuse "$dir/none" "$dir/v.nrrd: reading 100x100x100 float32 voxels" "$bin" volume info "$dir/v.nrrd"
 refuse "$dir/none" "a procedural volume of 100^3 voxels" "$bin" volume info sphere:100
-"$bin" volume info sphere:60 --max-memory 1M | grep -qx 'dims=60,60,60' || fail "sphere:60 under a 1M budget"
+"$bin" volume info sphere:50 --max-memory 1M | grep -qx 'dims=50,50,50' || fail "sphere:50 under a 1M budget"
 
 # Rendered images: width x height x bytes per pixel (raster 44, trace 24, render 28), before the mesh or scene is read.
 cube=$(dirname "$0")/../data/cube.obj
@@ -147,16 +147,18 @@ rm -f "$dir/tex.png"
 refuse "$dir/v.png" "rendering 300x300 pixels" "$bin" volume render "$dir/v.nrrd" -o "$dir/v.png" --size 300x300
 
 # Marching cubes: the output counted in its first pass, 3 x (24-byte positions and normals a vertex, 16 bytes a
-# triangle), before it is allocated. gyroid:60's volume (844 KiB) fits in 1M, its 67688 triangles (7.9 MiB) do not.
-refuse "$dir/g.obj" "marching cubes: an iso-surface of 67688 triangles and 34848 vertices" \
-  "$bin" volume isosurface gyroid:60 -o "$dir/g.obj" --quiet
-"$bin" volume isosurface gyroid:60 -o "$dir/g.obj" --max-memory 8M --quiet --stats | grep -qx 'triangles=67688' ||
-  fail "volume isosurface gyroid:60 under an 8M budget"
+# triangle), before it is allocated. gyroid:50's volume (50^3 x 8 bytes) fits in 1M, its 46592 triangles (5.4 MiB)
+# do not.
+refuse "$dir/g.obj" "marching cubes: an iso-surface of 46592 triangles and 24132 vertices" \
+  "$bin" volume isosurface gyroid:50 -o "$dir/g.obj" --quiet
+"$bin" volume isosurface gyroid:50 -o "$dir/g.obj" --max-memory 6M --quiet --stats | grep -qx 'triangles=46592' ||
+  fail "volume isosurface gyroid:50 under a 6M budget"
 
-# Canvases at a size a user chose: volume contour's PNG (4 times the slice: 240x240 x 20 bytes) is refused, its SVG
-# (no canvas) is written.
-refuse "$dir/c.png" "a 240x240 canvas" "$bin" volume contour sphere:60 -o "$dir/c.png" --quiet
-"$bin" volume contour sphere:60 -o "$dir/c.svg" --max-memory 1M --quiet
+# Canvases at a size a user chose: volume contour's PNG of a 100x100x1 volume (4 times the slice: 400x400 x 20
+# bytes) is refused, its SVG (no canvas) is written.
+head -c 10000 /dev/zero >"$dir/flat.raw"
+refuse "$dir/c.png" "a 400x400 canvas" "$bin" volume contour "$dir/flat.raw" --dims 100,100,1 --iso 0 -o "$dir/c.png"
+"$bin" volume contour "$dir/flat.raw" --dims 100,100,1 --iso 0 -o "$dir/c.svg" --max-memory 1M
 [ -s "$dir/c.svg" ] || fail "volume contour to SVG under a 1M budget wrote nothing"
 
 # Shadow maps: 6 bytes a texel (4, times 1.5 for a point light's six faces) on top of the picture; raster's

@@ -94,12 +94,14 @@ void setup_info(CLI::App& volume, CommonOptions& common) {
   add_common_options(*cmd, common);
   cmd->callback([in, &common] {
     PhaseTimer timer;
-    const AnyVolume v = timer.time("read_s", [&] { return in->read(); });
-    const ValueProfile p = timer.time("compute_s", [&] { return profile_values(to_float(v)); });
+    AnyVolume v = timer.time("read_s", [&] { return in->read(); });
     const auto d = dims_of(v);
     const auto s = spacing_of(v), o = origin_of(v);
+    const VoxelType type = voxel_type(v);
+    // Moved into its float copy: a float volume is not copied (the read estimate counts 8 bytes a voxel).
+    const ValueProfile p = timer.time("compute_s", [&] { return profile_values(to_float(std::move(v))); });
     fmt::print("dims={},{},{}\ntype={}\nspacing={},{},{}\norigin={},{},{}\nmin={}\nmax={}\nthreshold={}\n", d.x, d.y,
-               d.z, voxel_type_name(voxel_type(v)), s.x, s.y, s.z, o.x, o.y, o.z, stat_value(p.lo), stat_value(p.hi),
+               d.z, voxel_type_name(type), s.x, s.y, s.z, o.x, o.y, o.z, stat_value(p.lo), stat_value(p.hi),
                stat_value(p.threshold));
     if (common.stats) print_volume_stats({{"voxels", stat_value(double(d.x) * d.y * d.z)}}, timer);
   });

@@ -69,7 +69,9 @@ Volume<float> to_float(const AnyVolume& any) {
 
 Volume<float> to_float(AnyVolume&& any) {
   if (auto* v = std::get_if<Volume<float>>(&any)) return std::move(*v);
-  return to_float(std::as_const(any));
+  Volume<float> out = to_float(std::as_const(any));
+  any = AnyVolume();  // the integer voxels are freed now, not when the caller's variable goes
+  return out;
 }
 
 const glm::ivec3& dims_of(const AnyVolume& v) {

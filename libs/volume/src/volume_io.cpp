@@ -58,13 +58,13 @@ std::string inflate_exact(std::string_view in, uint64_t size, const std::string&
 
 uint64_t byte_count(const RawLayout& layout) { return checked_voxel_count(layout.dims) * voxel_size(layout.type); }
 
-// Refuses, before the voxel data is read, a volume that needs more than the memory budget: the larger of the file's
-// voxel bytes (or the inflated gzip data) with the volume built from them, and the volume with the float copy that
-// every computation on it makes (to_float): 8 bytes a float32 voxel, 5 a uint8 one, 6 a 16-bit one. Also rejects bad
-// dims.
+// Refuses, before the voxel data is read, a volume that needs more than the memory budget: 8 bytes a voxel, whatever
+// its type, the most of the file's voxel bytes (or the inflated gzip data) with the volume built from them (2 x 4 for
+// float32), the volume with the float copy that every computation makes (to_float: 4 + 4 at most), and the float
+// volume with the copy of its values that profiling sorts (Otsu's threshold and percentiles: 4 + 4; the iso value,
+// transfer function and `volume info` of every command that is not given them). Also rejects bad dims.
 void check_voxel_memory(const RawLayout& layout, const std::string& name) {
-  const uint64_t voxel = voxel_size(layout.type);
-  MemoryBudget::check(saturating_product({checked_voxel_count(layout.dims), voxel + std::max<uint64_t>(voxel, 4)}),
+  MemoryBudget::check(saturating_product({checked_voxel_count(layout.dims), 8}),
                       fmt::format("{}: reading {}x{}x{} {} voxels", name, layout.dims.x, layout.dims.y, layout.dims.z,
                                   voxel_type_name(layout.type)));
 }

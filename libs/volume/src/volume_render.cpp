@@ -14,7 +14,9 @@
 #endif
 
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/memory.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/parse.hpp"
 
@@ -239,6 +241,9 @@ struct PackedVolume {
     const Vec3 sp = v.spacing();
     const float bound = (hi - lo) / float(std::min({sp.x, sp.y, sp.z}));
     gradient_scale = bound > 0 ? 32767.0f / bound : 0.0f;
+    // 8 bytes a voxel beside the float volume's 4: checked against the memory budget before it is allocated.
+    MemoryBudget::check(saturating_product({uint64_t(v.voxel_count()), sizeof(Corner)}),
+                        fmt::format("volume render: values and gradients of {}x{}x{} voxels", dims.x, dims.y, dims.z));
     voxels.resize(v.voxel_count());
     const Vec3f sp_f(sp);
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
@@ -752,7 +757,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
   };
 #if TESSERA_VOLUME_AVX2
   // The gathers index the packed voxels with int32, and march8 divides cells by the block size in float.
-  const bool simd = options.simd && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+  const bool simd = options.simd && cpu_features().avx2 && cpu_features().fma &&
                     packed.voxels.size() < (size_t(1) << 31) && glm::all(glm::lessThan(packed.dims, glm::ivec3(1 << 23)));
 #else
   const bool simd = false;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/metrics.hpp"
 #include "tessera/volume/procedural.hpp"
@@ -24,6 +25,25 @@ VolumeRenderOptions looking_down_z(int size) {
   o.width = o.height = size;
   o.shading = false;
   return o;
+}
+
+// Issue 24, class 3: the renderer packs every voxel's value and gradient (8 bytes) beside the float volume; that
+// copy is checked against the memory budget before it is allocated: 32^3 voxels need 262144 bytes.
+TEST(VolumeRender, PackedVolumeOverTheMemoryBudgetIsRefused) {
+  const Volume<float> v = make_sphere(32, 0.7);
+  MemoryBudget::set_limit(32 * 32 * 32 * 8 - 1);
+  std::string message = "no error";
+  try {
+    VolumeRenderer renderer(v);
+  } catch (const MemoryBudgetError& e) {
+    message = e.what();
+  }
+  MemoryBudget::set_limit(32 * 32 * 32 * 8);
+  EXPECT_NO_THROW(VolumeRenderer renderer(v));
+  MemoryBudget::set_limit(0);
+  EXPECT_NE(message.find("volume render: values and gradients of 32x32x32 voxels needs about 256.0 KiB"),
+            std::string::npos)
+      << message;
 }
 
 TEST(VolumeRender, ConstantSlabMatchesBeerLambert) {

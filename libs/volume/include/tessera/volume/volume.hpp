@@ -123,7 +123,8 @@ using AnyVolume = std::variant<Volume<uint8_t>, Volume<uint16_t>, Volume<int16_t
 VoxelType voxel_type(const AnyVolume& v);
 /// The volume's values as float (same dims, spacing, origin).
 Volume<float> to_float(const AnyVolume& v);
-/// to_float() of a volume that is no longer needed: a float volume is moved, not copied (half the peak memory).
+/// to_float() of a volume that is no longer needed: a float volume is moved, not copied (half the peak memory), and
+/// integer voxels are freed once converted; `v` is left empty.
 Volume<float> to_float(AnyVolume&& v);
 /// Dims, spacing and origin of any volume.
 const glm::ivec3& dims_of(const AnyVolume& v);
