@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
 #include "tessera/core/parallel.hpp"
@@ -292,7 +293,7 @@ double subtree_cost(const mesh_tree::CacheLine* tree, int32_t ref) {
 }
 
 int pick_width(int requested) {
-  const bool avx2 = __builtin_cpu_supports("avx2");
+  const bool avx2 = cpu_features().avx2;
   if (requested == 0) return avx2 ? 8 : 4;
   if (requested == 4 || (requested == 8 && avx2)) return requested;
   throw InvalidInput("MeshAccel: SIMD width must be 0, 4 or 8 (8 needs AVX2), got " + std::to_string(requested));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "escape_points.hpp"
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
@@ -146,9 +147,9 @@ std::complex<double> ComplexView::pixel_center(int x, int y) const {
 bool simd_supported(SimdPath path) {
   switch (path) {
     case SimdPath::Avx512:
-      return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
+      return cpu_features().avx512f && cpu_features().fma;
     case SimdPath::Avx2:
-      return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+      return cpu_features().avx2 && cpu_features().fma;
     default:
       return true;
   }
