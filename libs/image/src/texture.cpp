@@ -181,8 +181,9 @@ Image<Texel> reduce(const Image<Texel>& image) {
   };
   for (int y = 0; y < out.height(); ++y) {
     const Taps& t = ty[size_t(y)];
-    const std::vector<glm::vec4>&r0 = reduced_row(t.index[0]), &r1 = reduced_row(t.index[1]),
-                                  &r2 = reduced_row(t.index[2]);
+    const std::vector<glm::vec4>& r0 = reduced_row(t.index[0]);
+    const std::vector<glm::vec4>& r1 = reduced_row(t.index[1]);
+    const std::vector<glm::vec4>& r2 = reduced_row(t.index[2]);
     Texel* row = out.row(y);
     for (int x = 0; x < out.width(); ++x)
       store(r0[size_t(x)] * t.weight[0] + r1[size_t(x)] * t.weight[1] + r2[size_t(x)] * t.weight[2], row[x]);
