@@ -1,5 +1,7 @@
 #include "tessera/mesh/measure.hpp"
 
+#include <cmath>
+
 #include "normal_scale.hpp"
 
 namespace tessera {
@@ -20,14 +22,20 @@ double surface_area(const PolyMesh& mesh) {
 }
 
 double signed_volume(const PolyMesh& mesh) {
+  // Coordinates outside 2^+-128 are scaled by a power of two first (exactly): about 1e300 the triple products were
+  // infinite with both signs and summed to NaN; the volume is then scaled back (inf where it passes the largest double).
+  const int s = detail::scale_exponent(detail::largest_coordinate(mesh.positions));
+  const auto point = [&](uint32_t v) {
+    const Vec3& p = mesh.positions[v];
+    return s ? Vec3(std::ldexp(p.x, -s), std::ldexp(p.y, -s), std::ldexp(p.z, -s)) : p;
+  };
   double volume = 0;
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const auto face = mesh.face(f);
-    const Vec3& p0 = mesh.positions[face[0]];
-    for (size_t i = 1; i + 1 < face.size(); ++i)
-      volume += glm::dot(p0, glm::cross(mesh.positions[face[i]], mesh.positions[face[i + 1]]));
+    const Vec3 p0 = point(face[0]);
+    for (size_t i = 1; i + 1 < face.size(); ++i) volume += glm::dot(p0, glm::cross(point(face[i]), point(face[i + 1])));
   }
-  return volume / 6.0;
+  return std::ldexp(volume / 6.0, 3 * s);
 }
 
 }  // namespace tessera

@@ -15,14 +15,7 @@ namespace {
 // subnormals, so normals are those of the same face at unit scale and areas are scaled back by 2^(2s). Other faces
 // are computed as they are (2^-s is 1), bit for bit as before.
 
-/// The binary exponent of `largest` (a coordinate's or a vector component's magnitude) when it lies outside
-/// [2^-128, 2^128], else 0; 0 for 0 and for non-finite values (which are left to propagate).
-int scale_exponent(double largest) {
-  if (largest == 0 || !std::isfinite(largest)) return 0;
-  int e = 0;
-  std::frexp(largest, &e);
-  return std::abs(e) > 128 ? e : 0;
-}
+using detail::scale_exponent;
 
 Vec3 times_power_of_two(const Vec3& v, int e) {
   return e ? Vec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)) : v;
@@ -69,6 +62,19 @@ Vec3 normalized_or_zero(const Vec3& v) {
 
 namespace detail {
 
+int scale_exponent(double largest) {
+  if (largest == 0 || !std::isfinite(largest)) return 0;
+  int e = 0;
+  std::frexp(largest, &e);
+  return std::abs(e) > 128 ? e : 0;
+}
+
+double largest_coordinate(const std::vector<Vec3>& points) {
+  double largest = 0;
+  for (const Vec3& p : points) largest = std::max(largest, largest_component(p));
+  return largest;
+}
+
 double face_area(const PolyMesh& mesh, size_t f) {
   const FacePoints p(mesh, f);
   return std::ldexp(robust_length(scaled_area_vector(p)), 2 * p.s);
@@ -93,9 +99,7 @@ std::vector<Vec3> vertex_normals(const PolyMesh& mesh, NormalWeighting weighting
   // Area weights are summed in units of 2^(2 s), s the scale exponent of the mesh's largest coordinate, so that the
   // sums neither overflow nor underflow at any scale (a face over 2^500 times smaller than the mesh's largest
   // coordinate then weighs nothing, as it would next to the others anyway).
-  double largest = 0;
-  for (const Vec3& p : mesh.positions) largest = std::max(largest, largest_component(p));
-  const int mesh_s = scale_exponent(largest);
+  const int mesh_s = scale_exponent(detail::largest_coordinate(mesh.positions));
   std::vector<Vec3> sums(mesh.vertex_count(), Vec3(0.0));
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const FacePoints p(mesh, f);

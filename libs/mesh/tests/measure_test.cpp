@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "tessera/mesh/primitives.hpp"
 
 namespace tessera {
@@ -31,6 +33,21 @@ TEST(Measure, AreaOfHugeAndTinyMeshesIsTheScaledUnitArea) {
     for (Vec3& p : box.positions) p *= scale;
     EXPECT_NEAR(surface_area(box) / scale / scale, 24.0, 1e-13) << scale;
   }
+}
+
+// Issue 24, class 2: about 1e300 the triple products of signed_volume were infinite with both signs and summed to NaN
+// (`mesh info --stats` printed volume=-nan). Scaled by a power of two, the box's volume 8 s^3 is exact for s = 2^300,
+// close to it for s = 1e100 and 1e-100, and +inf where it passes the largest double.
+TEST(Measure, VolumeOfHugeMeshesIsScaledNotNaN) {
+  const auto scaled_box = [](double scale) {
+    PolyMesh box = make_box();
+    for (Vec3& p : box.positions) p *= scale;
+    return box;
+  };
+  EXPECT_EQ(signed_volume(scaled_box(0x1p300)), 0x1p903);
+  EXPECT_NEAR(signed_volume(scaled_box(1e100)) / 1e300, 8.0, 1e-13);
+  EXPECT_NEAR(signed_volume(scaled_box(1e-100)) / 1e-300, 8.0, 1e-13);
+  EXPECT_EQ(signed_volume(scaled_box(1e300)), std::numeric_limits<double>::infinity());
 }
 
 }  // namespace
