@@ -123,8 +123,9 @@ class DocumentBuilder {
     try {
       return parse(text);
     } catch (const SvgValueError& error) {
-      fail(a.verbatim ? a.value_offset + base + error.offset() : a.value_offset,
-           fmt::format("{} of <{}>: {}", context, e.name, error.detail()));
+      // The value grammars quote the value through printable() (the CLI's --color reaches them directly).
+      map_.fail_escaped(a.verbatim ? a.value_offset + base + error.offset() : a.value_offset,
+                        fmt::format("{} of <{}>: {}", printable(context), printable(e.name), error.detail()));
     }
   }
   template <class Parse>

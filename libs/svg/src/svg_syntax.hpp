@@ -11,7 +11,8 @@
 
 namespace tessera::svg {
 
-/// A malformed attribute value: `offset` is the byte offset inside the value, `detail` what was expected there.
+/// A malformed attribute value: `offset` is the byte offset inside the value, `detail` what was expected there (any
+/// input it quotes went through printable()).
 class SvgValueError : public InvalidInput {
  public:
   SvgValueError(size_t offset, const std::string& detail);

@@ -62,8 +62,10 @@ std::string SourceMap::where(size_t offset) const {
   return fmt::format("{}:{}:{}", name_, l, offset - line_starts_[size_t(l - 1)] + 1);
 }
 
-void SourceMap::fail(size_t offset, const std::string& what) const {
-  throw InvalidInput(located(where(offset), printable(what, 400)));
+void SourceMap::fail(size_t offset, const std::string& what) const { fail_escaped(offset, printable(what, 400)); }
+
+void SourceMap::fail_escaped(size_t offset, const std::string& what) const {
+  throw InvalidInput(located(where(offset), what));
 }
 
 Reader::Reader(std::string_view text, const SourceMap& map, std::string_view root)

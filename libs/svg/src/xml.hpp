@@ -26,6 +26,9 @@ class SourceMap {
   /// Throws InvalidInput "name:line:column: what", quoting `what` through printable() (it holds the document's own
   /// bytes, which must not reach a terminal as escape sequences).
   [[noreturn]] void fail(size_t offset, const std::string& what) const;
+  /// Throws as fail, without escaping `what`: for messages whose pieces of input went through printable() already
+  /// (escaping twice would double their backslashes).
+  [[noreturn]] void fail_escaped(size_t offset, const std::string& what) const;
 
   const std::string& name() const { return name_; }
 
