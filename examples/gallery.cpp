@@ -1,14 +1,17 @@
 #include "gallery.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <string_view>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
+#include "tessera/image/metrics.hpp"
 
 namespace tessera::examples {
 namespace {
@@ -117,8 +120,29 @@ DataFolder locate_shared_data(const std::filesystem::path& option) {
   return {};
 }
 
+namespace {
+constexpr std::string_view kStandInPrefix = "STAND-IN (";
+}  // namespace
+
 std::string stand_in_caption(const std::string& what, const std::string& real, const std::string& caption) {
-  return fmt::format("STAND-IN (shared data not found; drawn instead of {}: {}): {}", real, what, caption);
+  return fmt::format("{}shared data not found; drawn instead of {}: {}): {}", kStandInPrefix, real, what, caption);
+}
+
+bool is_stand_in(const Picture& picture) { return picture.caption.starts_with(kStandInPrefix); }
+
+Comparison compare_picture(const ImageRGBA8& picture, const ImageRGBA8& reference, const Tolerance& tolerance) {
+  if (picture.width() != reference.width() || picture.height() != reference.height())
+    return {false, fmt::format("size {}x{}, the reference is {}x{}", picture.width(), picture.height(),
+                               reference.width(), reference.height())};
+  const long long total = (long long)picture.width() * picture.height();
+  const long long differing = count_differing_pixels(picture, reference, tolerance.levels);
+  const auto allowed = (long long)std::floor(tolerance.pixels * double(total));
+  const double db = psnr(picture, reference);
+  const bool passed = differing <= allowed && db >= tolerance.min_psnr;
+  return {passed, fmt::format("{} of {} pixels differ by more than {} levels (at most {} may), max difference {} "
+                              "levels, PSNR {:.1f} dB (at least {:.1f})",
+                              differing, total, tolerance.levels, allowed, max_abs_difference(picture, reference),
+                              db, tolerance.min_psnr)};
 }
 
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {
@@ -163,7 +187,7 @@ RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& opti
   }
   progress.done();
   gallery.write_index("Tessera gallery");
-  return {gallery.pictures().size(), gallery.stand_ins()};
+  return {gallery.pictures().size(), gallery.stand_ins(), gallery.pictures()};
 }
 
 }  // namespace tessera::examples

@@ -95,8 +95,9 @@ int register_example(const Example& example);
 std::vector<Example> all_examples();
 /// What run_examples did.
 struct RunSummary {
-  size_t pictures = 0;   ///< pictures written
-  size_t stand_ins = 0;  ///< shared data files that were missing (stand-ins drawn)
+  size_t pictures = 0;           ///< pictures written
+  size_t stand_ins = 0;          ///< shared data files that were missing (stand-ins drawn)
+  std::vector<Picture> written;  ///< the pictures, in order (files in the run's folder)
 };
 
 /// Which examples run_examples runs, and how.
@@ -108,6 +109,30 @@ struct RunOptions {
 
 /// Runs the examples `options` selects into `dir` and writes index.html.
 RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& options = {});
+
+/// How far a picture may be from its reviewed reference (docs/gallery) and still pass. The examples render the same
+/// bytes for any thread count; the slack is for other CPUs' vector paths and compilers. A picture fails when more than
+/// `pixels` of its pixels differ by more than `levels` in a channel (a shape moved by a pixel or a changed color), or
+/// when its PSNR is below `min_psnr` (a small change everywhere, e.g. every color 2 levels darker).
+struct Tolerance {
+  int levels = 3;          ///< a channel within this many 8-bit levels of the reference counts as equal
+  double pixels = 5e-5;    ///< fraction of the pixels that may differ by more than `levels` (0.00005: 6 of 360x360)
+  double min_psnr = 45.0;  ///< dB over the four channels (45 dB: an RMS difference of 1.4 levels)
+};
+
+/// The outcome of comparing a picture with its reference.
+struct Comparison {
+  bool passed = false;
+  std::string message;  ///< the measured figures against the tolerance, or why the images cannot be compared
+};
+
+/// Compares `picture` with `reference` (image/metrics.hpp: count_differing_pixels, max_abs_difference, psnr). Images
+/// of different sizes fail.
+Comparison compare_picture(const ImageRGBA8& picture, const ImageRGBA8& reference, const Tolerance& tolerance = {});
+
+/// Whether a picture was drawn with a stand-in for missing shared data (its caption is a stand_in_caption): such a
+/// picture has no reference to meet.
+bool is_stand_in(const Picture& picture);
 
 }  // namespace tessera::examples
 

@@ -254,5 +254,51 @@ TEST(Gallery, MissingDataFileWarnsAndCountsAStandIn) {
             "STAND-IN (shared data not found; drawn instead of the bunny: a torus): BVH.");
 }
 
+// The comparison against the reviewed references (docs/gallery) on one of them: the picture itself and a copy
+// re-encoded pass; a 1-level rounding difference on every pixel passes; what a regression does fails: a shape moved
+// by one pixel, one object's color changed by a few levels, a 2-level shift of every pixel's color, a different size.
+TEST(Gallery, ReferenceComparisonCatchesOnePixelMovesAndColorChanges) {
+  const ImageRGBA8 reference = read8("docs/gallery/05_body.png");  // dark outlines and flat fills on a light ground
+  EXPECT_TRUE(compare_picture(reference, reference).passed);
+
+  ImageRGBA8 rounded = reference;
+  for (glm::u8vec4& p : rounded.pixels()) p.x = uint8_t(p.x < 255 ? p.x + 1 : p.x - 1);
+  EXPECT_TRUE(compare_picture(rounded, reference).passed) << compare_picture(rounded, reference).message;
+
+  ImageRGBA8 moved(reference.width(), reference.height(), reference(0, 0));
+  for (int y = 0; y < reference.height(); ++y)
+    for (int x = 1; x < reference.width(); ++x) moved(x, y) = reference(x - 1, y);
+  const Comparison move = compare_picture(moved, reference);
+  EXPECT_FALSE(move.passed) << move.message;
+
+  // Recolor the pixels of the picture's most common non-background color by 6 levels (one fill).
+  ImageRGBA8 recolored = reference;
+  const glm::u8vec4 background = reference(0, 0);
+  glm::u8vec4 fill = background;
+  for (const glm::u8vec4& p : reference.pixels())
+    if (p != background) { fill = p; break; }
+  long long changed = 0;
+  for (glm::u8vec4& p : recolored.pixels())
+    if (p == fill) p.y = uint8_t(p.y >= 6 ? p.y - 6 : p.y + 6), ++changed;
+  ASSERT_GT(changed, 0);
+  const Comparison color = compare_picture(recolored, reference);
+  EXPECT_FALSE(color.passed) << changed << " pixels: " << color.message;
+
+  ImageRGBA8 shifted = reference;
+  for (glm::u8vec4& p : shifted.pixels())
+    for (int c = 0; c < 3; ++c) p[c] = uint8_t(p[c] >= 2 ? p[c] - 2 : p[c] + 2);
+  const Comparison shift = compare_picture(shifted, reference);
+  EXPECT_FALSE(shift.passed) << shift.message;
+
+  const Comparison size = compare_picture(ImageRGBA8(reference.width() - 1, reference.height()), reference);
+  EXPECT_FALSE(size.passed);
+  EXPECT_NE(size.message.find("size"), std::string::npos) << size.message;
+}
+
+TEST(Gallery, StandInPicturesAreRecognizedByTheirCaption) {
+  EXPECT_TRUE(is_stand_in({"x.png", stand_in_caption("a torus", "the bunny", "BVH.")}));
+  EXPECT_FALSE(is_stand_in({"x.png", "BVH of the bunny."}));
+}
+
 }  // namespace
 }  // namespace tessera::examples
