@@ -35,12 +35,11 @@ endfunction()
 #
 # One precompiled header for a group of targets: the group's first target makes it from the headers, the others
 # reuse it. GCC uses it where the macros and target flags agree (those of one build are the same for all the group's
-# targets) and otherwise silently parses the headers as before. But where it uses it, GCC also restores the
-# optimization options the header was made with: -ffp-contract among them, which raster3d's users need off (its
-# templates are instantiated in their files; with contraction its AVX2 paths fuse and differ from the SSE ones).
-# So every target of a group compiles with -ffp-contract=off (a no-op outside code compiled for FMA).
+# targets) and otherwise silently parses the headers as before. Where it uses it, GCC also restores the optimization
+# options the header was made with (-ffp-contract among them), so no module passes such an option on to its users:
+# raster3d's -ffp-contract=off is private (its vector kernels are compiled in its own sources, its users' code has no
+# FMA to contract).
 function(tessera_share_pch target group)
-  target_compile_options(${target} PRIVATE -ffp-contract=off)
   get_property(donor GLOBAL PROPERTY TESSERA_PCH_${group})
   if(donor)
     target_precompile_headers(${target} REUSE_FROM ${donor})

@@ -42,7 +42,7 @@ inline glm::u8vec4 to_color8(const Vec4f& c) {
 }
 
 namespace detail {
-struct RasterScratch;  // binning memory reused from draw to draw (pipeline.cpp)
+struct RasterScratch;  // binning memory reused from draw to draw (detail/pipeline_setup.hpp)
 }  // namespace detail
 
 /// Color, depth and stencil buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
