@@ -11,10 +11,12 @@
 #include <fmt/format.h>
 
 #include "command.hpp"
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
+#include "tessera/version.hpp"
 
 namespace tessera::cli {
 using tessera::Progress;
@@ -141,7 +143,8 @@ int main(int argc, char** argv) {
   start_command_clock();
   CLI::App app{"Tessera: a computer-graphics toolkit (rasterization, ray tracing, meshes, curves, volumes)", "tessera"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "tessera 0.1.0");
+  app.set_version_flag("--version", fmt::format("tessera {} (git {}, {})", tessera::kVersion, tessera::kGitHash,
+                                                tessera::simd_level_name(tessera::simd_level())));
   app.footer(
       "Every command accepts --threads N, --quiet, --progress MODE, --stats and --max-memory SIZE; docs/cli.md has the "
       "contract.");

@@ -34,7 +34,7 @@ Vec3 normal_at(const BezierPatch& patch, double u, double v, double scale) {
         const PatchSample s = evaluate_with_partials(patch, a, b);
         return std::array<Vec3, 2>{s.du, s.dv};
       },
-      u, v, Interval{0, 1}, Interval{0, 1}, scale);
+      u, v, ParamInterval{0, 1}, ParamInterval{0, 1}, scale);
 }
 
 // The signed volume of the triangles about the centroid of all control points (divergence theorem).

@@ -12,7 +12,8 @@ namespace tessera::detail {
 /// partial-derivative length) the normal is taken at (u, v) moved toward the domain's center by 1e-6, 1e-4, then 1e-2
 /// of the way: the limit direction at a collapsed edge or corner. Zero when every try is degenerate.
 template <class Partials>
-Vec3 normal_with_fallback(const Partials& partials, double u, double v, Interval ur, Interval vr, double scale) {
+Vec3 normal_with_fallback(const Partials& partials, double u, double v, ParamInterval ur, ParamInterval vr,
+                          double scale) {
   const double threshold = 1e-10 * scale * scale;
   const double cu = 0.5 * (ur.lo + ur.hi), cv = 0.5 * (vr.lo + vr.hi);
   for (const double f : {0.0, 1e-6, 1e-4, 1e-2}) {

@@ -29,7 +29,7 @@ double derivative_scale(const ParametricSurface& surface) {
 
 // Central differences with a step of 1e-6 of the range, one-sided where the step would leave the domain.
 std::array<Vec3, 2> finite_difference_partials(const ParametricSurface& surface, double s, double t) {
-  const auto diff = [](const auto& f, double x, Interval r) {
+  const auto diff = [](const auto& f, double x, ParamInterval r) {
     const double h = 1e-6 * (r.hi - r.lo);
     const double a = std::max(r.lo, x - h), b = std::min(r.hi, x + h);
     return (f(b) - f(a)) / (b - a);

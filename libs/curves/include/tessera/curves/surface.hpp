@@ -9,7 +9,7 @@
 namespace tessera {
 
 /// A closed parameter interval [lo, hi] (lo < hi).
-struct Interval {
+struct ParamInterval {
   double lo = 0, hi = 1;
 };
 
@@ -17,8 +17,8 @@ struct Interval {
 struct ParametricSurface {
   std::function<Vec3(double s, double t)> position;
   std::function<Vec3(double s, double t)> normal;  ///< unit normal if known analytically; empty: finite differences
-  Interval s{0, 1};
-  Interval t{0, 1};
+  ParamInterval s{0, 1};
+  ParamInterval t{0, 1};
 };
 
 /// The notes' parallelogram: P(s, t) = p1 + s (p2 - p1) + t (p3 - p1), s, t in [0, 1] (p1 the bottom-left corner,
