@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the build tree into a scratch prefix, then configures and builds tests/install/consumer against it (the
-# README example, and the installed umbrella header alone), and checks `tessera --version`.
+# README example, and the installed umbrella header alone), checks `tessera --version`, and configures
+# tests/install/subdirectory, which add_subdirectory()s the source tree with GoogleTest hidden (configure only:
+# building would compile Tessera once more).
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR SCRATCH_DIR
 set -euo pipefail
 build=$1 source=$2 scratch=$3
@@ -36,3 +38,6 @@ if [ "$version" != "tessera $project_version (git $hash, $level)" ]; then
   exit 1
 fi
 
+cmake -S "$source/tests/install/subdirectory" -B "$scratch/subdirectory" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DTESSERA_SOURCE_DIR="$source" -DCMAKE_DISABLE_FIND_PACKAGE_GTest=ON --no-warn-unused-cli >/dev/null
+echo "install_test: a project that add_subdirectory()s Tessera configures without GoogleTest"
