@@ -158,7 +158,7 @@ Rgb parse_color(const std::string& text, const std::string& what) {
     const auto v = parse_doubles(text, 3, what);
     for (double c : v)
       if (c < 0 || c > 1)
-        throw InvalidInput(fmt::format("{}: color components must be in [0, 1], got '{}'", what, text));
+        throw InvalidInput(fmt::format("{}: color components must be in [0, 1], got '{}'", what, printable(text)));
     return {float(v[0]), float(v[1]), float(v[2])};
   }
   // Names and #rrggbb as SVG and CSS spell them.
@@ -168,7 +168,7 @@ Rgb parse_color(const std::string& text, const std::string& what) {
   } catch (const InvalidInput&) {
     throw InvalidInput(
         fmt::format("{}: expected a color name (as SVG's: white, cornflowerblue), #rrggbb or r,g,b in [0,1], got '{}'",
-                    what, text));
+                    what, printable(text)));
   }
 }
 

@@ -141,6 +141,8 @@ expect_exit 1 'got .\\x1b\[2J' "$tessera" mesh info "$scratch/esc.obj"
 grep -q $'\e' "$scratch/stderr" && { echo "an escape byte from a mesh reached stderr"; exit 1; }
 printf '<svg width="9" height="9"><rect width="5" height="5" fill="\033[2Jred"/></svg>' >"$scratch/esc.svg"
 expect_exit 1 "unknown color '\\\\x1b\[2Jred'" "$tessera" canvas render "$scratch/esc.svg" -o "$scratch/x.png"
+# A color option quotes its value escaped too (the terminal must not receive the escape sequence).
+expect_exit 2 "got 're\\\\x1b\[2Jd'" "$tessera" raster "$scratch/ball.ply" -o "$scratch/x.png" --background "$(printf 're\033[2Jd')"
 grep -q $'\e' "$scratch/stderr" && { echo "an escape byte from an SVG reached stderr"; exit 1; }
 head -c 10000000 /dev/zero | tr '\0' '7' >"$scratch/long.csv"
 expect_exit 1 "bytes)" "$tessera" color convert --from rgb --to hsv <"$scratch/long.csv"

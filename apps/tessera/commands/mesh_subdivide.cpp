@@ -28,23 +28,6 @@ struct SubdivideArgs {
   bool limit = false;
 };
 
-/// The area-weighted vertex normals of `mesh`, computed on its positions scaled by a power of two to a largest
-/// coordinate of about 1: area weights are cross products of edges, which overflow (or underflow) for coordinates
-/// beyond about 1e154 (or below 1e-154) and left zero normals; a positive scale does not change a normal.
-std::vector<Vec3> normals_at_unit_scale(const PolyMesh& mesh) {
-  double largest = 0;
-  for (const Vec3& p : mesh.positions) largest = std::max({largest, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-  int e = 0;
-  std::frexp(largest, &e);
-  PolyMesh scaled;
-  scaled.positions.reserve(mesh.positions.size());
-  for (const Vec3& p : mesh.positions) scaled.positions.push_back({std::ldexp(p.x, -e), std::ldexp(p.y, -e), std::ldexp(p.z, -e)});
-  scaled.face_offsets = mesh.face_offsets;
-  scaled.face_vertices = mesh.face_vertices;
-  compute_vertex_normals(scaled, NormalWeighting::Area);
-  return std::move(scaled.normals);
-}
-
 }  // namespace
 
 void setup_mesh_subdivide(CLI::App& mesh, CommonOptions& common) {
@@ -92,7 +75,7 @@ void setup_mesh_subdivide(CLI::App& mesh, CommonOptions& common) {
           refined.positions = std::move(limit.positions);
           refined.normals = std::move(limit.normals);
         } else if (!input.normals.empty() || !input.corner_normals.empty()) {
-          refined.normals = normals_at_unit_scale(refined);
+          refined.normals = vertex_normals(refined);
         }
         progress.done();
         return refined;

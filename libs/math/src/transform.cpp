@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "tessera/core/error.hpp"
+#include "tessera/math/power_of_two.hpp"
 
 namespace tessera {
 namespace {
@@ -79,11 +80,18 @@ Mat4 reflect(const Vec3& plane_normal) {
 }
 
 Mat4 look_at(const Vec3& eye, const Vec3& center, const Vec3& up) {
+  // The gaze and up are scaled by powers of two where they pass 2^+-128 (power_of_two.hpp): their lengths and cross
+  // product would overflow beyond about 1e154 (or underflow below 1e-154), though the directions are well defined.
   const Vec3 g = center - eye;
-  if (!(glm::length(g) > 0)) throw InvalidInput("camera: eye and center must differ");
-  const Vec3 w = -g / glm::length(g);
-  const Vec3 txw = glm::cross(up, w);
-  if (!(glm::length(txw) > 1e-12 * glm::length(up))) throw InvalidInput("camera: up must not be parallel to the gaze");
+  if (!std::isfinite(g.x) || !std::isfinite(g.y) || !std::isfinite(g.z))
+    throw InvalidInput("camera: eye and center are farther apart than the finite numbers reach");
+  const Vec3 gaze = ldexp(g, -rescale_exponent(largest_component(g)));
+  if (!(glm::length(gaze) > 0)) throw InvalidInput("camera: eye and center must differ");
+  const Vec3 w = -gaze / glm::length(gaze);
+  const Vec3 up_scaled = ldexp(up, -rescale_exponent(largest_component(up)));
+  const Vec3 txw = glm::cross(up_scaled, w);
+  if (!(glm::length(txw) > 1e-12 * glm::length(up_scaled)))
+    throw InvalidInput("camera: up must not be parallel to the gaze");
   const Vec3 u = txw / glm::length(txw);
   const Vec3 v = glm::cross(w, u);
   const Mat4 r = rows4({u, 0}, {v, 0}, {w, 0}, {0, 0, 0, 1});

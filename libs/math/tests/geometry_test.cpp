@@ -1,8 +1,12 @@
+#include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "tessera/math/frame.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/math/ray.hpp"
 
 namespace tessera {
@@ -63,3 +67,20 @@ TEST(Frame, IsOrthonormal) {
 
 }  // namespace
 }  // namespace tessera
+
+// Scaling by powers of two (power_of_two.hpp): only magnitudes outside [2^-128, 2^128] are rescaled, into [0.5, 1).
+TEST(PowerOfTwo, RescalesOnlyMagnitudesFarFromOne) {
+  EXPECT_EQ(tessera::rescale_exponent(1e300), 997);  // 1e300 = 0.7466... x 2^997
+  EXPECT_EQ(tessera::rescale_exponent(1e-300), -996);
+  EXPECT_EQ(tessera::rescale_exponent(std::ldexp(1.0, 128)), 129);
+  EXPECT_EQ(tessera::rescale_exponent(std::ldexp(1.0, 127)), 0);
+  EXPECT_EQ(tessera::rescale_exponent(0.0), 0);
+  EXPECT_EQ(tessera::rescale_exponent(std::numeric_limits<double>::infinity()), 0);
+  const std::vector<tessera::Vec3> points{{1, -3e300, 2}, {std::numeric_limits<double>::infinity(), 0, 1e299}};
+  EXPECT_EQ(tessera::largest_coordinate(points), 3e300);  // non-finite coordinates are left out
+  std::vector<tessera::Vec3> scaled = points;
+  tessera::scale_by_power_of_two(scaled, -tessera::rescale_exponent(points));
+  EXPECT_GE(std::fabs(scaled[0].y), 0.5);
+  EXPECT_LT(std::fabs(scaled[0].y), 1.0);
+  EXPECT_EQ(tessera::ldexp(scaled[0], tessera::rescale_exponent(points)), points[0]);  // exact both ways
+}

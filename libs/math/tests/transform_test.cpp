@@ -90,6 +90,19 @@ TEST(Transform, NotesCameraFacts) {
   EXPECT_NEAR(g.z, -glm::length(center - eye), 1e-12);
 }
 
+// Distances past 1e154 (or below 1e-154) and huge or tiny up vectors: the rotation is the unit case's (the lengths
+// and the cross product are taken on vectors scaled by powers of two; before, they overflowed and were refused).
+TEST(Transform, LookAtAtExtremeScalesKeepsTheUnitRotation) {
+  const Mat4 unit = look_at({0, 0, 0}, {1, 0, 0}, {0, 1, 0});  // rotate_y(90)
+  for (double scale : {1e300, 1e160, 1e-160, 1e-300}) {
+    const Mat4 m = look_at({0, 0, 0}, {scale, 0, 0}, {0, scale, 0});
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) EXPECT_EQ(m[c][r], unit[c][r]) << scale;
+  }
+  EXPECT_THROW(look_at({-1e308, 0, 0}, {1e308, 0, 0}, {0, 1, 0}), InvalidInput);  // the gaze is not finite
+  EXPECT_THROW(look_at({0, 0, 0}, {1e-320, 0, 0}, {1e-320, 0, 0}), InvalidInput);  // up along the gaze
+}
+
 TEST(Transform, NotesRotationFacts) {
   // Counterclockwise: x axis goes to y axis under Rz(90), y to z under Rx(90), z to x under Ry(90).
   auto near = [](const Vec3& a, const Vec3& b) { return glm::length(a - b) < 1e-12; };

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "normal_scale.hpp"
+#include "tessera/math/power_of_two.hpp"
 
 namespace tessera {
 
@@ -24,11 +25,8 @@ double surface_area(const PolyMesh& mesh) {
 double signed_volume(const PolyMesh& mesh) {
   // Coordinates outside 2^+-128 are scaled by a power of two first (exactly): about 1e300 the triple products were
   // infinite with both signs and summed to NaN; the volume is then scaled back (inf where it passes the largest double).
-  const int s = detail::scale_exponent(detail::largest_coordinate(mesh.positions));
-  const auto point = [&](uint32_t v) {
-    const Vec3& p = mesh.positions[v];
-    return s ? Vec3(std::ldexp(p.x, -s), std::ldexp(p.y, -s), std::ldexp(p.z, -s)) : p;
-  };
+  const int s = rescale_exponent(std::span<const Vec3>(mesh.positions));
+  const auto point = [&](uint32_t v) { return ldexp(mesh.positions[v], -s); };
   double volume = 0;
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const auto face = mesh.face(f);

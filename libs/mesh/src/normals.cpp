@@ -5,6 +5,7 @@
 #include <span>
 
 #include "normal_scale.hpp"
+#include "tessera/math/power_of_two.hpp"
 
 namespace tessera {
 namespace {
@@ -15,15 +16,7 @@ namespace {
 // subnormals, so normals are those of the same face at unit scale and areas are scaled back by 2^(2s). Other faces
 // are computed as they are (2^-s is 1), bit for bit as before.
 
-using detail::scale_exponent;
-
-Vec3 times_power_of_two(const Vec3& v, int e) {
-  return e ? Vec3(std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)) : v;
-}
-
-double largest_component(const Vec3& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
-
-/// A face's points as scale_exponent() scales them: point(i) = position of corner i times 2^-s.
+/// A face's points as rescale_exponent() scales them: point(i) = position of corner i times 2^-s.
 struct FacePoints {
   const std::vector<Vec3>& positions;
   std::span<const uint32_t> face;
@@ -32,9 +25,9 @@ struct FacePoints {
   FacePoints(const PolyMesh& mesh, size_t f) : positions(mesh.positions), face(mesh.face(f)) {
     double largest = 0;
     for (uint32_t v : face) largest = std::max(largest, largest_component(positions[v]));
-    s = scale_exponent(largest);
+    s = rescale_exponent(largest);
   }
-  Vec3 operator[](size_t i) const { return times_power_of_two(positions[face[i]], -s); }
+  Vec3 operator[](size_t i) const { return ldexp(positions[face[i]], -s); }
 };
 
 /// The face's vector area times 2^-2s: half the sum of its fan's cross products, on the scaled points.
@@ -47,13 +40,13 @@ Vec3 scaled_area_vector(const FacePoints& p) {
 /// |v|, computed on v scaled by a power of two: glm::length overflows once a component passes about 1e154, and
 /// underflows to 0 below about 1e-154.
 double robust_length(const Vec3& v) {
-  const int e = scale_exponent(largest_component(v));
-  return std::ldexp(glm::length(times_power_of_two(v, -e)), e);
+  const int e = rescale_exponent(largest_component(v));
+  return std::ldexp(glm::length(ldexp(v, -e)), e);
 }
 
 /// v / |v| computed on v scaled by a power of two (its length may overflow or underflow); 0 for a zero or non-finite v.
 Vec3 normalized_or_zero(const Vec3& v) {
-  const Vec3 u = times_power_of_two(v, -scale_exponent(largest_component(v)));
+  const Vec3 u = ldexp(v, -rescale_exponent(largest_component(v)));
   const double len = glm::length(u);
   return len > 0 && std::isfinite(len) ? u / len : Vec3(0.0);
 }
@@ -61,19 +54,6 @@ Vec3 normalized_or_zero(const Vec3& v) {
 }  // namespace
 
 namespace detail {
-
-int scale_exponent(double largest) {
-  if (largest == 0 || !std::isfinite(largest)) return 0;
-  int e = 0;
-  std::frexp(largest, &e);
-  return std::abs(e) > 128 ? e : 0;
-}
-
-double largest_coordinate(const std::vector<Vec3>& points) {
-  double largest = 0;
-  for (const Vec3& p : points) largest = std::max(largest, largest_component(p));
-  return largest;
-}
 
 double face_area(const PolyMesh& mesh, size_t f) {
   const FacePoints p(mesh, f);
@@ -84,7 +64,7 @@ double face_area(const PolyMesh& mesh, size_t f) {
 
 Vec3 face_area_vector(const PolyMesh& mesh, size_t f) {
   const FacePoints p(mesh, f);
-  return times_power_of_two(scaled_area_vector(p), 2 * p.s);
+  return ldexp(scaled_area_vector(p), 2 * p.s);
 }
 
 Vec3 face_normal(const PolyMesh& mesh, size_t f) { return normalized_or_zero(scaled_area_vector(FacePoints(mesh, f))); }
@@ -99,13 +79,13 @@ std::vector<Vec3> vertex_normals(const PolyMesh& mesh, NormalWeighting weighting
   // Area weights are summed in units of 2^(2 s), s the scale exponent of the mesh's largest coordinate, so that the
   // sums neither overflow nor underflow at any scale (a face over 2^500 times smaller than the mesh's largest
   // coordinate then weighs nothing, as it would next to the others anyway).
-  const int mesh_s = scale_exponent(detail::largest_coordinate(mesh.positions));
+  const int mesh_s = rescale_exponent(std::span<const Vec3>(mesh.positions));
   std::vector<Vec3> sums(mesh.vertex_count(), Vec3(0.0));
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const FacePoints p(mesh, f);
     const Vec3 area = scaled_area_vector(p);
     if (weighting == NormalWeighting::Area) {
-      const Vec3 weight = times_power_of_two(area, 2 * (p.s - mesh_s));
+      const Vec3 weight = ldexp(area, 2 * (p.s - mesh_s));
       for (uint32_t v : p.face) sums[v] += weight;
       continue;
     }

@@ -7,6 +7,7 @@
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/mesh/topology.hpp"
 #include "tessera/mesh/triangulate.hpp"
@@ -53,19 +54,6 @@ void cotangent_weights(const PolyMesh& tris, const EdgeTable& edges, std::vector
   for (double& x : w) x = std::max(x, 0.0);
 }
 
-/// The exponent e of a power of two that brings the largest coordinate into [0.5, 1) (0 when all are 0).
-int scale_exponent(const std::vector<Vec3>& points) {
-  double largest = 0;
-  for (const Vec3& p : points) largest = std::max({largest, std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-  int exponent = 0;
-  if (largest > 0) std::frexp(largest, &exponent);
-  return exponent;
-}
-
-Vec3 scaled(const Vec3& p, int exponent) {
-  return {std::ldexp(p.x, exponent), std::ldexp(p.y, exponent), std::ldexp(p.z, exponent)};
-}
-
 }  // namespace
 
 void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function<void(int)>& progress) {
@@ -78,11 +66,11 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
         fmt::format("Taubin mu must be in [-1, -lambda), got {} (lambda {})", options.mu, options.lambda));
 
   // Every step is linear in the positions and cotangent weights depend on angles only, so the steps run on the
-  // positions scaled by a power of two (exact) to a largest coordinate below 1: differences and sums of coordinates
-  // near 1e308 would overflow to inf and NaN.
-  const int exponent = scale_exponent(mesh.positions);
+  // positions scaled by a power of two (exact; power_of_two.hpp) where the largest coordinate passes 2^128:
+  // differences and sums of coordinates near 1e308 would overflow to inf and NaN.
+  const int exponent = rescale_exponent(std::span<const Vec3>(mesh.positions));
   std::vector<Vec3> positions(mesh.positions.size());
-  for (size_t v = 0; v < positions.size(); ++v) positions[v] = scaled(mesh.positions[v], -exponent);
+  for (size_t v = 0; v < positions.size(); ++v) positions[v] = ldexp(mesh.positions[v], -exponent);
 
   const bool cotangent = options.method == SmoothingMethod::Cotangent;
   const PolyMesh tris = cotangent ? triangulate(mesh) : PolyMesh{};
@@ -126,11 +114,11 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
   }
   // Taubin's inflating steps can move a vertex beyond the mesh's box, and so beyond the finite numbers near 1e308.
   for (size_t v = 0; v < positions.size(); ++v) {
-    positions[v] = scaled(positions[v], exponent);
+    positions[v] = ldexp(positions[v], exponent);
     if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) || !std::isfinite(positions[v].z))
-      throw InvalidInput(fmt::format("smoothing moves vertex {} beyond the finite numbers (coordinates up to about "
-                                     "2^{}); scale the mesh down first",
-                                     v, exponent));
+      throw InvalidInput(fmt::format("smoothing moves vertex {} beyond the finite numbers (the largest coordinate is "
+                                     "{:g}); scale the mesh down first",
+                                     v, largest_coordinate(mesh.positions)));
   }
   mesh.positions = std::move(positions);
   // Normals of the old shape would be silently wrong: give the smoothed shape its own.

@@ -2,10 +2,11 @@
 
 #include <algorithm>
 
-#include "scale.hpp"
+#include "finite.hpp"
 #include "sharpness.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/subdiv/topology.hpp"
 
 namespace tessera {
@@ -90,17 +91,17 @@ LimitSurface limit_surface(const PolyMesh& mesh, const SubdivisionOptions& optio
   const TopologyTables topology(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
   const detail::LevelSharpness sharpness(topology, mesh, options.boundary);
   // Tangents of coordinates beyond 2^128 would overflow their cross product's length (and below 2^-128 underflow it): such
-  // meshes are evaluated scaled by a power of two (detail::rescale_exponent).
-  const int e = detail::rescale_exponent(mesh.positions);
+  // meshes are evaluated scaled by a power of two (rescale_exponent, tessera/math/power_of_two.hpp).
+  const int e = rescale_exponent(std::span<const Vec3>(mesh.positions));
   std::vector<Vec3> scaled;
   if (e) {
     scaled = mesh.positions;
-    detail::scale_by_power_of_two(scaled, -e);
+    scale_by_power_of_two(scaled, -e);
   }
   const std::vector<Vec3>& p = e ? scaled : mesh.positions;
   LimitSurface out = catmark ? limit_with(topology, sharpness, CatmarkRules{options.triangles}, p)
                              : limit_with(topology, sharpness, LoopRules{options.loop_weights}, p);
-  detail::scale_by_power_of_two(out.positions, e);
+  scale_by_power_of_two(out.positions, e);
   detail::require_finite(out.positions, "limit_surface", "vertex");
   detail::require_finite(out.normals, "limit_surface", "normal");
   return out;

@@ -7,12 +7,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "scale.hpp"
+#include "finite.hpp"
 #include "sharpness.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/subdiv/topology.hpp"
 
@@ -392,11 +393,11 @@ PolyMesh subdivide(const PolyMesh& mesh, const SubdivisionOptions& options) {
   const bool quads = options.scheme == SubdivisionScheme::catmull_clark ||
                      (options.scheme == SubdivisionScheme::midpoint && !mesh.is_triangle_mesh());
   check_memory(mesh, options, quads);
-  if (const int e = detail::rescale_exponent(mesh.positions)) {
+  if (const int e = rescale_exponent(std::span<const Vec3>(mesh.positions))) {
     PolyMesh scaled = mesh;
-    detail::scale_by_power_of_two(scaled.positions, -e);
+    scale_by_power_of_two(scaled.positions, -e);
     PolyMesh out = subdivide(scaled, options);
-    detail::scale_by_power_of_two(out.positions, e);
+    scale_by_power_of_two(out.positions, e);
     detail::require_finite(out.positions, "subdivide", "vertex");
     return out;
   }
