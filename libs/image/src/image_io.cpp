@@ -306,7 +306,11 @@ FileImage read_stb(std::string_view data, const std::string& name, bool keep_8bi
 
 // Every reader; `keep_8bit` keeps 8-bit files 8-bit (read_image_native).
 FileImage decode(std::string_view data, const std::filesystem::path& path, bool keep_8bit) {
-  const Format format = format_of(path, false);
+  // stb_image recognizes files by their content, and would decode a binary Netpbm file under another extension,
+  // badly: Debian's stb reads 16-bit samples in the wrong byte order and converts their channels as if 8-bit, into
+  // half the buffer it returns (a heap overflow found by fuzz_image_formats). Tessera's own reader takes them.
+  const bool netpbm = data.size() >= 2 && data[0] == 'P' && (data[1] == '5' || data[1] == '6');
+  const Format format = netpbm ? Format::ppm : format_of(path, false);
   const std::string name = name_of(path);
   switch (format) {
     case Format::ppm: {

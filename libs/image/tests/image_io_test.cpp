@@ -437,6 +437,20 @@ TEST_F(ImageIo, MalformedNetpbmSaysWhatIsWrong) {
   expect_invalid(path("q.ppm"), {"magic number"});
 }
 
+// A binary Netpbm file under another extension reached stb_image, which recognizes the content; Debian's stb reads
+// 16-bit samples in the wrong byte order and converts their channels as if 8-bit, into half the buffer it returns
+// (fuzz_image_formats found the heap overflow). Tessera's own reader takes them: the samples are the file's.
+TEST_F(ImageIo, SixteenBitNetpbmThroughStbKeepsItsSamples) {
+  const char samples[] = "\x12\x34\x56\x78\x9a\xbc\xff\xff\x00\x00\x80\x00";  // big-endian, as Netpbm stores them
+  write_bytes("wide.png", std::string("P6 2 1 65535\n") + std::string(samples, 12));
+  const ImageRGBA image = read_image(path("wide.png"));
+  ASSERT_EQ(image.width(), 2);
+  EXPECT_EQ(image(0, 0), glm::vec4(0x1234 / 65535.f, 0x5678 / 65535.f, 0x9abc / 65535.f, 1.f));
+  EXPECT_EQ(image(1, 0), glm::vec4(1.f, 0.f, 0x8000 / 65535.f, 1.f));
+  write_bytes("wide_gray.png", std::string("P5 1 1 65535\n") + std::string("\x40\x00", 2));
+  EXPECT_EQ(read_image(path("wide_gray.png"))(0, 0), glm::vec4(glm::vec3(0x4000 / 65535.f), 1.f));
+}
+
 TEST_F(ImageIo, CorruptStbFilesNameTheFile) {
   write_bytes("garbage.png", "this is not a png at all");
   expect_invalid(path("garbage.png"), {"cannot decode"});
