@@ -5,7 +5,6 @@
 #include "command.hpp"
 #include "data_option.hpp"
 #include "gallery.hpp"
-#include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/trace.hpp"
 
@@ -41,7 +40,6 @@ void setup_demo(CLI::App& cmd, CommonOptions& common) {
   add_data_option(cmd, opt->data);
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
-    const ThreadLimit limit(common.threads);
     const examples::DataFolder data = examples::locate_shared_data(opt->data);
     const size_t scenes = render_builtin_scenes(opt->output, common.quiet, common.write_options());
     const examples::RunSummary run = examples::run_examples(opt->output, {{}, data, common.write_options()});

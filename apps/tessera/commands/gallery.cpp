@@ -4,7 +4,6 @@
 #include "command.hpp"
 #include "data_option.hpp"
 #include "gallery.hpp"
-#include "tessera/core/parallel.hpp"
 
 namespace tessera::cli {
 
@@ -31,7 +30,6 @@ void setup_gallery(CLI::App& cmd, CommonOptions& common) {
   add_data_option(cmd, opt->data);
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
-    const ThreadLimit limit(common.threads);
     const examples::DataFolder data = examples::locate_shared_data(opt->data);
     const examples::RunSummary run = examples::run_examples(opt->output, {opt->only, data, common.write_options()});
     if (common.stats)

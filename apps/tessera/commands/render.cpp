@@ -12,7 +12,6 @@
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
-#include "tessera/core/parallel.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/raster.hpp"
@@ -74,7 +73,6 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   if (a.depth) settings.max_depth = *a.depth;
   settings.seed = a.seed;
   settings.progress = !common.quiet;
-  const ThreadLimit limit(common.threads);
   // The raster backend shades one sample per pixel, locally: the scene's samples and depth do not apply.
   const int samples = a.backend == Backend::raster ? 1 : settings.samples;
   StatRows figures = {{"width", stat_value(settings.width)},

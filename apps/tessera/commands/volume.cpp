@@ -9,7 +9,6 @@
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
-#include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/measure.hpp"
@@ -248,7 +247,6 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
   cmd->add_flag("--topological", options->topological, "Resolve ambiguous faces with the asymptotic decider");
   add_common_options(*cmd, common);
   cmd->callback([in, options, output, iso, &common] {
-    const ThreadLimit limit(common.threads);
     PhaseTimer timer;
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     MarchingCubesOptions o = *options;
@@ -323,7 +321,6 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   add_common_options(*cmd, common);
   add_srgb_option(*cmd, common);
   cmd->callback([in, a, &common] {
-    const ThreadLimit limit(common.threads);
     // The picture's size is refused before the volume is read (an absurd --size answers at once). Per pixel: the
     // float RGBA picture (16 bytes), the 8-bit copy a writer makes (4) and a float to spare.
     const auto size = a->camera.image_size();
