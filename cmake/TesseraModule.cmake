@@ -81,5 +81,5 @@ if(TESSERA_BUILD_TESTS AND NOT TARGET unit_tests)
 endif()
 
 # ../shared/data beside the checkout holds the optional real data sets; tests skip cleanly without it.
-get_filename_component(_shared_data "${CMAKE_SOURCE_DIR}/../shared/data" ABSOLUTE)
+get_filename_component(_shared_data "${PROJECT_SOURCE_DIR}/../shared/data" ABSOLUTE)
 set(TESSERA_SHARED_DATA "${_shared_data}" CACHE PATH "Folder with the optional shared data sets")
