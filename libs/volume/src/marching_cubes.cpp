@@ -15,6 +15,7 @@
 #include "tessera/core/memory.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/volume/mc_table.hpp"
 
 namespace tessera {
@@ -90,7 +91,7 @@ class Extractor {
  public:
   Extractor(const Volume<float>& v, const MarchingCubesOptions& o)
       : v_(v), o_(o), d_(v.dims()), data_(v.voxels().data()), plane_(size_t(d_.x) * size_t(d_.y)),
-        twice_spacing_(2.0f * Vec3f(v.spacing())),
+        per_difference_(std::min({v.spacing().x, v.spacing().y, v.spacing().z}) / v.spacing()),
         words_(size_t(d_.x + 63) / 64) {}
 
   /// Fills positions, normals (when asked for) and 3 indices per triangle; `fresh(array, n)` sizes an array for
@@ -218,13 +219,26 @@ class Extractor {
     return n;
   }
 
-  /// Volume::gradient with the same float arithmetic, without its per-axis clamps inside the grid (two per vertex:
-  /// they showed in the profile).
-  Vec3f gradient(int x, int y, int z) const {
-    if (x < 1 || y < 1 || z < 1 || x > d_.x - 2 || y > d_.y - 2 || z > d_.z - 2) return v_.gradient(x, y, z);
+  /// Volume::gradient times the smallest spacing, in double: only its direction matters, and scaled so it stays
+  /// finite for any finite floats and spacings (in float, values of both signs near 3e38 made it inf, and the
+  /// normals NaN). Without per-axis clamps inside the grid (two per vertex: they showed in the profile).
+  Vec3 gradient(int x, int y, int z) const {
+    if (x < 1 || y < 1 || z < 1 || x > d_.x - 2 || y > d_.y - 2 || z > d_.z - 2) {
+      Vec3 g(0.0);
+      for (int axis = 0; axis < 3; ++axis) {
+        glm::ivec3 lo(x, y, z), hi(x, y, z);
+        lo[axis] = std::max(lo[axis] - 1, 0);
+        hi[axis] = std::min(hi[axis] + 1, d_[axis] - 1);
+        if (hi[axis] > lo[axis])
+          g[axis] = (double(data_[at(hi.x, hi.y, hi.z)]) - data_[at(lo.x, lo.y, lo.z)]) * per_difference_[axis] /
+                    (hi[axis] - lo[axis]);
+      }
+      return g;
+    }
     const float* c = data_ + at(x, y, z);
     const ptrdiff_t dy = ptrdiff_t(d_.x), dz = ptrdiff_t(plane_);
-    return {(c[1] - c[-1]) / twice_spacing_.x, (c[dy] - c[-dy]) / twice_spacing_.y, (c[dz] - c[-dz]) / twice_spacing_.z};
+    return 0.5 * Vec3((double(c[1]) - c[-1]) * per_difference_.x, (double(c[dy]) - c[-dy]) * per_difference_.y,
+                      (double(c[dz]) - c[-dz]) * per_difference_.z);
   }
 
   /// The vertex on the edge from voxel (x, y, z) along `axis`: position and outward normal.
@@ -237,8 +251,10 @@ class Extractor {
     grid[axis] += t;
     Vec3 normal(0.0);
     if (o_.normals) {
-      const Vec3 ga(gradient(p.x, p.y, p.z)), gb(gradient(q.x, q.y, q.z));
-      const Vec3 g = ga + t * (gb - ga);
+      const Vec3 ga = gradient(p.x, p.y, p.z), gb = gradient(q.x, q.y, q.z);
+      // Brought near 1 first (powers of two, exact) so that squaring neither overflows nor underflows.
+      Vec3 g = ga + t * (gb - ga);
+      g = ldexp(g, -rescale_exponent(largest_component(g)));
       const double len = glm::length(g);
       if (len > 0) normal = -g / len;
     }
@@ -426,7 +442,7 @@ class Extractor {
   glm::ivec3 d_;
   const float* data_;
   size_t plane_;
-  Vec3f twice_spacing_;  ///< central differences divide by 2 * spacing, as Volume::gradient does
+  Vec3 per_difference_;  ///< smallest spacing / spacing: a difference over one voxel, scaled as gradient() returns
   size_t words_;
   Word edge_tail_ = 0;
   int slabs_ = 0;

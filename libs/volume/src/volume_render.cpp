@@ -219,42 +219,56 @@ namespace {
 
 using Corner = std::array<int16_t, 4>;  // quantized value, gradient x, y, z
 
-/// Rounds to the nearest integer, halves away from zero (inline; std::lround is a library call).
-int round_to_int(float x) { return int(x + (x >= 0 ? 0.5f : -0.5f)); }
+/// Rounds to the nearest int16 (halves away from zero), saturating; NaN gives 0: no value reaching here converts
+/// to an integer out of range or from a non-finite float (undefined behaviour).
+int16_t quantize(double x) {
+  if (!(x > -32768.5)) return x < 0 ? INT16_MIN : 0;
+  if (!(x < 32767.5)) return INT16_MAX;
+  return int16_t(int(x + (x >= 0 ? 0.5 : -0.5)));
+}
 
 /// The volume as the ray caster reads it: per voxel the value and the central-difference gradient (world units),
 /// each quantized to 16 bits and interleaved, so that one 8-byte load per cell corner gives everything a shaded
 /// sample needs (VTK's fixed-point mapper also works on 16-bit values with precomputed gradients). Built once per
 /// VolumeRenderer instead of six extra trilinear samples per step.
+///
+/// The scales are in double: a float range below ~2e-34 makes 65535 / (hi - lo) overflow a float, and one beyond
+/// float's limit (values of both signs near 3e38) makes hi - lo overflow; in double both are finite for any two
+/// finite floats, so a tiny range spans the 65536 levels as a unit range does, and a huge one is not flattened.
 struct PackedVolume {
   glm::ivec3 dims;
   size_t stride_y, stride_z;
-  float value_scale;     ///< quantized = (v - lo) * value_scale - 32768
-  float gradient_scale;  ///< quantized = g * gradient_scale
+  double value_scale;     ///< quantized = (v - lo) * value_scale - 32768
+  double gradient_scale;  ///< quantized = g * gradient_scale (g in world units)
   RawVector<Corner> voxels;
 
-  PackedVolume(const Volume<float>& v, float lo, float hi)
+  PackedVolume(const Volume<float>& v, double lo, double hi)
       : dims(v.dims()), stride_y(size_t(dims.x)), stride_z(size_t(dims.x) * size_t(dims.y)) {
-    value_scale = hi > lo ? 65535.0f / (hi - lo) : 0.0f;
+    value_scale = hi > lo ? 65535.0 / (hi - lo) : 0.0;
     // No gradient component exceeds (hi - lo) / (smallest spacing) (a one-sided difference across the whole range):
-    // that bound sets the gradient's scale, so no pass is spent finding the actual largest one.
+    // that bound sets the gradient's scale, so no pass is spent finding the actual largest one. The differences are
+    // multiplied by smallest spacing / (n spacing) (at most 1) and 32767 / (hi - lo): no product overflows, even
+    // where the gradient itself would (huge values over tiny spacings).
     const Vec3 sp = v.spacing();
-    const float bound = (hi - lo) / float(std::min({sp.x, sp.y, sp.z}));
-    gradient_scale = bound > 0 ? 32767.0f / bound : 0.0f;
+    const double min_spacing = std::min({sp.x, sp.y, sp.z});
+    const double per_range = hi > lo ? 32767.0 / (hi - lo) : 0.0;
+    gradient_scale = per_range * min_spacing;
     // 8 bytes a voxel beside the float volume's 4: checked against the memory budget before it is allocated.
     MemoryBudget::check(saturating_product({uint64_t(v.voxel_count()), sizeof(Corner)}),
                         fmt::format("volume render: values and gradients of {}x{}x{} voxels", dims.x, dims.y, dims.z));
     voxels.resize(v.voxel_count());
-    const Vec3f sp_f(sp);
+    // Per axis: the factor of a difference over n voxels is per_range * min_spacing / (n spacing).
+    const Vec3 unit = per_range * (min_spacing / sp);
     parallel_for(0, dims.z, 1, [&](int64_t z0, int64_t z1) {
       for (int z = int(z0); z < int(z1); ++z)
-        for (int y = 0; y < dims.y; ++y) pack_row(v, y, z, sp_f, lo, &voxels[v.index(0, y, z)]);
+        for (int y = 0; y < dims.y; ++y) pack_row(v, y, z, unit, lo, &voxels[v.index(0, y, z)]);
     });
   }
 
   /// Packs row (y, z): value and Volume::gradient (central differences, one-sided on the border) quantized, in one
-  /// pass without Volume::gradient's per-voxel clamps (only the row's two ends are border voxels along x).
-  void pack_row(const Volume<float>& v, int y, int z, const Vec3f& sp, float lo, Corner* out) const {
+  /// pass without Volume::gradient's per-voxel clamps (only the row's two ends are border voxels along x). `unit`
+  /// is the quantized gradient of a difference of 1 across one voxel, per axis.
+  void pack_row(const Volume<float>& v, int y, int z, const Vec3& unit, double lo, Corner* out) const {
     const glm::ivec3 d = v.dims();
     const float* row = &v(0, y, z);
     const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, d.y - 1), z0 = std::max(z - 1, 0), z1 = std::min(z + 1, d.z - 1);
@@ -262,18 +276,19 @@ struct PackedVolume {
     const float* yhi = &v(0, y1, z);
     const float* zlo = &v(0, y, z0);
     const float* zhi = &v(0, y, z1);
-    const float sy = y1 > y0 ? 1.0f / (float(y1 - y0) * sp.y) : 0.0f, sz = z1 > z0 ? 1.0f / (float(z1 - z0) * sp.z) : 0.0f;
-    const auto pack = [&](int x, int x0, int x1, float sx) {
-      const Vec3f q = Vec3f((row[x1] - row[x0]) * sx, (yhi[x] - ylo[x]) * sy, (zhi[x] - zlo[x]) * sz) * gradient_scale;
-      out[x] = {int16_t(round_to_int((row[x] - lo) * value_scale) - 32768), int16_t(round_to_int(q.x)),
-                int16_t(round_to_int(q.y)), int16_t(round_to_int(q.z))};
+    const double sy = y1 > y0 ? unit.y / (y1 - y0) : 0.0, sz = z1 > z0 ? unit.z / (z1 - z0) : 0.0;
+    const auto pack = [&](int x, int x0, int x1, double sx) {
+      const double level = (double(row[x]) - lo) * value_scale;  // in [0, 65535] for values in [lo, hi]
+      out[x] = {int16_t(int(level >= 0 ? std::min(level, 65535.0) + 0.5 : 0.0) - 32768),
+                quantize((double(row[x1]) - row[x0]) * sx), quantize((double(yhi[x]) - ylo[x]) * sy),
+                quantize((double(zhi[x]) - zlo[x]) * sz)};
     };
     const auto border = [&](int x) {
       const int x0 = std::max(x - 1, 0), x1 = std::min(x + 1, d.x - 1);
-      pack(x, x0, x1, x1 > x0 ? 1.0f / (float(x1 - x0) * sp.x) : 0.0f);
+      pack(x, x0, x1, x1 > x0 ? unit.x / (x1 - x0) : 0.0);
     };
     border(0);
-    const float sx = 1.0f / (2.0f * sp.x);
+    const double sx = unit.x / 2;
     for (int x = 1; x + 1 < d.x; ++x) pack(x, x - 1, x + 1, sx);
     if (d.x > 1) border(d.x - 1);
   }
@@ -328,10 +343,11 @@ struct TransferTable {
   std::vector<Vec4f> entries;    ///< rgb, alpha per step
   std::vector<int> lit_before;  ///< entries with a non-zero alpha before entry i (for any_lit)
 
-  TransferTable(const TransferFunction& tf, float lo, float hi, float step) : entries(kSize), lit_before(kSize + 1, 0) {
-    const float span = hi > lo ? hi - lo : 0.0f;
+  TransferTable(const TransferFunction& tf, double lo, double hi, float step) : entries(kSize), lit_before(kSize + 1, 0) {
+    // In double: hi - lo of two finite floats can overflow a float; each entry's value lies in [lo, hi].
+    const double span = hi > lo ? hi - lo : 0.0;
     for (int i = 0; i < kSize; ++i) {
-      const Vec4f c = tf(lo + span * float(i) / float(kSize - 1));
+      const Vec4f c = tf(float(lo + span * i / (kSize - 1)));
       // 1 - (1 - a)^step in double, as -expm1(step log1p(-a)): in float, 1 - pow rounds to 0 for small steps and
       // the volume would vanish.
       const double alpha = c.w >= 1 ? 1.0 : -std::expm1(double(step) * std::log1p(-double(c.w)));
@@ -438,7 +454,7 @@ struct Caster {
   const SpecularPower& power;
   const VolumeRenderOptions& options;
   float step;
-  float min_gradient2;  ///< a gradient shorter than 1e-6 (world units) leaves the sample unshaded
+  float min_gradient2;  ///< a gradient shorter than this (squared, quantized units) leaves the sample unshaded
 
   /// Composites samples k, k + 1, ... of `ray` onto (color, alpha) until the ray ends or is opaque.
   void march(const RaySamples& ray, int k, Vec3f& color, float& alpha) const {
@@ -727,18 +743,23 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
             if (t >= t1) break;
             best = std::max(best, volume.sample((ray.at(t) - origin) * inv_spacing));
           }
-          if (best > -INFINITY) image(i, j) = Vec3f(float((best - vlo) / std::max(vhi - vlo, 1e-12)));
+          // A range of any width, however tiny, spans black to white (the values are floats: vhi - vlo > 0 is
+          // at least their smallest difference, and the quotient is in [0, 1]).
+          if (best > -INFINITY) image(i, j) = Vec3f(vhi > vlo ? float((best - vlo) / (vhi - vlo)) : 0.0f);
         }
       report(tile);
     });
     return image;
   }
   const PackedVolume& packed = *packed_volume;
-  const TransferTable table(options.transfer, float(vlo), float(vhi), step);
+  const TransferTable table(options.transfer, vlo, vhi, step);
   // Without skipping one block covers the volume: it is "empty" only when every sample would be clear anyway.
   const BlockGrid blocks(packed, options.skip_empty ? std::max(1, options.block) : 1 << 20, table);
   const SpecularPower power(options.shininess);
-  const float min_gradient = 1e-6f * packed.gradient_scale;
+  // A gradient shorter than 1e-6 world units, or than 1e-6 of the value range per smallest spacing where that is
+  // shorter (a tiny value range, whose gradient_scale is huge), is left unshaded: a tiny range shades as the unit
+  // range does, and the threshold stays finite.
+  const float min_gradient = float(1e-6 * std::min(packed.gradient_scale, 32767.0));
   const Caster cast{packed, table, blocks, power, options, step, min_gradient * min_gradient};
   const auto setup = [&](int i, int j) {
     RaySamples r;
@@ -808,7 +829,7 @@ struct VolumeRenderer::Prepared {
   double lo, hi;  ///< the value range
   PackedVolume packed;
   Prepared(const Volume<float>& v, std::pair<double, double> range)
-      : lo(range.first), hi(range.second), packed(v, float(range.first), float(range.second)) {}
+      : lo(range.first), hi(range.second), packed(v, range.first, range.second) {}
 };
 
 VolumeRenderer::VolumeRenderer(const Volume<float>& volume) : volume_(&volume) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -130,6 +131,27 @@ TEST(MarchingCubes, SphereIsClosedGenusZeroWithOutwardNormals) {
   for (size_t i = 0; i < m.positions.size(); ++i) {
     EXPECT_GT(glm::dot(m.normals[i], glm::normalize(m.positions[i])), 0.99);
     EXPECT_NEAR(glm::length(m.positions[i]), 0.7, 0.01);
+  }
+}
+
+// Issue 24, class 2 (fuzzer finding): gradients were floats, so finite values of both signs near float's limit, or
+// large values over small spacings, made them inf and the normals NaN (`volume isosurface` wrote them, exit 0). A
+// field that varies along x only has the normal (-1, 0, 0) (towards lower values) wherever it is cut.
+TEST(MarchingCubes, NormalsAreUnitWhereGradientsOverflowFloat) {
+  for (const auto& row : {std::array{0.0f, 1.0f, 3e38f}, std::array{-3e38f, 1.0f, 3e38f}}) {
+    Volume<float> v(glm::ivec3(3, 2, 2), 0.0f, Vec3(0.125));
+    for (int z = 0; z < 2; ++z)
+      for (int y = 0; y < 2; ++y)
+        for (int x = 0; x < 3; ++x) v(x, y, z) = row[size_t(x)];
+    const PolyMesh m = marching_cubes(v, {.iso = 0.5f});
+    const IsoSurface s = extract_iso_surface(v, {.iso = 0.5f});
+    ASSERT_GT(m.normals.size(), 0u);
+    ASSERT_EQ(s.normals.size(), m.normals.size());
+    for (size_t i = 0; i < m.normals.size(); ++i) {
+      EXPECT_NEAR(glm::length(m.normals[i]), 1.0, 1e-12) << row[0] << " " << i;
+      EXPECT_NEAR(m.normals[i].x, -1.0, 1e-12) << row[0] << " " << i;
+      EXPECT_NEAR(glm::length(s.normals[i]), 1.0f, 1e-6f) << row[0] << " " << i;
+    }
   }
 }
 

@@ -128,7 +128,7 @@ ImageRGB direct_render(const Volume<float>& v, const VolumeRenderOptions& o) {
     for (int corner = 0; corner < 8; ++corner) {
       const glm::ivec3 d(corner & 1, (corner >> 1) & 1, corner >> 2);
       const float w = (d.x ? f.x : 1 - f.x) * (d.y ? f.y : 1 - f.y) * (d.z ? f.z : 1 - f.z);
-      g += w * v.gradient(c.x + d.x, c.y + d.y, c.z + d.z);
+      g += w * Vec3f(v.gradient(c.x + d.x, c.y + d.y, c.z + d.z));
     }
     return g;
   };
@@ -433,6 +433,39 @@ TEST(VolumeRender, TinyStepsStillMatchBeerLambert) {
     o.step = step;
     EXPECT_NEAR(render_volume(v, o)(0, 0).x, 1 - transmittance, 1e-3) << step;  // float opacity: off by 4e-3 at 2e-5
   }
+}
+
+// Issue 24, classes 2 and 6 (fuzzer finding): the packed volume's scales were floats, so a value range below ~2e-34
+// made 65535 / (hi - lo) infinite (0 * inf = NaN converted to int: undefined) and a range beyond float's limit (values
+// of both signs near 3e38) made hi - lo infinite, the value scale 0 and the volume one value. Quantization is
+// affine, so a volume scaled to any range must render as its unit-range original: that original is the reference.
+TEST(VolumeRender, TinyAndHugeValueRangesRenderAsTheUnitRange) {
+  const glm::ivec3 dims(11);
+  const auto pattern = [](int x, int y, int z) { return float((x * 7 + y * 3 + z * 5) % 11) / 10.0f; };
+  const auto make = [&](double lo, double span) {
+    Volume<float> v(dims, 0.0f, Vec3(0.1), Vec3(-0.5));
+    for (int z = 0; z < dims.z; ++z)
+      for (int y = 0; y < dims.y; ++y)
+        for (int x = 0; x < dims.x; ++x) v(x, y, z) = float(lo + span * pattern(x, y, z));
+    return v;
+  };
+  const auto transfer = [](double lo, double span) {
+    return TransferFunction({{float(lo), {1, 1, 1}, 0.0f}, {float(lo + span), {1, 0.5f, 0.2f}, 0.9f}});
+  };
+  for (const bool mip : {false, true})
+    for (const bool simd : {true, false}) {
+      auto o = metaball_view();
+      o.mip = mip;
+      o.simd = simd;
+      o.transfer = transfer(0, 1);
+      const ImageRGB unit = render_volume(make(0, 1), o);
+      ASSERT_GT(max_abs_difference(unit, ImageRGB(o.width, o.height, unit(0, 0))), 0.3);  // not one value
+      for (const auto& [lo, span] : {std::pair{0.0, 1e-37}, std::pair{1e-36, 1e-36}, std::pair{-3e38, 6e38}}) {
+        o.transfer = transfer(lo, span);
+        const ImageRGB scaled = render_volume(make(lo, span), o);
+        EXPECT_LT(max_abs_difference(scaled, unit), 2e-3) << lo << " + " << span << " mip " << mip << " simd " << simd;
+      }
+    }
 }
 
 // Issue 24, classes 1 and 2: a step giving more than kMaxSamplesPerRay samples across the box is refused with the

@@ -22,7 +22,7 @@ TEST(Volume, TrilinearSampleReproducesLinearFields) {
   EXPECT_FLOAT_EQ(v.sample({3.0f, 4.0f, 5.0f}), 2 * 3 - 3 * 4 + 5 * 5);
   EXPECT_FLOAT_EQ(v.sample({-1.0f, 0.0f, 0.0f}), 0.0f);  // clamped
   v.set_spacing({0.5, 1, 2});
-  const Vec3f g = v.gradient(2, 2, 2), border = v.gradient(0, 0, 0);
+  const Vec3 g = v.gradient(2, 2, 2), border = v.gradient(0, 0, 0);
   EXPECT_FLOAT_EQ(g.x, 4.0f);
   EXPECT_FLOAT_EQ(g.y, -3.0f);
   EXPECT_FLOAT_EQ(g.z, 2.5f);

@@ -74,32 +74,35 @@ class Volume {
   std::span<const T> voxels() const { return voxels_; }
 
   /// The trilinear value at continuous voxel coordinates p (voxel centers at integers), clamped to the grid.
+  /// Interpolated in double: the difference of two finite floats can overflow a float (values of both signs near
+  /// its limit), while the interpolated value, between the corners', always fits one.
   float sample(const Vec3f& p) const {
     const float fx = std::clamp(p.x, 0.0f, float(dims_.x - 1)), fy = std::clamp(p.y, 0.0f, float(dims_.y - 1)),
                 fz = std::clamp(p.z, 0.0f, float(dims_.z - 1));
     const int x0 = std::min(int(fx), std::max(dims_.x - 2, 0)), y0 = std::min(int(fy), std::max(dims_.y - 2, 0)),
               z0 = std::min(int(fz), std::max(dims_.z - 2, 0));
     const int x1 = std::min(x0 + 1, dims_.x - 1), y1 = std::min(y0 + 1, dims_.y - 1), z1 = std::min(z0 + 1, dims_.z - 1);
-    const float tx = fx - float(x0), ty = fy - float(y0), tz = fz - float(z0);
-    const auto v = [&](int x, int y, int z) { return float((*this)(x, y, z)); };
-    const float c00 = v(x0, y0, z0) + tx * (v(x1, y0, z0) - v(x0, y0, z0));
-    const float c10 = v(x0, y1, z0) + tx * (v(x1, y1, z0) - v(x0, y1, z0));
-    const float c01 = v(x0, y0, z1) + tx * (v(x1, y0, z1) - v(x0, y0, z1));
-    const float c11 = v(x0, y1, z1) + tx * (v(x1, y1, z1) - v(x0, y1, z1));
-    const float c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
-    return c0 + tz * (c1 - c0);
+    const double tx = fx - float(x0), ty = fy - float(y0), tz = fz - float(z0);
+    const auto v = [&](int x, int y, int z) { return double((*this)(x, y, z)); };
+    const double c00 = v(x0, y0, z0) + tx * (v(x1, y0, z0) - v(x0, y0, z0));
+    const double c10 = v(x0, y1, z0) + tx * (v(x1, y1, z0) - v(x0, y1, z0));
+    const double c01 = v(x0, y0, z1) + tx * (v(x1, y0, z1) - v(x0, y0, z1));
+    const double c11 = v(x0, y1, z1) + tx * (v(x1, y1, z1) - v(x0, y1, z1));
+    const double c0 = c00 + ty * (c10 - c00), c1 = c01 + ty * (c11 - c01);
+    return float(c0 + tz * (c1 - c0));
   }
 
   /// The gradient at voxel (x, y, z) in world units: central differences inside, one-sided differences on the border
-  /// (a dimension of size 1 gives 0).
-  Vec3f gradient(int x, int y, int z) const {
+  /// (a dimension of size 1 gives 0). In double: in float it overflows to inf for finite values of both signs near
+  /// float's limit, or large values over small spacings (marching cubes normalized it to NaN normals).
+  Vec3 gradient(int x, int y, int z) const {
     const auto diff = [&](int axis) {
       glm::ivec3 lo(x, y, z), hi(x, y, z);
       lo[axis] = std::max(lo[axis] - 1, 0);
       hi[axis] = std::min(hi[axis] + 1, dims_[axis] - 1);
-      if (hi[axis] == lo[axis]) return 0.0f;
-      return (float((*this)(hi.x, hi.y, hi.z)) - float((*this)(lo.x, lo.y, lo.z))) /
-             (float(hi[axis] - lo[axis]) * float(spacing_[axis]));
+      if (hi[axis] == lo[axis]) return 0.0;
+      return (double((*this)(hi.x, hi.y, hi.z)) - double((*this)(lo.x, lo.y, lo.z))) /
+             (double(hi[axis] - lo[axis]) * spacing_[axis]);
     };
     return {diff(0), diff(1), diff(2)};
   }
