@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "tessera/core/atomic_file.hpp"
@@ -94,7 +95,11 @@ glm::ivec3 parse_dims(const std::vector<std::string>& w, const std::string& wher
     if (s < 1 || s > (1LL << 30)) throw InvalidInput(located(where, fmt::format("size {} is out of range", s)));
     d[i] = int(s);
   }
-  checked_voxel_count(d);
+  try {
+    checked_voxel_count(d);
+  } catch (const InvalidInput& e) {
+    throw InvalidInput(located(where, e.what()));  // the header line that declares them
+  }
   return d;
 }
 
@@ -104,8 +109,23 @@ constexpr size_t kShownPathChars = 200;
 std::string shown_path(const std::filesystem::path& path) { return printable(path.string(), kShownPathChars); }
 
 // read_file() for a data file that the header `header` names: its messages quote the path raw, so here they quote
-// shown_path(), after the header's name.
+// shown_path(), after the header's name. Only a regular file (or a link to one) is read: a header naming a device
+// (/dev/zero: read until memory ran out) or a FIFO (a hang) is refused before the file is opened. A header's data
+// has a size its sizes and type say, which only a regular file can be checked against; a volume from a pipe is read
+// as a header with attached data (NRRD) or as a raw file named on the command line.
 std::string read_data_file(const std::filesystem::path& path, const std::string& header) {
+  // A missing file or a folder is read_file's error (it names them).
+  using std::filesystem::file_type;
+  std::error_code error;
+  const file_type type = std::filesystem::status(path, error).type();
+  const char* kind = type == file_type::fifo        ? "a FIFO"
+                     : type == file_type::character ? "a character device"
+                     : type == file_type::block     ? "a block device"
+                     : type == file_type::socket    ? "a socket"
+                                                    : nullptr;
+  if (kind)
+    throw IoError(fmt::format("{}: data file '{}' is {}: a header's data file must be a regular file", header,
+                              shown_path(path), kind));
   try {
     return read_file(path);
   } catch (const IoError& e) {

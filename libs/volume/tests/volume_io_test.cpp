@@ -1,5 +1,6 @@
 #include "tessera/volume/volume_io.hpp"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <gtest/gtest.h>
@@ -90,6 +91,39 @@ TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
   EXPECT_NE(message("NRRD0004\ntype: double\n").find("h.nrrd:2"), std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"), std::string::npos);
   EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
+}
+
+// Issue 24, classes 3 and 5 (fuzzer findings): a header naming a device as its data file (`/dev/zero`) was read until
+// memory ran out, and a FIFO hung the reader (`volume info`); both are refused by file type, before they are opened.
+// Dimensions over the voxel limit said so without the file and line that declare them.
+TEST(VolumeIo, HeadersNamingDevicesOrFifosAndHugeDimsGiveLocatedErrors) {
+  const auto message = [](const std::filesystem::path& path) {
+    try {
+      path.extension() == ".mhd" ? read_mhd(path) : read_nrrd(path);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const auto fifo = scratch("data.fifo");
+  std::filesystem::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const auto mhd = scratch("device.mhd"), nhdr = scratch("device.nhdr");
+  for (const std::string data : {std::string("/dev/zero"), fifo.string()}) {
+    const std::string kind = data == "/dev/zero" ? "a character device" : "a FIFO";
+    write_file_atomic(mhd, "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = " + data + "\n");
+    EXPECT_EQ(message(mhd), fmt::format("{}: data file '{}' is {}: a header's data file must be a regular file",
+                                        mhd.string(), data, kind));
+    write_file_atomic(nhdr, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: " + data + "\n");
+    EXPECT_EQ(message(nhdr), fmt::format("{}: data file '{}' is {}: a header's data file must be a regular file",
+                                         nhdr.string(), data, kind));
+  }
+  std::filesystem::remove(fifo);
+  // 2^17 x 2^17 x 2 = 2^35 voxels, over the 2^34 limit; the line is the DimSize line, 2.
+  const auto huge = scratch("huge.mhd");
+  write_file_atomic(huge, "NDims = 3\nDimSize = 131072 131072 2\nElementType = MET_UCHAR\nElementDataFile = x.raw\n");
+  EXPECT_EQ(message(huge).rfind(huge.string() + ":2: volume dimensions 131072x131072x2 exceed the limit", 0), 0u)
+      << message(huge);
 }
 
 // Issue 24, class 5: header lines and values were quoted raw (escape sequences reached the terminal, a 10 KB value
