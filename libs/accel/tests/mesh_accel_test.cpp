@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "embree_reference.hpp"
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
@@ -151,7 +152,7 @@ void check_widths_against_brute_force(const Vec3& offset, double size) {
       if (intersect(tri, rr, h)) best_t = brute[i] = h.t;
     }
   }
-  const bool avx2 = __builtin_cpu_supports("avx2");
+  const bool avx2 = cpu_features().avx2;
   for (const auto build : {BvhSettings::Build::binned_sah, BvhSettings::Build::bottom_up})
     for (const int leaf : {1, 4, 8, 13, 1000}) {
       BvhSettings s = MeshAccel::default_settings();
@@ -239,7 +240,7 @@ TEST(MeshAccel, StreamsGiveTheOneRayHitsBitForBit) {
   const std::vector<Ray> primary = primary_rays(torus, 64, 48);
   rays.insert(rays.end(), primary.begin(), primary.end());
   std::vector<int> widths{4};
-  if (__builtin_cpu_supports("avx2")) widths.push_back(8);
+  if (cpu_features().avx2) widths.push_back(8);
   const TriMesh big = to_tri_mesh(make_torus(1.0, 0.4, 1200, 450));
   const std::vector<Ray> big_rays = random_rays(big, 3000, 22);
   for (const int width : widths) {
@@ -389,7 +390,7 @@ TEST(MeshAccel, TheCollapseIsSahOptimal) {
     }
     meshes.push_back(soup);
   }
-  const bool avx2 = __builtin_cpu_supports("avx2");
+  const bool avx2 = cpu_features().avx2;
   for (size_t m = 0; m < meshes.size(); ++m)
     for (const int width : {4, 8})
       for (const int leaf : {1, 8, 13}) {

@@ -37,7 +37,7 @@ enum class SimdPath {
   Avx512,  ///< 8 doubles per vector (needs AVX-512F)
 };
 
-/// True when this CPU can run `path` (Auto and Scalar always can). Uses __builtin_cpu_supports.
+/// True when this CPU can run `path` (Auto and Scalar always can). Asks core's cpu_features().
 bool simd_supported(SimdPath path);
 /// The path Auto resolves to on this CPU.
 SimdPath best_simd_path();
