@@ -7,12 +7,15 @@
 // tessera::Error is the expected outcome for a malformed file; anything else (a crash, another exception, a sanitizer
 // report) is a bug, and so is a decoded image that is empty, or one whose values are outside [0, 1] (8- and 16-bit
 // formats: stb_image's PNG/JPG/BMP/TGA/..., PPM/PGM) or negative or not finite (Radiance HDR). PFM holds any float.
+// The native read (8-bit files kept 8-bit, what textures use) must decode the same file to the same values: v/255 of
+// each 8-bit sample is the float read's value, and a float result is the float read's, bit for bit.
 // stb_image comes from Debian's libstb, built without coverage instrumentation: libFuzzer is guided by Tessera's
 // code only, and ASan sees stb's memory errors only where they pass through intercepted calls (memcpy, free).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <variant>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
@@ -40,6 +43,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (const auto& p : image.pixels())
       for (int c = 0; c < 4; ++c)
         if (!(p[c] >= 0 && (hdr ? std::isfinite(p[c]) : p[c] <= 1))) __builtin_trap();
+    const tessera::FileImage native = tessera::decode_image_native(file, name);
+    if (const auto* bytes = std::get_if<tessera::ImageRGBA8>(&native)) {
+      if (bytes->width() != image.width() || bytes->height() != image.height()) __builtin_trap();
+      for (size_t i = 0; i < image.pixels().size(); ++i)
+        for (int c = 0; c < 4; ++c)
+          if (float(bytes->pixels()[i][c]) / 255.f != image.pixels()[i][c]) __builtin_trap();
+    } else if (std::get<tessera::ImageRGBA>(native).pixels().size() != image.pixels().size()) {
+      __builtin_trap();
+    }
   } catch (const tessera::Error&) {
   }
   return 0;
