@@ -230,7 +230,10 @@ float float_from_bytes(const unsigned char* p, bool little_endian) {
 }
 
 // PFM: "PF" (RGB) or "Pf" (gray), width height, scale (negative = little endian), then float rows bottom first.
-// Sample values are returned as stored; the magnitude of the scale is not applied.
+// Sample values are returned as stored; the magnitude of the scale is not applied. A NaN or infinite sample is
+// refused with its pixel (top row 0, as the image is indexed) and byte offset, as the volume readers refuse such
+// voxels: it would reach pictures, textures and statistics as NaN. (Radiance HDR cannot store one: RGBE gives at
+// most 255 x 2^119.)
 Decoded read_pfm_data(std::string_view data, const std::string& name) {
   HeaderReader in(data, name, false);
   const std::string_view magic = in.token("the magic number PF or Pf");
@@ -246,10 +249,18 @@ Decoded read_pfm_data(std::string_view data, const std::string& name) {
   const size_t row_values = size_t(d.width) * size_t(d.channels);
   in.require(4ull * row_values * size_t(d.height), "the pixel data");
   d.values.resize(row_values * size_t(d.height));
-  const auto* p = reinterpret_cast<const unsigned char*>(data.data() + in.offset());
+  const auto* first = reinterpret_cast<const unsigned char*>(data.data() + in.offset());
+  const auto* p = first;
   for (int file_row = 0; file_row < d.height; ++file_row) {
-    float* out = &d.values[size_t(d.height - 1 - file_row) * row_values];
-    for (size_t i = 0; i < row_values; ++i) out[i] = float_from_bytes(p + 4 * i, scale < 0);
+    const int y = d.height - 1 - file_row;
+    float* out = &d.values[size_t(y) * row_values];
+    for (size_t i = 0; i < row_values; ++i) {
+      out[i] = float_from_bytes(p + 4 * i, scale < 0);
+      if (!std::isfinite(out[i]))
+        in.fail(in.offset() + size_t(p + 4 * i - first),
+                fmt::format("pixel ({}, {}){} is {}: PFM samples must be finite", i / size_t(d.channels), y,
+                            d.channels == 3 ? fmt::format(" channel {}", "rgb"[i % 3]) : "", out[i]));
+    }
     p += 4 * row_values;
   }
   return d;

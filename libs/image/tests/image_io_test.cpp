@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <random>
@@ -215,7 +216,8 @@ TEST_F(ImageIo, ReadsPlainGrayAndSixteenBitNetpbm) {
 TEST_F(ImageIo, PfmRoundTripIsBitExactAndBottomRowFirst) {
   ImageRGB image = random_rgb(5, 3, 4, -1e6f, 1e6f);
   image(0, 0) = glm::vec3(std::numeric_limits<float>::denorm_min(), -0.f, 1e-30f);
-  image(4, 2) = glm::vec3(std::numeric_limits<float>::infinity(), std::numeric_limits<float>::max(), 1.f / 3);
+  // The extremes of the finite floats (an infinite sample is refused on reading: NonFinitePfmSamplesAreRefused...).
+  image(4, 2) = glm::vec3(-std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 1.f / 3);
   write_image(path("a.pfm"), image);
   const ImageRGBA back = read_image(path("a.pfm"));
   for (int y = 0; y < 3; ++y)
@@ -403,6 +405,42 @@ TEST_F(ImageIo, TruncatedPfmNamesTheByteOffset) {
   expect_invalid(path("w.pfm"), {"width"});
   write_bytes("x.pfm", "PF\n2 two\n-1\n");
   expect_invalid(path("x.pfm"), {"height"});
+}
+
+// Issue 24, class 2: NaN and infinite PFM samples were decoded and reached pictures, textures and statistics. They
+// are refused with the pixel (top row 0) and the byte offset of the sample: 10 header bytes, then the bottom row.
+TEST_F(ImageIo, NonFinitePfmSamplesAreRefusedWithPixelAndOffset) {
+  const auto le = [](float v) {
+    uint32_t bits = 0;
+    std::memcpy(&bits, &v, 4);
+    return std::string{char(bits), char(bits >> 8), char(bits >> 16), char(bits >> 24)};
+  };
+  const auto message = [](const std::function<void()>& read) {
+    try {
+      read();
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // 2 x 2 RGB: the bottom row's second pixel (1, 1) has a NaN green, the 5th float, at byte 10 + 16 = 26.
+  std::string rgb = "PF\n2 2\n-1\n";
+  for (int i = 0; i < 12; ++i) rgb += le(i == 4 ? NAN : 0.25f);
+  const std::string nan_message = message([&] { decode_image(rgb, "n.pfm"); });
+  EXPECT_NE(nan_message.find("byte offset 26: pixel (1, 1) channel g is nan: PFM samples must be finite"),
+            std::string::npos)
+      << nan_message;
+  // 1 x 2 gray, big endian (positive scale): the top row (y = 0) is the second float, byte 11 + 4 = 15.
+  const std::string gray = "Pf\n1 2\n1.0\n" + std::string("\x3f\x80\x00\x00\xff\x80\x00\x00", 8);
+  write_bytes("g.pfm", gray);
+  const std::string inf_message = message([&] { read_pfm_gray(path("g.pfm")); });
+  EXPECT_NE(inf_message.find("byte offset 15: pixel (0, 0) is -inf"), std::string::npos) << inf_message;
+  EXPECT_NE(message([&] { read_image(path("g.pfm")); }).find("byte offset 15"), std::string::npos);
+  // Radiance HDR cannot hold one: its largest RGBE sample, mantissa 255 and exponent 255, is 255 x 2^(255 - 136).
+  const std::string hdr = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 1\n" + std::string(4, char(255));
+  const ImageRGBA largest = decode_image(hdr, "max.hdr");
+  EXPECT_EQ(largest(0, 0).x, float(std::ldexp(255.0, 119)));
+  EXPECT_TRUE(std::isfinite(largest(0, 0).x));
 }
 
 TEST_F(ImageIo, HostileSizesAreRejectedBeforeAllocating) {
