@@ -102,7 +102,7 @@ TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured S
   const Vec3 mid = 0.5 * (box.lo + box.hi);
   const double radius = 0.5 * glm::length(box.hi - box.lo);
   o.camera->center = mid;
-  o.camera->eye = mid + Vec3(0.2, 0.25, 1.0) * (0.8 * radius / std::sin(o.camera->fovy / 2));  // the bunny faces +z
+  o.camera->eye = mid + Vec3(0.2, 0.25, 1.0) * sphere_fit_distance(radius, o.camera->fovy / 2, 0.8);  // the bunny faces +z
   o.camera->near = 0.2 * radius;
   o.camera->far = 10 * radius;
   gallery.add("18_shared_mesh.png", examples::side_by_side({left, examples::render_mesh(right_mesh, o)}),

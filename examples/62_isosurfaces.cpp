@@ -30,7 +30,7 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   // The CT's z runs from the neck up, so "up" on screen is -z; the face looks toward -y. Frame the volume's bounding
   // sphere and light from the viewer's upper left.
   const Vec3 view_dir = glm::normalize(Vec3(0.45, -1.0, -0.25));
-  options.camera->eye = mid + view_dir * (0.5 * glm::length(hi - lo) / std::sin(options.camera->fovy / 2));
+  options.camera->eye = mid + view_dir * sphere_fit_distance(0.5 * glm::length(hi - lo), options.camera->fovy / 2, 1);
   options.camera->up = {0, 0, -1};
   options.light_dir = glm::normalize(view_dir + Vec3(-0.6, 0.0, -0.6));
   options.camera->near = 1;

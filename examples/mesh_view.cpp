@@ -26,14 +26,7 @@ Camera frame_mesh(const PolyMesh& mesh) {
   const Vec3 center = 0.5 * (box.lo + box.hi);
   double radius = 0;
   for (const Vec3& p : mesh.positions) radius = std::max(radius, glm::distance(p, center));
-  radius = std::max(radius, 1e-9);
-  Camera camera;
-  const double distance = 1.08 * radius / std::sin(camera.fovy / 2);
-  camera.center = center;
-  camera.eye = center + distance * glm::normalize(Vec3(1, 0.8, 1.6));
-  camera.near = std::max(distance - 1.5 * radius, 1e-3 * distance);
-  camera.far = distance + 1.5 * radius;
-  return camera;
+  return frame_sphere(Camera{}, center, std::max(radius, 1e-9), Vec3(1, 0.8, 1.6), 1.08);
 }
 
 /// Front and back passes: every fan triangle with its own three corners.

@@ -12,6 +12,7 @@
 #include "tessera/raster3d/context.hpp"
 #include "tessera/raster3d/lighting.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::examples {
 

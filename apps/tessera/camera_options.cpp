@@ -10,6 +10,7 @@
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/raytrace/sampling.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
 namespace {
@@ -157,7 +158,7 @@ Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi) const {
   const double radius = extent > 0 ? extent : 1.0;  // a single point: a unit sphere around it
   // Distance at which the bounding sphere fits the narrower of the two fields of view, with a small margin.
   const double half = std::min(c.fovy, 2 * std::atan(std::tan(c.fovy / 2) * c.aspect)) / 2;
-  const double dist = 1.1 * radius / std::sin(half);
+  const double dist = sphere_fit_distance(radius, half, 1.1);
   // The view's direction from the center to the eye, and the image's up: that direction turned 90 degrees upward.
   const auto [front, right, model_up] = model_frame(up_axis, front_axis);
   const double az = radians(view_azimuth()), el = radians(view_elevation());

@@ -7,7 +7,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -27,6 +26,7 @@
 #include "tessera/raster3d/shadow_map.hpp"
 #include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
 namespace {
@@ -51,42 +51,6 @@ const std::map<std::string, raster3d::ShadingModel> kShadings = {{"unlit", raste
                                                                  {"flat", raster3d::ShadingModel::flat},
                                                                  {"gouraud", raster3d::ShadingModel::gouraud},
                                                                  {"phong", raster3d::ShadingModel::phong}};
-
-/// Every triangle with its own three vertices and its face normal: flat shading shows facets whatever the file's
-/// normals (OpenGL's flat model would light each triangle at its last vertex's normal).
-TriMesh faceted(const TriMesh& mesh) {
-  TriMesh out;
-  out.positions.reserve(mesh.indices.size());
-  out.normals.reserve(mesh.indices.size());
-  out.indices.reserve(mesh.indices.size());
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const uint32_t* v = &mesh.indices[3 * t];
-    const Vec3 a = mesh.positions[v[0]], b = mesh.positions[v[1]], c = mesh.positions[v[2]];
-    const Vec3 cross = glm::cross(b - a, c - a);
-    const double length = glm::length(cross);
-    const Vec3 n = length > 0 ? cross / length : Vec3(0, 0, 1);
-    for (int k = 0; k < 3; ++k) {
-      out.indices.push_back(uint32_t(out.positions.size()));
-      out.positions.push_back(mesh.positions[v[k]]);
-      out.normals.push_back(n);
-      if (!mesh.colors.empty()) out.colors.push_back(mesh.colors[v[k]]);
-    }
-  }
-  return out;
-}
-
-/// The polygon edges (not the triangulation's diagonals), each once, as vertex pairs.
-std::vector<std::pair<uint32_t, uint32_t>> polygon_edges(const PolyMesh& mesh) {
-  std::set<std::pair<uint32_t, uint32_t>> edges;
-  for (size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
-    for (size_t i = 0; i < face.size(); ++i) {
-      const uint32_t a = face[i], b = face[(i + 1) % face.size()];
-      edges.insert({std::min(a, b), std::max(a, b)});
-    }
-  }
-  return {edges.begin(), edges.end()};
-}
 
 /// Whether the faces wind inward (an inside-out mesh: lit from behind, black but for the ambient term, and culled
 /// whole by --cull back): a closed, consistently oriented mesh with a negative volume. Open meshes are left as they
@@ -496,7 +460,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     if (shading != raster3d::ShadingModel::unlit && poly.normals.empty() && poly.corner_normals.empty())
       compute_vertex_normals(poly);
     mesh = to_tri_mesh(poly);
-    if (shading == raster3d::ShadingModel::flat) mesh = faceted(mesh);
+    if (shading == raster3d::ShadingModel::flat) mesh = split_faceted(mesh);
     const Bounds3 box = bounding_box(poly);
     const Camera camera = a.camera.camera(box.lo, box.hi);
     const Vec3f surface(color.r, color.g, color.b);

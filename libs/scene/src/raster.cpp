@@ -18,27 +18,22 @@
 #include "tessera/raster3d/shadow_volume.hpp"
 #include "tessera/raster3d/surface_shader.hpp"
 #include "tessera/raytrace/render.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera {
 namespace {
 
-/// Every triangle with its own three vertices: its face normal (sharp edges on flat-faced shapes), or with
-/// `face_normals` false the mesh's own normals; the mesh's uvs, or where it has none the triangle's barycentric
-/// coordinates (0, 0), (1, 0), (0, 1), the ray tracer's texture coordinates on a mesh without uvs.
+/// Every triangle with its own three vertices (split_faceted): its face normal (sharp edges on flat-faced shapes), or
+/// with `face_normals` false the mesh's own normals; the mesh's uvs, or where it has none the triangle's barycentric
+/// coordinates (0, 0), (1, 0), (0, 1), the ray tracer's texture coordinates on a mesh without uvs. No vertex colors:
+/// the materials color the surface.
 TriMesh unwelded(const TriMesh& mesh, bool face_normals = true) {
   static const Vec2 kBarycentric[3] = {{0, 0}, {1, 0}, {0, 1}};
-  TriMesh out;
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const uint32_t* v = &mesh.indices[3 * t];
-    const Vec3 a = mesh.positions[v[0]], b = mesh.positions[v[1]], c = mesh.positions[v[2]];
-    const Vec3 cross = glm::cross(b - a, c - a);
-    const Vec3 n = glm::length(cross) > 0 ? glm::normalize(cross) : Vec3(0, 1, 0);
-    for (int k = 0; k < 3; ++k) {
-      out.indices.push_back(uint32_t(out.positions.size()));
-      out.positions.push_back(mesh.positions[v[k]]);
-      out.normals.push_back(face_normals ? n : mesh.normals[v[k]]);
-      out.uvs.push_back(mesh.uvs.empty() ? kBarycentric[k] : mesh.uvs[v[k]]);
-    }
+  TriMesh out = split_faceted(mesh);
+  out.colors.clear();
+  for (size_t i = 0; i < out.positions.size(); ++i) {
+    if (!face_normals) out.normals[i] = mesh.normals[mesh.indices[i]];
+    if (mesh.uvs.empty()) out.uvs.push_back(kBarycentric[i % 3]);
   }
   return out;
 }
