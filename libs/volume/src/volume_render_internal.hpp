@@ -243,7 +243,7 @@ struct SpecularPower {
 struct RaySamples {
   Vec3f first{0.0f}, delta{0.0f}, light{0.0f}, last_point{0.0f};
   int n = 0;
-  float last_fraction = 0;  ///< the last segment's length in steps (at most 1)
+  float last_fraction = 0;  ///< the last segment's length in steps, in [0, 1]
   bool short_last() const { return last_fraction < 1; }
   /// Samples that are a whole step apart (the SIMD path marches these; the scalar one finishes the ray).
   int regular() const { return short_last() ? n - 1 : n; }
@@ -277,7 +277,8 @@ struct Caster {
       // No branch on a clear sample (alpha 0 adds nothing): in noisy data its outcome is a coin toss.
       const Vec4f s = volume.interpolate(cell, offset);
       Vec4f c = table(s.x);
-      if (last) c.w = float(-std::expm1(double(ray.last_fraction) * std::log1p(-double(c.w))));
+      // An empty last segment (last_fraction 0) adds nothing, even where the entry is opaque (0 * -inf).
+      if (last) c.w = ray.last_fraction > 0 ? float(-std::expm1(double(ray.last_fraction) * std::log1p(-double(c.w)))) : 0.0f;
       Vec3f rgb(c);
       if (options.shading) {
         const Vec3f g(s.y, s.z, s.w);

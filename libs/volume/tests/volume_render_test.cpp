@@ -468,6 +468,37 @@ TEST(VolumeRender, TinyAndHugeValueRangesRenderAsTheUnitRange) {
     }
 }
 
+// Issue 24, class 2 (fuzzer finding): where t0 + (n - 1) step rounded to the ray's exit t1, the last segment was
+// empty, and an opaque entry's opacity correction 1 - (1 - 1)^0 gave 0 * log(0), a NaN pixel. The fuzzer's camera:
+// orthographic, along -x, through a 3x5x2 box of spacing (1/8, 3/8, 5/4), 5x8 pixels; pixel (2, 6) is such a ray.
+// The values vary along x only, opaque at the exit face: every ray meeting the box crosses the same values, so the
+// pixels it covers agree (an empty last segment adds nothing).
+TEST(VolumeRender, AnEmptyLastSegmentAddsNothingEvenWhenOpaque) {
+  Volume<float> v(glm::ivec3(3, 5, 2), 0.0f, Vec3(0.125, 0.375, 1.25), Vec3(-1.0));
+  for (int z = 0; z < 2; ++z)
+    for (int y = 0; y < 5; ++y) v(0, y, z) = 1.0f;
+  VolumeRenderOptions o;
+  o.width = 5;
+  o.height = 8;
+  o.shading = false;
+  o.termination = 1.0f;
+  o.transfer = TransferFunction({{0, {1, 0.5f, 0.25f}, 0.0f}, {1, {1, 0.5f, 0.25f}, 1.0f}});
+  const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1));
+  const double diagonal = glm::length(hi - lo);
+  o.camera.center = 0.5 * (lo + hi);
+  o.camera.eye = o.camera.center + Vec3(2 * diagonal, 0, 0);
+  o.camera.orthographic = true;
+  o.camera.ortho_height = diagonal;
+  for (const bool simd : {true, false}) {
+    o.simd = simd;
+    const ImageRGB img = render_volume(v, o);
+    const Vec3f reference = img(1, 6);
+    ASSERT_GT(reference.x, 0.05f);
+    for (int i = 0; i < 5; ++i)
+      EXPECT_NEAR(img(i, 6).x, reference.x, 1e-3f) << i << " simd " << simd;  // NaN fails too
+  }
+}
+
 // Issue 24, classes 1 and 2: a step giving more than kMaxSamplesPerRay samples across the box is refused with the
 // limit in the message (it hung with --mip, where t += step stopped advancing, and overflowed the int sample count
 // otherwise), and so are negative and non-finite steps.
