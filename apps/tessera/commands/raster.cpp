@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -32,14 +31,17 @@ namespace tessera::cli {
 namespace {
 
 struct RasterArgs {
-  std::string mesh, output, shading = "gouraud", color = "0.8,0.8,0.8", background = "0,0,0", light_dir, light_pos,
-                            cull = "none", depth_out;
+  std::string mesh, output, color = "0.8,0.8,0.8", background = "0,0,0", light_dir, light_pos, depth_out;
+  raster3d::ShadingModel shading = raster3d::ShadingModel::gouraud;
+  raster3d::CullMode cull = raster3d::CullMode::none;
   bool wireframe = false;
   int repeat = 1, samples = 1;
   raster3d::HiddenSurface hidden_surface = raster3d::HiddenSurface::zbuffer;
   CameraOptions camera;
   // The maps (drawn per pixel by raster3d's surface shaders).
-  std::string texture, filter = "trilinear", bump, env, shadow_method = "map";
+  std::string texture, bump, env;
+  Filter filter = Filter::trilinear;
+  ShadowMethod shadow_method = ShadowMethod::map;
   double bump_scale = 0.01, reflect = 0.6, opacity = 1;
   bool shadows = false, floor = false, env_cube = false, shading_given = false;
   int shadow_size = 2048;
@@ -47,10 +49,21 @@ struct RasterArgs {
   bool maps() const { return !texture.empty() || !bump.empty() || !env.empty() || shadows || floor || env_cube; }
 };
 
-const std::map<std::string, raster3d::ShadingModel> kShadings = {{"unlit", raster3d::ShadingModel::unlit},
-                                                                 {"flat", raster3d::ShadingModel::flat},
-                                                                 {"gouraud", raster3d::ShadingModel::gouraud},
-                                                                 {"phong", raster3d::ShadingModel::phong}};
+template <class T>
+using Names = std::vector<std::pair<std::string, T>>;
+
+const Names<raster3d::ShadingModel> kShadings = {{"unlit", raster3d::ShadingModel::unlit},
+                                                 {"flat", raster3d::ShadingModel::flat},
+                                                 {"gouraud", raster3d::ShadingModel::gouraud},
+                                                 {"phong", raster3d::ShadingModel::phong}};
+const Names<ShadowMethod> kShadowMethods = {
+    {"map", ShadowMethod::map}, {"zpass", ShadowMethod::zpass}, {"zfail", ShadowMethod::zfail}};
+
+/// The option name of an enum value (for messages).
+template <class T>
+const std::string& name_of(const Names<T>& names, T value) {
+  return std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.second == value; })->first;
+}
 
 /// Whether the faces wind inward (an inside-out mesh: lit from behind, black but for the ambient term, and culled
 /// whole by --cull back): a closed, consistently oriented mesh with a negative volume. Open meshes are left as they
@@ -79,9 +92,6 @@ Vec3 parse_vec3(const std::string& text, const char* what) {
 
 /// The --samples pattern (one for every pixel: the jittered frames move the whole picture).
 constexpr uint32_t kSamplePattern = 0x5eed;
-
-const std::map<std::string, Filter> kFilters = {
-    {"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}};
 
 /// A floor under the box [lo, hi] along the model's up axis k (--up-axis): a square at lo[k], three times the box's
 /// larger horizontal size.
@@ -160,7 +170,7 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
   // Everything is read before drawing.
   std::optional<Texture2D> texture, bump;
   std::optional<EnvironmentMap> environment;
-  if (!a.texture.empty()) texture.emplace(load_texture(a.texture, Sampler{.filter = kFilters.at(a.filter)}));
+  if (!a.texture.empty()) texture.emplace(load_texture(a.texture, Sampler{.filter = a.filter}));
   if (!a.bump.empty()) bump.emplace(load_texture(a.bump));
   if (!a.env.empty()) environment.emplace(load_environment_map(a.env));
 
@@ -180,12 +190,12 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
   if (a.env_cube && !environment && !a.floor)
     throw InvalidInput("--env-cube: nothing around the mesh to reflect; add --env or --floor");
   // z-fail shadow volumes need the far cap at infinity inside the view volume: a far plane at infinity.
-  const bool volumes = a.shadows && a.shadow_method != "map";
-  if (volumes && a.shadow_method == "zfail" && camera.orthographic)
+  const bool volumes = a.shadows && a.shadow_method != ShadowMethod::map;
+  if (volumes && a.shadow_method == ShadowMethod::zfail && camera.orthographic)
     throw InvalidInput(
         "--shadow-method zfail needs a perspective camera (its far plane at infinity); with --ortho "
         "use zpass or map");
-  const Mat4 view = camera.view(), projection = volumes && a.shadow_method == "zfail"
+  const Mat4 view = camera.view(), projection = volumes && a.shadow_method == ShadowMethod::zfail
                                                     ? infinite_perspective(camera.fovy, camera.aspect, camera.near)
                                                     : camera.projection();
   // The light, as in the fixed-function path: a direction or a point in world space, else over the viewer's
@@ -230,7 +240,7 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
   const raster3d::UvTangents tangents =
       bump ? raster3d::uv_tangents(arrays.positions, arrays.uvs, arrays.indices) : raster3d::UvTangents{};
   raster3d::RasterState state;
-  state.cull = a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none;
+  state.cull = a.cull;
   // --env-cube: what surrounds the mesh (the floor, the environment) seen from its center, the notes' "render scene
   // 6 times, eye at center of cube".
   const auto draw_surroundings = [&](raster3d::Framebuffer& face, const Mat4& p, const Mat4& v) {
@@ -275,7 +285,8 @@ void render_with_maps(const RasterArgs& a, const TriMesh& mesh, const Bounds3& b
       if (volumes)
         raster3d::draw_with_shadow_volumes(
             fb, shadow_volumes, Mat4f(jittered * view),
-            a.shadow_method == "zfail" ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass, draw_scene);
+            a.shadow_method == ShadowMethod::zfail ? raster3d::ShadowCount::zfail : raster3d::ShadowCount::zpass,
+            draw_scene);
       else
         draw_scene(raster3d::RasterState{}, 1.0f);
       progress.advance();
@@ -337,8 +348,8 @@ void render_fixed_function(const RasterArgs& a, const PolyMesh& poly, const TriM
   if (!a.light_pos.empty()) ctx.light(0, {.position = Vec4f(Vec3f(light_pos), 1)});
   ctx.material(raster3d::Material::plastic(surface, 32, 0.4f));
   ctx.color(surface);
-  ctx.shading(kShadings.at(a.shading));
-  ctx.cull(a.cull == "back" ? raster3d::CullMode::back : raster3d::CullMode::none);
+  ctx.shading(a.shading);
+  ctx.cull(a.cull);
   ctx.hidden_surface(a.hidden_surface);
   if (painter) {
     // The painter's algorithm keeps no depth: the stencil buffer records which pixels the mesh covers.
@@ -407,7 +418,7 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   const auto [width, height] = a.camera.image_size();
   // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured). A
   // shadow map: 4 bytes a texel, 1.5 times size^2 texels for a point light among the casters (six faces of size/2).
-  const bool shadow_map = a.shadows && a.shadow_method == "map";
+  const bool shadow_map = a.shadows && a.shadow_method == ShadowMethod::map;
   MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 44}) +
                           (shadow_map ? saturating_product({uint64_t(a.shadow_size), uint64_t(a.shadow_size), 6}) : 0),
                       shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height,
@@ -420,14 +431,15 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   if (!a.light_dir.empty() && glm::length(light_dir) == 0) throw InvalidInput("--light-dir: expected a nonzero vector");
   if (!a.depth_out.empty() && std::filesystem::path(a.depth_out).extension() != ".pfm")
     throw InvalidInput(fmt::format("--depth-out: expected a .pfm file, got '{}'", a.depth_out));
-  const raster3d::ShadingModel shading = kShadings.at(a.shading);
+  const raster3d::ShadingModel shading = a.shading;
   if (a.maps() && a.shading_given && shading != raster3d::ShadingModel::phong)
     throw InvalidInput(
         fmt::format("--shading {}: texture, bump, environment and shadow mapping are per pixel "
                     "(--shading phong, the default with them)",
-                    a.shading));
-  if (a.shadow_method != "map" && !a.shadows)
-    throw InvalidInput(fmt::format("--shadow-method {}: shadows are off; add --shadows", a.shadow_method));
+                    name_of(kShadings, a.shading)));
+  if (a.shadow_method != ShadowMethod::map && !a.shadows)
+    throw InvalidInput(
+        fmt::format("--shadow-method {}: shadows are off; add --shadows", name_of(kShadowMethods, a.shadow_method)));
   if (a.maps() && a.wireframe)
     throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
   if (a.maps() && a.opacity < 1)
@@ -481,10 +493,8 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("mesh", a->mesh, "Mesh file (.obj, .ply, .off, .stl)")->required();
   cmd.add_option("-o,--output", a->output, "Output image (.png, .ppm, .pfm, .hdr, .jpg, ...)")->required();
   a->camera.add(cmd);
-  cmd.add_option("--shading", a->shading,
-                 "unlit | flat (per polygon) | gouraud (per vertex) | phong (per pixel; the default with maps)")
-      ->check(CLI::IsMember({"unlit", "flat", "gouraud", "phong"}))
-      ->capture_default_str();
+  add_choice(cmd, "--shading", a->shading, kShadings,
+             "unlit | flat (per polygon) | gouraud (per vertex) | phong (per pixel; the default with maps)");
   cmd.add_option("--color", a->color, "Surface color: a name, #rrggbb or r,g,b in [0,1] (a plastic: white highlights)")
       ->check(color_format())
       ->capture_default_str();
@@ -497,18 +507,17 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
       ->check(numbers_format(3));
   cmd.add_option("--light-pos", a->light_pos, "Point light at world-space x,y,z")->check(numbers_format(3));
   cmd.add_flag("--wireframe", a->wireframe, "Draw the polygon edges over the surface");
-  cmd.add_option("--cull", a->cull, "Back-face culling: back | none")
-      ->check(CLI::IsMember({"back", "none"}))
-      ->capture_default_str();
+  add_choice(cmd, "--cull", a->cull, {{"back", raster3d::CullMode::back}, {"none", raster3d::CullMode::none}},
+             "Back-face culling: back | none");
   cmd.add_option("--depth-out", a->depth_out, "Also write the depth buffer (window z in [0,1], 1 = background) as PFM");
   cmd.add_option("--repeat", a->repeat, "Render N frames (for timing with --stats)")
       ->check(positive())
       ->capture_default_str();
   CLI::Option* texture =
       cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
-  cmd.add_option("--filter", a->filter, "Texture filter: nearest | bilinear | trilinear (MIPmaps)")
-      ->check(CLI::IsMember({"nearest", "bilinear", "trilinear"}))
-      ->capture_default_str()
+  add_choice(cmd, "--filter", a->filter,
+             {{"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}},
+             "Texture filter: nearest | bilinear | trilinear (MIPmaps)")
       ->needs(texture);
   CLI::Option* bump =
       cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
@@ -524,11 +533,9 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
                "Reflect what surrounds the mesh (--floor, --env) through a cube map rendered from its center");
   CLI::Option* shadows =
       cmd.add_flag("--shadows", a->shadows, "Shadow mapping: the light's depth map (pass 1) shadows the surfaces");
-  cmd.add_option("--shadow-method", a->shadow_method,
-                 "With --shadows: map (shadow mapping) | zpass | zfail (stencil shadow volumes, counted in front of or "
-                 "behind the surface; zfail is right with the eye in shadow)")
-      ->check(CLI::IsMember({"map", "zpass", "zfail"}))
-      ->capture_default_str();
+  add_choice(cmd, "--shadow-method", a->shadow_method, kShadowMethods,
+             "With --shadows: map (shadow mapping) | zpass | zfail (stencil shadow volumes, counted in front of or "
+             "behind the surface; zfail is right with the eye in shadow)");
   cmd.add_option("--shadow-size", a->shadow_size, "Shadow map size in texels")
       ->check(CLI::Range(16, raster3d::ShadowMap::kMaxSize))
       ->capture_default_str()
@@ -550,7 +557,7 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
     // Options that would change nothing are refused rather than ignored.
     if (cmd.count("--reflect") > 0 && a->env.empty() && !a->env_cube)
       throw InvalidInput("--reflect: nothing to reflect; add --env or --env-cube");
-    if (a->shading == "unlit" && (!a->light_dir.empty() || !a->light_pos.empty()))
+    if (a->shading == raster3d::ShadingModel::unlit && (!a->light_dir.empty() || !a->light_pos.empty()))
       throw InvalidInput("--shading unlit draws without lights; --light-dir and --light-pos need a lit shading");
     run_raster(*a, common);
   });

@@ -11,6 +11,11 @@
 
 namespace tessera {
 
+/// How a mesh's shadows are drawn: a shadow map fitted to the mesh (the notes' 2-pass z-buffer), or the mesh's
+/// stencil shadow volume counted in front of the surface (z-pass) or behind it (z-fail: right with the eye in shadow,
+/// needs a perspective camera, its far plane at infinity).
+enum class ShadowMethod { map, zpass, zfail };
+
 /// Every triangle with its own three corners (positions, and the colors and uvs where the mesh has them), each corner's
 /// normal the triangle's unit face normal (b - a) x (c - a) (counterclockwise is the front). A degenerate triangle,
 /// which covers no pixel, gets (0, 0, 1). Flat shading then shows the facets, where OpenGL's flat model would light
