@@ -6,7 +6,8 @@
 // decompression bomb would be) and one input stays well under a second.
 // tessera::Error is the expected outcome for a malformed file; anything else (a crash, another exception, a sanitizer
 // report) is a bug, and so is a decoded image that is empty, or one whose values are outside [0, 1] (8- and 16-bit
-// formats: stb_image's PNG/JPG/BMP/TGA/..., PPM/PGM) or negative or not finite (Radiance HDR). PFM holds any float.
+// formats: stb_image's PNG/JPG/BMP/TGA/..., PPM/PGM), negative or not finite (Radiance HDR), or not finite (PFM, whose
+// reader refuses NaN and infinity).
 // The native read (8-bit files kept 8-bit, what textures use) must decode the same file to the same values: v/255 of
 // each 8-bit sample is the float read's value, and a float result is the float read's, bit for bit.
 // stb_image comes from Debian's libstb, built without coverage instrumentation: libFuzzer is guided by Tessera's
@@ -36,7 +37,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {
     const tessera::ImageRGBA image = tessera::decode_image(file, name);
     if (image.width() < 1 || image.height() < 1) __builtin_trap();
-    if (name.ends_with(".pfm")) return 0;
+    if (name.ends_with(".pfm")) {
+      for (const auto& p : image.pixels())
+        for (int c = 0; c < 4; ++c)
+          if (!std::isfinite(p[c])) __builtin_trap();
+      return 0;
+    }
     // stb_image decodes Radiance files (magic "#?") to linear floats, whatever the name says.
     const bool netpbm = name.ends_with(".ppm") || name.ends_with(".pgm") || name.ends_with(".pnm");
     const bool hdr = !netpbm && file.starts_with("#?");
