@@ -354,6 +354,17 @@ void write_float_le(std::ostream& out, float value) {
   out.write(bytes, 4);
 }
 
+// A result that is not finite is an error, never a file: PFM and HDR would store NaN or infinity (or garbage), and
+// the readers refuse them. `values` holds `channels` floats per pixel, top row first.
+void check_finite(const std::filesystem::path& path, const std::vector<float>& values, int width, int channels) {
+  const auto bad = std::find_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); });
+  if (bad == values.end()) return;
+  const size_t i = size_t(bad - values.begin()), pixel = i / size_t(channels);
+  const std::string channel = channels == 1 ? "" : fmt::format(" channel {}", "rgb"[i % size_t(channels)]);
+  throw InvalidInput(fmt::format("'{}': pixel ({}, {}){} is {}: refusing to write a value that is not finite",
+                                 name_of(path), pixel % size_t(width), pixel / size_t(width), channel, *bad));
+}
+
 // PFM body: `values` holds `channels` floats per pixel, top row first; the file gets the bottom row first.
 void write_pfm_stream(std::ostream& out, int width, int height, int channels, const std::vector<float>& values) {
   out << (channels == 3 ? "PF" : "Pf") << '\n' << width << ' ' << height << "\n-1\n";
@@ -399,6 +410,7 @@ void write_float_rgb(const std::filesystem::path& path, Format format, const Ima
   std::vector<float> values;
   values.reserve(image.pixels().size() * 3);
   for (const glm::vec3& p : image.pixels()) values.insert(values.end(), {p.x, p.y, p.z});
+  check_finite(path, values, image.width(), 3);
   AtomicFile file(path);
   if (format == Format::hdr) {
     if (!stbi_write_hdr_to_func(stb_sink, &file.stream(), image.width(), image.height(), 3, values.data()))
@@ -474,6 +486,7 @@ void write_pfm(const std::filesystem::path& path, const DepthImage& image) {
     throw InvalidInput(fmt::format("'{}': write_pfm needs a .pfm file name", name_of(path)));
   check_writable(path, image.width(), image.height(), {});
   const std::vector<float> values(image.pixels().begin(), image.pixels().end());
+  check_finite(path, values, image.width(), 1);
   write_file_atomic(path, [&](std::ostream& out) { write_pfm_stream(out, image.width(), image.height(), 1, values); });
 }
 

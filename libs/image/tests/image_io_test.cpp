@@ -443,6 +443,26 @@ TEST_F(ImageIo, NonFinitePfmSamplesAreRefusedWithPixelAndOffset) {
   EXPECT_TRUE(std::isfinite(largest(0, 0).x));
 }
 
+// The writers refuse them too: a result that is not finite is an error and leaves no file (PFM and HDR would store
+// NaN, infinity or garbage).
+TEST_F(ImageIo, NonFiniteValuesAreNeverWritten) {
+  ImageRGB rgb(3, 2, glm::vec3(0.5f));
+  rgb(2, 1).z = NAN;
+  for (const char* name : {"n.pfm", "n.hdr"}) {
+    try {
+      write_image(path(name), rgb);
+      ADD_FAILURE() << name << " was written";
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find("pixel (2, 1) channel b is nan"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(path(name)));
+  }
+  DepthImage depth(2, 2, 1.f);
+  depth(0, 1) = INFINITY;
+  EXPECT_THROW(write_pfm(path("d.pfm"), depth), InvalidInput);
+  EXPECT_FALSE(std::filesystem::exists(path("d.pfm")));
+}
+
 TEST_F(ImageIo, HostileSizesAreRejectedBeforeAllocating) {
   write_bytes("big.pfm", "PF\n100000 100000\n-1\n1234");
   expect_invalid(path("big.pfm"), {"100000x100000"});
