@@ -276,6 +276,11 @@ class PathBuilder {
     double dtheta = std::atan2(u.x * v.y - u.y * v.x, glm::dot(u, v));
     if (!sweep && dtheta > 0) dtheta -= 2 * kPi;
     if (sweep && dtheta < 0) dtheta += 2 * kPi;
+    // Finite numbers whose arc is not (radii or endpoints near 1e308, whose differences and products overflow; an
+    // angle of 1e308 degrees): nothing of it is drawable, and a NaN piece count would be undefined behaviour.
+    if (!std::isfinite(dtheta) || !std::isfinite(theta1) || !std::isfinite(center.x) || !std::isfinite(center.y) ||
+        !std::isfinite(rx) || !std::isfinite(ry))
+      return line_to(end);
     append_arc_cubics(segments(), center, rx, ry, phi, theta1, dtheta, end);
     current_ = end;
   }

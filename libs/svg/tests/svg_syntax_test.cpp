@@ -98,6 +98,12 @@ TEST(SvgPathData, ArcsFollowTheEndpointToCenterConversion) {
   const auto line = parse_svg_path_data("M0 0 A0 5 0 0 1 10 0 A5 5 0 0 1 10 0");
   ASSERT_EQ(line[0].segments.size(), 1u);
   EXPECT_EQ(line[0].segments[0].kind, Kind::Line);
+  // Finite numbers whose arc overflows (an endpoint 1e300 away from a radius 1e10 arc: fuzz_svg found the NaN piece
+  // count, undefined behaviour) draw the line to the endpoint.
+  const auto huge = parse_svg_path_data("M0 0 a1e10 1e10 0 1 1 1e-9 1e300");
+  ASSERT_EQ(huge[0].segments.size(), 1u);
+  EXPECT_EQ(huge[0].segments[0].kind, Kind::Line);
+  EXPECT_EQ(huge[0].segments[0].end, Vec2(1e-9, 1e300));
 }
 
 TEST(SvgPathData, ErrorsNameTheCharacterAndWhatWasExpected) {
