@@ -18,14 +18,13 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <glm/geometric.hpp>
 #include <map>
 #include <memory>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "bench_util.hpp"
 #include "embree_reference.hpp"
@@ -268,11 +267,12 @@ void print_summary() {
                     scaling("tessera", t->second.wall).c_str(), scaling("embree", e->second.wall).c_str(),
                     vs_one.c_str());
       }
-  std::printf("(rates from median times: rays/s, or primitives/s for build, per wall second and per CPU second of the\n"
-              " whole process; stream = the random rays 1024 a call, MeshAccel's span intersect vs rtcIntersect1M,\n"
-              " vs-1/cpu = the stream's CPU rate over Embree rtcIntersect1's on the same rays;\n"
-              " %d hardware threads; load average %.2f)\n",
-              tessera::thread_count(), bench::load_average());
+  std::printf(
+      "(rates from median times: rays/s, or primitives/s for build, per wall second and per CPU second of the\n"
+      " whole process; stream = the random rays 1024 a call, MeshAccel's span intersect vs rtcIntersect1M,\n"
+      " vs-1/cpu = the stream's CPU rate over Embree rtcIntersect1's on the same rays;\n"
+      " %d hardware threads; load average %.2f)\n",
+      tessera::thread_count(), bench::load_average());
 }
 
 }  // namespace

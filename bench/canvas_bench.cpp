@@ -40,9 +40,9 @@ void lines(benchmark::State& state, LineAlgorithm algorithm) {
       benchmark::Counter(double(state.iterations()) * length, benchmark::Counter::kIsRate);  // ~ major-axis steps
 }
 
-void BM_LineDda(benchmark::State& state) { lines(state, LineAlgorithm::Dda); }
-void BM_LineBresenham(benchmark::State& state) { lines(state, LineAlgorithm::Bresenham); }
-void BM_LineWu(benchmark::State& state) { lines(state, LineAlgorithm::Wu); }
+void BM_LineDda(benchmark::State& state) { lines(state, LineAlgorithm::dda); }
+void BM_LineBresenham(benchmark::State& state) { lines(state, LineAlgorithm::bresenham); }
+void BM_LineWu(benchmark::State& state) { lines(state, LineAlgorithm::wu); }
 BENCHMARK(BM_LineDda)->Arg(10)->Arg(500);
 BENCHMARK(BM_LineBresenham)->Arg(10)->Arg(500);
 BENCHMARK(BM_LineWu)->Arg(10)->Arg(500);
@@ -63,12 +63,11 @@ void BM_FillLargePolygon(benchmark::State& state) {
     path.contours[1].push_back({1024 + 300 * std::cos(a), 1024 + 300 * std::sin(a)});
   }
   ImageRGBA image(size, size, Vec4f(0));
-  fill_path(image, path, FillRule::NonZero, Vec4f(1), antialias);
+  fill_path(image, path, FillRule::non_zero, Vec4f(1), antialias);
   double covered = 0;
   for (const Vec4f& p : image.pixels()) covered += p.w;
-  for (auto _ : state) fill_path(image, path, FillRule::NonZero, Vec4f(0.2f, 0.5f, 0.9f, 0.8f), antialias);
-  state.counters["pixels/s"] =
-      benchmark::Counter(double(state.iterations()) * covered, benchmark::Counter::kIsRate);
+  for (auto _ : state) fill_path(image, path, FillRule::non_zero, Vec4f(0.2f, 0.5f, 0.9f, 0.8f), antialias);
+  state.counters["pixels/s"] = benchmark::Counter(double(state.iterations()) * covered, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_FillLargePolygon)->ArgName("aa")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -89,7 +88,7 @@ void BM_FillSmallTriangles(benchmark::State& state) {
     area += 0.5 * std::fabs((c[1].x - c[0].x) * (c[2].y - c[0].y) - (c[2].x - c[0].x) * (c[1].y - c[0].y));
   }
   size_t i = 0;
-  for (auto _ : state) fill_path(image, tris[i++ % tris.size()], FillRule::NonZero, Vec4f(1, 0.5f, 0, 1), antialias);
+  for (auto _ : state) fill_path(image, tris[i++ % tris.size()], FillRule::non_zero, Vec4f(1, 0.5f, 0, 1), antialias);
   state.counters["triangles/s"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["pixels/s"] =
       benchmark::Counter(double(state.iterations()) * area / double(tris.size()), benchmark::Counter::kIsRate);

@@ -28,7 +28,7 @@ const std::vector<double>& inputs(ColorModel m) {
     std::vector<double> rgb(kColors * 3);
     for (double& v : rgb) v = u(rng);
     values.resize(kColors * size_t(tessera::component_count(m)));
-    tessera::convert_many(ColorModel::Rgb, m, rgb, values);
+    tessera::convert_many(ColorModel::rgb, m, rgb, values);
   }
   return values;
 }
@@ -55,7 +55,7 @@ BENCHMARK(BM_convert)->Apply(every_pair)->Unit(benchmark::kMillisecond)->MinTime
 // The direct functions, without the model table: the cost of the formulas alone.
 template <tessera::Vec3 (*F)(const tessera::Vec3&)>
 void BM_direct(benchmark::State& state) {
-  const std::vector<double>& in = inputs(ColorModel::Rgb);
+  const std::vector<double>& in = inputs(ColorModel::rgb);
   std::vector<tessera::Vec3> out(kColors);
   for (auto _ : state) {
     for (size_t i = 0; i < kColors; ++i) out[i] = F(tessera::Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]));

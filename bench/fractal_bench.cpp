@@ -73,9 +73,9 @@ struct Chains {
 
 Chains chains(SimdPath path) {
   switch (path) {
-    case SimdPath::Avx512:
+    case SimdPath::avx512:
       return {chains_avx512, 8, 24};
-    case SimdPath::Avx2:
+    case SimdPath::avx2:
       return {chains_avx2, 4, 12};
     default:
       return {chains_scalar, 1, 12};
@@ -140,7 +140,7 @@ std::string name(const char* what, SimdPath path, int threads = 1) {
 
 int main(int argc, char** argv) {
   std::vector<SimdPath> paths;
-  for (SimdPath p : {SimdPath::Scalar, SimdPath::Avx2, SimdPath::Avx512})
+  for (SimdPath p : {SimdPath::scalar, SimdPath::avx2, SimdPath::avx512})
     if (tessera::simd_supported(p)) paths.push_back(p);
   for (SimdPath p : paths) {
     benchmark::RegisterBenchmark(name("fp_peak", p).c_str(), BM_FpPeak, p)->Unit(benchmark::kMillisecond);

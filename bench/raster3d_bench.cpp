@@ -65,9 +65,9 @@ using reference::GlSubmit;
 // ---------------------------------------------------------------------------------------------------------------
 // Workloads, built identically in the parent and in the llvmpipe children.
 
-enum class Case { Immediate, Batched, Fill, Textured };
+enum class Case { immediate, batched, fill, textured };
 const char* case_name(Case c) {
-  return c == Case::Immediate ? "immediate" : c == Case::Batched ? "batched" : c == Case::Fill ? "fill" : "textured";
+  return c == Case::immediate ? "immediate" : c == Case::batched ? "batched" : c == Case::fill ? "fill" : "textured";
 }
 
 constexpr int kTriWidth = 1280, kTriHeight = 720;
@@ -178,7 +178,7 @@ GlState textured_gl_state() {
 }
 
 GlState gl_state(Case c) {
-  return c == Case::Fill ? fill_gl_state() : c == Case::Textured ? textured_gl_state() : tri_gl_state();
+  return c == Case::fill ? fill_gl_state() : c == Case::textured ? textured_gl_state() : tri_gl_state();
 }
 
 struct Workload {
@@ -191,10 +191,10 @@ const Workload& workload(Case c) {
   static std::map<Case, std::unique_ptr<Workload>> cache;
   auto& w = cache[c];
   if (!w) {
-    if (c == Case::Fill)
-      w = std::make_unique<Workload>(
-          Workload{kFillWidth, kFillHeight, fill_layers(kFillLayers, false), double(kFillLayers) * kFillWidth * kFillHeight});
-    else if (c == Case::Textured)
+    if (c == Case::fill)
+      w = std::make_unique<Workload>(Workload{kFillWidth, kFillHeight, fill_layers(kFillLayers, false),
+                                              double(kFillLayers) * kFillWidth * kFillHeight});
+    else if (c == Case::textured)
       w = std::make_unique<Workload>(Workload{kTriWidth, kTriHeight, fill_layers(kTexturedLayers, true),
                                               double(kTexturedLayers) * kTriWidth * kTriHeight});
     else
@@ -283,7 +283,7 @@ int llvmpipe_child(Case c, int threads) {
   const reference::GlMesh mesh(w.mesh);
   reference::OsmesaContext context(w.width, w.height, threads);
   const GlState state = gl_state(c);
-  const GlSubmit submit = c == Case::Immediate ? GlSubmit::Immediate : GlSubmit::VertexArrays;
+  const GlSubmit submit = c == Case::immediate ? GlSubmit::immediate : GlSubmit::vertex_arrays;
   Timing best;
   for (int frame = 0; frame < kFrames + 1; ++frame) {  // frame 0 warms up (shader compilation, allocations)
     const Stopwatch watch;
@@ -342,7 +342,7 @@ double rate_of(Case c, double seconds) {
 const Rates& record(benchmark::State& state, Case c, int threads, const Timing& timing, bool peer) {
   const double rate = rate_of(c, timing.wall);
   state.counters[workload(c).pixels_per_frame > 0 ? "pixels_per_s" : "tris_per_s"] = rate;
-  if (c == Case::Fill && g_bandwidth[threads] > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
+  if (c == Case::fill && g_bandwidth[threads] > 0) state.counters["bandwidth_share"] = rate * 12 / g_bandwidth[threads];
   state.counters["cpu_ms"] = 1e3 * timing.cpu;
   Rates& r = g_rates[key(c, threads)];
   double& best_wall = peer ? r.llvmpipe : r.tessera;
@@ -480,7 +480,7 @@ void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) 
   const ThreadLimit limit(threads);
   const Vec3f background = gl_state(c).background;
   std::optional<TexturedDraw> textured;
-  if (c == Case::Textured) textured.emplace(w.width, w.height);
+  if (c == Case::textured) textured.emplace(w.width, w.height);
   const auto frame = [&] {
     if (textured) {
       textured->framebuffer.clear(background);
@@ -489,7 +489,7 @@ void BM_Tessera(benchmark::State& state, Case c, int threads, bool unpipelined) 
       return;
     }
     ctx.clear(background);
-    if (c == Case::Immediate)
+    if (c == Case::immediate)
       draw_immediate(arrays, unpipelined);
     else
       ctx.draw(arrays);
@@ -535,10 +535,10 @@ int main(int argc, char** argv) {
       const std::string spec = argv[i] + 17;
       const size_t comma = spec.find(',');
       const std::string name = spec.substr(0, comma);
-      const Case c = name == "immediate" ? Case::Immediate
-                     : name == "batched" ? Case::Batched
-                     : name == "fill"    ? Case::Fill
-                                         : Case::Textured;
+      const Case c = name == "immediate" ? Case::immediate
+                     : name == "batched" ? Case::batched
+                     : name == "fill"    ? Case::fill
+                                         : Case::textured;
       return llvmpipe_child(c, std::atoi(spec.c_str() + comma + 1));
     }
   char self[4096];
@@ -552,16 +552,16 @@ int main(int argc, char** argv) {
           ->UseManualTime()
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
-  for (Case c : {Case::Immediate, Case::Batched, Case::Fill, Case::Textured})
+  for (Case c : {Case::immediate, Case::batched, Case::fill, Case::textured})
     for (int threads : {1, 2}) {
       // The peer first, so that the Tessera run can report the ratio.
-      benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe,
-                                   c, threads)
+      benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe, c,
+                                   threads)
           ->UseManualTime()
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);
       for (const bool unpipelined : {false, true}) {
-        if (unpipelined && c != Case::Immediate) continue;
+        if (unpipelined && c != Case::immediate) continue;
         benchmark::RegisterBenchmark(
             fmt::format("{}/tessera{}/threads:{}", case_name(c), unpipelined ? "_unpipelined" : "", threads).c_str(),
             BM_Tessera, c, threads, unpipelined)
@@ -589,11 +589,12 @@ int main(int argc, char** argv) {
                 fill && bandwidth > 0 ? fmt::format("{:.0f}%", 100 * r.tessera * 12 / bandwidth).c_str() : "");
   }
   for (const auto& [threads, u] : g_unpipelined) {
-    const Rates& r = g_rates[key(Case::Immediate, threads)];
-    std::printf("immediate/%d unpipelined (flush after every batch): %.4g tris/s, %.4g per cpu-s; pipelining gains "
-                "%.2fx wall, %.2fx per cpu-s\n",
-                threads, u.tessera, u.tessera_cpu, u.tessera > 0 ? r.tessera / u.tessera : 0.0,
-                u.tessera_cpu > 0 ? r.tessera_cpu / u.tessera_cpu : 0.0);
+    const Rates& r = g_rates[key(Case::immediate, threads)];
+    std::printf(
+        "immediate/%d unpipelined (flush after every batch): %.4g tris/s, %.4g per cpu-s; pipelining gains "
+        "%.2fx wall, %.2fx per cpu-s\n",
+        threads, u.tessera, u.tessera_cpu, u.tessera > 0 ? r.tessera / u.tessera : 0.0,
+        u.tessera_cpu > 0 ? r.tessera_cpu / u.tessera_cpu : 0.0);
   }
   benchmark::Shutdown();
   return 0;

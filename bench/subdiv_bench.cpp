@@ -29,7 +29,7 @@ constexpr int kLevels = 4;
 PolyMesh cage(bool triangles) {
   const int n = 100, m = triangles ? 50 : 100;
   PolyMesh torus = make_torus(2.0, 0.7, n, m);  // vertex (i, j) is i * m + j
-  torus.normals.clear();                         // positions only, as OpenSubdiv gets
+  torus.normals.clear();                        // positions only, as OpenSubdiv gets
   torus.corner_uvs.clear();
   PolyMesh mesh = triangles ? triangulate(torus) : std::move(torus);
   auto id = [&](int i, int j) { return uint32_t((i % n) * m + (j % m)); };
@@ -43,10 +43,9 @@ PolyMesh cage(bool triangles) {
 void tessera_refine(benchmark::State& state, bool triangles) {
   const PolyMesh mesh = cage(triangles);
   const ThreadLimit limit(int(state.range(0)));
-  const SubdivisionOptions options{
-      .scheme = triangles ? SubdivisionScheme::loop : SubdivisionScheme::catmull_clark,
-      .levels = kLevels,
-      .loop_weights = LoopWeights::loop};
+  const SubdivisionOptions options{.scheme = triangles ? SubdivisionScheme::loop : SubdivisionScheme::catmull_clark,
+                                   .levels = kLevels,
+                                   .loop_weights = LoopWeights::loop};
   size_t faces = 0;
   for (auto _ : state) {
     const PolyMesh refined = subdivide(mesh, options);

@@ -2,9 +2,10 @@
 // fields, on 1 and 2 threads, against VTK's vtkFlyingEdges3D and vtkMarchingCubes and scikit-image's
 // marching_cubes(method='lorensen') on the same field in the same run; and direct volume rendering (256^3 at
 // 512 x 512; render_volume and a prepared VolumeRenderer) against VTK's fixed-point ray cast mapper where it can run
-// (under xvfb-run; TESSERA_DVR_IMAGE_DIR=dir writes both pictures there). The peers run in a /usr/bin/python3 subprocess (bench/peers/volume_peers.py) on the field written to
-// /tmp as raw float32; they report their best wall time of a few runs. A table at the end gives the speedups
-// (peer ms / Tessera ms), the triangle counts and the load average.
+// (under xvfb-run; TESSERA_DVR_IMAGE_DIR=dir writes both pictures there). The peers run in a /usr/bin/python3
+// subprocess (bench/peers/volume_peers.py) on the field written to /tmp as raw float32; they report their best wall
+// time of a few runs. A table at the end gives the speedups (peer ms / Tessera ms), the triangle counts and the load
+// average.
 //
 //   cmake -S . -B build/h-vbench -G Ninja -DCMAKE_BUILD_TYPE=Release -DTESSERA_BUILD_BENCH=ON -DTESSERA_BUILD_TESTS=OFF
 //   ninja -C build/h-vbench bench_volume && build/h-vbench/bench/bench_volume

@@ -26,7 +26,8 @@ ImageRGBA8 magnify(const ImageRGBA8& image, int x0, int y0, int n, int cell, glm
   ImageRGBA8 zoom(n * cell + 1, n * cell + 1);
   for (int y = 0; y < zoom.height(); ++y)
     for (int x = 0; x < zoom.width(); ++x)
-      zoom(x, y) = x % cell == 0 || y % cell == 0 ? grid : image(x0 + std::min(x / cell, n - 1), y0 + std::min(y / cell, n - 1));
+      zoom(x, y) =
+          x % cell == 0 || y % cell == 0 ? grid : image(x0 + std::min(x / cell, n - 1), y0 + std::min(y / cell, n - 1));
   return zoom;
 }
 

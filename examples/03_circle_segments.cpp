@@ -12,7 +12,7 @@ TESSERA_EXAMPLE(ex03_circle_segments, "03_circle_segments", "The notes' circle()
   const std::vector<Vec2> v = circle_segments(20);
   auto map = [](const Vec2& p) { return Vec2(200 + 180 * p.x, 200 - 180 * p.y); };
   for (size_t i = 0; i + 1 < v.size(); i += 2)
-    draw_line(image, map(v[i]), map(v[i + 1]), rgb255(255, 255, 255), LineAlgorithm::Dda);
+    draw_line(image, map(v[i]), map(v[i + 1]), rgb255(255, 255, 255), LineAlgorithm::dda);
   gallery.add("03_circle_segments.png", to_rgba8(image),
               "circle(): 20 segments from (1, 0) around the unit circle, each drawn with the notes' DDA line()");
 }

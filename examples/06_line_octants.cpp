@@ -26,7 +26,7 @@ ImageRGBA panel(LineAlgorithm algorithm) {
 }  // namespace
 
 TESSERA_EXAMPLE(ex06_line_octants, "06_line_octants", "Lines in every octant: DDA, Bresenham and Wu") {
-  const LineAlgorithm algorithms[] = {LineAlgorithm::Dda, LineAlgorithm::Bresenham, LineAlgorithm::Wu};
+  const LineAlgorithm algorithms[] = {LineAlgorithm::dda, LineAlgorithm::bresenham, LineAlgorithm::wu};
   const int w = 3 * kPanel * kZoom + 2 * kGap, h = kPanel * kZoom;
   ImageRGBA out(w, h, Vec4f(1, 1, 1, 1));
   for (int p = 0; p < 3; ++p) {

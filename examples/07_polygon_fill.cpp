@@ -34,7 +34,8 @@ void draw_shape(Canvas& c) {
 
 }  // namespace
 
-TESSERA_EXAMPLE(ex07_polygon_fill, "07_polygon_fill", "Scanline fill of a concave polygon with a hole: even-odd and nonzero") {
+TESSERA_EXAMPLE(ex07_polygon_fill, "07_polygon_fill",
+                "Scanline fill of a concave polygon with a hole: even-odd and nonzero") {
   Canvas canvas(800, 800);
   canvas.background(rgb255(255, 255, 255));
   canvas.stroke(rgb255(20, 20, 20));
@@ -42,7 +43,7 @@ TESSERA_EXAMPLE(ex07_polygon_fill, "07_polygon_fill", "Scanline fill of a concav
   for (int row = 0; row < 2; ++row)
     for (int col = 0; col < 2; ++col) {
       row == 0 ? canvas.no_smooth() : canvas.smooth();
-      canvas.fill_rule(col == 0 ? FillRule::EvenOdd : FillRule::NonZero);
+      canvas.fill_rule(col == 0 ? FillRule::even_odd : FillRule::non_zero);
       canvas.push_matrix();
       canvas.translate(400 * col, 400 * row);
       draw_shape(canvas);

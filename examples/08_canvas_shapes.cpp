@@ -39,7 +39,7 @@ TESSERA_EXAMPLE(ex08_canvas_shapes, "08_canvas_shapes", "Every canvas primitive,
   cell(c, 3, 0, [&] { c.quad(-70, -40, 50, -70, 70, 60, -30, 40); });
 
   c.fill(rgb255(90, 170, 120));
-  const ArcMode modes[] = {ArcMode::Open, ArcMode::Chord, ArcMode::Pie};
+  const ArcMode modes[] = {ArcMode::open, ArcMode::chord, ArcMode::pie};
   for (int i = 0; i < 3; ++i) cell(c, i, 1, [&] { c.arc(0, 0, 140, 140, 0.3, 0.3 + 1.5 * kPi, modes[i]); });
   cell(c, 3, 1, [&] {
     c.begin_shape();
@@ -58,7 +58,7 @@ TESSERA_EXAMPLE(ex08_canvas_shapes, "08_canvas_shapes", "Every canvas primitive,
   c.no_fill();
   c.stroke(rgb255(40, 60, 160));
   c.stroke_weight(18);
-  const LineJoin joins[] = {LineJoin::Miter, LineJoin::Round, LineJoin::Bevel};
+  const LineJoin joins[] = {LineJoin::miter, LineJoin::round, LineJoin::bevel};
   for (int i = 0; i < 3; ++i)
     cell(c, i, 2, [&] {
       c.stroke_join(joins[i]);
@@ -69,8 +69,8 @@ TESSERA_EXAMPLE(ex08_canvas_shapes, "08_canvas_shapes", "Every canvas primitive,
       c.vertex(70, -20);
       c.end_shape();
     });
-  c.stroke_join(LineJoin::Miter);
-  const LineCap caps[] = {LineCap::Butt, LineCap::Round, LineCap::Square};
+  c.stroke_join(LineJoin::miter);
+  const LineCap caps[] = {LineCap::butt, LineCap::round, LineCap::square};
   cell(c, 3, 2, [&] {
     for (int i = 0; i < 3; ++i) {
       c.stroke(rgb255(40, 60, 160));
@@ -83,7 +83,7 @@ TESSERA_EXAMPLE(ex08_canvas_shapes, "08_canvas_shapes", "Every canvas primitive,
     c.line(-50, -80, -50, 80);
     c.line(50, -80, 50, 80);
   });
-  c.stroke_cap(LineCap::Round);
+  c.stroke_cap(LineCap::round);
 
   c.stroke(rgb255(30, 30, 30));
   c.stroke_weight(1);
@@ -117,7 +117,7 @@ TESSERA_EXAMPLE(ex08_canvas_shapes, "08_canvas_shapes", "Every canvas primitive,
   });
   cell(c, 3, 3, [&] {
     c.fill(rgb255(250, 200, 80));
-    c.begin_shape(ShapeKind::TriangleFan);
+    c.begin_shape(ShapeKind::triangle_fan);
     c.vertex(0, 0);
     for (int k = 0; k <= 8; ++k) c.vertex(75 * std::cos(kPi * k / 8), -75 * std::sin(kPi * k / 8));
     c.end_shape();

@@ -38,7 +38,8 @@ TriMesh cyclic_sticks() {
   TriMesh mesh;
   for (int i = 0; i < 3; ++i) {
     const double a0 = kPi / 2 + 2 * kPi * i / 3, a1 = a0 + 2 * kPi / 3;
-    const Vec3 p(0.75 * std::cos(a0), 0.75 * std::sin(a0) - 0.1, 0), q(0.75 * std::cos(a1), 0.75 * std::sin(a1) - 0.1, 0);
+    const Vec3 p(0.75 * std::cos(a0), 0.75 * std::sin(a0) - 0.1, 0),
+        q(0.75 * std::cos(a1), 0.75 * std::sin(a1) - 0.1, 0);
     const Vec3 d = glm::normalize(q - p);
     add_stick(mesh, p - 0.35 * d + Vec3(0, 0, 0.3), q + 0.35 * d - Vec3(0, 0, 0.3), 0.26, colors[i]);
   }
@@ -50,7 +51,9 @@ TriMesh sphere_and_slab() {
   TriMesh sphere = to_tri_mesh(make_uv_sphere(24, 12));
   TriMesh mesh;
   const Vec3 light = glm::normalize(Vec3(-0.4, 0.6, 1));
-  const auto shade = [&](const Vec3& n, const Vec3& color) { return color * (0.25 + 0.75 * std::max(0.0, glm::dot(n, light))); };
+  const auto shade = [&](const Vec3& n, const Vec3& color) {
+    return color * (0.25 + 0.75 * std::max(0.0, glm::dot(n, light)));
+  };
   for (size_t i = 0; i < sphere.positions.size(); ++i) {
     mesh.positions.push_back(0.8 * sphere.positions[i]);
     mesh.colors.push_back(shade(sphere.normals[i], {0.95, 0.75, 0.3}));

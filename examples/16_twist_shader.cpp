@@ -26,7 +26,8 @@ Board checkerboard(int n) {
       const float x0 = -1 + 2.0f * float(i) / float(n), x1 = -1 + 2.0f * float(i + 1) / float(n);
       const float y0 = -1 + 2.0f * float(j) / float(n), y1 = -1 + 2.0f * float(j + 1) / float(n);
       const float t = float(i + j) / float(2 * n);
-      const Vec3f color = (i / 4 + j / 4) % 2 == 0 ? Vec3f(0.95f, 0.55f + 0.3f * t, 0.2f) : Vec3f(0.15f, 0.25f, 0.5f + 0.4f * t);
+      const Vec3f color =
+          (i / 4 + j / 4) % 2 == 0 ? Vec3f(0.95f, 0.55f + 0.3f * t, 0.2f) : Vec3f(0.15f, 0.25f, 0.5f + 0.4f * t);
       const auto base = uint32_t(b.positions.size());
       for (const Vec3f& p : {Vec3f(x0, y0, 0), Vec3f(x1, y0, 0), Vec3f(x1, y1, 0), Vec3f(x0, y1, 0)}) {
         b.positions.push_back(p);

@@ -102,19 +102,22 @@ TESSERA_EXAMPLE(ex18_shared_mesh, "18_shared_mesh", "Real meshes lit: textured S
   const Vec3 mid = 0.5 * (box.lo + box.hi);
   const double radius = 0.5 * glm::length(box.hi - box.lo);
   o.camera->center = mid;
-  o.camera->eye = mid + Vec3(0.2, 0.25, 1.0) * sphere_fit_distance(radius, o.camera->fovy / 2, 0.8);  // the bunny faces +z
+  o.camera->eye =
+      mid + Vec3(0.2, 0.25, 1.0) * sphere_fit_distance(radius, o.camera->fovy / 2, 0.8);  // the bunny faces +z
   o.camera->near = 0.2 * radius;
   o.camera->far = 10 * radius;
-  gallery.add("18_shared_mesh.png", examples::side_by_side({left, examples::render_mesh(right_mesh, o)}),
-              [&] {
-                const std::string caption = std::string(have_spot ? "Keenan Crane's Spot" : "a checker-textured torus") +
-                                            ", textured and lit by a custom shader pair (texture * (ambient + diffuse) "
-                                            "+ Blinn highlight), and " +
-                                            (bunny ? "the Stanford bunny (res2)" : "a quad sphere") +
-                                            " with Phong interpolation.";
-                if (have_spot && bunny) return caption;
-                return examples::stand_in_caption(
-                    have_spot ? "a quad sphere" : bunny ? "a torus" : "a torus and a quad sphere",
-                    have_spot ? "the bunny" : bunny ? "Spot" : "Spot and the bunny", caption);
-              }());
+  gallery.add("18_shared_mesh.png", examples::side_by_side({left, examples::render_mesh(right_mesh, o)}), [&] {
+    const std::string caption = std::string(have_spot ? "Keenan Crane's Spot" : "a checker-textured torus") +
+                                ", textured and lit by a custom shader pair (texture * (ambient + diffuse) "
+                                "+ Blinn highlight), and " +
+                                (bunny ? "the Stanford bunny (res2)" : "a quad sphere") + " with Phong interpolation.";
+    if (have_spot && bunny) return caption;
+    return examples::stand_in_caption(have_spot ? "a quad sphere"
+                                      : bunny   ? "a torus"
+                                                : "a torus and a quad sphere",
+                                      have_spot ? "the bunny"
+                                      : bunny   ? "Spot"
+                                                : "Spot and the bunny",
+                                      caption);
+  }());
 }

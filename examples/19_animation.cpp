@@ -3,10 +3,10 @@
 // the gt layer — and gtSwapBuffers() presents it; what is written out is the front buffer, never a half-drawn
 // image. Twelve frames of one turn are written as PNG files (19_animation_frames/frame_NN.png) and laid out on a
 // contact sheet for the gallery.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "gallery.hpp"
 #include "tessera/image/image_io.hpp"

@@ -28,9 +28,9 @@ namespace {
 
 using tessera::ImageRGB;
 using tessera::kPi;
-using tessera::examples::side_by_side;
 using tessera::Vec2;
 using tessera::Vec3;
+using tessera::examples::side_by_side;
 
 const Vec3 kInk(0.08, 0.08, 0.1);          // lines and text
 const Vec3 kBackground(0.95, 0.95, 0.95);  // behind the 3D solids

@@ -60,8 +60,9 @@ TESSERA_EXAMPLE(ex22_shadow_map, "22_shadow_map", "Shadow mapping: the light's d
   raster3d::Lighting point_light = examples::surface_lighting(to_light, view, 0.2f);
   point_light.lights[0].position = Vec4f(Vec3f(view * Vec4(bulb, 1.0)), 1.0f);
   panels.push_back(render(point_light, around, 1));
-  gallery.add("22_shadow_map.png", examples::side_by_side(panels),
-              "Shadow mapping: pass 1, the light's depth map (128 x 128, near dark); pass 2 with the plain depth test "
-              "(hard, stair-stepped edges from the map's texels) and with percentage-closer filtering over 5 x 5 texels "
-              "(soft edges); a point light among the casters, shadowing all around through a map of six faces.");
+  gallery.add(
+      "22_shadow_map.png", examples::side_by_side(panels),
+      "Shadow mapping: pass 1, the light's depth map (128 x 128, near dark); pass 2 with the plain depth test "
+      "(hard, stair-stepped edges from the map's texels) and with percentage-closer filtering over 5 x 5 texels "
+      "(soft edges); a point light among the casters, shadowing all around through a map of six faces.");
 }

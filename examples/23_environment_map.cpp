@@ -34,7 +34,8 @@ ImageRGBA procedural_sky() {
         // The ground plane y = -1 seen from the origin: checks of 1 unit.
         const float t = -1 / d.y;
         const bool odd = (int(std::floor(d.x * t)) + int(std::floor(d.z * t))) % 2 != 0;
-        c = glm::mix(odd ? glm::vec3(0.55f, 0.4f, 0.3f) : glm::vec3(0.85f, 0.8f, 0.7f), glm::vec3(0.7f), -d.y < 0.1f ? 0.6f : 0.0f);
+        c = glm::mix(odd ? glm::vec3(0.55f, 0.4f, 0.3f) : glm::vec3(0.85f, 0.8f, 0.7f), glm::vec3(0.7f),
+                     -d.y < 0.1f ? 0.6f : 0.0f);
       }
       image(x, y) = glm::vec4(c, 1);
     }
@@ -49,13 +50,13 @@ std::pair<EnvironmentMap, bool> environment_map(examples::Gallery& gallery) {
 
 }  // namespace
 
-TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping: reflections looked up in a lat-long map") {
+TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map",
+                "Environment mapping: reflections looked up in a lat-long map") {
   const std::pair<EnvironmentMap, bool> loaded = environment_map(gallery);
   const EnvironmentMap& environment = loaded.first;
   const bool real_environment = loaded.second;
   const auto caption = [&](const std::string& text) {
-    return real_environment ? text
-                            : examples::stand_in_caption("a procedural sky", "Poly Haven's Venice Sunset", text);
+    return real_environment ? text : examples::stand_in_caption("a procedural sky", "Poly Haven's Venice Sunset", text);
   };
   struct Panel {
     PolyMesh mesh;
@@ -65,8 +66,10 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
   };
   const Panel panels_spec[] = {{make_uv_sphere(96, 48), Mat4(1.0), {0, 0, 0}, 1.0f},
                                {make_torus(0.75, 0.3, 96, 48), rotate_x(radians(60)), {0.6f, 0.15f, 0.1f}, 0.45f},
-                               {examples::with_face_normals(make_box()), rotate_y(radians(35)) * rotate_x(radians(20)) * scale(0.62, 0.62, 0.62),
-                                {0, 0, 0}, 0.9f}};
+                               {examples::with_face_normals(make_box()),
+                                rotate_y(radians(35)) * rotate_x(radians(20)) * scale(0.62, 0.62, 0.62),
+                                {0, 0, 0},
+                                0.9f}};
   const int w = 280, h = 240, s = 2;
   const Mat4 projection = perspective(radians(40), double(w) / h, 0.5, 20);
   const Mat4 view = look_at({0.6, 0.5, 3.6}, {0, 0, 0}, {0, 1, 0});
@@ -84,8 +87,9 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
     raster3d::fill_background(fb, environment, projection * view);
     panels.push_back(examples::downsample(fb.color_rgb(), s));
   }
-  gallery.add("23_environment_map.png", examples::side_by_side(panels),
-              caption("Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
+  gallery.add(
+      "23_environment_map.png", examples::side_by_side(panels),
+      caption("Environment mapping: R = 2(N.E)N - E looked up in a lat-long environment (also the background): a "
               "mirror sphere, a red torus reflecting 45 %, a mirror cube (each face a plane mirror)."));
 
   // Cube mapping: a mirror sphere among nearby objects. The lat-long map alone shows only the far surroundings (the
@@ -99,11 +103,14 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
   const std::vector<Object> objects = {
       {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_grid(1, 1))), scale(2.5, 1, 2.5), {0.8f, 0.78f, 0.7f}},
       {raster3d::VertexArrays::from_mesh(to_tri_mesh(examples::with_face_normals(make_box()))),
-       translate(-1.2, 0.4, 0.55) * rotate_y(radians(25)) * scale(0.4, 0.4, 0.4), {0.85f, 0.2f, 0.15f}},
+       translate(-1.2, 0.4, 0.55) * rotate_y(radians(25)) * scale(0.4, 0.4, 0.4),
+       {0.85f, 0.2f, 0.15f}},
       {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_uv_sphere(48, 24))),
-       translate(1.2, 0.45, 0.5) * scale(0.45, 0.45, 0.45), {0.2f, 0.7f, 0.3f}},
+       translate(1.2, 0.45, 0.5) * scale(0.45, 0.45, 0.45),
+       {0.2f, 0.7f, 0.3f}},
       {raster3d::VertexArrays::from_mesh(to_tri_mesh(make_torus(0.5, 0.18, 64, 24))),
-       translate(1.1, 0.68, -1.5) * rotate_x(radians(90)), {0.2f, 0.35f, 0.85f}}};
+       translate(1.1, 0.68, -1.5) * rotate_x(radians(90)),
+       {0.2f, 0.35f, 0.85f}}};
   const Vec3 to_light(-0.5, 0.8, 0.6);
   const auto draw_scene = [&](raster3d::Framebuffer& fb, const Mat4& p, const Mat4& v) {
     for (const Object& o : objects) {
@@ -136,8 +143,9 @@ TESSERA_EXAMPLE(ex23_environment_map, "23_environment_map", "Environment mapping
     raster3d::draw_surface(fb, raster3d::RasterState{}, mirror, u);
     cube_panels.push_back(examples::downsample(fb.color_rgb(), s));
   }
-  gallery.add("23_cube_mapping.png", examples::side_by_side(cube_panels),
-              caption("Cube mapping: a mirror sphere among near objects reflecting the far lat-long environment only (left), "
+  gallery.add(
+      "23_cube_mapping.png", examples::side_by_side(cube_panels),
+      caption("Cube mapping: a mirror sphere among near objects reflecting the far lat-long environment only (left), "
               "and a cube map of the scene rendered 6 times from its center (right): the floor and the objects "
               "appear in the reflection."));
 }

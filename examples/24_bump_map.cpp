@@ -77,11 +77,15 @@ TESSERA_EXAMPLE(ex24_bump_map, "24_bump_map", "Bump mapping: normals tilted by a
   // The wall: the xz grid stood up facing +z and turned a quarter so that the photo's vertical bricks lie
   // horizontally, seen from the front-right. The photo's mortar is bright: a negative scale sets it back.
   const Mat4 wall_model = rotate_z(radians(90)) * rotate_x(radians(90)) * scale(0.95, 1, 0.95);
-  const Panel panels_spec[] = {
-      {&sphere, nullptr, nullptr, 0, Mat4(1.0), front, {0.85f, 0.8f, 0.7f}},
-      {&sphere, &sphere_tangents, &dimple_map, 0.015f, Mat4(1.0), front, {0.85f, 0.8f, 0.7f}},
-      {&wall, &wall_tangents, &brick_map, -0.015f, wall_model, look_at({1.3, 0.5, 3.0}, {0, 0, 0}, {0, 1, 0}),
-       {0.75f, 0.35f, 0.25f}}};
+  const Panel panels_spec[] = {{&sphere, nullptr, nullptr, 0, Mat4(1.0), front, {0.85f, 0.8f, 0.7f}},
+                               {&sphere, &sphere_tangents, &dimple_map, 0.015f, Mat4(1.0), front, {0.85f, 0.8f, 0.7f}},
+                               {&wall,
+                                &wall_tangents,
+                                &brick_map,
+                                -0.015f,
+                                wall_model,
+                                look_at({1.3, 0.5, 3.0}, {0, 0, 0}, {0, 1, 0}),
+                                {0.75f, 0.35f, 0.25f}}};
   std::vector<ImageRGB> panels;
   for (const Panel& p : panels_spec) {
     raster3d::SurfaceUniforms u;

@@ -23,18 +23,17 @@ TESSERA_EXAMPLE(ex25_shadow_volumes, "25_shadow_volumes",
     const Mat4 view = look_at(eye, center, {0, 1, 0});
     raster3d::Framebuffer fb(w * s, h * s);
     fb.clear({1, 1, 1});
-    raster3d::draw_with_shadow_volumes(fb, shadow, Mat4f(projection * view), count,
-                                       [&](const raster3d::RasterState& state, float light0) {
-                                         for (const examples::SceneObject& o : objects) {
-                                           raster3d::SurfaceUniforms u;
-                                           u.set_camera(projection, view, o.model);
-                                           u.lighting = raster3d::PreparedLighting(
-                                               examples::surface_lighting(to_light, view, 0.25f));
-                                           u.color = o.color;
-                                           u.light0 = light0;
-                                           raster3d::draw_surface(fb, state, o.arrays, u);
-                                         }
-                                       });
+    raster3d::draw_with_shadow_volumes(
+        fb, shadow, Mat4f(projection * view), count, [&](const raster3d::RasterState& state, float light0) {
+          for (const examples::SceneObject& o : objects) {
+            raster3d::SurfaceUniforms u;
+            u.set_camera(projection, view, o.model);
+            u.lighting = raster3d::PreparedLighting(examples::surface_lighting(to_light, view, 0.25f));
+            u.color = o.color;
+            u.light0 = light0;
+            raster3d::draw_surface(fb, state, o.arrays, u);
+          }
+        });
     if (counts) *counts = fb.stencil();
     return examples::downsample(fb.color_rgb(), s);
   };
@@ -43,8 +42,7 @@ TESSERA_EXAMPLE(ex25_shadow_volumes, "25_shadow_volumes",
   const ImageRGB shadows = render(eye, center, raster3d::ShadowCount::zfail, &counts);
   ImageRGB count_picture(counts.width(), counts.height());
   for (int y = 0; y < counts.height(); ++y)
-    for (int x = 0; x < counts.width(); ++x)
-      count_picture(x, y) = Vec3f(1.0f - 0.3f * std::min<int>(counts(x, y), 3));
+    for (int x = 0; x < counts.width(); ++x) count_picture(x, y) = Vec3f(1.0f - 0.3f * std::min<int>(counts(x, y), 3));
   // The eye low behind the sphere, in its shadow, looking across the scene.
   const Vec3 shadowed_eye(-0.5, 0.12, 0.12), across(2, 0.3, -1.5);
   gallery.add("25_shadow_volumes.png",

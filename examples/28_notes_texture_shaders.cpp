@@ -53,13 +53,13 @@ TESSERA_EXAMPLE(ex28_notes_texture_shaders, "28_notes_texture_shaders",
   const Mat4 tilted = perspective(radians(45), 1, 0.1, 20) * look_at({0, 1.1, 2.2}, {0, -0.2, 0}, {0, 1, 0}) *
                       rotate_x(radians(-70)) * scale(1.6, 1.6, 1);
   const Texture2D disc = raster3d::disc_texture(256, 0.25, {0.95f, 0.45f, 0.1f, 1}, Vec4f(1));
-  gallery.add("28_texture_shader.png",
-              examples::side_by_side(
-                  {picture([&](auto& fb) { raster3d::draw_textured(fb, {}, quad, tilted, board); }),
-                   picture([&](auto& fb) { raster3d::draw_textured(fb, {}, quad, kFaceOn, disc); })}),
-              "The notes' texture shader, gl_FragColor = texture2D(myTexture, textureCoord): a checkered square in "
-              "perspective (trilinear MIPmapping: the far checks blur to their mean instead of aliasing), and the "
-              "one-circle texture drawn face-on.");
+  gallery.add(
+      "28_texture_shader.png",
+      examples::side_by_side({picture([&](auto& fb) { raster3d::draw_textured(fb, {}, quad, tilted, board); }),
+                              picture([&](auto& fb) { raster3d::draw_textured(fb, {}, quad, kFaceOn, disc); })}),
+      "The notes' texture shader, gl_FragColor = texture2D(myTexture, textureCoord): a checkered square in "
+      "perspective (trilinear MIPmapping: the far checks blur to their mean instead of aliasing), and the "
+      "one-circle texture drawn face-on.");
 
   const Texture2D red = raster3d::disc_texture(256, 0.25, {0.9f, 0.1f, 0.1f, 1}, Vec4f(1));
   const Texture2D blue = raster3d::disc_texture(256, 0.25, {0.1f, 0.2f, 0.9f, 1}, Vec4f(1));

@@ -29,9 +29,9 @@ TESSERA_EXAMPLE(ex32_smoothing, "32_smoothing", "Laplacian and Taubin smoothing"
 
   ImageRGB sheet(4 * options.width, options.height, Vec3f(1.0f));
   std::string caption = "A noisy sphere (left), then 20 steps of";
-  const std::pair<const char*, SmoothingMethod> methods[] = {{"uniform Laplacian", SmoothingMethod::Laplacian},
-                                                             {"cotangent Laplacian", SmoothingMethod::Cotangent},
-                                                             {"Taubin lambda|mu", SmoothingMethod::Taubin}};
+  const std::pair<const char*, SmoothingMethod> methods[] = {{"uniform Laplacian", SmoothingMethod::laplacian},
+                                                             {"cotangent Laplacian", SmoothingMethod::cotangent},
+                                                             {"Taubin lambda|mu", SmoothingMethod::taubin}};
   const auto paste = [&](const ImageRGB& tile, int column) {
     for (int y = 0; y < tile.height(); ++y)
       for (int x = 0; x < tile.width(); ++x) sheet(column * options.width + x, y) = tile(x, y);

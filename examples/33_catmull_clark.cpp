@@ -15,7 +15,6 @@ TESSERA_EXAMPLE(ex33_catmull_clark, "33_catmull_clark", "Catmull-Clark subdivisi
   for (int level = 0; level <= 3; ++level) {
     const PolyMesh mesh = catmull_clark_subdivide(cube, level);
     gallery.add("33_catmull_clark_level" + std::to_string(level) + ".png", examples::render_mesh(mesh, options),
-                "Catmull-Clark, level " + std::to_string(level) + ": " + std::to_string(mesh.face_count()) +
-                    " quads.");
+                "Catmull-Clark, level " + std::to_string(level) + ": " + std::to_string(mesh.face_count()) + " quads.");
   }
 }

@@ -1,9 +1,9 @@
 // Sharp and semi-sharp creases (the notes; DeRose, Kass and Truong 1998): the cube's top edges, one vertical edge
 // and one bottom corner tagged with sharpness s, subdivided three times with Catmull-Clark. s = 0.5 and 1 soften
 // quickly, s = 2 and 3 keep the crease for 2 and 3 levels, s >= 10 (infinitely sharp) keeps it forever.
-#include <string>
-
 #include <fmt/format.h>
+
+#include <string>
 
 #include "gallery.hpp"
 #include "mesh_view.hpp"

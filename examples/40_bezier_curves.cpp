@@ -49,6 +49,6 @@ TESSERA_EXAMPLE(ex40_bezier_curves, "40_bezier_curves",
   examples::add_figure(gallery, "40_c1_chain", chained,
                        "A chain of three cubics joined with C1 continuity: at each joint the neighbouring control "
                        "points are collinear and equally far from it (" +
-                           std::string(chain_continuity<Vec2>(chain) == Continuity::C1 ? "checked: C1" : "not C1") +
+                           std::string(chain_continuity<Vec2>(chain) == Continuity::c1 ? "checked: C1" : "not C1") +
                            ").");
 }

@@ -1,7 +1,7 @@
 // Example 42: bicubic Bezier patches, the notes' "Bezier inside Bezier". The Utah teapot's 32 patches (Newell's data,
 // the shared data's bezier/teapot.bpt (Gallery::data_file); otherwise four patches built here that make a dome, and
-// the caption says so), each tessellated on a uniform grid, colored per patch; beside it the control net, the polyhedron of the
-// 16 control points per patch that the surface approximates.
+// the caption says so), each tessellated on a uniform grid, colored per patch; beside it the control net, the
+// polyhedron of the 16 control points per patch that the surface approximates.
 #include <filesystem>
 #include <vector>
 
@@ -76,7 +76,7 @@ TESSERA_EXAMPLE(ex42_bezier_patches, "42_bezier_patches", "Bicubic Bezier patche
   PolyMesh net = control_net(patches);
   for (Vec3& p : net.positions) p = examples::y_up(p);
   // Newell's data is wound so that du x dv points into the pot: turn it around when the enclosed volume is negative
-  // (what PatchOrientation::Outward does for tessellate()).
+  // (what PatchOrientation::outward does for tessellate()).
   if (signed_volume(quads) < 0) {
     examples::reverse_faces(quads);
     examples::reverse_faces(net);

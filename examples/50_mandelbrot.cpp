@@ -17,13 +17,13 @@ TESSERA_EXAMPLE(ex50_mandelbrot, "50_mandelbrot", "Mandelbrot set: overview, Sea
               "The Mandelbrot set, -2.25..0.95 wide: the main cardioid, the period-2 bulb and the antenna");
 
   options.max_iterations = 3000;
-  colors.palette = Palette::Ocean;
+  colors.palette = Palette::ocean;
   gallery.add("50_mandelbrot_seahorse.png",
               colorize(mandelbrot(ComplexView{{-0.7453, 0.1127}, 0.02, 800, 600}, options), colors),
               "Seahorse Valley: 0.02 wide around -0.7453 + 0.1127i, 3000 iterations");
 
   options.max_iterations = 12000;
-  colors.palette = Palette::Classic;
+  colors.palette = Palette::classic;
   colors.period = 20;
   gallery.add(
       "50_mandelbrot_deep_zoom.png",

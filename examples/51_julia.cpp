@@ -16,10 +16,10 @@ TESSERA_EXAMPLE(ex51_julia, "51_julia", "Julia sets: two connected, two dust") {
     const char* name;
     Palette palette;
   };
-  const Case cases[] = {{{-0.123, 0.745}, "rabbit", Palette::Classic},
-                        {{-1.0, 0.0}, "basilica", Palette::Ocean},
-                        {{-0.8, 0.156}, "spiral_dust", Palette::Fire},
-                        {{0.285, 0.01}, "seahorse_dust", Palette::Classic}};
+  const Case cases[] = {{{-0.123, 0.745}, "rabbit", Palette::classic},
+                        {{-1.0, 0.0}, "basilica", Palette::ocean},
+                        {{-0.8, 0.156}, "spiral_dust", Palette::fire},
+                        {{0.285, 0.01}, "seahorse_dust", Palette::classic}};
   const int side = 400;
   ImageRGB mosaic(2 * side, 2 * side);
   EscapeOptions options;

@@ -12,7 +12,8 @@ TESSERA_EXAMPLE(ex60_marching_squares, "60_marching_squares", "Marching squares:
   DepthImage field(n, n);
   for (int y = 0; y < n; ++y)
     for (int x = 0; x < n; ++x)
-      field(x, y) = float(std::sin(x * 0.15) * std::cos(y * 0.12) + 0.6 * std::exp(-((x - 40.0) * (x - 40.0) + (y - 20.0) * (y - 20.0)) / 80.0));
+      field(x, y) = float(std::sin(x * 0.15) * std::cos(y * 0.12) +
+                          0.6 * std::exp(-((x - 40.0) * (x - 40.0) + (y - 20.0) * (y - 20.0)) / 80.0));
   Canvas canvas(n * scale, n * scale);
   canvas.background(Vec4f(1.0f));
   canvas.no_stroke();
@@ -28,10 +29,12 @@ TESSERA_EXAMPLE(ex60_marching_squares, "60_marching_squares", "Marching squares:
     canvas.stroke(iso < 0 ? Vec4f(0.1f, 0.3f, 0.8f, 1.0f) : Vec4f(0.8f, 0.2f, 0.1f, 1.0f));
     for (const auto& line : marching_squares(field, iso))
       for (size_t i = 0; i + 1 < line.points.size() + (line.closed ? 1 : 0); ++i) {
-        const Vec2 a = (line.points[i] + 0.5) * double(scale), b = (line.points[(i + 1) % line.points.size()] + 0.5) * double(scale);
+        const Vec2 a = (line.points[i] + 0.5) * double(scale),
+                   b = (line.points[(i + 1) % line.points.size()] + 0.5) * double(scale);
         canvas.line(a.x, a.y, b.x, b.y);
       }
   }
   gallery.add("60_marching_squares.png", to_rgb(canvas.image()),
-              "Marching squares: iso-lines every 0.2 of a height field (blue below 0, red above), saddles by the center value.");
+              "Marching squares: iso-lines every 0.2 of a height field (blue below 0, red above), saddles by the "
+              "center value.");
 }

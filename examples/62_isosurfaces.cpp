@@ -1,8 +1,8 @@
 // Marching cubes: a CT head's skin and bone (shared data when present, else a procedural phantom) and a gyroid.
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "gallery.hpp"
 #include "mesh_view.hpp"
@@ -13,7 +13,8 @@
 TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces: CT head skin and bone, a gyroid") {
   using namespace tessera;
   using namespace tessera::examples;
-  const auto head = gallery.data_file("volumes/headsq_64x64x93_int16le.mhd", "a procedural phantom (ellipsoid and shell)");
+  const auto head =
+      gallery.data_file("volumes/headsq_64x64x93_int16le.mhd", "a procedural phantom (ellipsoid and shell)");
   Volume<float> ct;
   float skin = 500, bone = 1150;
   if (head) {
@@ -47,5 +48,6 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
               caption(fmt::format("{}, bone iso-surface (marching cubes at {:g}).", subject, bone)));
   MeshViewOptions g;
   g.wireframe = false;
-  gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g), "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");
+  gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g),
+              "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");
 }

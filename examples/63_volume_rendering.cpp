@@ -18,8 +18,9 @@ TESSERA_EXAMPLE(ex63_volume_rendering, "63_volume_rendering", "Direct volume ren
   o.camera.eye = mid + Vec3(0.5, -2.0, 0.4) * glm::length(hi - lo);
   o.camera.up = {0, 0, -1};
   o.camera.fovy = radians(30);
-  o.transfer = real ? TransferFunction::preset("ct-skin", profile_values(v))
-                    : TransferFunction({{0.8f, {1, 0.6f, 0.3f}, 0}, {1.2f, {1, 0.9f, 0.7f}, 0.6f}, {3, {1, 1, 1}, 0.9f}});
+  o.transfer =
+      real ? TransferFunction::preset("ct-skin", profile_values(v))
+           : TransferFunction({{0.8f, {1, 0.6f, 0.3f}, 0}, {1.2f, {1, 0.9f, 0.7f}, 0.6f}, {3, {1, 1, 1}, 0.9f}});
   const ImageRGB dvr = render_volume(v, o);
   o.mip = true;
   const ImageRGB mip = render_volume(v, o);

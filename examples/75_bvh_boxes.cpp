@@ -37,7 +37,8 @@ void draw_box(ImageRGB& img, const Mat4& vp, const AABB& box, const Vec3f& color
   for (int i = 0; i < 8; ++i) {
     const Vec4 p(i & 1 ? box.hi.x : box.lo.x, i & 2 ? box.hi.y : box.lo.y, i & 4 ? box.hi.z : box.lo.z, 1.0);
     const Vec4 clip = vp * p;
-    corner[i] = Vec2f(float((clip.x / clip.w + 1) * 0.5 * img.width()), float((1 - clip.y / clip.w) * 0.5 * img.height()));
+    corner[i] =
+        Vec2f(float((clip.x / clip.w + 1) * 0.5 * img.width()), float((1 - clip.y / clip.w) * 0.5 * img.height()));
   }
   for (int i = 0; i < 8; ++i)
     for (int bit : {1, 2, 4})
@@ -66,7 +67,8 @@ TESSERA_EXAMPLE(ex75_bvh_boxes, "75_bvh_boxes", "A bounding volume hierarchy, bo
     for (int x = 0; x < size; ++x) {
       Ray ray = eye.ray(x, y);
       Hit hit;
-      if (accel.intersect(ray, hit)) base(x, y) = Vec3f(0.35f) * (0.2f + 0.8f * std::abs(glm::dot(hit.normal, ray.dir)));
+      if (accel.intersect(ray, hit))
+        base(x, y) = Vec3f(0.35f) * (0.2f + 0.8f * std::abs(glm::dot(hit.normal, ray.dir)));
     }
 
   // Node depths by walking the flattened tree (the first child follows its parent).

@@ -2,11 +2,11 @@
 // as a heat map on one shared scale, BVH left and grid right. The scene mixes a dense mesh with a large ground quad
 // and a few big triangles, the case the notes warn about ("good for similarly sized objects, bad for very different
 // sizes").
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "gallery.hpp"
 #include "tessera/accel/bvh.hpp"
@@ -63,7 +63,8 @@ TESSERA_EXAMPLE(ex76_bvh_grid_cost, "76_bvh_grid_cost", "Traversal cost: BVH ver
   tris.push_back({Vec3f(c.x - g, y0, c.z - g), Vec3f(c.x - g, y0, c.z + g), Vec3f(c.x + g, y0, c.z + g)});
   tris.push_back({Vec3f(c.x - g, y0, c.z - g), Vec3f(c.x + g, y0, c.z + g), Vec3f(c.x + g, y0, c.z - g)});
   for (float side : {-1.0f, 1.0f})
-    tris.push_back({Vec3f(c.x + side * 0.8f * e.x, y0, c.z - 3 * e.z), Vec3f(c.x + side * 0.8f * e.x, y0, c.z + 3 * e.z),
+    tris.push_back({Vec3f(c.x + side * 0.8f * e.x, y0, c.z - 3 * e.z),
+                    Vec3f(c.x + side * 0.8f * e.x, y0, c.z + 3 * e.z),
                     Vec3f(c.x + side * 0.8f * e.x, y0 + 1.5f * e.y, c.z)});
   std::vector<AABB> boxes;
   for (const Triangle& t : tris) boxes.push_back(bounds(t));
@@ -97,9 +98,10 @@ TESSERA_EXAMPLE(ex76_bvh_grid_cost, "76_bvh_grid_cost", "Traversal cost: BVH ver
     return s / double(v.size());
   };
   const glm::ivec3 res = grid.resolution();
-  const std::string caption = fmt::format("Nodes/cells visited + triangles tested per eye ray, blue = 0 to red = {:.0f}: BVH (left, "
-                          "mean {:.1f}) and {}x{}x{} uniform grid (right, mean {:.1f}) over {} triangles.",
-                          scale, mean(bvh_cost), res.x, res.y, res.z, mean(grid_cost), tris.size());
+  const std::string caption = fmt::format(
+      "Nodes/cells visited + triangles tested per eye ray, blue = 0 to red = {:.0f}: BVH (left, "
+      "mean {:.1f}) and {}x{}x{} uniform grid (right, mean {:.1f}) over {} triangles.",
+      scale, mean(bvh_cost), res.x, res.y, res.z, mean(grid_cost), tris.size());
   gallery.add("76_bvh_grid_cost.png", examples::side_by_side({to_image(bvh_cost), to_image(grid_cost)}),
               bunny ? caption : examples::stand_in_caption("a torus", "the Stanford bunny", caption));
 }

@@ -10,9 +10,9 @@
 TESSERA_EXAMPLE(ex77_point_in_polygon, "77_point_in_polygon", "Point in polygon: crossing, winding, half-plane") {
   using namespace tessera;
   // A concave comb-like polygon and a pentagram, both in [-1, 1]^2.
-  const std::vector<Vec2f> comb = {{-0.9f, -0.9f}, {0.9f, -0.9f}, {0.9f, 0.9f}, {0.5f, 0.9f}, {0.5f, -0.3f},
-                                   {0.2f, -0.3f},  {0.2f, 0.9f},  {-0.2f, 0.9f}, {-0.2f, -0.3f}, {-0.5f, -0.3f},
-                                   {-0.5f, 0.9f},  {-0.9f, 0.9f}};
+  const std::vector<Vec2f> comb = {{-0.9f, -0.9f}, {0.9f, -0.9f},  {0.9f, 0.9f},  {0.5f, 0.9f},
+                                   {0.5f, -0.3f},  {0.2f, -0.3f},  {0.2f, 0.9f},  {-0.2f, 0.9f},
+                                   {-0.2f, -0.3f}, {-0.5f, -0.3f}, {-0.5f, 0.9f}, {-0.9f, 0.9f}};
   std::vector<Vec2f> star;
   for (int i = 0; i < 5; ++i) {
     const double a = kPi / 2 + i * 4 * kPi / 5;

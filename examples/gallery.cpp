@@ -24,11 +24,20 @@ std::string html_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -58,9 +67,8 @@ std::optional<std::filesystem::path> Gallery::data_file(const std::string& relat
     if (std::filesystem::exists(path)) return path;
   }
   ++stand_ins_;
-  const std::string where = data_.dir.empty()
-                                ? "no shared data folder found (give one with --data DIR or TESSERA_DATA)"
-                                : fmt::format("not in {} (from {})", data_.dir.string(), data_.source);
+  const std::string where = data_.dir.empty() ? "no shared data folder found (give one with --data DIR or TESSERA_DATA)"
+                                              : fmt::format("not in {} (from {})", data_.dir.string(), data_.source);
   std::fprintf(stderr, "tessera: warning: shared data file %s: %s; drawing a stand-in: %s\n", relative.c_str(),
                where.c_str(), stand_in.c_str());
   return std::nullopt;
@@ -83,8 +91,8 @@ void Gallery::write_index(const std::string& title) const {
     while (next_section < sections_.size() && sections_[next_section].first == i)
       html << "<h2>" << html_escape(sections_[next_section++].second) << "</h2>\n";
     html << "<figure><a href=\"" << html_escape(pictures_[i].file) << "\"><img src=\"" << html_escape(pictures_[i].file)
-         << "\" alt=\"" << html_escape(pictures_[i].caption) << "\"></a><figcaption>" << html_escape(pictures_[i].caption)
-         << "</figcaption></figure>\n";
+         << "\" alt=\"" << html_escape(pictures_[i].caption) << "\"></a><figcaption>"
+         << html_escape(pictures_[i].caption) << "</figcaption></figure>\n";
   }
   html << "</body></html>\n";
   write_file_atomic(dir_ / "index.html", html.str());
@@ -141,8 +149,8 @@ Comparison compare_picture(const ImageRGBA8& picture, const ImageRGBA8& referenc
   const bool passed = differing <= allowed && db >= tolerance.min_psnr;
   return {passed, fmt::format("{} of {} pixels differ by more than {} levels (at most {} may), max difference {} "
                               "levels, PSNR {:.1f} dB (at least {:.1f})",
-                              differing, total, tolerance.levels, allowed, max_abs_difference(picture, reference),
-                              db, tolerance.min_psnr)};
+                              differing, total, tolerance.levels, allowed, max_abs_difference(picture, reference), db,
+                              tolerance.min_psnr)};
 }
 
 ImageRGB side_by_side(const std::vector<ImageRGB>& panels) {
@@ -174,8 +182,8 @@ RunSummary run_examples(const std::filesystem::path& dir, const RunOptions& opti
   std::vector<Example> selected;
   for (const Example& e : all_examples()) {
     const std::string name = e.name;
-    if (prefixes.empty() || std::any_of(prefixes.begin(), prefixes.end(),
-                                        [&](const std::string& p) { return name.rfind(p, 0) == 0; }))
+    if (prefixes.empty() ||
+        std::any_of(prefixes.begin(), prefixes.end(), [&](const std::string& p) { return name.rfind(p, 0) == 0; }))
       selected.push_back(e);
   }
   Gallery gallery(dir, options.data, options.write);

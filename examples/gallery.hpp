@@ -137,8 +137,7 @@ bool is_stand_in(const Picture& picture);
 }  // namespace tessera::examples
 
 /// Defines and registers an example: TESSERA_EXAMPLE(ex01_pixels, "01_pixels", "The pink pixel") { ...gallery... }
-#define TESSERA_EXAMPLE(id, name, title)                                                          \
-  static void id(::tessera::examples::Gallery& gallery);                                         \
-  [[maybe_unused]] static const int id##_registered =                                            \
-      ::tessera::examples::register_example({name, title, &id});                                 \
+#define TESSERA_EXAMPLE(id, name, title)                                                                         \
+  static void id(::tessera::examples::Gallery& gallery);                                                         \
+  [[maybe_unused]] static const int id##_registered = ::tessera::examples::register_example({name, title, &id}); \
   static void id([[maybe_unused]] ::tessera::examples::Gallery& gallery)

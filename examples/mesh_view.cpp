@@ -36,10 +36,9 @@ struct Surfaces {
 
 Surfaces triangles(const PolyMesh& mesh, const MeshViewOptions& o) {
   const bool flat = o.shading == raster3d::ShadingModel::flat;
-  const std::vector<Vec3> vertex_normals_ =
-      flat || !mesh.corner_normals.empty() ? std::vector<Vec3>{}
-      : mesh.normals.empty()               ? vertex_normals(mesh)
-                                           : mesh.normals;
+  const std::vector<Vec3> vertex_normals_ = flat || !mesh.corner_normals.empty() ? std::vector<Vec3>{}
+                                            : mesh.normals.empty()               ? vertex_normals(mesh)
+                                                                                 : mesh.normals;
   Surfaces s;
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const auto face = mesh.face(f);
@@ -149,12 +148,13 @@ ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& o) {
 
 std::vector<SceneObject> shadow_scene() {
   const auto arrays = [](const PolyMesh& mesh) { return raster3d::VertexArrays::from_mesh(to_tri_mesh(mesh)); };
-  return {{arrays(make_grid(1, 1)), scale(3, 1, 3), {0.85f, 0.85f, 0.8f}},
-          {arrays(make_uv_sphere(48, 24)), translate(-0.9, 0.6, 0.4) * scale(0.6, 0.6, 0.6), {0.8f, 0.3f, 0.25f}},
-          {arrays(make_torus(0.55, 0.18, 64, 24)), translate(0.9, 0.75, -0.2) * rotate_x(radians(75)),
-           {0.3f, 0.5f, 0.8f}},
-          {arrays(with_face_normals(make_box())),
-           translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4), {0.9f, 0.75f, 0.3f}}};
+  return {
+      {arrays(make_grid(1, 1)), scale(3, 1, 3), {0.85f, 0.85f, 0.8f}},
+      {arrays(make_uv_sphere(48, 24)), translate(-0.9, 0.6, 0.4) * scale(0.6, 0.6, 0.6), {0.8f, 0.3f, 0.25f}},
+      {arrays(make_torus(0.55, 0.18, 64, 24)), translate(0.9, 0.75, -0.2) * rotate_x(radians(75)), {0.3f, 0.5f, 0.8f}},
+      {arrays(with_face_normals(make_box())),
+       translate(0.1, 0.5, -1.3) * rotate_y(radians(30)) * scale(0.4, 0.5, 0.4),
+       {0.9f, 0.75f, 0.3f}}};
 }
 
 std::vector<raster3d::ShadowVolume> caster_volumes(const std::vector<SceneObject>& objects, const Vec4f& light) {

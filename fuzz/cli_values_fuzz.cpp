@@ -65,7 +65,9 @@ void check_color(const tessera::Vec4f& c) {
 void run(uint8_t mode, std::string_view text) {
   using namespace tessera;
   switch (mode % 10) {
-    case 0: check(std::isfinite(parse_double(text, "fuzz"))); break;
+    case 0:
+      check(std::isfinite(parse_double(text, "fuzz")));
+      break;
     case 1: {
       const long long v = parse_int(text, "fuzz");
       check(parse_int(std::to_string(v), "fuzz") == v);
@@ -113,10 +115,14 @@ void run(uint8_t mode, std::string_view text) {
       MemoryBudget::check(bytes, "fuzz");
       break;
     }
-    case 7: check_color(parse_svg_color(text)); break;
+    case 7:
+      check_color(parse_svg_color(text));
+      break;
     case 8:
-      if (mode / 16 % 2) parse_hue_unit(text);
-      else parse_color_model(text);
+      if (mode / 16 % 2)
+        parse_hue_unit(text);
+      else
+        parse_color_model(text);
       break;
     case 9: {
       const auto words = split(text, ' ');

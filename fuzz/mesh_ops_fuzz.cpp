@@ -82,8 +82,8 @@ PolyMesh triangulated(const PolyMesh& mesh) {
 
 void normals(const PolyMesh& mesh) {
   check_normals(face_normals(mesh));
-  check_normals(vertex_normals(mesh, NormalWeighting::Area));
-  check_normals(vertex_normals(mesh, NormalWeighting::Angle));
+  check_normals(vertex_normals(mesh, NormalWeighting::area));
+  check_normals(vertex_normals(mesh, NormalWeighting::angle));
 }
 
 void smoothing(PolyMesh mesh, uint8_t byte) {

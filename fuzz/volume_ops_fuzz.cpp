@@ -52,7 +52,7 @@ void isosurface(const Volume<float>& volume, float iso, uint8_t mode) {
 }
 
 void contours(const Volume<float>& volume, float iso) {
-  for (Axis axis : {Axis::X, Axis::Y, Axis::Z}) {
+  for (Axis axis : {Axis::x, Axis::y, Axis::z}) {
     const int n = volume.dims()[int(axis)];
     for (const Polyline& line : marching_squares(slice(volume, axis, n / 2), iso))
       for (const Vec2& p : line.points) check(std::isfinite(p.x) && std::isfinite(p.y));
@@ -62,7 +62,8 @@ void contours(const Volume<float>& volume, float iso) {
 TransferFunction transfer(const Volume<float>& volume, uint8_t byte, const uint8_t* voxel_bytes) {
   const ValueProfile profile = profile_values(volume);
   switch (byte % 5) {
-    case 0: return TransferFunction::automatic(profile);
+    case 0:
+      return TransferFunction::automatic(profile);
     case 1:
     case 2:
     case 3: {
@@ -76,7 +77,8 @@ TransferFunction transfer(const Volume<float>& volume, uint8_t byte, const uint8
       for (int i = 0; i < count; ++i) {
         const float value = float(profile.lo + (profile.hi - profile.lo) * i / (count - 1));
         const float c = float(voxel_bytes[i % 4]) / 255.0f * (byte / 64 % 2 ? TransferFunction::kMaxColor : 1.0f);
-        points.push_back({value, Vec3f(c, 1.0f - float(i) / float(count), 0.5f), float(voxel_bytes[(i + 1) % 4]) / 255});
+        points.push_back(
+            {value, Vec3f(c, 1.0f - float(i) / float(count), 0.5f), float(voxel_bytes[(i + 1) % 4]) / 255});
       }
       return TransferFunction(points);
     }
@@ -108,13 +110,20 @@ void render(const Volume<float>& volume, const uint8_t* p, const uint8_t* voxel_
 
   const uint8_t s = p[15];
   const double samples = s < 200 ? double(s % 64 + 1) * 64 : 0;  // up to 4096 samples per ray
-  if (s < 200) o.step = float(diagonal / samples);
-  else if (s < 210) o.step = 0;
-  else if (s < 220) o.step = float(diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay) / 4);  // refused
-  else if (s < 230) o.step = -1;
-  else if (s < 240) o.step = NAN;
-  else if (s < 250) o.step = INFINITY;
-  else o.step = 1e-9f;
+  if (s < 200)
+    o.step = float(diagonal / samples);
+  else if (s < 210)
+    o.step = 0;
+  else if (s < 220)
+    o.step = float(diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay) / 4);  // refused
+  else if (s < 230)
+    o.step = -1;
+  else if (s < 240)
+    o.step = NAN;
+  else if (s < 250)
+    o.step = INFINITY;
+  else
+    o.step = 1e-9f;
   if (o.step > 0 && std::isfinite(o.step) && diagonal / o.step > 4096 &&
       diagonal / o.step <= double(VolumeRenderOptions::kMaxSamplesPerRay))
     o.step = 0;  // a legal but slow step: the default one instead
@@ -134,7 +143,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   RawLayout layout;
   layout.dims = glm::ivec3(1 + p[0] % 16, 1 + p[1] % 16, 1 + p[2] % 16);
   layout.type = VoxelType(p[3] % 4);
-  layout.endian = p[3] / 4 % 2 ? Endian::Big : Endian::Little;
+  layout.endian = p[3] / 4 % 2 ? Endian::big : Endian::little;
   for (int a = 0; a < 3; ++a) layout.spacing[a] = p[4 + a] % 16 == 15 ? 1e300 : double(1 + p[4 + a] % 16) / 8;
   layout.origin = Vec3(p[7] % 4 == 3 ? -1e300 : double(p[7] % 4) - 1);
   float iso;

@@ -25,8 +25,8 @@ enum class FrontAxis { automatic, pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
 /// x|y|z`, and `--ortho [--ortho-size H]`.
 ///
 /// The model's frame: up U is the --up-axis, front F the --front-axis (by default +z, or -y for z-up: Blender's front
-/// view), right R = U x F (+x for the defaults of y-up and z-up, -y for x-up), so that R x U = F. The framed eye lies on
-/// cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
+/// view), right R = U x F (+x for the defaults of y-up and z-up, -y for x-up), so that R x U = F. The framed eye lies
+/// on cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
 /// up (U at elevation 0; -F on the top view: the front at the bottom of the image, as in Blender).
 struct CameraOptions {
   std::string eye, center, up, size;

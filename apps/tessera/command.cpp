@@ -1,11 +1,11 @@
 #include "command.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
@@ -90,8 +90,9 @@ void add_common_options(CLI::App& command, CommonOptions& common) {
     command.add_option("--threads", common.threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
   if (command.get_option_no_throw("--quiet") == nullptr) command.add_flag("--quiet", common.quiet, "No progress");
   if (command.get_option_no_throw("--progress") == nullptr)
-    command.add_option("--progress", common.progress,
-                       "Progress on stderr: a bar on a terminal (auto), always a bar, plain lines for logs, or none")
+    command
+        .add_option("--progress", common.progress,
+                    "Progress on stderr: a bar on a terminal (auto), always a bar, plain lines for logs, or none")
         ->check(CLI::IsMember({"auto", "bar", "plain", "none"}))
         ->capture_default_str();
   if (command.get_option_no_throw("--stats") == nullptr)

@@ -2,12 +2,11 @@
 // The CLI's command interface. Each command lives in commands/<name>.cpp and exposes one setup function that adds its
 // CLI11 subcommand; main.cpp holds the table of them (no if/else dispatch). docs/cli.md is the contract: the common
 // options, the --stats vocabulary and the exit codes.
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "tessera/image/image_io.hpp"
 

@@ -1,4 +1,6 @@
 // tessera: the command-line front end. The table below lists every command; each lives in commands/<name>.cpp.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -7,8 +9,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "tessera/core/cpu.hpp"
@@ -43,8 +43,10 @@ const Command kCommands[] = {
     {"mesh", "Mesh processing: info, convert, normals, smooth, subdivide, triangulate, weld", setup_mesh},
     {"curve", "Bezier curves: draw curves, control polygons and subdivision steps", setup_curve},
     {"patch", "Bezier patches (.bpt) tessellated into a mesh", setup_patch},
-    {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension", setup_fractal},
-    {"volume", "Volume data: info, slice, contour (marching squares), isosurface (marching cubes), render", setup_volume},
+    {"fractal", "Fractals: mandelbrot, julia, koch, cantor, sierpinski, hilbert, peano, terrain, dimension",
+     setup_fractal},
+    {"volume", "Volume data: info, slice, contour (marching squares), isosurface (marching cubes), render",
+     setup_volume},
     {"raster", "Z-buffered 3D rasterization of a mesh (flat, Gouraud or Phong shading)", setup_raster},
     {"render", "Render a scene file or a built-in scene (ray tracing or rasterization)", setup_render},
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
@@ -106,14 +108,16 @@ std::string check_command_words(const CLI::App& app, int argc, char** argv) {
     if (named.empty()) return unknown_command(*parent, word);
     parent = named.front();
   }
-  const bool needs_subcommand = parent != &app && !parent->get_subcommands([](const CLI::App*) { return true; }).empty();
+  const bool needs_subcommand =
+      parent != &app && !parent->get_subcommands([](const CLI::App*) { return true; }).empty();
   const bool asks_help = argc > 1 && (std::string(argv[argc - 1]) == "--help" || std::string(argv[argc - 1]) == "-h");
   return needs_subcommand && !asks_help ? missing_subcommand(*parent) : "";
 }
 
 /// The list of commands, for a bare `tessera`.
 void print_command_list(const CLI::App& app) {
-  fmt::print(stderr, "usage: tessera <command> [options]   ('tessera <command> --help' for its options)\n\ncommands:\n");
+  fmt::print(stderr,
+             "usage: tessera <command> [options]   ('tessera <command> --help' for its options)\n\ncommands:\n");
   for (const Command& c : kCommands) fmt::print(stderr, "  {:<9} {}\n", c.name, c.summary);
   fmt::print(stderr, "\n{}\n", app.get_footer());
 }
@@ -129,10 +133,10 @@ std::string command_path(const CLI::App& app) {
 }
 
 Progress::Mode progress_mode(const CommonOptions& common) {
-  if (common.quiet || common.progress == "none") return Progress::Mode::None;
-  if (common.progress == "plain") return Progress::Mode::Plain;
-  if (common.progress == "bar") return Progress::Mode::Bar;
-  return Progress::Mode::Auto;
+  if (common.quiet || common.progress == "none") return Progress::Mode::none;
+  if (common.progress == "plain") return Progress::Mode::plain;
+  if (common.progress == "bar") return Progress::Mode::bar;
+  return Progress::Mode::automatic;
 }
 
 }  // namespace
@@ -195,4 +199,3 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
-

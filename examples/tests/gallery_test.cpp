@@ -3,17 +3,17 @@
 // linear or sRGB-encoded; 61's figure
 // has the cube edges drawn and the corner markers visible where an independent projection (GLM's lookAt and
 // perspective) puts them. And the shared data lookup: --data, then the environment, then the documented folders.
+#include "gallery.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 #include <iterator>
 #include <optional>
 
-#include <glm/gtc/matrix_transform.hpp>
-
-#include "gallery.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/volume/mc_table.hpp"
 
@@ -93,7 +93,8 @@ TEST(Gallery, MarchingCubesCasesShowCubeEdgesAndCornerMarkers) {
       if ((cube_case >> i) & 1)
         EXPECT_GT(int(c.z), int(c.x) + 100) << "case " << k << ": inside corner " << i << " is not a blue dot";
       else
-        EXPECT_GT(std::min({c.x, c.y, c.z}), 220) << "case " << k << ": outside corner " << i << " is not an open circle";
+        EXPECT_GT(std::min({c.x, c.y, c.z}), 220)
+            << "case " << k << ": outside corner " << i << " is not an open circle";
     }
   }
 }
@@ -115,14 +116,15 @@ TEST(Gallery, PainterPanelsShowWhatTheCaptionSays) {
                                             glm::dvec3(1.4, 1, 0.8));
   double nearest_centroid = -1e9;  // the largest z (nearest the eye) a slab triangle's centroid can have
   for (const double x : {-1.0, 1.0})
-    for (const double z : {-1.0, 1.0}) nearest_centroid = std::max(nearest_centroid, -(slab * glm::dvec4(x, 0, z, 1)).z / 3);
+    for (const double z : {-1.0, 1.0})
+      nearest_centroid = std::max(nearest_centroid, -(slab * glm::dvec4(x, 0, z, 1)).z / 3);
   const glm::dvec3 eye(0, 0, 4.5);
   const double tan_half = std::tan(glm::radians(17.0));
   int slab_front = 0, sphere_front = 0, painter_covers_slab = 0;
   for (int py = 20; py < size - 20; py += 4)
     for (int px = 20; px < size - 20; px += 4) {
-      const glm::dvec3 d = glm::normalize(glm::dvec3(((px + 0.5) / (size / 2) - 1) * tan_half,
-                                                     (1 - (py + 0.5) / (size / 2)) * tan_half, -1));
+      const glm::dvec3 d = glm::normalize(
+          glm::dvec3(((px + 0.5) / (size / 2) - 1) * tan_half, (1 - (py + 0.5) / (size / 2)) * tan_half, -1));
       // The sphere (centered at the origin, so the turn does not move it).
       const double b = glm::dot(eye, d), disc = b * b - (glm::dot(eye, eye) - 0.64);
       if (std::abs(disc) < 0.03) continue;  // along the faceted silhouette
@@ -276,7 +278,10 @@ TEST(Gallery, ReferenceComparisonCatchesOnePixelMovesAndColorChanges) {
   const glm::u8vec4 background = reference(0, 0);
   glm::u8vec4 fill = background;
   for (const glm::u8vec4& p : reference.pixels())
-    if (p != background) { fill = p; break; }
+    if (p != background) {
+      fill = p;
+      break;
+    }
   long long changed = 0;
   for (glm::u8vec4& p : recolored.pixels())
     if (p == fill) p.y = uint8_t(p.y >= 6 ? p.y - 6 : p.y + 6), ++changed;

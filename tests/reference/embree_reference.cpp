@@ -1,11 +1,11 @@
 // Embree 3 as the reference ray caster of the accel tests and benchmark.
 #include "embree_reference.hpp"
 
+#include <embree3/rtcore.h>
+
 #include <algorithm>
 #include <string>
 #include <vector>
-
-#include <embree3/rtcore.h>
 
 namespace tessera::reference {
 

@@ -8,6 +8,7 @@
 #define GL_GLEXT_PROTOTYPES  // glStencilFuncSeparate, glStencilOpSeparate, glStencilMaskSeparate (OpenGL 2.0)
 #include <GL/osmesa.h>
 #include <fmt/format.h>
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include "tessera/core/error.hpp"
@@ -40,28 +41,44 @@ void load_matrix(GLenum mode, const Mat4f& m) {
 
 GLenum gl_compare(GlCompare f) {
   switch (f) {
-    case GlCompare::never: return GL_NEVER;
-    case GlCompare::less: return GL_LESS;
-    case GlCompare::equal: return GL_EQUAL;
-    case GlCompare::lequal: return GL_LEQUAL;
-    case GlCompare::greater: return GL_GREATER;
-    case GlCompare::notequal: return GL_NOTEQUAL;
-    case GlCompare::gequal: return GL_GEQUAL;
-    case GlCompare::always: return GL_ALWAYS;
+    case GlCompare::never:
+      return GL_NEVER;
+    case GlCompare::less:
+      return GL_LESS;
+    case GlCompare::equal:
+      return GL_EQUAL;
+    case GlCompare::lequal:
+      return GL_LEQUAL;
+    case GlCompare::greater:
+      return GL_GREATER;
+    case GlCompare::notequal:
+      return GL_NOTEQUAL;
+    case GlCompare::gequal:
+      return GL_GEQUAL;
+    case GlCompare::always:
+      return GL_ALWAYS;
   }
   return GL_ALWAYS;
 }
 
 GLenum gl_stencil_op(GlStencilOp op) {
   switch (op) {
-    case GlStencilOp::keep: return GL_KEEP;
-    case GlStencilOp::zero: return GL_ZERO;
-    case GlStencilOp::replace: return GL_REPLACE;
-    case GlStencilOp::incr: return GL_INCR;
-    case GlStencilOp::incr_wrap: return GL_INCR_WRAP;
-    case GlStencilOp::decr: return GL_DECR;
-    case GlStencilOp::decr_wrap: return GL_DECR_WRAP;
-    case GlStencilOp::invert: return GL_INVERT;
+    case GlStencilOp::keep:
+      return GL_KEEP;
+    case GlStencilOp::zero:
+      return GL_ZERO;
+    case GlStencilOp::replace:
+      return GL_REPLACE;
+    case GlStencilOp::incr:
+      return GL_INCR;
+    case GlStencilOp::incr_wrap:
+      return GL_INCR_WRAP;
+    case GlStencilOp::decr:
+      return GL_DECR;
+    case GlStencilOp::decr_wrap:
+      return GL_DECR_WRAP;
+    case GlStencilOp::invert:
+      return GL_INVERT;
   }
   return GL_KEEP;
 }
@@ -157,8 +174,10 @@ void OsmesaContext::begin(const GlState& s) {
   stencil_face(GL_BACK, s.stencil_back);
   glColor4f(s.color.x, s.color.y, s.color.z, s.alpha);
   if (s.blend) {
-    static constexpr GLenum kFactors[] = {GL_ZERO,      GL_ONE,       GL_SRC_COLOR,           GL_ONE_MINUS_SRC_COLOR,
-                                          GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR, GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
+    static constexpr GLenum kFactors[] = {GL_ZERO,      GL_ONE,
+                                          GL_SRC_COLOR, GL_ONE_MINUS_SRC_COLOR,
+                                          GL_DST_COLOR, GL_ONE_MINUS_DST_COLOR,
+                                          GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA,
                                           GL_DST_ALPHA, GL_ONE_MINUS_DST_ALPHA};
     static constexpr GLenum kEquations[] = {GL_FUNC_ADD, GL_FUNC_SUBTRACT, GL_FUNC_REVERSE_SUBTRACT, GL_MIN, GL_MAX};
     glEnable(GL_BLEND);
@@ -177,7 +196,9 @@ void OsmesaContext::begin(const GlState& s) {
     const bool mipmaps = t.filter == GlFilter::linear_mipmap_linear;
     glTexParameteri(GL_TEXTURE_2D, GL_GENERATE_MIPMAP, mipmaps ? GL_TRUE : GL_FALSE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER,
-                    t.filter == GlFilter::nearest ? GL_NEAREST : mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR);
+                    t.filter == GlFilter::nearest ? GL_NEAREST
+                    : mipmaps                     ? GL_LINEAR_MIPMAP_LINEAR
+                                                  : GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, t.filter == GlFilter::nearest ? GL_NEAREST : GL_LINEAR);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
     glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
@@ -203,7 +224,7 @@ void OsmesaContext::begin(const GlState& s) {
 
 void OsmesaContext::draw(const GlMesh& mesh, GlSubmit submit) {
   const bool normals = !mesh.normals.empty(), colors = !mesh.colors.empty(), texcoords = !mesh.texcoords.empty();
-  if (submit == GlSubmit::Immediate) {
+  if (submit == GlSubmit::immediate) {
     const float* p = mesh.positions.data();
     const float* n = mesh.normals.data();
     const float* c = mesh.colors.data();

@@ -15,8 +15,8 @@ namespace tessera::reference {
 
 /// How the triangles reach OpenGL.
 enum class GlSubmit {
-  Immediate,     ///< glBegin(GL_TRIANGLES) / glNormal / glColor / glVertex / glEnd
-  VertexArrays,  ///< glVertexPointer / glNormalPointer / glColorPointer + glDrawElements
+  immediate,      ///< glBegin(GL_TRIANGLES) / glNormal / glColor / glVertex / glEnd
+  vertex_arrays,  ///< glVertexPointer / glNormalPointer / glColorPointer + glDrawElements
 };
 
 /// GL_LIGHT0's parameters (glLightfv). position.w = 0: a directional light toward position.xyz; w = 1: a point light.
@@ -98,7 +98,7 @@ struct GlState {
   GlStencilFace stencil_back;   ///< GL_BACK's
   Vec3f color{1, 1, 1};         ///< glColor4f(color, alpha) when unlit and the mesh has no colors
   float alpha = 1;
-  bool blend = false;           ///< GL_BLEND with glBlendFunc(blend_src, blend_dst), glBlendEquation(blend_equation)
+  bool blend = false;  ///< GL_BLEND with glBlendFunc(blend_src, blend_dst), glBlendEquation(blend_equation)
   GlBlendFactor blend_src = GlBlendFactor::one, blend_dst = GlBlendFactor::zero;
   GlBlendEquation blend_equation = GlBlendEquation::add;
   Vec3f background{0, 0, 0};
@@ -171,6 +171,6 @@ class OsmesaContext {
 
 /// Convenience: one drawing in a fresh context. Throws tessera::Error when OSMesa fails.
 GlFrame render_osmesa(const TriMesh& mesh, int width, int height, const GlState& state,
-                      GlSubmit submit = GlSubmit::VertexArrays);
+                      GlSubmit submit = GlSubmit::vertex_arrays);
 
 }  // namespace tessera::reference

@@ -20,15 +20,15 @@ namespace tessera::cli {
 namespace {
 
 struct ConvertOptions {
-  ColorModel from = ColorModel::Rgb, to = ColorModel::Rgb;
+  ColorModel from = ColorModel::rgb, to = ColorModel::rgb;
   std::string values;  // empty: read stdin
-  HueUnit hue = HueUnit::Degrees;
+  HueUnit hue = HueUnit::degrees;
 };
 
 // Whether the model's components (but a hue, which wraps) all lie in [0, 1]: RGB, CMY(K), sRGB, HSV, HLS. YIQ's
 // chroma is signed and XYZ/xyY are unbounded, so they are not checked.
 bool unit_range(ColorModel model) {
-  return model != ColorModel::Yiq && model != ColorModel::Xyz && model != ColorModel::Xyy;
+  return model != ColorModel::yiq && model != ColorModel::xyz && model != ColorModel::xyy;
 }
 
 // Parses one row of component_count(model) comma-separated numbers, each in the model's range; `where` names it in the
@@ -97,7 +97,7 @@ void setup_color(CLI::App& color, CommonOptions& common) {
   add_choice(*convert_cmd, "--to", opt->to, model_names(), "Model of the output")->required();
   convert_cmd->add_option("--values", opt->values, "One color as comma-separated numbers (else stdin rows)");
   add_choice(*convert_cmd, "--hue", opt->hue,
-             {{"degrees", HueUnit::Degrees}, {"turns", HueUnit::Turns}, {"radians", HueUnit::Radians}},
+             {{"degrees", HueUnit::degrees}, {"turns", HueUnit::turns}, {"radians", HueUnit::radians}},
              "Unit of HSV/HLS hue in input and output");
   convert_cmd->footer(
       "Models: rgb (linear, [0,1]) cmy cmyk hsv hls yiq xyz xyy srgb. Hue in [0,360) degrees unless --hue.\n"

@@ -1,9 +1,9 @@
 #pragma once
 // What `tessera gallery` and `tessera demo` share: the --data option and the summary line's note on stand-ins.
-#include <string>
+#include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
+#include <string>
 
 #include "gallery.hpp"
 

@@ -33,9 +33,9 @@ Size2 picture_size(const std::string& text) {
   return size;
 }
 
-enum class SierpinskiShape { Carpet, Triangle };
-enum class KochShape { Snowflake, Curve };
-enum class TerrainMethod { Midpoint, Triangles, DiamondSquare };
+enum class SierpinskiShape { carpet, triangle };
+enum class KochShape { snowflake, curve };
+enum class TerrainMethod { midpoint, triangles, diamond_square };
 
 struct FractalOptions {
   std::string output, size;
@@ -43,16 +43,16 @@ struct FractalOptions {
   std::string center, c = "-0.8,0.156";
   double scale = 3;
   int iterations = 1000;
-  Palette palette = Palette::Classic;
-  SimdPath simd = SimdPath::Auto;
+  Palette palette = Palette::classic;
+  SimdPath simd = SimdPath::automatic;
   // the self-similar figures
   int depth = 0;
   double margin = 0, line_width = 1;
   bool dust = false;
-  SierpinskiShape sierpinski = SierpinskiShape::Carpet;
-  KochShape koch = KochShape::Snowflake;
+  SierpinskiShape sierpinski = SierpinskiShape::carpet;
+  KochShape koch = KochShape::snowflake;
   // terrain
-  TerrainMethod method = TerrainMethod::DiamondSquare;
+  TerrainMethod method = TerrainMethod::diamond_square;
   double roughness = 0.5, height_scale = 0.5;
   int seed = 1;
   // dimension
@@ -122,12 +122,14 @@ void add_escape_options(CLI::App& sub, FractalOptions& o, const char* center, do
   sub.add_option("--iterations", o.iterations, "Iteration cap")->check(CLI::Range(1, 100000000))->capture_default_str();
   add_choice(
       sub, "--palette", o.palette,
-      {{"classic", Palette::Classic}, {"fire", Palette::Fire}, {"ocean", Palette::Ocean}, {"gray", Palette::Gray}},
+      {{"classic", Palette::classic}, {"fire", Palette::fire}, {"ocean", Palette::ocean}, {"gray", Palette::gray}},
       "Color ramp of the escape times");
-  add_choice(
-      sub, "--simd", o.simd,
-      {{"auto", SimdPath::Auto}, {"scalar", SimdPath::Scalar}, {"avx2", SimdPath::Avx2}, {"avx512", SimdPath::Avx512}},
-      "Instruction set of the escape loop");
+  add_choice(sub, "--simd", o.simd,
+             {{"auto", SimdPath::automatic},
+              {"scalar", SimdPath::scalar},
+              {"avx2", SimdPath::avx2},
+              {"avx512", SimdPath::avx512}},
+             "Instruction set of the escape loop");
 }
 
 /// Colors escape times and writes the picture, timed; returns the picture's rows.
@@ -159,7 +161,7 @@ void setup_mandelbrot(CLI::App& fractal, CommonOptions& common) {
     print_all({{"area", stat_value(double(inside) * view.pixel_size() * view.pixel_size())},
                {"seconds", stat_value(seconds)},
                {"iterations", stat_value(double(iteration_count(image)))},
-               {"simd", std::string(simd_name(options.simd == SimdPath::Auto ? best_simd_path() : options.simd))}},
+               {"simd", std::string(simd_name(options.simd == SimdPath::automatic ? best_simd_path() : options.simd))}},
               picture, timer);
   });
 }
@@ -260,9 +262,9 @@ void setup_sierpinski(CLI::App& fractal, CommonOptions& common) {
   CLI::App* sub = add_figure(fractal, common, "sierpinski", "Sierpinski carpet (depth up to 7) or triangle (up to 12)",
                              *o, 5, 12, "729x729", 0);
   add_choice(*sub, "--shape", o->sierpinski,
-             {{"carpet", SierpinskiShape::Carpet}, {"triangle", SierpinskiShape::Triangle}}, "Which figure");
+             {{"carpet", SierpinskiShape::carpet}, {"triangle", SierpinskiShape::triangle}}, "Which figure");
   sub->callback([o, &common] {
-    if (o->sierpinski == SierpinskiShape::Carpet) {
+    if (o->sierpinski == SierpinskiShape::carpet) {
       check_depth(o->depth, 7, "the carpet");
       const auto rects = sierpinski_carpet(o->depth);
       finish_figure(
@@ -280,11 +282,11 @@ void setup_sierpinski(CLI::App& fractal, CommonOptions& common) {
 void setup_koch(CLI::App& fractal, CommonOptions& common) {
   auto o = std::make_shared<FractalOptions>();
   CLI::App* sub = add_figure(fractal, common, "koch", "von Koch snowflake or curve", *o, 4, 10, "600x600", 10);
-  add_choice(*sub, "--shape", o->koch, {{"snowflake", KochShape::Snowflake}, {"curve", KochShape::Curve}},
+  add_choice(*sub, "--shape", o->koch, {{"snowflake", KochShape::snowflake}, {"curve", KochShape::curve}},
              "Which figure");
   add_line_width(*sub, *o);
   sub->callback([o, &common] {
-    const bool closed = o->koch == KochShape::Snowflake;
+    const bool closed = o->koch == KochShape::snowflake;
     const std::vector<Vec2> points = closed ? koch_snowflake(o->depth) : koch_curve(o->depth);
     const Size2 size = picture_size(o->size);
     DrawStyle style;
@@ -329,9 +331,9 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
   o->depth = 7;
   sub->add_option("-o,--output", o->output, "Output: a mesh (.obj .ply .off .stl) or a picture (.png ...)")->required();
   add_choice(*sub, "--method", o->method,
-             {{"midpoint", TerrainMethod::Midpoint},
-              {"triangles", TerrainMethod::Triangles},
-              {"diamond-square", TerrainMethod::DiamondSquare}},
+             {{"midpoint", TerrainMethod::midpoint},
+              {"triangles", TerrainMethod::triangles},
+              {"diamond-square", TerrainMethod::diamond_square}},
              "midpoint (1D profile, a picture), triangles (a mesh) or diamond-square (a mesh or a height picture)");
   sub->add_option("--depth", o->depth,
                   fmt::format("Subdivision levels (midpoint up to {}, triangles {}, diamond-square {})",
@@ -347,14 +349,14 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
   add_srgb_option(*sub, common);
   sub->callback([o, &common] {
     const bool mesh_out = is_mesh_path(o->output);
-    if (o->method == TerrainMethod::Midpoint && mesh_out)
+    if (o->method == TerrainMethod::midpoint && mesh_out)
       throw CLI::ValidationError("--method", "the 1D midpoint profile is a picture: give -o a .png");
-    if (o->method == TerrainMethod::Triangles && !mesh_out)
+    if (o->method == TerrainMethod::triangles && !mesh_out)
       throw CLI::ValidationError("--method", "the triangle mountain is a mesh: give -o a .obj, .ply, .off or .stl");
-    if (o->method == TerrainMethod::Midpoint) check_depth(o->depth, kMaxTerrainDepth1D, "the midpoint profile");
-    if (o->method == TerrainMethod::Triangles)
+    if (o->method == TerrainMethod::midpoint) check_depth(o->depth, kMaxTerrainDepth1D, "the midpoint profile");
+    if (o->method == TerrainMethod::triangles)
       check_depth(o->depth, kMaxTerrainDepthTriangles, "the triangle mountain");
-    if (o->method == TerrainMethod::DiamondSquare) check_depth(o->depth, kMaxTerrainDepthGrid, "diamond-square");
+    if (o->method == TerrainMethod::diamond_square) check_depth(o->depth, kMaxTerrainDepthGrid, "diamond-square");
     TerrainOptions options;
     options.depth = o->depth;
     options.roughness = o->roughness;
@@ -365,7 +367,7 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       timer.time("write_s", [&] { write_mesh(o->output, mesh); });
       rows = {{"vertices", stat_value(double(mesh.vertex_count()))}, {"faces", stat_value(double(mesh.face_count()))}};
     };
-    if (o->method == TerrainMethod::Midpoint) {
+    if (o->method == TerrainMethod::midpoint) {
       const auto heights = timer.time("compute_s", [&] { return midpoint_displacement_1d(options); });
       // The profile as a filled mountain: the height polyline closed along the bottom.
       std::vector<Vec2> outline;
@@ -380,7 +382,7 @@ void setup_terrain(CLI::App& fractal, CommonOptions& common) {
       });
       output = write_picture(o->output, picture, common, timer);
       rows = {{"vertices", stat_value(double(heights.size()))}};
-    } else if (o->method == TerrainMethod::Triangles) {
+    } else if (o->method == TerrainMethod::triangles) {
       save_mesh(timer.time("compute_s", [&] { return triangle_mountain(options); }));
     } else {
       const Image<float> heights = timer.time("compute_s", [&] { return diamond_square(options); });

@@ -1,9 +1,10 @@
 // tessera gallery -o DIR [--only PREFIX...] [--data DIR]: every example and algorithm as a picture, with an index.html.
+#include "gallery.hpp"
+
 #include <fmt/format.h>
 
 #include "command.hpp"
 #include "data_option.hpp"
-#include "gallery.hpp"
 
 namespace tessera::cli {
 

@@ -121,9 +121,9 @@ void setup_convert(CLI::App& mesh, CommonOptions& common) {
 void setup_normals(CLI::App& mesh, CommonOptions& common) {
   CLI::App* cmd = mesh.add_subcommand("normals", "Compute per-vertex normals (area- or angle-weighted face normals)");
   auto io = std::make_shared<InOut>();
-  auto weighting = std::make_shared<NormalWeighting>(NormalWeighting::Area);
+  auto weighting = std::make_shared<NormalWeighting>(NormalWeighting::area);
   add_in_out(*cmd, *io);
-  add_choice(*cmd, "--weighting", *weighting, {{"area", NormalWeighting::Area}, {"angle", NormalWeighting::Angle}},
+  add_choice(*cmd, "--weighting", *weighting, {{"area", NormalWeighting::area}, {"angle", NormalWeighting::angle}},
              "Face normal weights");
   cmd->footer("Stats (--stats): vertices faces read_s compute_s write_s total_s.");
   cmd->callback([io, weighting, &common] {
@@ -137,9 +137,9 @@ void setup_smooth(CLI::App& mesh, CommonOptions& common) {
   auto options = std::make_shared<SmoothingOptions>();
   add_in_out(*cmd, *io);
   add_choice(*cmd, "--method", options->method,
-             {{"laplacian", SmoothingMethod::Laplacian},
-              {"cotangent", SmoothingMethod::Cotangent},
-              {"taubin", SmoothingMethod::Taubin}},
+             {{"laplacian", SmoothingMethod::laplacian},
+              {"cotangent", SmoothingMethod::cotangent},
+              {"taubin", SmoothingMethod::taubin}},
              "Smoothing method")
       ->required();
   cmd->add_option("--iterations", options->iterations, "Smoothing steps (Taubin: lambda/mu pairs)")
@@ -150,14 +150,12 @@ void setup_smooth(CLI::App& mesh, CommonOptions& common) {
   cmd->add_flag("!--move-boundary", options->fix_boundary, "Smooth boundary vertices too (default: they stay)");
   cmd->footer("Stats (--stats): vertices faces iterations read_s compute_s write_s total_s.");
   cmd->callback([io, options, &common] {
-    run_in_out(
-        *io, common,
-        [&](PolyMesh& m, StatRows& extra) {
-          Progress progress("smooth", options->iterations);
-          smooth(m, *options, [&](int) { progress.advance(); });
-          progress.done();
-          extra.emplace_back("iterations", stat_value(options->iterations));
-        });
+    run_in_out(*io, common, [&](PolyMesh& m, StatRows& extra) {
+      Progress progress("smooth", options->iterations);
+      smooth(m, *options, [&](int) { progress.advance(); });
+      progress.done();
+      extra.emplace_back("iterations", stat_value(options->iterations));
+    });
   });
 }
 

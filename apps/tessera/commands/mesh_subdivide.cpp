@@ -1,13 +1,14 @@
-// tessera mesh subdivide IN -o OUT --scheme midpoint|loop|catmull-clark --levels N [--boundary edge-only|edge-and-corner]
+// tessera mesh subdivide IN -o OUT --scheme midpoint|loop|catmull-clark --levels N [--boundary
+// edge-only|edge-and-corner]
 //                        [--crease-method uniform|chaikin] [--loop-beta notes|loop] [--limit] [--ascii] [--double]
 //                        [--stats]
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "command.hpp"
 #include "commands/mesh_output.hpp"
@@ -43,10 +44,10 @@ void setup_mesh_subdivide(CLI::App& mesh, CommonOptions& common) {
               {"catmull-clark", SubdivisionScheme::catmull_clark}},
              "Subdivision scheme");
   cmd->add_option("--levels", args->options.levels, "Refinement steps (default 1)")->check(CLI::Range(0, 12));
-  add_choice(*cmd, "--boundary", args->options.boundary,
-             {{"edge-only", BoundaryInterpolation::edge_only},
-              {"edge-and-corner", BoundaryInterpolation::edge_and_corner}},
-             "edge-only: boundary vertices follow the crease rule; edge-and-corner: vertices with one face stay put");
+  add_choice(
+      *cmd, "--boundary", args->options.boundary,
+      {{"edge-only", BoundaryInterpolation::edge_only}, {"edge-and-corner", BoundaryInterpolation::edge_and_corner}},
+      "edge-only: boundary vertices follow the crease rule; edge-and-corner: vertices with one face stay put");
   add_choice(*cmd, "--crease-method", args->options.crease_method,
              {{"uniform", CreaseMethod::uniform}, {"chaikin", CreaseMethod::chaikin}},
              "How semi-sharp creases decay: uniform (s - 1 per level) or chaikin");

@@ -24,7 +24,7 @@ struct PatchOptions {
   MeshOutput output;
   int tess = 8;
   double tolerance = 0;
-  PatchOrientation orientation = PatchOrientation::Outward;
+  PatchOrientation orientation = PatchOrientation::outward;
   bool no_weld = false;
 };
 
@@ -72,9 +72,9 @@ void setup_patch(CLI::App& patch, CommonOptions& common) {
                   "Adaptive: per patch the fewest steps (at most --tess) keeping the mesh within this distance")
       ->check(non_negative());
   add_choice(patch, "--orient", opt->orientation,
-             {{"outward", PatchOrientation::Outward},
-              {"given", PatchOrientation::AsGiven},
-              {"flip", PatchOrientation::Flipped}},
+             {{"outward", PatchOrientation::outward},
+              {"given", PatchOrientation::as_given},
+              {"flip", PatchOrientation::flipped}},
              "Which side the triangles and normals face: out of the model (outward: positive signed volume), du x dv "
              "as the data is wound (given), or reversed (flip)");
   patch.add_flag("--no-weld", opt->no_weld,

@@ -1,9 +1,9 @@
 // tessera volume info|slice|contour|isosurface|render: volume data from raw/NRRD/MetaImage files or procedural names.
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
 #include <optional>
-
-#include <fmt/format.h>
 
 #include "camera_options.hpp"
 #include "command.hpp"
@@ -25,22 +25,25 @@ namespace {
 /// The volume argument and the raw layout options every subcommand takes.
 struct VolumeInput {
   std::string path, dims, spacing;
-  VoxelType dtype = VoxelType::UInt8;
-  Endian endian = Endian::Little;
+  VoxelType dtype = VoxelType::uint8;
+  Endian endian = Endian::little;
   long long header_skip = 0;
   std::vector<const CLI::Option*> raw_options;  ///< the raw layout options, to refuse them where they mean nothing
 
   void add(CLI::App& app) {
-    app.add_option("volume", path, "Volume: FILE.nrrd|.nhdr|.mhd, a raw file with --dims, or sphere:N, torus:N, gyroid:N, "
-                                   "metaballs:N, noise:N[:SEED]")
+    app.add_option("volume", path,
+                   "Volume: FILE.nrrd|.nhdr|.mhd, a raw file with --dims, or sphere:N, torus:N, gyroid:N, "
+                   "metaballs:N, noise:N[:SEED]")
         ->required();
     raw_options = {
         app.add_option("--dims", dims, "Raw voxels along x,y,z")->check(numbers_format(3)),
         add_choice(app, "--dtype", dtype,
-                   {{"uint8", VoxelType::UInt8}, {"uint16", VoxelType::UInt16}, {"int16", VoxelType::Int16},
-                    {"float32", VoxelType::Float32}},
+                   {{"uint8", VoxelType::uint8},
+                    {"uint16", VoxelType::uint16},
+                    {"int16", VoxelType::int16},
+                    {"float32", VoxelType::float32}},
                    "Raw voxel type"),
-        add_choice(app, "--endian", endian, {{"little", Endian::Little}, {"big", Endian::Big}}, "Raw byte order"),
+        add_choice(app, "--endian", endian, {{"little", Endian::little}, {"big", Endian::big}}, "Raw byte order"),
         app.add_option("--spacing", spacing, "Raw voxel spacing sx,sy,sz")->check(numbers_format(3)),
         app.add_option("--header-skip", header_skip, "Raw bytes before the first voxel")->check(non_negative())};
   }
@@ -52,8 +55,8 @@ struct VolumeInput {
         (!std::filesystem::exists(path) && path.find(':') != std::string::npos))
       for (const CLI::Option* o : raw_options)
         if (o->count() > 0)
-          throw InvalidInput(fmt::format("{}: {} describes raw files only; this volume brings its own layout", path,
-                                         o->get_name()));
+          throw InvalidInput(
+              fmt::format("{}: {} describes raw files only; this volume brings its own layout", path, o->get_name()));
     RawLayout layout;
     if (!dims.empty()) {
       const auto d = parse_doubles(dims, 3, "--dims");
@@ -87,7 +90,8 @@ StatRows image_rows(int width, int height) { return {{"width", stat_value(width)
 
 void setup_info(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand(
-      "info", "Dimensions, voxel type, spacing, origin, value range, and Otsu's threshold between background and object");
+      "info",
+      "Dimensions, voxel type, spacing, origin, value range, and Otsu's threshold between background and object");
   auto in = std::make_shared<VolumeInput>();
   in->add(*cmd);
   add_common_options(*cmd, common);
@@ -115,16 +119,17 @@ void warn_constant(double value, const char* consequence) {
 ImageRGB gray_image(const DepthImage& s, double lo, double hi) {
   ImageRGB img(s.width(), s.height());
   for (int y = 0; y < s.height(); ++y)
-    for (int x = 0; x < s.width(); ++x) img(x, y) = Vec3f(float(std::clamp((s(x, y) - lo) / std::max(hi - lo, 1e-12), 0.0, 1.0)));
+    for (int x = 0; x < s.width(); ++x)
+      img(x, y) = Vec3f(float(std::clamp((s(x, y) - lo) / std::max(hi - lo, 1e-12), 0.0, 1.0)));
   return img;
 }
 
 struct SliceArgs {
-  Axis axis = Axis::Z;
+  Axis axis = Axis::z;
   std::optional<int> index;
   std::string output;
   void add(CLI::App& cmd) {
-    add_choice(cmd, "--axis", axis, {{"x", Axis::X}, {"y", Axis::Y}, {"z", Axis::Z}}, "Slice axis");
+    add_choice(cmd, "--axis", axis, {{"x", Axis::x}, {"y", Axis::y}, {"z", Axis::z}}, "Slice axis");
     cmd.add_option("--slice", index, "Slice index along the axis (default: the middle one)");
     cmd.add_option("-o,--output", output, "Output file")->required();
   }
@@ -133,14 +138,15 @@ struct SliceArgs {
   /// copy a writer makes (4) and 4 to spare.
   DepthImage take(const Volume<float>& v) const {
     const glm::ivec3 d = v.dims();
-    const int w = axis == Axis::X ? d.y : d.x, h = axis == Axis::Z ? d.y : d.z;
+    const int w = axis == Axis::x ? d.y : d.x, h = axis == Axis::z ? d.y : d.z;
     MemoryBudget::check(saturating_product({uint64_t(w), uint64_t(h), 24}), fmt::format("a {}x{} slice", w, h));
     return slice(v, axis, index ? *index : d[int(axis)] / 2);
   }
 };
 
 void setup_slice(CLI::App& volume, CommonOptions& common) {
-  auto* cmd = volume.add_subcommand("slice", "A plane of voxels as a grayscale image (min..max mapped to black..white)");
+  auto* cmd =
+      volume.add_subcommand("slice", "A plane of voxels as a grayscale image (min..max mapped to black..white)");
   auto in = std::make_shared<VolumeInput>();
   auto args = std::make_shared<SliceArgs>();
   in->add(*cmd);
@@ -256,7 +262,8 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
     const PolyMesh mesh = timer.time("compute_s", [&] { return marching_cubes(v, o); });
     timer.time("write_s", [&] { write_mesh(*output, mesh); });
     if (common.stats) {
-      const std::string triangles = stat_value(double(mesh.face_count())), vertices = stat_value(double(mesh.vertex_count()));
+      const std::string triangles = stat_value(double(mesh.face_count())),
+                        vertices = stat_value(double(mesh.vertex_count()));
       // tris, verts and seconds (the extraction's time, = compute_s) are the deprecated spellings scripts rely on.
       print_volume_stats({{"triangles", triangles},
                           {"vertices", vertices},
@@ -305,7 +312,7 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   auto a = std::make_shared<Args>();
   in->add(*cmd);
   cmd->add_option("-o,--output", a->output, "Output image")->required();
-  a->camera.fovy = 30;         // a volume's box fills a narrower view better
+  a->camera.fovy = 30;            // a volume's box fills a narrower view better
   a->camera.clip_planes = false;  // rays run through the whole box: --near/--far would change nothing
   a->camera.add(*cmd, "256x256");
   auto* tf = cmd->add_option("--tf", a->tf, "Transfer function file (.json or .csv)");
@@ -343,9 +350,11 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
         const ValueProfile p = profile_values(v);
         o.transfer = a->preset.empty() ? TransferFunction::automatic(p) : TransferFunction::preset(a->preset, p);
         if (!common.quiet)
-          fmt::print(stderr, "tessera: note: {} over values {:.4g}..{:.4g} (Otsu's threshold {:.4g}, top of the object {:.4g})\n",
-                     a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
-                     o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
+          fmt::print(
+              stderr,
+              "tessera: note: {} over values {:.4g}..{:.4g} (Otsu's threshold {:.4g}, top of the object {:.4g})\n",
+              a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
+              o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
       }
       Progress progress("render", int64_t(o.width) * o.height);
       o.progress = [&](int64_t pixels) { progress.advance(pixels); };

@@ -21,10 +21,10 @@ using bvh_build::leaf_tests;
 using bvh_build::PrimRef;
 
 Bvh::Bvh(std::span<const AABB> prim_bounds, const BvhSettings& settings)
-    : Bvh(prim_bounds.size(), [prim_bounds](size_t i) { return prim_bounds[i]; }, settings) {}
+    : Bvh(
+          prim_bounds.size(), [prim_bounds](size_t i) { return prim_bounds[i]; }, settings) {}
 
-Bvh::Bvh(size_t count, const std::function<AABB(size_t)>& prim_box, const BvhSettings& settings)
-    : settings_(settings) {
+Bvh::Bvh(size_t count, const std::function<AABB(size_t)>& prim_box, const BvhSettings& settings) : settings_(settings) {
   if (!(settings.max_leaf_size >= 1 && settings.max_leaf_size <= kMaxLeafCount))
     throw InvalidInput("BvhSettings: max_leaf_size must be in [1, 65535], got " +
                        std::to_string(settings.max_leaf_size));
@@ -49,8 +49,8 @@ Bvh::Bvh(size_t count, const std::function<AABB(size_t)>& prim_box, const BvhSet
       refs[size_t(i)] = PrimRef(b, int(i));
       if (b.empty()) {
         any_empty = true;
-      } else if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) ||
-                 !std::isfinite(b.hi.x) || !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z)) {
+      } else if (!std::isfinite(b.lo.x) || !std::isfinite(b.lo.y) || !std::isfinite(b.lo.z) || !std::isfinite(b.hi.x) ||
+                 !std::isfinite(b.hi.y) || !std::isfinite(b.hi.z)) {
         size_t seen = first_bad.load();
         while (size_t(i) < seen && !first_bad.compare_exchange_weak(seen, size_t(i))) {
         }

@@ -381,7 +381,7 @@ class SahBuilder {
     const v4f k = splat(s_.intersection_cost * (1.0f / rb.box.area())), trav = splat(s_.traversal_cost);
     const v4i round_up = v4i{} + (s_.leaf_block - 1);
     const int block_shift = std::countr_zero(unsigned(s_.leaf_block));
-    auto side_cost = [&](const Box4 (&acc)[3], v4i count) {  // area times leaf_tests(count), per axis
+    auto side_cost = [&](const Box4(&acc)[3], v4i count) {  // area times leaf_tests(count), per axis
       return areas(acc) * __builtin_convertvector((count + round_up) >> block_shift, v4f);
     };
     v4f right_cost[kMaxBins];

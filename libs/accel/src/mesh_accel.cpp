@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
+#include "mesh_traversal.hpp"
+#include "mesh_tree.hpp"
 #include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
-#include "mesh_traversal.hpp"
-#include "mesh_tree.hpp"
 
 namespace tessera {
 
@@ -267,9 +267,9 @@ class WideTreeBuilder {
   std::span<const int> order_;
   std::span<const uint32_t> indices_;
   std::span<const Vec3f> p_;
-  int max_leaf_;  // triangles a merged leaf may hold
-  RawVector<float> cost_;        // by binary node: cost_tables()
-  RawVector<int> leaf_count_;    // by binary node: its triangles, up to max_leaf_ + 1
+  int max_leaf_;               // triangles a merged leaf may hold
+  RawVector<float> cost_;      // by binary node: cost_tables()
+  RawVector<int> leaf_count_;  // by binary node: its triangles, up to max_leaf_ + 1
   // Subtrees of more binary nodes than this do their children in parallel (about 16 tasks per thread, as the binary
   // build's).
   int64_t parallel_nodes_;

@@ -2,13 +2,13 @@
 // invariants of the flattened tree; determinism across thread counts.
 #include "tessera/accel/bvh.hpp"
 
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <numeric>
 #include <optional>
 #include <variant>
-
-#include <gtest/gtest.h>
-#include <tbb/task_arena.h>
 
 #include "tessera/accel/grid.hpp"
 #include "tessera/accel/shapes.hpp"
@@ -33,7 +33,8 @@ std::vector<Shape> random_scene(uint64_t seed, int count) {
     if (i % 3 == 0) {
       shapes.emplace_back(Sphere{c, 0.5f * size});
     } else {
-      shapes.emplace_back(Triangle{c + random_point(rng, size), c + random_point(rng, size), c + random_point(rng, size)});
+      shapes.emplace_back(
+          Triangle{c + random_point(rng, size), c + random_point(rng, size), c + random_point(rng, size)});
     }
   }
   return shapes;
@@ -181,7 +182,8 @@ TEST(Grid, FlatSceneAndRayStartingInside) {
   // A zero direction inside the grid visits one cell and ends (no endless walk).
   Ray still{Vec3f(0, 0, 0), Vec3f(0.0f)};
   TraversalStats stats;
-  grid.intersect(still, [](int, Ray&) { return false; }, &stats);
+  grid.intersect(
+      still, [](int, Ray&) { return false; }, &stats);
   EXPECT_EQ(stats.nodes, 1);
 }
 

@@ -2,7 +2,8 @@
 // on >= 99.99% of rays and t to 1e-4 relative, for primary and random rays, on three meshes including one of >= 1M
 // triangles. Also the smooth-normal helper and bad input.
 #include "tessera/accel/mesh_accel.hpp"
-#include "tessera/accel/ray_workloads.hpp"
+
+#include <gtest/gtest.h>
 
 #include <array>
 #include <bit>
@@ -13,9 +14,8 @@
 #include <span>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "embree_reference.hpp"
+#include "tessera/accel/ray_workloads.hpp"
 #include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -440,9 +440,7 @@ TEST(MeshAccel, BadMeshesThrow) {
   EXPECT_FALSE(empty.intersect(r, h));
 }
 
-TEST(MeshAccel, AgreesWithEmbreeOnASphere) {
-  expect_agrees_with_embree(sphere_mesh(200, 100), "sphere", 2);
-}
+TEST(MeshAccel, AgreesWithEmbreeOnASphere) { expect_agrees_with_embree(sphere_mesh(200, 100), "sphere", 2); }
 
 TEST(MeshAccel, AgreesWithEmbreeOnATorus) {
   expect_agrees_with_embree(to_tri_mesh(make_torus(1.0, 0.35, 300, 150)), "torus", 3);

@@ -3,11 +3,11 @@
 // of a sphere, the three point-in-polygon tests against each other, and instances against transformed shapes.
 #include "tessera/accel/shapes.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <functional>
-
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/rng.hpp"
@@ -76,9 +76,9 @@ void check_solid(const Solid& s, uint64_t seed, int rays = 4000) {
 TEST(Shapes, SphereSurfaceNormalsAndFirstCrossing) {
   const Vec3f c(1, -2, 0.5f);
   const float r = 1.5f;
-  check_solid({Sphere{c, r}, [=](const Vec3f& p) { return glm::length(p - c) - r; },
-               [=](const Vec3f& p) { return p - c; }, r},
-              1);
+  check_solid(
+      {Sphere{c, r}, [=](const Vec3f& p) { return glm::length(p - c) - r; }, [=](const Vec3f& p) { return p - c; }, r},
+      1);
 }
 
 TEST(Shapes, SphereMatchesDoubleQuadraticFromInsideAndFar) {
@@ -356,7 +356,8 @@ TEST(Shapes, PolygonInSpaceMatchesItsTriangles) {
     ray.dir = Vec3f(1, 2, 3) + 1.2f * random_unit(rng) - ray.origin;
     Hit tri_hit;
     bool any = false;
-    for (size_t k = 1; k + 1 < verts.size(); ++k) any |= intersect(Triangle{verts[0], verts[k], verts[k + 1]}, ray, tri_hit);
+    for (size_t k = 1; k + 1 < verts.size(); ++k)
+      any |= intersect(Triangle{verts[0], verts[k], verts[k + 1]}, ray, tri_hit);
     for (PointInPolygon test : {PointInPolygon::crossing, PointInPolygon::winding, PointInPolygon::half_plane}) {
       Hit hit;
       const bool poly = intersect(Polygon{verts, test}, ray, hit);

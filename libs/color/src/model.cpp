@@ -98,20 +98,20 @@ void convert_many(ColorModel from, ColorModel to, std::span<const double> in, st
 
 double full_turn(HueUnit unit) {
   switch (unit) {
-    case HueUnit::Degrees:
+    case HueUnit::degrees:
       return 360.0;
-    case HueUnit::Turns:
+    case HueUnit::turns:
       return 1.0;
-    case HueUnit::Radians:
+    case HueUnit::radians:
       return 2.0 * kPi;
   }
   throw InternalError("full_turn: unknown hue unit");
 }
 
 HueUnit parse_hue_unit(std::string_view name) {
-  if (name == "degrees") return HueUnit::Degrees;
-  if (name == "turns") return HueUnit::Turns;
-  if (name == "radians") return HueUnit::Radians;
+  if (name == "degrees") return HueUnit::degrees;
+  if (name == "turns") return HueUnit::turns;
+  if (name == "radians") return HueUnit::radians;
   throw InvalidInput(fmt::format("unknown hue unit '{}' (expected degrees, turns or radians)", printable(name)));
 }
 

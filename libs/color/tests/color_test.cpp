@@ -49,8 +49,8 @@ TEST(ColorRoundTrip, EveryModelThroughRgb) {
   const auto colors = test_colors();
   for (ColorModel model : kColorModels) {
     for (const Vec3& rgb : colors) {
-      const Vec4 there = convert(ColorModel::Rgb, model, Vec4(rgb, 0.0));
-      const Vec4 back = convert(model, ColorModel::Rgb, there);
+      const Vec4 there = convert(ColorModel::rgb, model, Vec4(rgb, 0.0));
+      const Vec4 back = convert(model, ColorModel::rgb, there);
       expect_near3(Vec3(back), rgb, 1e-12, std::string(model_name(model)));
       if (HasFailure()) return;
     }
@@ -64,9 +64,9 @@ TEST(ColorRoundTrip, EveryPairOfModels) {
     const Vec3 rgb(u(rng), u(rng), u(rng));
     for (ColorModel a : kColorModels)
       for (ColorModel b : kColorModels) {
-        const Vec4 in_a = convert(ColorModel::Rgb, a, Vec4(rgb, 0.0));
+        const Vec4 in_a = convert(ColorModel::rgb, a, Vec4(rgb, 0.0));
         const Vec4 back = convert(b, a, convert(a, b, in_a));
-        expect_near3(Vec3(convert(a, ColorModel::Rgb, back)), rgb, 1e-12,
+        expect_near3(Vec3(convert(a, ColorModel::rgb, back)), rgb, 1e-12,
                      fmt::format("{} -> {} -> {}", model_name(a), model_name(b), model_name(a)));
       }
     if (HasFailure()) return;
@@ -293,11 +293,11 @@ TEST(ColorChromaticity, VisibleRegionAndGamut) {
 
 TEST(ColorModels, NamesCountsAndErrors) {
   for (ColorModel m : kColorModels) EXPECT_EQ(parse_color_model(model_name(m)), m);
-  EXPECT_EQ(model_name(ColorModel::Xyy), "xyy");
-  EXPECT_EQ(component_count(ColorModel::Cmyk), 4);
-  EXPECT_EQ(component_count(ColorModel::Hls), 3);
-  EXPECT_EQ(hue_index(ColorModel::Hsv), 0);
-  EXPECT_EQ(hue_index(ColorModel::Yiq), -1);
+  EXPECT_EQ(model_name(ColorModel::xyy), "xyy");
+  EXPECT_EQ(component_count(ColorModel::cmyk), 4);
+  EXPECT_EQ(component_count(ColorModel::hls), 3);
+  EXPECT_EQ(hue_index(ColorModel::hsv), 0);
+  EXPECT_EQ(hue_index(ColorModel::yiq), -1);
   try {
     parse_color_model("lab");
     FAIL() << "no exception";
@@ -313,23 +313,23 @@ TEST(ColorModels, NamesCountsAndErrors) {
     } catch (const InvalidInput& e) {
       EXPECT_NE(std::string(e.what()).find("'\\x1b[2Jlab'"), std::string::npos) << e.what();
     }
-  const std::vector<double> cmyk = convert(ColorModel::Rgb, ColorModel::Cmyk, std::vector<double>{1.0, 0.5, 0.0});
+  const std::vector<double> cmyk = convert(ColorModel::rgb, ColorModel::cmyk, std::vector<double>{1.0, 0.5, 0.0});
   ASSERT_EQ(cmyk.size(), 4u);
   EXPECT_EQ(cmyk, (std::vector<double>{0.0, 0.5, 1.0, 0.0}));
-  EXPECT_THROW(convert(ColorModel::Cmyk, ColorModel::Rgb, std::vector<double>{1.0, 0.5, 0.0}), InvalidInput);
+  EXPECT_THROW(convert(ColorModel::cmyk, ColorModel::rgb, std::vector<double>{1.0, 0.5, 0.0}), InvalidInput);
   std::vector<double> out(7);
-  EXPECT_THROW(convert_many(ColorModel::Rgb, ColorModel::Hsv, std::vector<double>(6), out), InvalidInput);
-  EXPECT_EQ(full_turn(HueUnit::Degrees), 360.0);
-  EXPECT_EQ(parse_hue_unit("radians"), HueUnit::Radians);
+  EXPECT_THROW(convert_many(ColorModel::rgb, ColorModel::hsv, std::vector<double>(6), out), InvalidInput);
+  EXPECT_EQ(full_turn(HueUnit::degrees), 360.0);
+  EXPECT_EQ(parse_hue_unit("radians"), HueUnit::radians);
   EXPECT_THROW(parse_hue_unit("grad"), InvalidInput);
 }
 
 TEST(ColorModels, ConvertManyMatchesOneByOne) {
   const std::vector<double> in = {0.1, 0.2, 0.3, 0.9, 0.5, 0.0, 1.0, 1.0, 1.0};
   std::vector<double> out(12);
-  convert_many(ColorModel::Rgb, ColorModel::Cmyk, in, out);
+  convert_many(ColorModel::rgb, ColorModel::cmyk, in, out);
   for (size_t i = 0; i < 3; ++i) {
-    const auto one = convert(ColorModel::Rgb, ColorModel::Cmyk, std::span(in).subspan(3 * i, 3));
+    const auto one = convert(ColorModel::rgb, ColorModel::cmyk, std::span(in).subspan(3 * i, 3));
     for (size_t c = 0; c < 4; ++c) EXPECT_EQ(out[4 * i + c], one[c]);
   }
 }

@@ -1,5 +1,11 @@
 #include "tessera/core/atomic_file.hpp"
 
+#include <fcntl.h>
+#include <pthread.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -8,12 +14,6 @@
 #include <mutex>
 #include <streambuf>
 #include <vector>
-
-#include <fcntl.h>
-#include <pthread.h>
-#include <sys/random.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "tessera/core/error.hpp"
 
@@ -129,7 +129,8 @@ class FdBuffer : public std::streambuf {
     while (size > 0 && error_ == 0) {
       const ssize_t n = ::write(fd_, data, size);
       if (n < 0 && errno == EINTR) continue;
-      if (n < 0) error_ = errno;
+      if (n < 0)
+        error_ = errno;
       else {
         data += n;
         size -= size_t(n);

@@ -1,11 +1,11 @@
 #include "tessera/core/parallel.hpp"
 
-#include <algorithm>
-
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+
+#include <algorithm>
 
 namespace tessera {
 
@@ -21,9 +21,7 @@ ThreadLimit::ThreadLimit(int threads) : impl_(std::make_unique<Impl>()) {
 
 ThreadLimit::~ThreadLimit() = default;
 
-int thread_count() {
-  return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
-}
+int thread_count() { return int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)); }
 
 void parallel_for(int64_t first, int64_t last, int64_t grain, const std::function<void(int64_t, int64_t)>& body) {
   if (last <= first) return;

@@ -1,22 +1,21 @@
 #include "tessera/core/progress.hpp"
 
-#include <cstdio>
-
+#include <fmt/format.h>
 #include <unistd.h>
 
-#include <fmt/format.h>
+#include <cstdio>
 
 namespace tessera {
 namespace {
-std::atomic<Progress::Mode> g_mode{Progress::Mode::Auto};
+std::atomic<Progress::Mode> g_mode{Progress::Mode::automatic};
 
 Progress::Mode resolve(Progress::Mode mode) {
-  if (mode != Progress::Mode::Auto) return mode;
-  return ::isatty(STDERR_FILENO) ? Progress::Mode::Bar : Progress::Mode::None;
+  if (mode != Progress::Mode::automatic) return mode;
+  return ::isatty(STDERR_FILENO) ? Progress::Mode::bar : Progress::Mode::none;
 }
 }  // namespace
 
-void Progress::set_quiet(bool quiet) { g_mode = quiet ? Mode::None : Mode::Auto; }
+void Progress::set_quiet(bool quiet) { g_mode = quiet ? Mode::none : Mode::automatic; }
 
 void Progress::set_mode(Mode mode) { g_mode = mode; }
 
@@ -25,7 +24,7 @@ Progress::Progress(std::string label, int64_t total)
       total_(total > 0 ? total : 1),
       mode_(resolve(g_mode)),
       start_(std::chrono::steady_clock::now()) {
-  if (mode_ == Mode::Plain) {
+  if (mode_ == Mode::plain) {
     fmt::print(stderr, "{}: started\n", label_);
     std::fflush(stderr);
   }
@@ -35,8 +34,8 @@ Progress::~Progress() { done(); }
 
 void Progress::advance(int64_t n) {
   const int64_t count = count_.fetch_add(n) + n;
-  if (mode_ == Mode::Plain) return print_step(count);
-  if (mode_ != Mode::Bar) return;
+  if (mode_ == Mode::plain) return print_step(count);
+  if (mode_ != Mode::bar) return;
   const auto now_ns =
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_).count();
   int64_t last = last_draw_ns_.load();
@@ -76,9 +75,9 @@ void Progress::done() {
   std::lock_guard lock(draw_mutex_);
   if (finished_) return;
   finished_ = true;
-  if (mode_ == Mode::Bar) {
+  if (mode_ == Mode::bar) {
     fmt::print(stderr, "\r\033[K");
-  } else if (mode_ == Mode::Plain) {
+  } else if (mode_ == Mode::plain) {
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     fmt::print(stderr, "{}: done in {:.2f} s\n", label_, elapsed);
   }

@@ -1,5 +1,6 @@
 #include "tessera/core/atomic_file.hpp"
 
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -7,8 +8,6 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 
@@ -37,10 +36,11 @@ TEST_F(AtomicFileTest, WritesAndRenames) {
 
 TEST_F(AtomicFileTest, FailureLeavesNoFileAndKeepsOldOne) {
   write_file_atomic(dir_ / "a.txt", "old");
-  EXPECT_THROW(write_file_atomic(dir_ / "a.txt", [](std::ostream& out) {
-                 out << "partial";
-                 throw InvalidInput("boom");
-               }),
+  EXPECT_THROW(write_file_atomic(dir_ / "a.txt",
+                                 [](std::ostream& out) {
+                                   out << "partial";
+                                   throw InvalidInput("boom");
+                                 }),
                InvalidInput);
   EXPECT_EQ(read_file(dir_ / "a.txt"), "old");
   EXPECT_EQ(file_count(), 1u);

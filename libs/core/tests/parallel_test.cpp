@@ -1,9 +1,9 @@
 #include "tessera/core/parallel.hpp"
 
+#include <gtest/gtest.h>
+
 #include <atomic>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace tessera {
 namespace {

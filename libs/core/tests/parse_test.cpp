@@ -41,8 +41,8 @@ TEST(Parse, PrintableEscapesControlBytesAndTruncates) {
   EXPECT_EQ(printable("a\nb\tc\r\\"), "a\\nb\\tc\\r\\\\");
   EXPECT_EQ(printable(std::string_view("\0\x7f\xff", 3)), "\\x00\\x7f\\xff");
   EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x82\xac"), "caf\xc3\xa9 \xe2\x82\xac");  // valid UTF-8 stays readable
-  EXPECT_EQ(printable("\xc2\x9b"), "\\xc2\\x9b");                          // a C1 control (CSI) does not
-  EXPECT_EQ(printable("\xc3"), "\\xc3");                                    // nor a cut sequence
+  EXPECT_EQ(printable("\xc2\x9b"), "\\xc2\\x9b");                                // a C1 control (CSI) does not
+  EXPECT_EQ(printable("\xc3"), "\\xc3");                                         // nor a cut sequence
   // Forms RFC 3629 forbids are escaped byte by byte: an overlong ESC (E0 80 9B, which a lenient terminal decodes as
   // ESC), a surrogate (U+D800) and a code point past U+10FFFF; the smallest valid 3- and 4-byte forms stay.
   EXPECT_EQ(printable("\xe0\x80\x9b[2J"), "\\xe0\\x80\\x9b[2J");

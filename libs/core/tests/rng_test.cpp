@@ -1,9 +1,9 @@
 #include "tessera/core/rng.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 namespace tessera {
 namespace {

@@ -237,17 +237,17 @@ template <class P>
 Continuity joint_continuity(const BezierCurve<P>& a, const BezierCurve<P>& b, double tolerance) {
   require_points(a, "joint_continuity");
   require_points(b, "joint_continuity");
-  if (glm::length(a.back() - b.front()) > tolerance) return Continuity::None;
+  if (glm::length(a.back() - b.front()) > tolerance) return Continuity::none;
   const BezierCurve<P> da = derivative(a), db = derivative(b);
-  if (glm::length(da.back() - db.front()) <= tolerance) return Continuity::C1;
+  if (glm::length(da.back() - db.front()) <= tolerance) return Continuity::c1;
   const P ta = unit_tangent(a, 1.0), tb = unit_tangent(b, 0.0);
   const bool both = glm::length(ta) > 0 && glm::length(tb) > 0;
-  return both && glm::length(ta - tb) <= tolerance ? Continuity::G1 : Continuity::C0;
+  return both && glm::length(ta - tb) <= tolerance ? Continuity::g1 : Continuity::c0;
 }
 
 template <class P>
 Continuity chain_continuity(std::span<const BezierCurve<P>> chain, double tolerance) {
-  Continuity weakest = Continuity::C1;
+  Continuity weakest = Continuity::c1;
   for (size_t i = 1; i < chain.size(); ++i)
     weakest = std::min(weakest, joint_continuity(chain[i - 1], chain[i], tolerance));
   return weakest;

@@ -164,8 +164,8 @@ TriMesh tessellate(std::span<const BezierPatch> patches, const PatchTessellation
         }
     }
   });
-  if (options.orientation == PatchOrientation::Flipped ||
-      (options.orientation == PatchOrientation::Outward && signed_volume_about_centroid(patches, mesh) < 0))
+  if (options.orientation == PatchOrientation::flipped ||
+      (options.orientation == PatchOrientation::outward && signed_volume_about_centroid(patches, mesh) < 0))
     flip(mesh);
   return mesh;
 }

@@ -132,7 +132,7 @@ TEST(BezierPatch, UniformTessellationCountsAndNormals) {
       }
     }
   }
-  const TriMesh flipped = tessellate(patches, PatchTessellation{.steps = 2, .orientation = PatchOrientation::Flipped});
+  const TriMesh flipped = tessellate(patches, PatchTessellation{.steps = 2, .orientation = PatchOrientation::flipped});
   const TriMesh plain = tessellate(patches, PatchTessellation{.steps = 2});
   EXPECT_EQ(flipped.normals[5], -plain.normals[5]);
   EXPECT_EQ(flipped.indices[1], plain.indices[2]);
@@ -188,7 +188,7 @@ TEST(BezierPatch, TeapotFromSharedDataWhenPresent) {
   // The lid's tip (patches 21-24, u = 0) and the bottom's center (29-32) have vertical normals.
   for (const size_t p : {20u, 28u}) EXPECT_GT(std::abs(patch_normal(patches[p], 0, 0.5).z), 0.99);
   // Newell's data is wound so that du x dv points inside; Outward flips it.
-  const TriMesh outward = tessellate(patches, PatchTessellation{.steps = 6, .orientation = PatchOrientation::Outward});
+  const TriMesh outward = tessellate(patches, PatchTessellation{.steps = 6, .orientation = PatchOrientation::outward});
   EXPECT_EQ(outward.normals[0], -m.normals[0]);
   EXPECT_LT(patch_normal(patches[20], 0, 0.5).z, -0.99) << "as given, the lid tip's normal points into the pot";
 }
@@ -229,12 +229,12 @@ TEST(BezierPatch, OutwardOrientationOfAClosedModel) {
     return signed_volume(tessellate(patches, PatchTessellation{.steps = 8, .orientation = orientation}));
   };
   // Each dome (radius 1, height 1) holds more than its inscribed cone (π/3) and less than its cylinder (π).
-  EXPECT_GT(volume(outward, PatchOrientation::AsGiven), 2 * kPi / 3);
-  EXPECT_LT(volume(outward, PatchOrientation::AsGiven), 2 * kPi);
-  EXPECT_LT(volume(outward, PatchOrientation::Flipped), 0);
-  EXPECT_LT(volume(inward, PatchOrientation::AsGiven), 0);
-  EXPECT_NEAR(volume(inward, PatchOrientation::Outward), volume(outward, PatchOrientation::Outward), 1e-9);
-  EXPECT_GT(volume(outward, PatchOrientation::Outward), 0);
+  EXPECT_GT(volume(outward, PatchOrientation::as_given), 2 * kPi / 3);
+  EXPECT_LT(volume(outward, PatchOrientation::as_given), 2 * kPi);
+  EXPECT_LT(volume(outward, PatchOrientation::flipped), 0);
+  EXPECT_LT(volume(inward, PatchOrientation::as_given), 0);
+  EXPECT_NEAR(volume(inward, PatchOrientation::outward), volume(outward, PatchOrientation::outward), 1e-9);
+  EXPECT_GT(volume(outward, PatchOrientation::outward), 0);
 }
 
 }  // namespace

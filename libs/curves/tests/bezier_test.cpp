@@ -207,22 +207,22 @@ TEST(Bezier, ContinuityOfChains) {
   const Bezier2 c1 = c1_continuation(a, Vec2(6, 1), Vec2(7, 3));
   EXPECT_EQ(c1.front(), a.back());
   EXPECT_EQ(c1.points[1], Vec2(5, -2));  // 2 P4 - P3
-  EXPECT_EQ(joint_continuity(a, c1), Continuity::C1);
+  EXPECT_EQ(joint_continuity(a, c1), Continuity::c1);
   const Bezier2 g1 = g1_continuation(a, 0.5, Vec2(6, 1), Vec2(7, 3));
-  EXPECT_EQ(joint_continuity(a, g1), Continuity::G1);
+  EXPECT_EQ(joint_continuity(a, g1), Continuity::g1);
   Bezier2 kinked = c1;
   kinked.points[1] = Vec2(5, 0);
-  EXPECT_EQ(joint_continuity(a, kinked), Continuity::C0);
+  EXPECT_EQ(joint_continuity(a, kinked), Continuity::c0);
   Bezier2 gap = c1;
   gap.points[0] += Vec2(0.1, 0);
-  EXPECT_EQ(joint_continuity(a, gap), Continuity::None);
+  EXPECT_EQ(joint_continuity(a, gap), Continuity::none);
   const std::vector<Bezier2> chain{a, c1, c1_continuation(c1, Vec2(9, 0), Vec2(10, 0))};
-  EXPECT_EQ(chain_continuity<Vec2>(chain), Continuity::C1);
+  EXPECT_EQ(chain_continuity<Vec2>(chain), Continuity::c1);
   const std::vector<Bezier2> mixed{a, g1, c1_continuation(g1, Vec2(9, 0), Vec2(10, 0))};
-  EXPECT_EQ(chain_continuity<Vec2>(mixed), Continuity::G1);
+  EXPECT_EQ(chain_continuity<Vec2>(mixed), Continuity::g1);
   // C1 across degrees: a quadratic continued by a cubic matches derivatives 2 (P2 - P1) = 3 (Q1 - Q0).
   const Bezier2 q = quadratic(Vec2(0, 0), Vec2(1, 1), Vec2(2, 0));
-  EXPECT_EQ(joint_continuity(q, c1_continuation(q, Vec2(3, 0), Vec2(4, 1))), Continuity::C1);
+  EXPECT_EQ(joint_continuity(q, c1_continuation(q, Vec2(3, 0), Vec2(4, 1))), Continuity::c1);
   EXPECT_THROW(g1_continuation(a, -1.0, Vec2(0, 0), Vec2(1, 1)), InvalidInput);
 }
 

@@ -23,11 +23,11 @@ const Ramp& ramp(Palette palette) {
                            Vec3f{0.65f, 0.95f, 0.95f}, Vec3f{0.15f, 0.35f, 0.60f}};
   static const Ramp kGray{Vec3f{0.0f}, Vec3f{0.35f}, Vec3f{0.7f}, Vec3f{1.0f}, Vec3f{0.5f}};
   switch (palette) {
-    case Palette::Fire:
+    case Palette::fire:
       return kFire;
-    case Palette::Ocean:
+    case Palette::ocean:
       return kOcean;
-    case Palette::Gray:
+    case Palette::gray:
       return kGray;
     default:
       return kClassic;
@@ -38,11 +38,11 @@ const Ramp& ramp(Palette palette) {
 
 std::string_view palette_name(Palette palette) {
   switch (palette) {
-    case Palette::Fire:
+    case Palette::fire:
       return "fire";
-    case Palette::Ocean:
+    case Palette::ocean:
       return "ocean";
-    case Palette::Gray:
+    case Palette::gray:
       return "gray";
     default:
       return "classic";
@@ -50,7 +50,7 @@ std::string_view palette_name(Palette palette) {
 }
 
 Palette parse_palette(std::string_view name) {
-  for (Palette p : {Palette::Classic, Palette::Fire, Palette::Ocean, Palette::Gray})
+  for (Palette p : {Palette::classic, Palette::fire, Palette::ocean, Palette::gray})
     if (palette_name(p) == name) return p;
   throw InvalidInput(fmt::format("unknown palette '{}' (classic, fire, ocean, gray)", name));
 }

@@ -70,7 +70,7 @@ void add_polygons(ImageRGBA& picture, const std::vector<std::vector<Vec2>>& poly
     for (const Vec2& p : polygon) contour.push_back(to_pixels(frame, p));
     path.contours.push_back(std::move(contour));
   }
-  fill_path(picture, path, FillRule::NonZero, Vec4f(color, 1.0f), antialias);
+  fill_path(picture, path, FillRule::non_zero, Vec4f(color, 1.0f), antialias);
 }
 
 void add_curve(ImageRGBA& picture, const std::vector<Vec2>& polyline, bool closed, const PictureFrame& frame,
@@ -81,9 +81,9 @@ void add_curve(ImageRGBA& picture, const std::vector<Vec2>& polyline, bool close
   for (const Vec2& p : polyline) pixels.push_back(to_pixels(frame, p));
   StrokeStyle style;
   style.width = line_width;
-  style.join = LineJoin::Round;
-  style.cap = LineCap::Round;
-  fill_path(picture, stroke_path(pixels, closed, style), FillRule::NonZero, Vec4f(color, 1.0f), antialias);
+  style.join = LineJoin::round;
+  style.cap = LineCap::round;
+  fill_path(picture, stroke_path(pixels, closed, style), FillRule::non_zero, Vec4f(color, 1.0f), antialias);
 }
 
 ImageRGBA draw_polygons(const std::vector<std::vector<Vec2>>& polygons, const PictureFrame& frame,

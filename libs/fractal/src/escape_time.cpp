@@ -47,13 +47,13 @@ namespace {
 using PointLoop = void (*)(const detail::PointBatch&, const detail::IterationLimits&);
 
 PointLoop point_loop(SimdPath path) {
-  if (path == SimdPath::Auto) path = best_simd_path();
+  if (path == SimdPath::automatic) path = best_simd_path();
   if (!simd_supported(path))
     throw InvalidInput(fmt::format("this CPU cannot run the {} escape-time loop", simd_name(path)));
   switch (path) {
-    case SimdPath::Avx512:
+    case SimdPath::avx512:
       return detail::escape_points_avx512;
-    case SimdPath::Avx2:
+    case SimdPath::avx2:
       return detail::escape_points_avx2;
     default:
       return detail::escape_points_scalar;
@@ -146,9 +146,9 @@ std::complex<double> ComplexView::pixel_center(int x, int y) const {
 
 bool simd_supported(SimdPath path) {
   switch (path) {
-    case SimdPath::Avx512:
+    case SimdPath::avx512:
       return cpu_features().avx512f && cpu_features().fma;
-    case SimdPath::Avx2:
+    case SimdPath::avx2:
       return cpu_features().avx2 && cpu_features().fma;
     default:
       return true;
@@ -156,18 +156,18 @@ bool simd_supported(SimdPath path) {
 }
 
 SimdPath best_simd_path() {
-  if (simd_supported(SimdPath::Avx512)) return SimdPath::Avx512;
-  if (simd_supported(SimdPath::Avx2)) return SimdPath::Avx2;
-  return SimdPath::Scalar;
+  if (simd_supported(SimdPath::avx512)) return SimdPath::avx512;
+  if (simd_supported(SimdPath::avx2)) return SimdPath::avx2;
+  return SimdPath::scalar;
 }
 
 std::string_view simd_name(SimdPath path) {
   switch (path) {
-    case SimdPath::Scalar:
+    case SimdPath::scalar:
       return "scalar";
-    case SimdPath::Avx2:
+    case SimdPath::avx2:
       return "avx2";
-    case SimdPath::Avx512:
+    case SimdPath::avx512:
       return "avx512";
     default:
       return "auto";
@@ -175,7 +175,7 @@ std::string_view simd_name(SimdPath path) {
 }
 
 SimdPath parse_simd_path(std::string_view name) {
-  for (SimdPath p : {SimdPath::Auto, SimdPath::Scalar, SimdPath::Avx2, SimdPath::Avx512})
+  for (SimdPath p : {SimdPath::automatic, SimdPath::scalar, SimdPath::avx2, SimdPath::avx512})
     if (simd_name(p) == name) return p;
   throw InvalidInput(fmt::format("unknown SIMD path '{}' (auto, scalar, avx2, avx512)", name));
 }

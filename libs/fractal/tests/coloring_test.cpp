@@ -19,7 +19,7 @@ TEST(Coloring, SmoothIterationIsContinuousAcrossBands) {
 }
 
 TEST(Coloring, PalettesAreCyclicAndNamed) {
-  for (Palette p : {Palette::Classic, Palette::Fire, Palette::Ocean, Palette::Gray}) {
+  for (Palette p : {Palette::classic, Palette::fire, Palette::ocean, Palette::gray}) {
     EXPECT_EQ(parse_palette(palette_name(p)), p);
     const Vec3f a = palette_color(p, 0.0), b = palette_color(p, 1.0), c = palette_color(p, 3.0);
     EXPECT_EQ(a, b);

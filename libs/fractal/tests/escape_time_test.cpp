@@ -10,7 +10,7 @@ namespace {
 
 std::vector<SimdPath> supported_paths() {
   std::vector<SimdPath> paths;
-  for (SimdPath p : {SimdPath::Scalar, SimdPath::Avx2, SimdPath::Avx512})
+  for (SimdPath p : {SimdPath::scalar, SimdPath::avx2, SimdPath::avx512})
     if (simd_supported(p)) paths.push_back(p);
   return paths;
 }
@@ -35,7 +35,7 @@ TEST(EscapeTime, HandComputedOrbits) {
   const ComplexView one{{1.0, 0.0}, 1e-9, 1, 1};
   EscapeOptions radius2;
   radius2.escape_radius = 2;
-  radius2.simd = SimdPath::Scalar;
+  radius2.simd = SimdPath::scalar;
   const EscapeImage a = mandelbrot(one, radius2);
   EXPECT_EQ(a.iterations(0, 0), 3u);
   EXPECT_NEAR(a.norm2(0, 0), 25.0, 1e-6);
@@ -55,7 +55,7 @@ TEST(EscapeTime, EveryPathAndThreadCountIsBitIdentical) {
   const ComplexView view{{-0.7436, 0.1318}, 0.02, 203, 97};  // odd sizes: partial vectors and tasks
   EscapeOptions options;
   options.max_iterations = 3000;
-  options.simd = SimdPath::Scalar;
+  options.simd = SimdPath::scalar;
   const EscapeImage reference = mandelbrot(view, options);
   const EscapeImage julia_reference = julia({-0.8, 0.156}, ComplexView{{0, 0}, 3.2, 151, 77}, options);
   for (SimdPath path : supported_paths())
@@ -124,7 +124,7 @@ TEST(EscapeTime, RejectsBadArguments) {
   EXPECT_THROW(mandelbrot(ComplexView{{0, 0}, 1.0, 0, 10}), InvalidInput);
   EXPECT_THROW(mandelbrot_area(1023, EscapeOptions{}), InvalidInput);
   EXPECT_THROW(parse_simd_path("sse9"), InvalidInput);
-  EXPECT_EQ(parse_simd_path("avx2"), SimdPath::Avx2);
+  EXPECT_EQ(parse_simd_path("avx2"), SimdPath::avx2);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include "tessera/image/image_io.hpp"
 
+#include <stb/stb_image.h>
+#include <stb/stb_image_write.h>
+
 #include <algorithm>
 #include <cctype>
 #include <climits>
@@ -12,16 +15,12 @@
 #include <string_view>
 #include <vector>
 
-#include <stb/stb_image.h>
-#include <stb/stb_image_write.h>
-
+#include "png_encode.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
-
-#include "png_encode.hpp"
 
 namespace tessera {
 namespace {
@@ -35,9 +34,9 @@ struct FormatEntry {
 };
 
 constexpr FormatEntry formats[] = {
-    {".png", Format::png, true},  {".jpg", Format::jpg, true},  {".jpeg", Format::jpg, true},
-    {".bmp", Format::bmp, true},  {".tga", Format::tga, true},  {".hdr", Format::hdr, true},
-    {".ppm", Format::ppm, true},  {".pgm", Format::ppm, false}, {".pnm", Format::ppm, false},
+    {".png", Format::png, true}, {".jpg", Format::jpg, true},  {".jpeg", Format::jpg, true},
+    {".bmp", Format::bmp, true}, {".tga", Format::tga, true},  {".hdr", Format::hdr, true},
+    {".ppm", Format::ppm, true}, {".pgm", Format::ppm, false}, {".pnm", Format::ppm, false},
     {".pfm", Format::pfm, true},
 };
 
@@ -63,8 +62,8 @@ Format format_of(const std::filesystem::path& path, bool writing) {
 // declare 16000x16000 pixels).
 void check_pixel_count(const std::string& name, long long width, long long height, uint64_t bytes_per_pixel) {
   if (width < 1 || height < 1 || width > kMaxReadPixels / height)
-    throw InvalidInput(fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width,
-                                   height, kMaxReadPixels));
+    throw InvalidInput(
+        fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width, height, kMaxReadPixels));
   MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), bytes_per_pixel}),
                       fmt::format("'{}': decoding {}x{} pixels", name, width, height));
 }
@@ -91,12 +90,14 @@ Image<Pixel> expand_rgba(const Decoded& d, Convert convert, typename Pixel::valu
 }
 
 ImageRGBA to_rgba_image(const Decoded& d) {
-  return expand_rgba<glm::vec4>(d, [&](float v) { return v / d.divisor; }, 1.f);
+  return expand_rgba<glm::vec4>(
+      d, [&](float v) { return v / d.divisor; }, 1.f);
 }
 
 // Netpbm samples of maxval 255 as they are.
 ImageRGBA8 to_rgba8_image(const Decoded& d) {
-  return expand_rgba<glm::u8vec4>(d, [](float v) { return uint8_t(v); }, uint8_t(255));
+  return expand_rgba<glm::u8vec4>(
+      d, [](float v) { return uint8_t(v); }, uint8_t(255));
 }
 
 // Reads the whitespace-separated header of the Netpbm formats and PFM, tracking byte offsets for messages.
@@ -157,8 +158,8 @@ class HeaderReader {
   void require(unsigned long long bytes, std::string_view what) const {
     const size_t left = data_.size() - pos_;
     if (bytes > left)
-      fail(data_.size(), fmt::format("truncated: {} needs {} bytes from byte offset {}, the file ends after {}",
-                                     what, bytes, pos_, left));
+      fail(data_.size(), fmt::format("truncated: {} needs {} bytes from byte offset {}, the file ends after {}", what,
+                                     bytes, pos_, left));
   }
 
  private:
@@ -220,10 +221,9 @@ Decoded read_netpbm(std::string_view data, const std::string& name, bool keep_8b
 }
 
 float float_from_bytes(const unsigned char* p, bool little_endian) {
-  const uint32_t bits = little_endian ? uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 |
-                                            uint32_t(p[3]) << 24
-                                      : uint32_t(p[3]) | uint32_t(p[2]) << 8 | uint32_t(p[1]) << 16 |
-                                            uint32_t(p[0]) << 24;
+  const uint32_t bits = little_endian
+                            ? uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24
+                            : uint32_t(p[3]) | uint32_t(p[2]) << 8 | uint32_t(p[1]) << 16 | uint32_t(p[0]) << 24;
   float value;
   std::memcpy(&value, &bits, sizeof value);
   return value;
@@ -295,7 +295,9 @@ FileImage read_stb(std::string_view data, const std::string& name, bool keep_8bi
   const bool hdr = stbi_is_hdr_from_memory(bytes, size), wide = !hdr && stbi_is_16_bit_from_memory(bytes, size);
   keep_8bit = keep_8bit && !hdr && !wide;
   check_pixel_count(name, width, height,
-                    4 * (hdr ? sizeof(float) : wide ? 2 : 1) +
+                    4 * (hdr    ? sizeof(float)
+                         : wide ? 2
+                                : 1) +
                         (keep_8bit ? sizeof(ImageRGBA8::Pixel) : sizeof(ImageRGBA::Pixel)));
   if (hdr) {
     std::unique_ptr<float, StbFree> p(stbi_loadf_from_memory(bytes, size, &width, &height, &channels, 4));
@@ -329,8 +331,10 @@ FileImage decode(std::string_view data, const std::filesystem::path& path, bool 
       if (keep_8bit && d.divisor == 255.f) return to_rgba8_image(d);
       return to_rgba_image(d);
     }
-    case Format::pfm: return to_rgba_image(read_pfm_data(data, name));
-    default: return read_stb(data, name, keep_8bit);
+    case Format::pfm:
+      return to_rgba_image(read_pfm_data(data, name));
+    default:
+      return read_stb(data, name, keep_8bit);
   }
 }
 
@@ -391,15 +395,22 @@ void write_8bit(const std::filesystem::path& path, Format format, const ImageRGB
       out.write(png.data(), std::streamsize(png.size()));
       break;
     }
-    case Format::jpg: ok = stbi_write_jpg_to_func(stb_sink, &out, w, h, channels, bytes.data(), jpeg_quality); break;
-    case Format::bmp: ok = stbi_write_bmp_to_func(stb_sink, &out, w, h, channels, bytes.data()); break;
-    case Format::tga: ok = stbi_write_tga_to_func(stb_sink, &out, w, h, channels, bytes.data()); break;
+    case Format::jpg:
+      ok = stbi_write_jpg_to_func(stb_sink, &out, w, h, channels, bytes.data(), jpeg_quality);
+      break;
+    case Format::bmp:
+      ok = stbi_write_bmp_to_func(stb_sink, &out, w, h, channels, bytes.data());
+      break;
+    case Format::tga:
+      ok = stbi_write_tga_to_func(stb_sink, &out, w, h, channels, bytes.data());
+      break;
     case Format::ppm:
       out << "P6\n" << w << ' ' << h << "\n255\n";
       out.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
       break;
     case Format::hdr:
-    case Format::pfm: throw InternalError("write_8bit called for a float format");
+    case Format::pfm:
+      throw InternalError("write_8bit called for a float format");
   }
   if (!ok) throw IoError(fmt::format("cannot write '{}': the image encoder failed", name_of(path)));
   file.commit();

@@ -29,8 +29,8 @@ double channel(const T& pixel, int c) {
 template <class T>
 void check_same_size(const Image<T>& a, const Image<T>& b) {
   if (a.width() != b.width() || a.height() != b.height())
-    throw InvalidInput(fmt::format("cannot compare a {}x{} image with a {}x{} image", a.width(), a.height(),
-                                   b.width(), b.height()));
+    throw InvalidInput(
+        fmt::format("cannot compare a {}x{} image with a {}x{} image", a.width(), a.height(), b.width(), b.height()));
 }
 
 // Calls visit(pixel index, channel difference a - b) for every channel of every pixel.

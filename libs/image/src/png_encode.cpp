@@ -23,8 +23,7 @@ uint8_t paeth(int a, int b, int c) {
 
 // Writes filter type + filtered row to `out` (row_bytes + 1 bytes); `scratch` holds 5 * row_bytes. `prev` is the
 // unfiltered row above, or null for the first row.
-void filter_row(const uint8_t* row, const uint8_t* prev, size_t row_bytes, size_t bpp, uint8_t* scratch,
-                uint8_t* out) {
+void filter_row(const uint8_t* row, const uint8_t* prev, size_t row_bytes, size_t bpp, uint8_t* scratch, uint8_t* out) {
   uint8_t* none = scratch;
   uint8_t* sub = scratch + row_bytes;
   uint8_t* up = scratch + 2 * row_bytes;

@@ -38,8 +38,10 @@ Split split(double x) {
 // Texel index i of a row of n texels after wrapping.
 long long wrap_index(long long i, long long n, Wrap wrap) {
   switch (wrap) {
-    case Wrap::repeat: return ((i % n) + n) % n;
-    case Wrap::clamp: return std::clamp(i, 0LL, n - 1);
+    case Wrap::repeat:
+      return ((i % n) + n) % n;
+    case Wrap::clamp:
+      return std::clamp(i, 0LL, n - 1);
     case Wrap::mirror: {
       const long long m = ((i % (2 * n)) + 2 * n) % (2 * n);
       return m < n ? m : 2 * n - 1 - m;
@@ -111,9 +113,12 @@ template <class Texel>
 [[gnu::always_inline]] inline glm::vec4 sample_levels(const std::vector<Image<Texel>>& levels, const Sampler& sampler,
                                                       glm::vec2 uv, float lod) {
   switch (sampler.filter) {
-    case Filter::nearest: return nearest_sample(levels.front(), sampler, uv);
-    case Filter::bilinear: return bilinear_sample(levels.front(), sampler, uv);
-    case Filter::trilinear: break;
+    case Filter::nearest:
+      return nearest_sample(levels.front(), sampler, uv);
+    case Filter::bilinear:
+      return bilinear_sample(levels.front(), sampler, uv);
+    case Filter::trilinear:
+      break;
   }
   const float last = float(levels.size() - 1);
   const float clamped = lod > 0.f ? std::min(lod, last) : 0.f;  // NaN and -infinity read level 0
@@ -232,8 +237,7 @@ Texture2D::Texture2D(ImageRGBA8 image, const Sampler& sampler)
 size_t Texture2D::bytes() const { return rgba8_ ? level_bytes(levels8_) : level_bytes(levels_); }
 
 void Texture2D::check_level(int i) const {
-  if (i < 0 || i >= levels())
-    throw InvalidInput(fmt::format("MIPmap level {} is outside [0, {})", i, levels()));
+  if (i < 0 || i >= levels()) throw InvalidInput(fmt::format("MIPmap level {} is outside [0, {})", i, levels()));
 }
 
 ImageRGBA Texture2D::level(int i) const {
@@ -328,12 +332,18 @@ CubeCoord cube_coord(glm::vec3 d) {
 glm::vec3 cube_direction(const CubeCoord& coord) {
   const float sc = 2.f * coord.st.x - 1.f, tc = 2.f * coord.st.y - 1.f;
   switch (coord.face) {
-    case CubeFace::pos_x: return {1.f, -tc, -sc};
-    case CubeFace::neg_x: return {-1.f, -tc, sc};
-    case CubeFace::pos_y: return {sc, 1.f, tc};
-    case CubeFace::neg_y: return {sc, -1.f, -tc};
-    case CubeFace::pos_z: return {sc, -tc, 1.f};
-    case CubeFace::neg_z: return {-sc, -tc, -1.f};
+    case CubeFace::pos_x:
+      return {1.f, -tc, -sc};
+    case CubeFace::neg_x:
+      return {-1.f, -tc, sc};
+    case CubeFace::pos_y:
+      return {sc, 1.f, tc};
+    case CubeFace::neg_y:
+      return {sc, -1.f, -tc};
+    case CubeFace::pos_z:
+      return {sc, -tc, 1.f};
+    case CubeFace::neg_z:
+      return {-sc, -tc, -1.f};
   }
   return {1.f, 0.f, 0.f};
 }

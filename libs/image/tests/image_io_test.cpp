@@ -1,5 +1,9 @@
 #include "tessera/image/image_io.hpp"
 
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -8,10 +12,6 @@
 #include <optional>
 #include <random>
 #include <sstream>
-
-#include <gmock/gmock.h>
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
@@ -163,8 +163,7 @@ TEST_F(ImageIo, LargePngsMatchAnIndependentDecoderForAnyThreadCount) {
 }
 
 TEST_F(ImageIo, ReadsPngsFromAnIndependentEncoder) {
-  if (!run(kPngReference + " encode " + path("a.png").string() + " 11 6"))
-    GTEST_SKIP() << "python3 is not available";
+  if (!run(kPngReference + " encode " + path("a.png").string() + " 11 6")) GTEST_SKIP() << "python3 is not available";
   const ImageRGBA8 got = to_rgba8(read_image(path("a.png")));
   ASSERT_EQ(got.width(), 11);
   ASSERT_EQ(got.height(), 6);
@@ -208,8 +207,8 @@ TEST_F(ImageIo, ReadsPlainGrayAndSixteenBitNetpbm) {
   EXPECT_EQ(p5(0, 1), glm::vec4(0.2f, 0.2f, 0.2f, 1.f));
   write_bytes("p2.pgm", "P2 1 2 4 1 4");
   EXPECT_EQ(read_image(path("p2.pgm"))(0, 0), glm::vec4(0.25f, 0.25f, 0.25f, 1.f));
-  write_bytes("p6.ppm", std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) +
-                            char(0) + char(0));  // big-endian 1000, 500, 0
+  write_bytes("p6.ppm", std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) + char(0) +
+                            char(0));  // big-endian 1000, 500, 0
   EXPECT_EQ(read_image(path("p6.ppm"))(0, 0), glm::vec4(1.f, 0.5f, 0.f, 1.f));
 }
 
@@ -585,8 +584,8 @@ TEST_F(ImageIo, NativeReadsKeepEightBitFilesEightBit) {
   EXPECT_EQ(std::get<ImageRGBA8>(gray)(1, 0), glm::u8vec4(255));
   // maxval 10, 16-bit PPM, PFM and HDR: float, exactly read_image's image.
   write_bytes("p3.ppm", "P3 2 1 10 10 0 5 0 10 1\n");
-  write_bytes("p6.ppm", std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) + char(0) +
-                            char(0));
+  write_bytes("p6.ppm",
+              std::string("P6 1 1 1000\n") + char(0x03) + char(0xe8) + char(0x01) + char(0xf4) + char(0) + char(0));
   write_image(path("a.pfm"), random_rgb(5, 3, 4, -10.f, 10.f));
   write_image(path("a.hdr"), random_rgb(5, 3, 5, 0.f, 10.f));
   for (const char* name : {"p3.ppm", "p6.ppm", "a.pfm", "a.hdr"}) {
@@ -616,8 +615,8 @@ TEST_F(ImageIo, NativeEightBitReadsBudgetFourBytesPerPixel) {
   const auto floats = [](const fs::path& file) { return read_image(file); };
   MemoryBudget::set_limit(100 * 100 * 8);  // exactly the native PNG's estimate
   EXPECT_TRUE(std::holds_alternative<ImageRGBA8>(read_image_native(path("a.png"))));
-  EXPECT_THAT(refusal(floats, path("a.png")), HasSubstr("decoding 100x100 pixels needs about " +
-                                                        format_bytes(100 * 100 * 20)));
+  EXPECT_THAT(refusal(floats, path("a.png")),
+              HasSubstr("decoding 100x100 pixels needs about " + format_bytes(100 * 100 * 20)));
   EXPECT_THAT(refusal(native, path("a.ppm")), HasSubstr("needs about " + format_bytes(100 * 100 * 16)));
   MemoryBudget::set_limit(100 * 100 * 8 - 1);
   EXPECT_THAT(refusal(native, path("a.png")), HasSubstr("needs about " + format_bytes(100 * 100 * 8)));

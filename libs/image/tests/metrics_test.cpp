@@ -1,9 +1,9 @@
 #include "tessera/image/metrics.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <limits>
-
-#include <gtest/gtest.h>
 
 namespace tessera {
 namespace {

@@ -1,12 +1,12 @@
 #include "tessera/image/texture.hpp"
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
-
-#include <gtest/gtest.h>
-#include <unistd.h>
 
 #include "tessera/image/image_io.hpp"
 
@@ -401,8 +401,8 @@ IntegerTaps integer_taps(int n, int i) {
 // num / den, and the level holds it rounded to nearest (halves up; at an exact half, either neighbor, since the
 // float filter can land on either side).
 TEST(Mipmaps, EightBitLevelsRoundTheExactFilterOfTheLevelAbove) {
-  for (const auto& [w, h] : {std::pair{16, 8}, std::pair{7, 5}, std::pair{13, 1}, std::pair{1, 6}, std::pair{37, 20},
-                             std::pair{64, 64}}) {
+  for (const auto& [w, h] :
+       {std::pair{16, 8}, std::pair{7, 5}, std::pair{13, 1}, std::pair{1, 6}, std::pair{37, 20}, std::pair{64, 64}}) {
     const std::vector<ImageRGBA8> levels = build_mipmaps(random_rgba8(w, h, unsigned(w * 100 + h)));
     ASSERT_EQ(levels.size(), build_mipmaps(ImageRGBA(w, h)).size());
     for (size_t k = 1; k < levels.size(); ++k) {

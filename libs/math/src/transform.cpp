@@ -32,9 +32,7 @@ Mat3 rotate2d_about(double theta, double cx, double cy) {
 Mat4 translate(double dx, double dy, double dz) {
   return rows4({1, 0, 0, dx}, {0, 1, 0, dy}, {0, 0, 1, dz}, {0, 0, 0, 1});
 }
-Mat4 scale(double sx, double sy, double sz) {
-  return rows4({sx, 0, 0, 0}, {0, sy, 0, 0}, {0, 0, sz, 0}, {0, 0, 0, 1});
-}
+Mat4 scale(double sx, double sy, double sz) { return rows4({sx, 0, 0, 0}, {0, sy, 0, 0}, {0, 0, sz, 0}, {0, 0, 0, 1}); }
 Mat4 rotate_x(double theta) {
   const double c = std::cos(theta), s = std::sin(theta);
   return rows4({1, 0, 0, 0}, {0, c, -s, 0}, {0, s, c, 0}, {0, 0, 0, 1});

@@ -1,9 +1,9 @@
 #include "tessera/math/camera.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <utility>
-
-#include <gtest/gtest.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"

@@ -1,10 +1,10 @@
 // The notes' transforms checked against GLM's own implementations (an independent reference) and the notes' facts.
 #include "tessera/math/transform.hpp"
 
-#include <random>
+#include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <gtest/gtest.h>
+#include <random>
 
 #include "tessera/core/error.hpp"
 
@@ -99,7 +99,7 @@ TEST(Transform, LookAtAtExtremeScalesKeepsTheUnitRotation) {
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r) EXPECT_EQ(m[c][r], unit[c][r]) << scale;
   }
-  EXPECT_THROW(look_at({-1e308, 0, 0}, {1e308, 0, 0}, {0, 1, 0}), InvalidInput);  // the gaze is not finite
+  EXPECT_THROW(look_at({-1e308, 0, 0}, {1e308, 0, 0}, {0, 1, 0}), InvalidInput);   // the gaze is not finite
   EXPECT_THROW(look_at({0, 0, 0}, {1e-320, 0, 0}, {1e-320, 0, 0}), InvalidInput);  // up along the gaze
 }
 
@@ -136,19 +136,33 @@ class Commutativity : public RandomInputs {
  protected:
   Mat3 make2d(Kind k) {
     switch (k) {
-      case kTranslation: return translate2d(uni(-5, 5), uni(-5, 5));
-      case kRotation: return rotate2d(uni(0.3, 2.8));
-      case kUniformScale: { const double s = uni(0.3, 3); return scale2d(s, s); }
-      case kNonUniformScale: return scale2d(uni(0.3, 1.0), uni(1.5, 3));
+      case kTranslation:
+        return translate2d(uni(-5, 5), uni(-5, 5));
+      case kRotation:
+        return rotate2d(uni(0.3, 2.8));
+      case kUniformScale: {
+        const double s = uni(0.3, 3);
+        return scale2d(s, s);
+      }
+      case kNonUniformScale:
+        return scale2d(uni(0.3, 1.0), uni(1.5, 3));
     }
     return Mat3(1.0);
   }
   Mat4 make3d(Kind k, int variant) {
     switch (k) {
-      case kTranslation: { const Vec3 t = vec(-5, 5); return translate(t.x, t.y, t.z); }
-      case kRotation: return variant == 0 ? rotate_x(uni(0.3, 2.8)) : rotate_y(uni(0.3, 2.8));
-      case kUniformScale: { const double s = uni(0.3, 3); return scale(s, s, s); }
-      case kNonUniformScale: return scale(uni(0.3, 1.0), uni(1.5, 3), uni(0.3, 3));
+      case kTranslation: {
+        const Vec3 t = vec(-5, 5);
+        return translate(t.x, t.y, t.z);
+      }
+      case kRotation:
+        return variant == 0 ? rotate_x(uni(0.3, 2.8)) : rotate_y(uni(0.3, 2.8));
+      case kUniformScale: {
+        const double s = uni(0.3, 3);
+        return scale(s, s, s);
+      }
+      case kNonUniformScale:
+        return scale(uni(0.3, 1.0), uni(1.5, 3), uni(0.3, 3));
     }
     return Mat4(1.0);
   }

@@ -4,8 +4,8 @@
 #include <bit>
 #include <unordered_map>
 
-#include "tessera/mesh/triangulate.hpp"
 #include "bit_key.hpp"
+#include "tessera/mesh/triangulate.hpp"
 
 namespace tessera {
 namespace {

@@ -15,33 +15,33 @@ using mesh_io::fail_at_byte;
 using mesh_io::fail_at_line;
 using mesh_io::TextCursor;
 
-enum class PlyType : uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+enum class PlyType : uint8_t { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
 
 constexpr std::array<size_t, 8> kTypeSize{1, 1, 2, 2, 4, 4, 4, 8};
 /// The largest value of each integer type (colors stored as integers are scaled by it); 1 for floats.
 constexpr std::array<double, 8> kTypeMax{127, 255, 32767, 65535, 2147483647.0, 4294967295.0, 1, 1};
 
 size_t type_size(PlyType t) { return kTypeSize[size_t(t)]; }
-bool is_float(PlyType t) { return t == PlyType::Float32 || t == PlyType::Float64; }
+bool is_float(PlyType t) { return t == PlyType::float32 || t == PlyType::float64; }
 
 std::optional<PlyType> parse_type(std::string_view s) {
   static constexpr std::array<std::pair<std::string_view, PlyType>, 16> kNames{{
-      {"char", PlyType::Int8},
-      {"int8", PlyType::Int8},
-      {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},
-      {"short", PlyType::Int16},
-      {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16},
-      {"uint16", PlyType::UInt16},
-      {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},
-      {"uint", PlyType::UInt32},
-      {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32},
-      {"float32", PlyType::Float32},
-      {"double", PlyType::Float64},
-      {"float64", PlyType::Float64},
+      {"char", PlyType::int8},
+      {"int8", PlyType::int8},
+      {"uchar", PlyType::uint8},
+      {"uint8", PlyType::uint8},
+      {"short", PlyType::int16},
+      {"int16", PlyType::int16},
+      {"ushort", PlyType::uint16},
+      {"uint16", PlyType::uint16},
+      {"int", PlyType::int32},
+      {"int32", PlyType::int32},
+      {"uint", PlyType::uint32},
+      {"uint32", PlyType::uint32},
+      {"float", PlyType::float32},
+      {"float32", PlyType::float32},
+      {"double", PlyType::float64},
+      {"float64", PlyType::float64},
   }};
   for (const auto& [name, type] : kNames)
     if (name == s) return type;
@@ -80,7 +80,7 @@ struct PlyProperty {
   std::string name;
   PlyType type;
   bool is_list = false;
-  PlyType count_type = PlyType::UInt8;
+  PlyType count_type = PlyType::uint8;
   Slot slot = kSkip;
   bool face_indices = false;
 };
@@ -98,10 +98,10 @@ struct PlyElement {
   }
 };
 
-enum class Encoding { Ascii, BinaryLittle, BinaryBig };
+enum class Encoding { ascii, binary_little, binary_big };
 
 struct PlyHeader {
-  Encoding encoding = Encoding::Ascii;
+  Encoding encoding = Encoding::ascii;
   std::vector<PlyElement> elements;
   const char* body = nullptr;
   long body_line = 0;
@@ -127,11 +127,11 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
     if (key == "format") {
       const std::string_view enc = in.token();
       if (enc == "ascii")
-        header.encoding = Encoding::Ascii;
+        header.encoding = Encoding::ascii;
       else if (enc == "binary_little_endian")
-        header.encoding = Encoding::BinaryLittle;
+        header.encoding = Encoding::binary_little;
       else if (enc == "binary_big_endian")
-        header.encoding = Encoding::BinaryBig;
+        header.encoding = Encoding::binary_big;
       else
         in.fail(fmt::format("expected ascii, binary_little_endian or binary_big_endian, got '{}'", enc));
       if (in.token() != "1.0") in.fail("expected format version 1.0");
@@ -204,28 +204,28 @@ class BinarySource {
     if (size_t(end_ - p_) < n) fail(fmt::format("expected {}, but the file ends", what));
     double v = 0;
     switch (t) {
-      case PlyType::Int8:
+      case PlyType::int8:
         v = double(int8_t(*p_));
         break;
-      case PlyType::UInt8:
+      case PlyType::uint8:
         v = double(uint8_t(*p_));
         break;
-      case PlyType::Int16:
+      case PlyType::int16:
         v = mesh_io::load_scalar<int16_t>(p_, big_);
         break;
-      case PlyType::UInt16:
+      case PlyType::uint16:
         v = mesh_io::load_scalar<uint16_t>(p_, big_);
         break;
-      case PlyType::Int32:
+      case PlyType::int32:
         v = mesh_io::load_scalar<int32_t>(p_, big_);
         break;
-      case PlyType::UInt32:
+      case PlyType::uint32:
         v = mesh_io::load_scalar<uint32_t>(p_, big_);
         break;
-      case PlyType::Float32:
+      case PlyType::float32:
         v = mesh_io::load_scalar<float>(p_, big_);
         break;
-      case PlyType::Float64:
+      case PlyType::float64:
         v = mesh_io::load_scalar<double>(p_, big_);
         break;
     }
@@ -262,7 +262,7 @@ class AsciiSource {
     if (!in_.try_number(v)) fail(fmt::format("expected {}, got '{}'", what, in_.preview()));
     if (!is_float(t) && v != std::floor(v)) fail(fmt::format("expected an integer for {}, got {}", what, v));
     // A float property holds a float: the decimal text (shortest digits of a float) reads back as that float.
-    return t == PlyType::Float32 ? double(float(v)) : v;
+    return t == PlyType::float32 ? double(float(v)) : v;
   }
   void end_row() {
     if (!in_.at_line_end()) fail(fmt::format("expected the end of the row, got '{}'", in_.preview()));
@@ -336,11 +336,11 @@ PolyMesh read_ply(std::string_view data, const std::string& name, Progress* prog
   PolyMesh mesh;
   mesh_io::ByteProgress bytes(progress, data);
   const std::string_view body(header.body, size_t(data.data() + data.size() - header.body));
-  if (header.encoding == Encoding::Ascii) {
+  if (header.encoding == Encoding::ascii) {
     AsciiSource src(body, header.body_line, name, bytes);
     read_body(src, header.elements, false, mesh);
   } else {
-    BinarySource src(data, header.body, header.encoding == Encoding::BinaryBig, name, bytes);
+    BinarySource src(data, header.body, header.encoding == Encoding::binary_big, name, bytes);
     read_body(src, header.elements, true, mesh);
   }
   // Faces listed before their vertices are checked now that the vertex count is known.

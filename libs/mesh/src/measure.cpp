@@ -24,7 +24,8 @@ double surface_area(const PolyMesh& mesh) {
 
 double signed_volume(const PolyMesh& mesh) {
   // Coordinates outside 2^+-128 are scaled by a power of two first (exactly): about 1e300 the triple products were
-  // infinite with both signs and summed to NaN; the volume is then scaled back (inf where it passes the largest double).
+  // infinite with both signs and summed to NaN; the volume is then scaled back (inf where it passes the largest
+  // double).
   const int s = rescale_exponent(std::span<const Vec3>(mesh.positions));
   const auto point = [&](uint32_t v) { return ldexp(mesh.positions[v], -s); };
   double volume = 0;

@@ -60,7 +60,7 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   static constexpr std::array<std::pair<std::string_view, MeshFormat>, 4> kFormats{
-      {{".obj", MeshFormat::Obj}, {".ply", MeshFormat::Ply}, {".off", MeshFormat::Off}, {".stl", MeshFormat::Stl}}};
+      {{".obj", MeshFormat::obj}, {".ply", MeshFormat::ply}, {".off", MeshFormat::off}, {".stl", MeshFormat::stl}}};
   for (const auto& [e, format] : kFormats)
     if (e == ext) return format;
   throw InvalidInput(fmt::format("'{}': unknown mesh format (expected .obj, .ply, .off or .stl)", path.string()));
@@ -68,13 +68,13 @@ MeshFormat mesh_format_from_path(const std::filesystem::path& path) {
 
 PolyMesh read_mesh(std::string_view data, MeshFormat format, const std::string& name, Progress* progress) {
   switch (format) {
-    case MeshFormat::Obj:
+    case MeshFormat::obj:
       return read_obj(data, name, progress);
-    case MeshFormat::Ply:
+    case MeshFormat::ply:
       return read_ply(data, name, progress);
-    case MeshFormat::Off:
+    case MeshFormat::off:
       return read_off(data, name, progress);
-    case MeshFormat::Stl:
+    case MeshFormat::stl:
       return read_stl(data, name, progress);
   }
   throw InvalidInput(fmt::format("{}: unknown mesh format", name));
@@ -97,8 +97,8 @@ PolyMesh read_mesh_with_progress(const std::filesystem::path& path) {
 
 std::vector<std::string> unsupported_properties(const PolyMesh& mesh, MeshFormat format) {
   std::vector<std::string> lost;
-  if (format == MeshFormat::Obj) return lost;
-  if (format == MeshFormat::Stl) {
+  if (format == MeshFormat::obj) return lost;
+  if (format == MeshFormat::stl) {
     if (!mesh.uvs.empty() || !mesh.corner_uvs.empty()) lost.emplace_back("texture coordinates");
     if (!mesh.normals.empty() || !mesh.corner_normals.empty()) lost.emplace_back("normals");
     if (!mesh.colors.empty()) lost.emplace_back("vertex colors");
@@ -110,16 +110,16 @@ std::vector<std::string> unsupported_properties(const PolyMesh& mesh, MeshFormat
 
 void write_mesh(std::ostream& out, const PolyMesh& mesh, MeshFormat format, const MeshWriteOptions& options) {
   switch (format) {
-    case MeshFormat::Obj:
+    case MeshFormat::obj:
       write_obj(out, mesh);
       return;
-    case MeshFormat::Ply:
+    case MeshFormat::ply:
       write_ply(out, split_seams(mesh), options);
       return;
-    case MeshFormat::Off:
+    case MeshFormat::off:
       write_off(out, split_seams(mesh));
       return;
-    case MeshFormat::Stl:
+    case MeshFormat::stl:
       write_stl(out, mesh, options.binary);
       return;
   }

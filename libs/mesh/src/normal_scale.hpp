@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "tessera/mesh/poly_mesh.hpp"
-
-#include <vector>
 
 namespace tessera::detail {
 

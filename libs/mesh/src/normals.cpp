@@ -84,7 +84,7 @@ std::vector<Vec3> vertex_normals(const PolyMesh& mesh, NormalWeighting weighting
   for (size_t f = 0; f < mesh.face_count(); ++f) {
     const FacePoints p(mesh, f);
     const Vec3 area = scaled_area_vector(p);
-    if (weighting == NormalWeighting::Area) {
+    if (weighting == NormalWeighting::area) {
       const Vec3 weight = ldexp(area, 2 * (p.s - mesh_s));
       for (uint32_t v : p.face) sums[v] += weight;
       continue;

@@ -61,7 +61,7 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
     throw InvalidInput(fmt::format("smoothing iterations must be >= 0, got {}", options.iterations));
   if (!(options.lambda > 0 && options.lambda <= 1))
     throw InvalidInput(fmt::format("smoothing lambda must be in (0, 1], got {}", options.lambda));
-  if (options.method == SmoothingMethod::Taubin && !(options.mu < -options.lambda && options.mu >= -1))
+  if (options.method == SmoothingMethod::taubin && !(options.mu < -options.lambda && options.mu >= -1))
     throw InvalidInput(
         fmt::format("Taubin mu must be in [-1, -lambda), got {} (lambda {})", options.mu, options.lambda));
 
@@ -72,7 +72,7 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
   std::vector<Vec3> positions(mesh.positions.size());
   for (size_t v = 0; v < positions.size(); ++v) positions[v] = ldexp(mesh.positions[v], -exponent);
 
-  const bool cotangent = options.method == SmoothingMethod::Cotangent;
+  const bool cotangent = options.method == SmoothingMethod::cotangent;
   const PolyMesh tris = cotangent ? triangulate(mesh) : PolyMesh{};
   const PolyMesh& topology = cotangent ? tris : mesh;
   const EdgeTable edges = build_edge_table(topology);
@@ -80,7 +80,7 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
   std::vector<uint8_t> fixed(mesh.vertex_count(), 0);
   if (options.fix_boundary) {
     const auto kinds = classify_vertices(mesh, build_edge_table(mesh));
-    for (size_t v = 0; v < kinds.size(); ++v) fixed[v] = kinds[v] != VertexKind::Interior;
+    for (size_t v = 0; v < kinds.size(); ++v) fixed[v] = kinds[v] != VertexKind::interior;
   }
   std::vector<double> weight(edges.size(), 1.0);
   std::vector<Vec3> next(positions.size());
@@ -109,22 +109,23 @@ void smooth(PolyMesh& mesh, const SmoothingOptions& options, const std::function
   };
   for (int i = 0; i < options.iterations; ++i) {
     step(options.lambda);
-    if (options.method == SmoothingMethod::Taubin) step(options.mu);
+    if (options.method == SmoothingMethod::taubin) step(options.mu);
     if (progress) progress(i + 1);
   }
   // Taubin's inflating steps can move a vertex beyond the mesh's box, and so beyond the finite numbers near 1e308.
   for (size_t v = 0; v < positions.size(); ++v) {
     positions[v] = ldexp(positions[v], exponent);
     if (!std::isfinite(positions[v].x) || !std::isfinite(positions[v].y) || !std::isfinite(positions[v].z))
-      throw InvalidInput(fmt::format("smoothing moves vertex {} beyond the finite numbers (the largest coordinate is "
-                                     "{:g}); scale the mesh down first",
-                                     v, largest_coordinate(mesh.positions)));
+      throw InvalidInput(
+          fmt::format("smoothing moves vertex {} beyond the finite numbers (the largest coordinate is "
+                      "{:g}); scale the mesh down first",
+                      v, largest_coordinate(mesh.positions)));
   }
   mesh.positions = std::move(positions);
   // Normals of the old shape would be silently wrong: give the smoothed shape its own.
   if (options.iterations > 0 && (!mesh.normals.empty() || !mesh.corner_normals.empty())) {
     mesh.corner_normals.clear();
-    compute_vertex_normals(mesh, NormalWeighting::Area);
+    compute_vertex_normals(mesh, NormalWeighting::area);
   }
 }
 

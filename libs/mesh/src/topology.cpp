@@ -62,19 +62,19 @@ EdgeTable build_edge_table(const PolyMesh& mesh) {
 
 std::vector<VertexKind> classify_vertices(const PolyMesh& mesh, const EdgeTable& edges) {
   const size_t nv = mesh.vertex_count(), n = mesh.face_vertices.size();
-  std::vector<VertexKind> kind(nv, VertexKind::Isolated);
+  std::vector<VertexKind> kind(nv, VertexKind::isolated);
   std::vector<uint8_t> on_boundary(nv, 0), on_nonmanifold(nv, 0);
   // Corners around each vertex are joined across manifold edges; a vertex with one group has one fan.
   DisjointSets fans(n);
   const auto corner_at = [&](uint32_t c, uint32_t v) { return mesh.face_vertices[c] == v ? c : edges.next_corner[c]; };
   for (size_t e = 0; e < edges.size(); ++e) {
     const auto [a, b] = edges.vertices[e];
-    if (edges.kind(e) == EdgeKind::Manifold) {
+    if (edges.kind(e) == EdgeKind::manifold) {
       const uint32_t c0 = edges.half_edges[edges.offsets[e]], c1 = edges.half_edges[edges.offsets[e] + 1];
       fans.unite(corner_at(c0, a), corner_at(c1, a));
       fans.unite(corner_at(c0, b), corner_at(c1, b));
     } else {
-      auto& mark = edges.kind(e) == EdgeKind::Boundary ? on_boundary : on_nonmanifold;
+      auto& mark = edges.kind(e) == EdgeKind::boundary ? on_boundary : on_nonmanifold;
       mark[a] = mark[b] = 1;
     }
   }
@@ -89,10 +89,10 @@ std::vector<VertexKind> classify_vertices(const PolyMesh& mesh, const EdgeTable&
   }
   for (size_t v = 0; v < nv; ++v) {
     if (first_root[v] == UINT32_MAX) continue;
-    kind[v] = on_nonmanifold[v] ? VertexKind::OnNonManifoldEdge
-              : several[v]      ? VertexKind::NonManifoldFan
-              : on_boundary[v]  ? VertexKind::Boundary
-                                : VertexKind::Interior;
+    kind[v] = on_nonmanifold[v] ? VertexKind::on_non_manifold_edge
+              : several[v]      ? VertexKind::non_manifold_fan
+              : on_boundary[v]  ? VertexKind::boundary
+                                : VertexKind::interior;
   }
   return kind;
 }
@@ -119,7 +119,7 @@ std::vector<std::vector<uint32_t>> boundary_loops(const PolyMesh& mesh, const Ed
   const size_t nv = mesh.vertex_count();
   std::vector<uint32_t> boundary;
   for (size_t e = 0; e < edges.size(); ++e)
-    if (edges.kind(e) == EdgeKind::Boundary) boundary.push_back(edges.half_edges[edges.offsets[e]]);
+    if (edges.kind(e) == EdgeKind::boundary) boundary.push_back(edges.half_edges[edges.offsets[e]]);
   const auto from = [&](uint32_t c) { return mesh.face_vertices[c]; };
   const auto to = [&](uint32_t c) { return mesh.face_vertices[edges.next_corner[c]]; };
   std::vector<std::vector<uint32_t>> out_of(nv), into(nv);
@@ -173,7 +173,7 @@ std::vector<std::vector<uint32_t>> boundary_loops(const PolyMesh& mesh, const Ed
 
 bool is_consistently_oriented(const PolyMesh& mesh, const EdgeTable& edges) {
   for (size_t e = 0; e < edges.size(); ++e) {
-    if (edges.kind(e) != EdgeKind::Manifold) continue;
+    if (edges.kind(e) != EdgeKind::manifold) continue;
     if (mesh.face_vertices[edges.half_edges[edges.offsets[e]]] ==
         mesh.face_vertices[edges.half_edges[edges.offsets[e] + 1]])
       return false;
@@ -189,14 +189,14 @@ TopologyReport analyze_topology(const PolyMesh& mesh) {
   r.edges = edges.size();
   for (size_t e = 0; e < edges.size(); ++e) {
     const EdgeKind k = edges.kind(e);
-    r.boundary_edges += k == EdgeKind::Boundary;
-    r.nonmanifold_edges += k == EdgeKind::NonManifold;
-    r.inconsistent_edges += k == EdgeKind::Manifold && mesh.face_vertices[edges.half_edges[edges.offsets[e]]] ==
+    r.boundary_edges += k == EdgeKind::boundary;
+    r.nonmanifold_edges += k == EdgeKind::non_manifold;
+    r.inconsistent_edges += k == EdgeKind::manifold && mesh.face_vertices[edges.half_edges[edges.offsets[e]]] ==
                                                            mesh.face_vertices[edges.half_edges[edges.offsets[e] + 1]];
   }
   for (VertexKind k : classify_vertices(mesh, edges)) {
-    r.unreferenced_vertices += k == VertexKind::Isolated;
-    r.nonmanifold_vertices += k == VertexKind::NonManifoldFan;
+    r.unreferenced_vertices += k == VertexKind::isolated;
+    r.nonmanifold_vertices += k == VertexKind::non_manifold_fan;
   }
   face_components(mesh, &r.components);
   r.boundary_loops = boundary_loops(mesh, edges).size();

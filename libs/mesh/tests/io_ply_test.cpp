@@ -178,14 +178,15 @@ TEST(PlyReader, ReadsUvAsUVOrST) {
   for (const char* names : {"u v", "s t", "texture_u texture_v"}) {
     const std::string n(names);
     const std::string a = n.substr(0, n.find(' ')), b = n.substr(n.find(' ') + 1);
-    const PolyMesh m = read_ply("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                                "property float z\nproperty float " +
-                                    a + "\nproperty float " + b +
-                                    "\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
-                                    "property uchar alpha\nelement face 1\nproperty list uchar int vertex_indices\n"
-                                    "end_header\n0 0 0 0.25 0.75 255 0 51 255\n1 0 0 1 0 0 255 0 0\n"
-                                    "0 1 0 0 1 0 0 255 128\n3 0 1 2\n",
-                                "uv.ply");
+    const PolyMesh m = read_ply(
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+        "property float z\nproperty float " +
+            a + "\nproperty float " + b +
+            "\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+            "property uchar alpha\nelement face 1\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0 0.25 0.75 255 0 51 255\n1 0 0 1 0 0 255 0 0\n"
+            "0 1 0 0 1 0 0 255 128\n3 0 1 2\n",
+        "uv.ply");
     ASSERT_EQ(m.uvs.size(), 3u) << names;
     EXPECT_EQ(m.uvs[0], Vec2(0.25, 0.75));
     EXPECT_EQ(m.colors[0], Vec3(1, 0, 0.2));

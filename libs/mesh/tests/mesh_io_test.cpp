@@ -2,7 +2,6 @@
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -70,7 +69,7 @@ TEST_F(MeshFiles, EveryAttributeSurvivesEveryFormatThatCanHoldIt) {
   ASSERT_EQ(m.normals.size(), m.vertex_count());
   for (size_t v = 0; v < m.vertex_count(); ++v) m.colors.emplace_back(double(v) / 255, double(3 * v) / 255, 1.0);
   m.creases.push_back({m.face_vertices[0], m.face_vertices[1], 2.0f});
-  EXPECT_TRUE(unsupported_properties(m, MeshFormat::Obj).empty());
+  EXPECT_TRUE(unsupported_properties(m, MeshFormat::obj).empty());
   for (const char* ext : {".obj", ".ply", ".off"}) {
     for (bool binary : {true, false}) {
       SCOPED_TRACE(std::string(ext) + (binary ? " binary" : " ascii"));
@@ -90,11 +89,11 @@ TEST_F(MeshFiles, EveryAttributeSurvivesEveryFormatThatCanHoldIt) {
       EXPECT_EQ(back.creases.size(), std::string(ext) == ".obj" ? 1u : 0u);
     }
   }
-  EXPECT_EQ(unsupported_properties(m, MeshFormat::Ply), std::vector<std::string>{"creases"});
-  EXPECT_EQ(unsupported_properties(m, MeshFormat::Off), std::vector<std::string>{"creases"});
-  EXPECT_EQ(unsupported_properties(m, MeshFormat::Stl),
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::ply), std::vector<std::string>{"creases"});
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::off), std::vector<std::string>{"creases"});
+  EXPECT_EQ(unsupported_properties(m, MeshFormat::stl),
             (std::vector<std::string>{"texture coordinates", "normals", "vertex colors", "creases"}));
-  EXPECT_TRUE(unsupported_properties(make_cube(), MeshFormat::Stl).empty());
+  EXPECT_TRUE(unsupported_properties(make_cube(), MeshFormat::stl).empty());
 }
 
 TEST_F(MeshFiles, ReadingReportsTheBytesParsed) {
@@ -102,21 +101,21 @@ TEST_F(MeshFiles, ReadingReportsTheBytesParsed) {
   std::string obj;
   while (obj.size() < (4u << 20)) obj += "v 0.125 0.25 0.5\n";
   obj += "f 1 2 3\n";
-  Progress::set_mode(Progress::Mode::Plain);
+  Progress::set_mode(Progress::Mode::plain);
   ::testing::internal::CaptureStderr();
   {
     Progress progress("read big.obj", int64_t(obj.size()));
-    const PolyMesh m = read_mesh(obj, MeshFormat::Obj, "big.obj", &progress);
+    const PolyMesh m = read_mesh(obj, MeshFormat::obj, "big.obj", &progress);
     progress.done();
     EXPECT_EQ(m.face_count(), 1u);
   }
   const std::string log = ::testing::internal::GetCapturedStderr();
-  Progress::set_mode(Progress::Mode::Auto);
+  Progress::set_mode(Progress::Mode::automatic);
   EXPECT_THAT(log, ::testing::HasSubstr("read big.obj: 20%\nread big.obj: 40%\nread big.obj: 70%\n"));
 }
 
 TEST_F(MeshFiles, UnknownExtensionsAndMissingFilesAreReported) {
-  EXPECT_EQ(mesh_format_from_path("a/b.Obj"), MeshFormat::Obj);
+  EXPECT_EQ(mesh_format_from_path("a/b.Obj"), MeshFormat::obj);
   EXPECT_THROW(mesh_format_from_path("a.xyz"), InvalidInput);
   EXPECT_THROW(write_mesh(dir_ / "cube.xyz", make_cube()), InvalidInput);
   EXPECT_FALSE(fs::exists(dir_ / "cube.xyz"));

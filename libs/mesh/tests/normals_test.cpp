@@ -19,7 +19,7 @@ TEST(Normals, FaceNormalIsTheNormalizedCrossOfTheFirstTwoEdges) {
 
 TEST(Normals, SphereVertexNormalsPointOutward) {
   const PolyMesh sphere = make_quad_sphere(8);
-  for (NormalWeighting w : {NormalWeighting::Area, NormalWeighting::Angle}) {
+  for (NormalWeighting w : {NormalWeighting::area, NormalWeighting::angle}) {
     const auto n = vertex_normals(sphere, w);
     for (size_t v = 0; v < n.size(); ++v) EXPECT_GT(glm::dot(n[v], sphere.positions[v]), 0.99);
   }
@@ -35,14 +35,14 @@ TEST(Normals, AngleWeightingIgnoresHowAFaceIsSplit) {
   corner.add_face({0, 1, 4, 3});  // y = 0 plane, normal -y
   corner.add_face({0, 3, 6});     // x = 0 plane, normal -x, as two triangles
   corner.add_face({0, 6, 2});
-  const Vec3 angle = vertex_normals(corner, NormalWeighting::Angle)[0];
+  const Vec3 angle = vertex_normals(corner, NormalWeighting::angle)[0];
   EXPECT_NEAR(angle.x, -1 / std::sqrt(3.0), 1e-12);
   EXPECT_NEAR(angle.y, -1 / std::sqrt(3.0), 1e-12);
   EXPECT_NEAR(angle.z, -1 / std::sqrt(3.0), 1e-12);
-  const Vec3 area = vertex_normals(corner, NormalWeighting::Area)[0];
+  const Vec3 area = vertex_normals(corner, NormalWeighting::area)[0];
   EXPECT_NEAR(area.x, area.y, 1e-12);  // both x = 0 triangles have area 1/2: same total as the quads
   PolyMesh copy = corner;
-  compute_vertex_normals(copy, NormalWeighting::Angle);
+  compute_vertex_normals(copy, NormalWeighting::angle);
   EXPECT_EQ(copy.normals.size(), copy.vertex_count());
 }
 
@@ -57,7 +57,7 @@ TEST(Normals, HugeAndTinyCoordinatesGiveTheUnitMeshsNormals) {
     PolyMesh cube = make_cube(), tetra = make_tetrahedron();
     for (Vec3& p : cube.positions) p *= scale;
     for (Vec3& p : tetra.positions) p *= scale;
-    for (NormalWeighting w : {NormalWeighting::Area, NormalWeighting::Angle}) {
+    for (NormalWeighting w : {NormalWeighting::area, NormalWeighting::angle}) {
       const auto n = vertex_normals(cube, w);
       for (size_t v = 0; v < n.size(); ++v) {
         const Vec3 analytic = glm::sign(cube.positions[v]) / std::sqrt(3.0);

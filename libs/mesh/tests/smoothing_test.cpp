@@ -44,9 +44,9 @@ double volume_after(SmoothingMethod method, int iterations) {
 
 TEST(Smoothing, LaplacianShrinksTaubinKeepsTheVolume) {
   const double v0 = signed_volume(noisy_sphere());
-  const double laplacian_loss = 1 - volume_after(SmoothingMethod::Laplacian, 30) / v0;
-  const double cotangent_loss = 1 - volume_after(SmoothingMethod::Cotangent, 30) / v0;
-  const double taubin_loss = std::abs(1 - volume_after(SmoothingMethod::Taubin, 30) / v0);
+  const double laplacian_loss = 1 - volume_after(SmoothingMethod::laplacian, 30) / v0;
+  const double cotangent_loss = 1 - volume_after(SmoothingMethod::cotangent, 30) / v0;
+  const double taubin_loss = std::abs(1 - volume_after(SmoothingMethod::taubin, 30) / v0);
   RecordProperty("laplacian_volume_loss", std::to_string(laplacian_loss));
   RecordProperty("cotangent_volume_loss", std::to_string(cotangent_loss));
   RecordProperty("taubin_volume_loss", std::to_string(taubin_loss));
@@ -57,7 +57,7 @@ TEST(Smoothing, LaplacianShrinksTaubinKeepsTheVolume) {
 
 TEST(Smoothing, EveryMethodRemovesNoise) {
   const double before = roughness(noisy_sphere());
-  for (SmoothingMethod m : {SmoothingMethod::Laplacian, SmoothingMethod::Cotangent, SmoothingMethod::Taubin}) {
+  for (SmoothingMethod m : {SmoothingMethod::laplacian, SmoothingMethod::cotangent, SmoothingMethod::taubin}) {
     PolyMesh mesh = noisy_sphere();
     int calls = 0;
     smooth(mesh, {m, 10}, [&](int step) { calls = step; });
@@ -69,7 +69,7 @@ TEST(Smoothing, EveryMethodRemovesNoise) {
 TEST(Smoothing, TheNotesUniformStepWithLambdaOneIsTheNeighbourAverage) {
   PolyMesh grid = make_grid(2, 2);
   grid.positions[4].y = 1;  // the center vertex, neighbours at y = 0
-  smooth(grid, {SmoothingMethod::Laplacian, 1, 1.0});
+  smooth(grid, {SmoothingMethod::laplacian, 1, 1.0});
   EXPECT_NEAR(grid.positions[4].y, 0, 1e-15);
   EXPECT_EQ(grid.positions[0], Vec3(-1, 0, -1));  // boundary vertices stay
 }
@@ -81,9 +81,9 @@ TEST(Smoothing, HugeCoordinatesStayFinite) {
   grid.positions[4].y = 1;
   for (Vec3& p : grid.positions) p *= 1e308;
   PolyMesh average = grid;
-  smooth(average, {SmoothingMethod::Laplacian, 1, 1.0});
+  smooth(average, {SmoothingMethod::laplacian, 1, 1.0});
   EXPECT_EQ(average.positions[4], Vec3(0, 0, 0));  // the mean of (+-1e308, 0, 0) and (0, 0, +-1e308)
-  for (SmoothingMethod m : {SmoothingMethod::Laplacian, SmoothingMethod::Cotangent, SmoothingMethod::Taubin}) {
+  for (SmoothingMethod m : {SmoothingMethod::laplacian, SmoothingMethod::cotangent, SmoothingMethod::taubin}) {
     PolyMesh mesh = grid;
     smooth(mesh, {.method = m, .iterations = 5, .fix_boundary = false});
     for (const Vec3& p : mesh.positions)
@@ -94,15 +94,15 @@ TEST(Smoothing, HugeCoordinatesStayFinite) {
   PolyMesh largest = make_grid(2, 2);
   for (size_t v = 0; v < largest.vertex_count(); ++v) largest.positions[v].y = v % 2 ? 1.7e308 : -1.7e308;
   const PolyMesh before = largest;
-  EXPECT_THROW(smooth(largest, {SmoothingMethod::Taubin, 1, 0.1, -0.9, false}), InvalidInput);
+  EXPECT_THROW(smooth(largest, {SmoothingMethod::taubin, 1, 0.1, -0.9, false}), InvalidInput);
   EXPECT_EQ(largest.positions, before.positions);
 }
 
 TEST(Smoothing, RejectsBadParameters) {
   PolyMesh m = make_cube();
-  EXPECT_THROW(smooth(m, {SmoothingMethod::Laplacian, -1}), InvalidInput);
-  EXPECT_THROW(smooth(m, {SmoothingMethod::Laplacian, 1, 0.0}), InvalidInput);
-  EXPECT_THROW(smooth(m, {SmoothingMethod::Taubin, 1, 0.5, -0.4}), InvalidInput);
+  EXPECT_THROW(smooth(m, {SmoothingMethod::laplacian, -1}), InvalidInput);
+  EXPECT_THROW(smooth(m, {SmoothingMethod::laplacian, 1, 0.0}), InvalidInput);
+  EXPECT_THROW(smooth(m, {SmoothingMethod::taubin, 1, 0.5, -0.4}), InvalidInput);
 }
 
 // A bumpy plane smoothed flat: its normals must follow the new shape (they pointed along the bumps before).
@@ -117,7 +117,7 @@ TEST(Smoothing, NormalsFollowTheSmoothedShape) {
       m.add_face({v, v + 1, v + uint32_t(n) + 2, v + uint32_t(n) + 1});
     }
   m.normals.assign(m.vertex_count(), Vec3(1, 0, 0));
-  smooth(m, {.method = SmoothingMethod::Laplacian, .iterations = 50, .lambda = 0.5});
+  smooth(m, {.method = SmoothingMethod::laplacian, .iterations = 50, .lambda = 0.5});
   ASSERT_EQ(m.normals.size(), m.vertex_count());
   for (size_t v = 0; v < m.vertex_count(); ++v) {
     if (std::abs(m.positions[v].x - n / 2.0) > 1 || std::abs(m.positions[v].y - n / 2.0) > 1) continue;

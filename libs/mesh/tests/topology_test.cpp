@@ -54,8 +54,8 @@ TEST(Topology, BoundaryEdgesAndLoops) {
   EXPECT_EQ(loops[1].size(), 6u);
   EXPECT_EQ(analyze_topology(tube).genus, 0);
   const auto kinds = classify_vertices(grid, build_edge_table(grid));
-  EXPECT_EQ(kinds[0], VertexKind::Boundary);
-  EXPECT_EQ(kinds[5], VertexKind::Interior);  // (1, 1)
+  EXPECT_EQ(kinds[0], VertexKind::boundary);
+  EXPECT_EQ(kinds[5], VertexKind::interior);  // (1, 1)
 }
 
 TEST(Topology, NonManifoldEdgesAndPinchVertices) {
@@ -70,16 +70,16 @@ TEST(Topology, NonManifoldEdgesAndPinchVertices) {
   EXPECT_EQ(r.nonmanifold_edges, 1u);
   EXPECT_FALSE(r.manifold());
   EXPECT_FALSE(r.genus.has_value());
-  EXPECT_EQ(classify_vertices(fin, edges)[0], VertexKind::OnNonManifoldEdge);
+  EXPECT_EQ(classify_vertices(fin, edges)[0], VertexKind::on_non_manifold_edge);
   // A bowtie: two triangles sharing only vertex 0.
   PolyMesh bowtie;
   bowtie.positions = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(-1, 0, 0), Vec3(-1, -1, 0), Vec3(9, 9, 9)};
   bowtie.add_face({0, 1, 2});
   bowtie.add_face({0, 3, 4});
   const auto kinds = classify_vertices(bowtie, build_edge_table(bowtie));
-  EXPECT_EQ(kinds[0], VertexKind::NonManifoldFan);
-  EXPECT_EQ(kinds[1], VertexKind::Boundary);
-  EXPECT_EQ(kinds[5], VertexKind::Isolated);
+  EXPECT_EQ(kinds[0], VertexKind::non_manifold_fan);
+  EXPECT_EQ(kinds[1], VertexKind::boundary);
+  EXPECT_EQ(kinds[5], VertexKind::isolated);
   const TopologyReport b = analyze_topology(bowtie);
   EXPECT_EQ(b.nonmanifold_vertices, 1u);
   EXPECT_EQ(b.unreferenced_vertices, 1u);

@@ -86,7 +86,7 @@ void Canvas::stroke_device(const std::vector<Vec2>& points, bool closed) {
   if (width_px > 1.0) {
     StrokeStyle style = stroke_style_;
     style.width = width_px;
-    paint(stroke_path(points, closed, style), FillRule::NonZero, color);
+    paint(stroke_path(points, closed, style), FillRule::non_zero, color);
     return;
   }
   if (points.size() == 1) {
@@ -116,8 +116,8 @@ void Canvas::point_device(const Vec2& p) {
   }
   StrokeStyle dot = stroke_style_;
   dot.width = diameter;
-  dot.cap = LineCap::Round;
-  paint(stroke_path({p}, false, dot), FillRule::NonZero, *stroke_);
+  dot.cap = LineCap::round;
+  paint(stroke_path({p}, false, dot), FillRule::non_zero, *stroke_);
 }
 
 void Canvas::draw_device_polygon(const std::vector<Vec2>& points) {
@@ -184,9 +184,9 @@ void Canvas::arc(double cx, double cy, double w, double h, double start, double 
   if (!(stop >= start)) return;
   const double sweep = std::min(stop - start, 2 * kPi);
   std::vector<Vec2> pts = arc_points(cx, cy, w, h, start, sweep, ellipse_segments(w, h, sweep), true);
-  if (mode == ArcMode::Pie) pts.push_back(to_device(cx, cy));
+  if (mode == ArcMode::pie) pts.push_back(to_device(cx, cy));
   fill_device(Path{{pts}});
-  stroke_device(pts, mode != ArcMode::Open);
+  stroke_device(pts, mode != ArcMode::open);
 }
 
 // ---- Shapes ---------------------------------------------------------------------------------------------------------
@@ -209,7 +209,7 @@ void Canvas::vertex(double x, double y) {
 
 void Canvas::bezier_vertex(double cx1, double cy1, double cx2, double cy2, double x, double y) {
   require_shape("bezier_vertex()");
-  if (*shape_ != ShapeKind::Polygon || contours_[current_].empty())
+  if (*shape_ != ShapeKind::polygon || contours_[current_].empty())
     throw InvalidInput("bezier_vertex() needs a Polygon shape and a previous vertex()");
   auto& c = contours_[current_];
   flatten_cubic(c.back(), to_device(cx1, cy1), to_device(cx2, cy2), to_device(x, y), kBezierTolerance, c);
@@ -217,7 +217,7 @@ void Canvas::bezier_vertex(double cx1, double cy1, double cx2, double cy2, doubl
 
 void Canvas::quadratic_vertex(double cx, double cy, double x, double y) {
   require_shape("quadratic_vertex()");
-  if (*shape_ != ShapeKind::Polygon || contours_[current_].empty())
+  if (*shape_ != ShapeKind::polygon || contours_[current_].empty())
     throw InvalidInput("quadratic_vertex() needs a Polygon shape and a previous vertex()");
   auto& c = contours_[current_];
   flatten_quadratic(c.back(), to_device(cx, cy), to_device(x, y), kBezierTolerance, c);
@@ -225,7 +225,7 @@ void Canvas::quadratic_vertex(double cx, double cy, double x, double y) {
 
 void Canvas::begin_contour() {
   require_shape("begin_contour()");
-  if (*shape_ != ShapeKind::Polygon || current_ != 0)
+  if (*shape_ != ShapeKind::polygon || current_ != 0)
     throw InvalidInput("begin_contour() needs a Polygon shape and no open contour");
   contours_.emplace_back();
   current_ = contours_.size() - 1;
@@ -248,30 +248,30 @@ void Canvas::end_shape(bool close) {
   const std::vector<Vec2>& v = contours[0];
   const size_t n = v.size();
   switch (kind) {
-    case ShapeKind::Polygon:
+    case ShapeKind::polygon:
       fill_device(Path{contours});
       stroke_device(contours[0], close);
       for (size_t i = 1; i < contours.size(); ++i) stroke_device(contours[i], true);
       break;
-    case ShapeKind::Points:
+    case ShapeKind::points:
       for (const Vec2& p : v) point_device(p);
       break;
-    case ShapeKind::Lines:
+    case ShapeKind::lines:
       for (size_t i = 0; i + 1 < n; i += 2) stroke_device({v[i], v[i + 1]}, false);
       break;
-    case ShapeKind::Triangles:
+    case ShapeKind::triangles:
       for (size_t i = 0; i + 2 < n; i += 3) draw_device_polygon({v[i], v[i + 1], v[i + 2]});
       break;
-    case ShapeKind::TriangleStrip:
+    case ShapeKind::triangle_strip:
       for (size_t i = 2; i < n; ++i) draw_device_polygon({v[i - 2], v[i - 1], v[i]});
       break;
-    case ShapeKind::TriangleFan:
+    case ShapeKind::triangle_fan:
       for (size_t i = 2; i < n; ++i) draw_device_polygon({v[0], v[i - 1], v[i]});
       break;
-    case ShapeKind::Quads:
+    case ShapeKind::quads:
       for (size_t i = 0; i + 3 < n; i += 4) draw_device_polygon({v[i], v[i + 1], v[i + 2], v[i + 3]});
       break;
-    case ShapeKind::QuadStrip:
+    case ShapeKind::quad_strip:
       for (size_t i = 0; i + 3 < n; i += 2) draw_device_polygon({v[i], v[i + 1], v[i + 3], v[i + 2]});
       break;
   }

@@ -112,14 +112,13 @@ void draw_line(ImageRGBA& image, const Vec2& a, const Vec2& b, const Vec4f& colo
     if (image.contains(x, y)) image(x, y) = blend_over(image(x, y), color, intensity);
   };
   switch (algorithm) {
-    case LineAlgorithm::Dda:
+    case LineAlgorithm::dda:
       line_dda(a.x, a.y, b.x, b.y, plot);
       break;
-    case LineAlgorithm::Bresenham:
-      line_bresenham(int(std::lround(a.x)), int(std::lround(a.y)), int(std::lround(b.x)), int(std::lround(b.y)),
-                     plot);
+    case LineAlgorithm::bresenham:
+      line_bresenham(int(std::lround(a.x)), int(std::lround(a.y)), int(std::lround(b.x)), int(std::lround(b.y)), plot);
       break;
-    case LineAlgorithm::Wu:
+    case LineAlgorithm::wu:
       line_wu(a.x, a.y, b.x, b.y, plot);
       break;
   }

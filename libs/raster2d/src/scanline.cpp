@@ -81,7 +81,7 @@ EdgeTable build_edge_table(const Path& path, int width, int height) {
   return table;
 }
 
-bool inside(FillRule rule, int winding) { return rule == FillRule::NonZero ? winding != 0 : (winding & 1) != 0; }
+bool inside(FillRule rule, int winding) { return rule == FillRule::non_zero ? winding != 0 : (winding & 1) != 0; }
 
 // ---- Aliased: the notes' edge table and active edge list ----------------------------------------------------------
 
@@ -201,14 +201,13 @@ void deposit_clipped(float* acc, int stride, int cols, double xa, double ya, dou
   };
   for (int i = 0; i + 1 < n; ++i) {
     const Vec2 p = at(ts[i], i == 0, false), q = at(ts[i + 1], false, i + 2 == n);
-    deposit_segment(acc, stride, std::clamp(p.x, 0.0, double(cols)), p.y, std::clamp(q.x, 0.0, double(cols)), q.y,
-                    dir);
+    deposit_segment(acc, stride, std::clamp(p.x, 0.0, double(cols)), p.y, std::clamp(q.x, 0.0, double(cols)), q.y, dir);
   }
 }
 
 float fold_coverage(FillRule rule, float sum) {
   float c = std::fabs(sum);
-  if (rule == FillRule::NonZero) {
+  if (rule == FillRule::non_zero) {
     c = std::min(c, 1.0f);
   } else {
     c -= 2.0f * std::floor(c * 0.5f);

@@ -48,7 +48,7 @@ void add_join(Path& out, const Vec2& p, const Vec2& d0, const Vec2& d1, double r
   const Vec2 n0(-d0.y, d0.x), n1(-d1.y, d1.x);
   const double side = turn > 0 ? -1.0 : 1.0;  // the outer side of the turn
   const Vec2 a = p + side * r * n0, b = p + side * r * n1;
-  if (style.join == LineJoin::Round) {
+  if (style.join == LineJoin::round) {
     std::vector<Vec2> poly{p, a};
     double sweep = angle_of(b - p) - angle_of(a - p);
     // Sweep the short way round on the outer side; a reversal sweeps half a turn through the direction d0.
@@ -63,7 +63,7 @@ void add_join(Path& out, const Vec2& p, const Vec2& d0, const Vec2& d1, double r
   if (std::fabs(turn) < 1e-12) return;  // a reversal has no bevel or miter area
   // Miter length / width = 1 / sin(theta / 2) for the angle theta between the segments, = 1 / sqrt((1 + d0.d1) / 2).
   const double ratio = 1.0 / std::sqrt(std::max(1e-300, 0.5 * (1.0 + along)));
-  if (style.join == LineJoin::Miter && ratio <= style.miter_limit) {
+  if (style.join == LineJoin::miter && ratio <= style.miter_limit) {
     const Vec2 bisector = glm::normalize(n0 + n1);
     add_piece(out, {p, a, p + side * r * ratio * bisector, b});
   } else {
@@ -93,10 +93,10 @@ Path stroke_path(const std::vector<Vec2>& polyline, bool closed, const StrokeSty
   if (pts.empty()) return out;
   if (pts.size() == 1) {  // a zero-length subpath: a dot for round and square caps (SVG)
     const Vec2 p = pts[0];
-    if (style.cap == LineCap::Round) {
+    if (style.cap == LineCap::round) {
       add_round_cap(out, p, Vec2(1, 0), r);
       add_round_cap(out, p, Vec2(-1, 0), r);
-    } else if (style.cap == LineCap::Square) {
+    } else if (style.cap == LineCap::square) {
       add_piece(out, {p + Vec2(-r, -r), p + Vec2(r, -r), p + Vec2(r, r), p + Vec2(-r, r)});
     }
     return out;
@@ -107,7 +107,7 @@ Path stroke_path(const std::vector<Vec2>& polyline, bool closed, const StrokeSty
   for (size_t i = 0; i < segments; ++i) {
     Vec2 a = pts[i], b = pts[(i + 1) % n];
     const Vec2 d = direction(i), normal(-d.y, d.x);
-    if (!closed && style.cap == LineCap::Square) {
+    if (!closed && style.cap == LineCap::square) {
       if (i == 0) a -= r * d;
       if (i + 1 == segments) b += r * d;
     }
@@ -115,7 +115,7 @@ Path stroke_path(const std::vector<Vec2>& polyline, bool closed, const StrokeSty
   }
   for (size_t i = closed ? 0 : 1; i < (closed ? n : n - 1); ++i)
     add_join(out, pts[i], direction((i + n - 1) % n), direction(i), r, style);
-  if (!closed && style.cap == LineCap::Round) {
+  if (!closed && style.cap == LineCap::round) {
     add_round_cap(out, pts[0], -direction(0), r);
     add_round_cap(out, pts[n - 1], direction(n - 2), r);
   }

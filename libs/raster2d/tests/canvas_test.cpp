@@ -1,7 +1,6 @@
 #include "tessera/raster2d/canvas.hpp"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -64,8 +63,9 @@ TEST(Canvas, RandomAbuttingRectsAndTrianglesWriteEachPixelOnce) {
     const int nx = 12, ny = 9;
     std::vector<Vec2> v;
     for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) v.push_back({(i + (i % nx ? jitter(rng) : 0)) * 160.0 / nx - 80,
-                                                 (j + (j % ny ? jitter(rng) : 0)) * 160.0 / ny - 80});
+      for (int i = 0; i <= nx; ++i)
+        v.push_back(
+            {(i + (i % nx ? jitter(rng) : 0)) * 160.0 / nx - 80, (j + (j % ny ? jitter(rng) : 0)) * 160.0 / ny - 80});
     tris.translate(45, 35);
     tris.rotate(0.3);
     auto at = [&](int i, int j) { return v[size_t(j * (nx + 1) + i)]; };
@@ -130,7 +130,7 @@ TEST(Canvas, PopUnderflowThrows) {
 }
 
 TEST(Canvas, ShapeWithAContourHole) {
-  for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+  for (const FillRule rule : {FillRule::non_zero, FillRule::even_odd}) {
     Canvas c = counting_canvas(60, 60);
     c.fill(Vec4f(1));
     c.fill_rule(rule);
@@ -140,10 +140,10 @@ TEST(Canvas, ShapeWithAContourHole) {
     for (const auto& [x, y] : {std::pair{20, 20}, {40, 20}, {40, 40}, {20, 40}}) c.vertex(x, y);
     c.end_contour();
     c.end_shape(true);
-    EXPECT_EQ(c.image()(30, 30).w, rule == FillRule::EvenOdd ? 0.0f : 1.0f);
+    EXPECT_EQ(c.image()(30, 30).w, rule == FillRule::even_odd ? 0.0f : 1.0f);
     EXPECT_EQ(c.image()(15, 30).w, 1.0f);
     EXPECT_EQ(c.image()(5, 30).w, 0.0f);
-    EXPECT_EQ(coverage_sum(c), rule == FillRule::EvenOdd ? 1600 - 400 : 1600);
+    EXPECT_EQ(coverage_sum(c), rule == FillRule::even_odd ? 1600 - 400 : 1600);
   }
 }
 
@@ -160,7 +160,7 @@ TEST(Canvas, ShapeErrors) {
   EXPECT_THROW(c.end_shape(), InvalidInput);
   c.end_contour();
   c.end_shape();
-  c.begin_shape(ShapeKind::Lines);
+  c.begin_shape(ShapeKind::lines);
   EXPECT_THROW(c.begin_contour(), InvalidInput);
   EXPECT_THROW(c.stroke_weight(-1), InvalidInput);
 }
@@ -172,8 +172,9 @@ TEST(Canvas, EllipseAndArcAreas) {
   c.ellipse(60.3, 50.1, 80, 60);
   EXPECT_NEAR(coverage_sum(c), kPi * 40 * 30, 0.5);
   const double quarter = kPi * 40 * 30 / 4, corner_triangle = 40.0 * 30 / 2;
-  for (const auto& [mode, area] : {std::pair{ArcMode::Pie, quarter}, std::pair{ArcMode::Chord, quarter - corner_triangle},
-                                   std::pair{ArcMode::Open, quarter - corner_triangle}}) {
+  for (const auto& [mode, area] :
+       {std::pair{ArcMode::pie, quarter}, std::pair{ArcMode::chord, quarter - corner_triangle},
+        std::pair{ArcMode::open, quarter - corner_triangle}}) {
     Canvas a = counting_canvas(120, 100);
     a.fill(Vec4f(1));
     a.smooth();
@@ -216,7 +217,7 @@ TEST(Canvas, ThickStrokesAndPoints) {
   Canvas c = counting_canvas(60, 60);
   c.stroke(Vec4f(1));
   c.stroke_weight(4);
-  c.stroke_cap(LineCap::Butt);
+  c.stroke_cap(LineCap::butt);
   c.line(10, 20, 50, 20);
   EXPECT_EQ(coverage_sum(c), 40 * 4);
   Canvas p = counting_canvas(60, 60);
@@ -233,13 +234,13 @@ TEST(Canvas, ThickStrokesAndPoints) {
 TEST(Canvas, ShapeKinds) {
   Canvas c = counting_canvas(40, 40);
   c.fill(Vec4f(1));
-  c.begin_shape(ShapeKind::Quads);
+  c.begin_shape(ShapeKind::quads);
   for (const auto& [x, y] : {std::pair{0, 0}, {10, 0}, {10, 10}, {0, 10}, {20, 20}, {30, 20}, {30, 30}, {20, 30}})
     c.vertex(x, y);
   c.end_shape();
   EXPECT_EQ(coverage_sum(c), 200);
   Canvas s = counting_canvas(40, 40);
-  s.begin_shape(ShapeKind::TriangleStrip);  // a strip of 4 vertices: two triangles tiling the square, each pixel once
+  s.begin_shape(ShapeKind::triangle_strip);  // a strip of 4 vertices: two triangles tiling the square, each pixel once
   for (const auto& [x, y] : {std::pair{0, 0}, {0, 20}, {20, 0}, {20, 20}}) s.vertex(x, y);
   s.end_shape();
   EXPECT_EQ(coverage_sum(s), 400 * 0.5);
@@ -260,7 +261,8 @@ TEST(Canvas, SaveWritesAFile) {
   Canvas c(8, 8);
   c.fill(rgb255(255, 150, 150));
   c.rect(2, 2, 4, 4);
-  const auto path = std::filesystem::temp_directory_path() / ("tessera_canvas_test_" + std::to_string(::getpid()) + ".png");
+  const auto path =
+      std::filesystem::temp_directory_path() / ("tessera_canvas_test_" + std::to_string(::getpid()) + ".png");
   c.save(path);
   EXPECT_GT(std::filesystem::file_size(path), 0u);
   std::filesystem::remove(path);
@@ -280,8 +282,9 @@ TEST(Canvas, SizesOverTheMemoryBudgetAreRefusedBeforeAllocating) {
   std::optional<Canvas> fits;
   EXPECT_NO_THROW(fits.emplace(200, 200));
   MemoryBudget::set_limit(0);
-  EXPECT_EQ(message, "a 300x300 canvas needs about 1.7 MiB, the memory budget is 1.0 MiB (raise it with --max-memory "
-                     "SIZE)");
+  EXPECT_EQ(message,
+            "a 300x300 canvas needs about 1.7 MiB, the memory budget is 1.0 MiB (raise it with --max-memory "
+            "SIZE)");
   EXPECT_THROW(Canvas(-1, 5), InvalidInput);
 }
 

@@ -85,7 +85,8 @@ TEST(Gt2d, CircleImageDrawsThreeCirclesAndRestoresTheStack) {
     }
   EXPECT_GT(lit_count, 0.9 * 2 * kPi * 400 / std::sqrt(2.0));  // DDA: max(|dx|, |dy|) >= length / sqrt 2 pixels
   // The 20-gon's vertices are lit: (1, 0) of the big circle is (400, 200) -> clipped; (cos 18deg, sin 18deg) is in.
-  EXPECT_TRUE(lit(ctx, int(std::round(200 + 200 * std::cos(kPi / 10))), int(std::round(200 + 200 * std::sin(kPi / 10)))));
+  EXPECT_TRUE(
+      lit(ctx, int(std::round(200 + 200 * std::cos(kPi / 10))), int(std::round(200 + 200 * std::sin(kPi / 10)))));
   gtMakeCurrent(nullptr);
 }
 

@@ -128,11 +128,11 @@ TEST(Lines, CircleSegmentsAreTheNotesLoop) {
 
 TEST(Lines, DrawLineClipsAndBlends) {
   ImageRGBA img(10, 10, Vec4f(0, 0, 0, 1));
-  draw_line(img, {-5, 2}, {20, 2}, Vec4f(1, 1, 1, 1), LineAlgorithm::Bresenham);
+  draw_line(img, {-5, 2}, {20, 2}, Vec4f(1, 1, 1, 1), LineAlgorithm::bresenham);
   for (int x = 0; x < 10; ++x) EXPECT_EQ(img(x, 2), Vec4f(1, 1, 1, 1));
-  draw_line(img, {0, 5}, {9, 5}, Vec4f(1, 0, 0, 0.5f), LineAlgorithm::Dda);
+  draw_line(img, {0, 5}, {9, 5}, Vec4f(1, 0, 0, 0.5f), LineAlgorithm::dda);
   EXPECT_NEAR(img(3, 5).x, 0.5f, 1e-6f);
-  draw_line(img, {0, 7.5}, {9, 7.5}, Vec4f(1, 1, 1, 1), LineAlgorithm::Wu);
+  draw_line(img, {0, 7.5}, {9, 7.5}, Vec4f(1, 1, 1, 1), LineAlgorithm::wu);
   EXPECT_NEAR(img(4, 7).x, 0.5f, 1e-6f);
   EXPECT_NEAR(img(4, 8).x, 0.5f, 1e-6f);
 }

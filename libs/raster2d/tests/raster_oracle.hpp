@@ -29,7 +29,7 @@ inline bool point_in_path(const Path& path, FillRule rule, const Vec2& p) {
       }
     }
   }
-  return rule == FillRule::NonZero ? winding != 0 : (crossings & 1) != 0;
+  return rule == FillRule::non_zero ? winding != 0 : (crossings & 1) != 0;
 }
 
 /// The fraction of each pixel's n x n subsample centers inside the path (row-major, width x height). Each subsample
@@ -55,7 +55,7 @@ inline std::vector<double> supersampled_coverage(const Path& path, FillRule rule
     for (size_t k = 0; k + 1 < xs.size(); ++k) {
       winding += xs[k].second;
       ++crossings;
-      const bool in = rule == FillRule::NonZero ? winding != 0 : (crossings & 1) != 0;
+      const bool in = rule == FillRule::non_zero ? winding != 0 : (crossings & 1) != 0;
       if (!in) continue;
       // Subsample columns sx with center (sx + 0.5) / n in [xs[k], xs[k + 1]).
       const long s0 = std::max(0L, long(std::ceil(xs[k].first * n - 0.5)));

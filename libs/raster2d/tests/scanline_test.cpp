@@ -16,13 +16,12 @@ struct Counts {
   Image<double> coverage;
   Counts(int w, int h) : writes(w, h, 0), coverage(w, h, 0.0) {}
   void scan(const Path& path, FillRule rule, bool antialias) {
-    scan_path(path, rule, writes.width(), writes.height(), antialias,
-              [&](int y, int x0, int x1, const float* cov) {
-                for (int x = x0; x < x1; ++x) {
-                  ++writes(x, y);
-                  coverage(x, y) += cov ? cov[x - x0] : 1.0;
-                }
-              });
+    scan_path(path, rule, writes.width(), writes.height(), antialias, [&](int y, int x0, int x1, const float* cov) {
+      for (int x = x0; x < x1; ++x) {
+        ++writes(x, y);
+        coverage(x, y) += cov ? cov[x - x0] : 1.0;
+      }
+    });
   }
 };
 
@@ -72,7 +71,7 @@ void random_rects(std::mt19937& rng, double x0, double y0, double x1, double y1,
 }
 
 void expect_tiles_exactly_once(const std::vector<Path>& pieces, int w, int h) {
-  for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+  for (const FillRule rule : {FillRule::non_zero, FillRule::even_odd}) {
     Counts aliased(w, h), smooth(w, h);
     for (const Path& p : pieces) {
       aliased.scan(p, rule, false);
@@ -90,7 +89,8 @@ void expect_tiles_exactly_once(const std::vector<Path>& pieces, int w, int h) {
 
 TEST(Scanline, RandomTriangulatedGridWritesEveryPixelExactlyOnce) {
   std::mt19937 rng(7);
-  for (int trial = 0; trial < 4; ++trial) expect_tiles_exactly_once(random_triangulated_grid(rng, 97, 83, 9, 7), 97, 83);
+  for (int trial = 0; trial < 4; ++trial)
+    expect_tiles_exactly_once(random_triangulated_grid(rng, 97, 83, 9, 7), 97, 83);
 }
 
 TEST(Scanline, RandomAbuttingRectsWriteEveryPixelExactlyOnce) {
@@ -103,7 +103,7 @@ TEST(Scanline, RandomAbuttingRectsWriteEveryPixelExactlyOnce) {
 }
 
 void expect_matches_point_in_polygon(const Path& path, int w, int h) {
-  for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+  for (const FillRule rule : {FillRule::non_zero, FillRule::even_odd}) {
     Counts counts(w, h);
     counts.scan(path, rule, false);
     int mismatches = 0;
@@ -111,13 +111,14 @@ void expect_matches_point_in_polygon(const Path& path, int w, int h) {
       for (int x = 0; x < w; ++x)
         mismatches += (counts.writes(x, y) == 1) != test::point_in_path(path, rule, {x + 0.5, y + 0.5}) ||
                       counts.writes(x, y) > 1;
-    EXPECT_EQ(mismatches, 0) << (rule == FillRule::NonZero ? "nonzero" : "even-odd");
+    EXPECT_EQ(mismatches, 0) << (rule == FillRule::non_zero ? "nonzero" : "even-odd");
   }
 }
 
 TEST(Scanline, ConcavePolygonsWithHolesMatchPointInPolygon) {
   std::mt19937 rng(3);
-  for (int trial = 0; trial < 20; ++trial) expect_matches_point_in_polygon(test::random_polygon_with_holes(rng, 120, 90), 120, 90);
+  for (int trial = 0; trial < 20; ++trial)
+    expect_matches_point_in_polygon(test::random_polygon_with_holes(rng, 120, 90), 120, 90);
 }
 
 TEST(Scanline, SelfIntersectingPolygonsMatchPointInPolygon) {
@@ -137,7 +138,7 @@ TEST(Scanline, PixelCenterRuleOnExactEdges) {
   // Centers exactly on the left/top edges are in, on the right/bottom edges out; a triangle's slanted edge through
   // centers includes them on its left side.
   Counts counts(8, 8);
-  counts.scan(Path{{{{1.5, 1.5}, {5.5, 1.5}, {5.5, 5.5}}}}, FillRule::NonZero, false);
+  counts.scan(Path{{{{1.5, 1.5}, {5.5, 1.5}, {5.5, 5.5}}}}, FillRule::non_zero, false);
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) {
       const bool expected = y >= 1 && y < 5 && x >= y && x < 5;
@@ -149,7 +150,7 @@ TEST(Scanline, TiesOnSlopesThatAreNotBinaryFractionsStayExact) {
   // A star whose edges have slope dx/dy = 1/3: accumulating x += 1/3 per scanline drifts, and the center (51.5, 9.5),
   // exactly on the right edge from (50, 5) to (61, 38), would be filled. Row 9 spans [48.5, 51.5): pixels 48..50.
   Counts counts(100, 50);
-  counts.scan(Path{{{{50, 5}, {61, 38}, {33, 17}, {67, 17}, {39, 38}}}}, FillRule::NonZero, false);
+  counts.scan(Path{{{{50, 5}, {61, 38}, {33, 17}, {67, 17}, {39, 38}}}}, FillRule::non_zero, false);
   for (int x = 40; x < 60; ++x) EXPECT_EQ(counts.writes(x, 9), x >= 48 && x <= 50 ? 1 : 0) << x;
 }
 
@@ -157,7 +158,7 @@ TEST(Scanline, AntialiasedCoverageMatchesSupersampledOracle) {
   std::mt19937 rng(13);
   for (int trial = 0; trial < 6; ++trial) {
     const Path path = test::random_polygon_with_holes(rng, 48, 40);
-    for (const FillRule rule : {FillRule::NonZero, FillRule::EvenOdd}) {
+    for (const FillRule rule : {FillRule::non_zero, FillRule::even_odd}) {
       Counts counts(48, 40);
       counts.scan(path, rule, true);
       const std::vector<double> oracle = test::supersampled_coverage(path, rule, 48, 40, 64);
@@ -178,7 +179,7 @@ TEST(Scanline, SpansOfARowAreOrderedDisjointAndInside) {
   for (const bool aa : {false, true}) {
     std::vector<int> last_end(200, -1);
     bool ok = true;
-    scan_path(path, FillRule::EvenOdd, 200, 200, aa, [&](int y, int x0, int x1, const float*) {
+    scan_path(path, FillRule::even_odd, 200, 200, aa, [&](int y, int x0, int x1, const float*) {
       ok = ok && y >= 0 && y < 200 && x0 >= 0 && x0 < x1 && x1 <= 200 && x0 >= last_end[size_t(y)];
       last_end[size_t(y)] = x1;
     });
@@ -196,17 +197,17 @@ TEST(Scanline, IdenticalForAnyThreadCount) {
     Counts one(512, 512), all(512, 512);
     {
       ThreadLimit limit(1);
-      one.scan(path, FillRule::NonZero, aa);
+      one.scan(path, FillRule::non_zero, aa);
     }
-    all.scan(path, FillRule::NonZero, aa);
+    all.scan(path, FillRule::non_zero, aa);
     EXPECT_TRUE(std::equal(one.coverage.pixels().begin(), one.coverage.pixels().end(), all.coverage.pixels().begin()));
   }
 }
 
 TEST(Scanline, DegenerateInputAddsNothing) {
   Counts counts(10, 10);
-  counts.scan(Path{{{{1, 1}, {5, 5}}, {}, {{1, 1}, {9, 1}, {NAN, 9}}}}, FillRule::NonZero, false);
-  counts.scan(Path{{{{1, 1}, {9, 1}, {5, 1}}}}, FillRule::NonZero, true);
+  counts.scan(Path{{{{1, 1}, {5, 5}}, {}, {{1, 1}, {9, 1}, {NAN, 9}}}}, FillRule::non_zero, false);
+  counts.scan(Path{{{{1, 1}, {9, 1}, {5, 1}}}}, FillRule::non_zero, true);
   for (int v : counts.writes.pixels()) EXPECT_EQ(v, 0);
 }
 

@@ -59,7 +59,7 @@ PreparedLighting::PreparedLighting(const Lighting& lighting)
 }
 
 Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color,
-                               std::span<const float> visibility) const {
+                              std::span<const float> visibility) const {
   const Vec3f ambient_m = color_material_ ? color : ambient_m_;
   Vec3f c = emission_ + ambient_m * ambient_sum_;
   const Vec3f eye = local_viewer_ ? glm::normalize(-p) : Vec3f(0, 0, 1);

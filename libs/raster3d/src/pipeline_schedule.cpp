@@ -78,10 +78,10 @@ class RasterThread {
 
   std::mutex mutex_;
   std::condition_variable wake_, done_;
-  std::function<void()> job_;  // the slot: the job running or about to run
-  std::atomic<bool> busy_{false};  // job_ is set: read by the caller without the lock, as a hint
+  std::function<void()> job_;                // the slot: the job running or about to run
+  std::atomic<bool> busy_{false};            // job_ is set: read by the caller without the lock, as a hint
   std::atomic<bool> caller_waiting_{false};  // the caller is in wait(): read by the job as a hint
-  std::exception_ptr error_;   // the first exception a job ended with, until finish_raster takes it
+  std::exception_ptr error_;                 // the first exception a job ended with, until finish_raster takes it
   bool stop_ = false;
   std::thread thread_;  // last: it starts once the members above exist
 };

@@ -1,8 +1,6 @@
 // The pipeline's setup: clipping, triangle setup, binning and painter's order, the parts that do not depend on the
 // shaders (the raster thread that runs them is in pipeline_schedule.cpp), and the fragment operations the templates
 // call (stencil, blending).
-#include "tessera/raster3d/pipeline.hpp"
-
 #include <fmt/format.h>
 #include <immintrin.h>
 
@@ -11,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <utility>
+
+#include "tessera/raster3d/pipeline.hpp"
 
 namespace tessera::raster3d::detail {
 namespace {
@@ -161,8 +161,8 @@ struct LpPlaneSetup {
     dfdy = _mm_sub_ps(_mm_mul_ps(d20, _mm_set1_ps(dx01o)), _mm_mul_ps(d01, _mm_set1_ps(dx20o)));
     const __m128 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
     const __m128 inf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-    const __m128 finite = _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(dfdx, abs_mask), inf),
-                                     _mm_cmplt_ps(_mm_and_ps(dfdy, abs_mask), inf));
+    const __m128 finite =
+        _mm_and_ps(_mm_cmplt_ps(_mm_and_ps(dfdx, abs_mask), inf), _mm_cmplt_ps(_mm_and_ps(dfdy, abs_mask), inf));
     dfdx = _mm_and_ps(dfdx, finite);
     dfdy = _mm_and_ps(dfdy, finite);
   }
@@ -329,8 +329,10 @@ void setup_chunk_baseline(const SetupParams& params, std::span<const uint32_t> i
 
 // setup_chunk_baseline compiled for AVX2 with everything it calls inlined (VEX encodings, BMI, SSE4.1 rounding):
 // the same IEEE operations (no contraction: -ffp-contract=off), so the same records.
-[[gnu::target("avx2,fma,bmi,bmi2,lzcnt,popcnt"), gnu::flatten]] void setup_chunk_avx2(
-    const SetupParams& params, std::span<const uint32_t> indices, size_t first, size_t count, SetupChunk& chunk) {
+[[gnu::target("avx2,fma,bmi,bmi2,lzcnt,popcnt"), gnu::flatten]] void setup_chunk_avx2(const SetupParams& params,
+                                                                                      std::span<const uint32_t> indices,
+                                                                                      size_t first, size_t count,
+                                                                                      SetupChunk& chunk) {
   setup_chunk_baseline(params, indices, first, count, chunk);
 }
 
@@ -385,14 +387,22 @@ SetupParams setup_params(const Framebuffer& fb, const RasterState& state, const 
 bool stencil_passes(const StencilFace& face, uint8_t s) {
   const unsigned a = face.ref & face.mask, b = s & face.mask;
   switch (face.func) {
-    case DepthFunc::never: return false;
-    case DepthFunc::less: return a < b;
-    case DepthFunc::equal: return a == b;
-    case DepthFunc::lequal: return a <= b;
-    case DepthFunc::greater: return a > b;
-    case DepthFunc::notequal: return a != b;
-    case DepthFunc::gequal: return a >= b;
-    case DepthFunc::always: return true;
+    case DepthFunc::never:
+      return false;
+    case DepthFunc::less:
+      return a < b;
+    case DepthFunc::equal:
+      return a == b;
+    case DepthFunc::lequal:
+      return a <= b;
+    case DepthFunc::greater:
+      return a > b;
+    case DepthFunc::notequal:
+      return a != b;
+    case DepthFunc::gequal:
+      return a >= b;
+    case DepthFunc::always:
+      return true;
   }
   return true;
 }
@@ -400,14 +410,29 @@ bool stencil_passes(const StencilFace& face, uint8_t s) {
 void stencil_apply(const StencilFace& face, StencilOp op, uint8_t& s) {
   unsigned v = s;
   switch (op) {
-    case StencilOp::keep: return;
-    case StencilOp::zero: v = 0; break;
-    case StencilOp::replace: v = face.ref; break;
-    case StencilOp::incr: v = s == 255 ? 255 : s + 1; break;
-    case StencilOp::incr_wrap: v = uint8_t(s + 1); break;
-    case StencilOp::decr: v = s == 0 ? 0 : s - 1; break;
-    case StencilOp::decr_wrap: v = uint8_t(s - 1); break;
-    case StencilOp::invert: v = uint8_t(~s); break;
+    case StencilOp::keep:
+      return;
+    case StencilOp::zero:
+      v = 0;
+      break;
+    case StencilOp::replace:
+      v = face.ref;
+      break;
+    case StencilOp::incr:
+      v = s == 255 ? 255 : s + 1;
+      break;
+    case StencilOp::incr_wrap:
+      v = uint8_t(s + 1);
+      break;
+    case StencilOp::decr:
+      v = s == 0 ? 0 : s - 1;
+      break;
+    case StencilOp::decr_wrap:
+      v = uint8_t(s - 1);
+      break;
+    case StencilOp::invert:
+      v = uint8_t(~s);
+      break;
   }
   s = uint8_t((s & ~face.write_mask) | (v & face.write_mask));
 }
@@ -419,16 +444,26 @@ glm::u8vec4 blend_colors(const BlendFunction& f, const Vec4f& src, glm::u8vec4 d
   const glm::u8vec4 s = to_color8(src);
   const auto factor = [&](BlendFactor b, int c) -> unsigned {
     switch (b) {
-      case BlendFactor::zero: return 0;
-      case BlendFactor::one: return 255;
-      case BlendFactor::src_color: return s[c];
-      case BlendFactor::one_minus_src_color: return 255u - s[c];
-      case BlendFactor::dst_color: return dst[c];
-      case BlendFactor::one_minus_dst_color: return 255u - dst[c];
-      case BlendFactor::src_alpha: return s.w;
-      case BlendFactor::one_minus_src_alpha: return 255u - s.w;
-      case BlendFactor::dst_alpha: return dst.w;
-      case BlendFactor::one_minus_dst_alpha: return 255u - dst.w;
+      case BlendFactor::zero:
+        return 0;
+      case BlendFactor::one:
+        return 255;
+      case BlendFactor::src_color:
+        return s[c];
+      case BlendFactor::one_minus_src_color:
+        return 255u - s[c];
+      case BlendFactor::dst_color:
+        return dst[c];
+      case BlendFactor::one_minus_dst_color:
+        return 255u - dst[c];
+      case BlendFactor::src_alpha:
+        return s.w;
+      case BlendFactor::one_minus_src_alpha:
+        return 255u - s.w;
+      case BlendFactor::dst_alpha:
+        return dst.w;
+      case BlendFactor::one_minus_dst_alpha:
+        return 255u - dst.w;
     }
     return 0;
   };
@@ -441,11 +476,21 @@ glm::u8vec4 blend_colors(const BlendFunction& f, const Vec4f& src, glm::u8vec4 d
     const int sw = mul(s[c], factor(f.src, c)), dw = mul(dst[c], factor(f.dst, c));
     int v = 0;
     switch (f.equation) {
-      case BlendEquation::add: v = sw + dw; break;
-      case BlendEquation::subtract: v = sw - dw; break;
-      case BlendEquation::reverse_subtract: v = dw - sw; break;
-      case BlendEquation::min: v = std::min(s[c], dst[c]); break;
-      case BlendEquation::max: v = std::max(s[c], dst[c]); break;
+      case BlendEquation::add:
+        v = sw + dw;
+        break;
+      case BlendEquation::subtract:
+        v = sw - dw;
+        break;
+      case BlendEquation::reverse_subtract:
+        v = dw - sw;
+        break;
+      case BlendEquation::min:
+        v = std::min(s[c], dst[c]);
+        break;
+      case BlendEquation::max:
+        v = std::max(s[c], dst[c]);
+        break;
     }
     out[c] = uint8_t(std::clamp(v, 0, 255));
   }
@@ -559,8 +604,8 @@ bool clip_segment(float* a, float* b, int varying_count) {
 void check_draw(const Framebuffer& fb, const RasterState& state, std::span<const uint32_t> indices,
                 uint32_t vertex_count, int arity, const char* what) {
   if (state.stencil_test && !fb.has_color())
-    throw InvalidInput(fmt::format("{}s: the stencil test is on, but a depth-only framebuffer has no stencil buffer",
-                                   what));
+    throw InvalidInput(
+        fmt::format("{}s: the stencil test is on, but a depth-only framebuffer has no stencil buffer", what));
   if (indices.size() % size_t(arity) != 0)
     throw InvalidInput(fmt::format("{} indices: {} is not a multiple of {}", what, indices.size(), arity));
   const auto bad = std::find_if(indices.begin(), indices.end(), [&](uint32_t i) { return i >= vertex_count; });

@@ -1,9 +1,9 @@
 #include "tessera/raster3d/shadow_map.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/image/texture.hpp"
@@ -69,8 +69,9 @@ Mat4 ShadowMap::spot(const Vec3& position, const Vec3& lo, const Vec3& hi) {
   const double distance = glm::length(center - position);
   const double r = 1.01 * radius;
   if (distance <= r)
-    throw InvalidInput("ShadowMap::spot: the light is inside the scene's bounding sphere (one map cannot see all "
-                       "around it; use a directional light or move the light out)");
+    throw InvalidInput(
+        "ShadowMap::spot: the light is inside the scene's bounding sphere (one map cannot see all "
+        "around it; use a directional light or move the light out)");
   return perspective(2 * std::asin(r / distance), 1, distance - r, distance + r) *
          look_at(position, center, up_for(center - position));
 }

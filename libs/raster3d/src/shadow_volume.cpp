@@ -1,9 +1,9 @@
 #include "tessera/raster3d/shadow_volume.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/raster3d/lighting.hpp"
@@ -52,8 +52,8 @@ ShadowVolume shadow_volume(std::span<const Vec3f> positions, std::span<const uin
   const auto n = uint32_t(positions.size());
   for (size_t k = 0; k < indices.size(); ++k)
     if (indices[k] >= n)
-      throw InvalidInput(fmt::format("shadow_volume: index {} (triangle {}) is out of range for {} vertices",
-                                     indices[k], k / 3, n));
+      throw InvalidInput(
+          fmt::format("shadow_volume: index {} (triangle {}) is out of range for {} vertices", indices[k], k / 3, n));
   ShadowVolume volume;
   volume.positions.resize(2 * size_t(n));
   const Vec3f l(light);
@@ -74,9 +74,8 @@ ShadowVolume shadow_volume(std::span<const Vec3f> positions, std::span<const uin
   }
   // Sum each edge's uses: interior edges of the facing region cancel, its boundary remains (with multiplicity on
   // non-manifold edges).
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi;
-  });
+  std::sort(uses.begin(), uses.end(),
+            [](const EdgeUse& x, const EdgeUse& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
   for (size_t k = 0; k < uses.size();) {
     int m = 0;
     size_t end = k;

@@ -70,8 +70,8 @@ void gouraud_rect_avx2(const TriangleRecord& r, const float* planes, int x0, int
     for (int x = x0; x < x1; x += 8) {
       // E >= 0 for the three edges: the sign bits of their OR are clear.
       const __m256i outside = _mm256_or_si256(_mm256_or_si256(edge[0], edge[1]), edge[2]);
-      const __m256i cover = _mm256_andnot_si256(_mm256_srai_epi32(outside, 31),
-                                                _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), lane));
+      const __m256i cover =
+          _mm256_andnot_si256(_mm256_srai_epi32(outside, 31), _mm256_cmpgt_epi32(_mm256_set1_epi32(x1 - x), lane));
       for (int k = 0; k < 3; ++k) edge[k] = _mm256_add_epi32(edge[k], edge_dx8[k]);
       if (_mm256_testz_si256(cover, cover)) continue;
       const __m256 fi = _mm256_cvtepi32_ps(_mm256_add_epi32(_mm256_set1_epi32(x), lane));

@@ -25,7 +25,6 @@ namespace tessera::raster3d::detail {
   return uint32_t(int32_t(__builtin_rintf(z * float(kDepthMax))));
 }
 
-
 /// One constant color over image-row pixels [lo, hi) of image row r with the depth plane (za, zdx, zdy): depth test,
 /// depth and color writes, branch-free (the loop vectorizes; restrict lets the compiler keep the rows apart).
 template <DepthFunc F, bool WriteDepth>
@@ -62,20 +61,22 @@ constexpr SpanKernels span_kernel_table() {
     ((k.fill[I][0] = Set::template fill<DepthFunc(I), false>, k.fill[I][1] = Set::template fill<DepthFunc(I), true>,
       k.test[I] = Set::template test<DepthFunc(I)>, k.gouraud[I] = Set::template gouraud<DepthFunc(I)>),
      ...);
-  }(std::make_index_sequence<kDepthFuncs>());
+  }
+  (std::make_index_sequence<kDepthFuncs>());
   return k;
 }
 
 /// Explicit instantiations of a set's fill and test kernels for every depth function (tests call them by name).
-#define TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, F)        \
-  template FillSpan fill<DepthFunc::F, false>;              \
-  template FillSpan fill<DepthFunc::F, true>;               \
+#define TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, F) \
+  template FillSpan fill<DepthFunc::F, false>;       \
+  template FillSpan fill<DepthFunc::F, true>;        \
   template TestSpan test<DepthFunc::F>;
-#define TESSERA_SPAN_INSTANTIATE(fill, test)                                                                \
-  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, never) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, less)         \
-  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, equal) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, lequal)       \
-  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, greater) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, notequal)   \
-  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, gequal) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, always)
+#define TESSERA_SPAN_INSTANTIATE(fill, test)                                                                    \
+  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, never)                                                              \
+  TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, less) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, equal)              \
+      TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, lequal) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, greater)      \
+          TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, notequal) TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, gequal) \
+              TESSERA_SPAN_INSTANTIATE_FUNC(fill, test, always)
 
 /// The tables of the vector sets (span_avx2.cpp, span_avx512.cpp), read only where the CPU has the set.
 extern const SpanKernels kSpanKernelsAvx2;

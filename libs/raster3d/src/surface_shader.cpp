@@ -1,8 +1,8 @@
 #include "tessera/raster3d/surface_shader.hpp"
 
-#include <array>
-
 #include <fmt/format.h>
+
+#include <array>
 #include <glm/gtc/matrix_access.hpp>
 
 #include "tessera/core/error.hpp"

@@ -76,8 +76,8 @@ struct ProbeFragmentShader {
 
 TEST(Derivatives, AreTheExactScreenDerivativesOfPerspectiveCorrectUvs) {
   const int w = 160, h = 120;
-  const Mat4 view_projection = perspective(radians(60), double(w) / h, 0.5, 20) *
-                               look_at({0.3, 1.2, 2.6}, {0, 0, -0.5}, {0, 1, 0});
+  const Mat4 view_projection =
+      perspective(radians(60), double(w) / h, 0.5, 20) * look_at({0.3, 1.2, 2.6}, {0, 0, -0.5}, {0, 1, 0});
   const VertexArrays quad = floor_quad();
   Framebuffer fb(w, h);
   std::vector<Probe> probes(size_t(w) * h);
@@ -402,7 +402,9 @@ TEST(EnvironmentMapping, ARenderedCubeMapShowsWhatIsSeenFromItsCenter) {
   }
   EXPECT_GT(checked, 1500);
   EXPECT_THROW(render_cube_map(center, 0, [](Framebuffer&, const Mat4&, const Mat4&) {}), InvalidInput);
-  EXPECT_THROW(render_cube_map(center, 8, [](Framebuffer&, const Mat4&, const Mat4&) {}, 1, 1), InvalidInput);
+  EXPECT_THROW(render_cube_map(
+                   center, 8, [](Framebuffer&, const Mat4&, const Mat4&) {}, 1, 1),
+               InvalidInput);
 }
 
 /// The analytic shadow of the square |x|, |z| <= 0.5 at height 1 on the floor, for light toward `to_light`.
@@ -507,8 +509,8 @@ TEST(ShadowMap, AMapFittedToTheCastersShadowsReceiversBeyondIt) {
     const double x = d(rng), z = d(rng);
     const bool expected = in_square_shadow(to_light, x, z);
     bool near_edge = false;
-    for (const double e : {-0.02, 0.02}) near_edge |= in_square_shadow(to_light, x + e, z) != expected ||
-                                                     in_square_shadow(to_light, x, z + e) != expected;
+    for (const double e : {-0.02, 0.02})
+      near_edge |= in_square_shadow(to_light, x + e, z) != expected || in_square_shadow(to_light, x, z + e) != expected;
     if (near_edge) continue;
     shadowed += expected;
     EXPECT_EQ(map.visibility(Vec3f(float(x), 0, float(z)), {0, 1, 0}, 1), expected ? 0.0f : 1.0f) << x << " " << z;
@@ -580,8 +582,8 @@ TEST(ShadowMap, APointLightAmongTheCastersShadowsAllAround) {
       ++checked;
       shadowed += inside;
       const Vec3 p = light + 3.0 * w;
-      EXPECT_EQ(map.visibility(Vec3f(p), Vec3f(-w), pcf), inside ? 0.0f : 1.0f) << pcf << " " << w.x << " " << w.y
-                                                                                  << " " << w.z;
+      EXPECT_EQ(map.visibility(Vec3f(p), Vec3f(-w), pcf), inside ? 0.0f : 1.0f)
+          << pcf << " " << w.x << " " << w.y << " " << w.z;
     }
     EXPECT_GT(shadowed, checked / 5) << pcf;
     EXPECT_LT(shadowed, checked * 4 / 5) << pcf;
@@ -608,7 +610,7 @@ TEST(ShadowMap, RejectsBadInput) {
   EXPECT_THROW(ShadowMap::spot({0.5, 0.5, 0.5}, {0, 0, 0}, {1, 1, 1}), InvalidInput);
   const ShadowMap map(8, ShadowMap::spot({0, 5, 0}, {-1, 0, -1}, {1, 0, 1}));
   EXPECT_THROW((void)map.visibility({0, 0, 0}, {0, 1, 0}, -1), InvalidInput);
-  EXPECT_EQ(map.visibility({0, 0, 0}, {0, 1, 0}), 1.0f);  // nothing drawn: lit
+  EXPECT_EQ(map.visibility({0, 0, 0}, {0, 1, 0}), 1.0f);   // nothing drawn: lit
   EXPECT_EQ(map.visibility({50, 0, 0}, {0, 1, 0}), 1.0f);  // outside the light's view: lit
 }
 

@@ -1,11 +1,12 @@
 // The notes' texture and two-texture shaders against their formulas: texel-exact nearest sampling, the bilinear
 // formula, the +-0.2 shift, the Venn picture's three regions, and texture2D's level of detail from the derivatives.
+#include "tessera/raster3d/notes_shaders.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "tessera/core/error.hpp"
-#include "tessera/raster3d/notes_shaders.hpp"
 
 namespace tessera::raster3d {
 namespace {
@@ -30,7 +31,8 @@ TEST(NotesShaders, TextureShaderCopiesTexelsOneToOne) {
   const int size = 16;
   ImageRGBA image(size, size);
   for (int y = 0; y < size; ++y)
-    for (int x = 0; x < size; ++x) image(x, y) = Vec4f(float(x * 16) / 255, float(y * 16) / 255, float((x * y) % 256) / 255, 1);
+    for (int x = 0; x < size; ++x)
+      image(x, y) = Vec4f(float(x * 16) / 255, float(y * 16) / 255, float((x * y) % 256) / 255, 1);
   const Texture2D texture(image, Sampler{.filter = Filter::nearest});
   Framebuffer fb(size, size);
   draw_textured(fb, RasterState{}, screen_quad(), Mat4(1.0), texture);
@@ -58,7 +60,8 @@ TEST(NotesShaders, TextureShaderFollowsTheBilinearFormula) {
     for (int x = 0; x < size; ++x) {
       const Vec2f uv = pixel_uv(x, y, size);
       const float a = std::clamp(2 * uv.x - 0.5f, 0.0f, 1.0f), b = std::clamp(2 * uv.y - 0.5f, 0.0f, 1.0f);
-      const Vec4f expected = (1 - b) * ((1 - a) * image(0, 1) + a * image(1, 1)) + b * ((1 - a) * image(0, 0) + a * image(1, 0));
+      const Vec4f expected =
+          (1 - b) * ((1 - a) * image(0, 1) + a * image(1, 1)) + b * ((1 - a) * image(0, 0) + a * image(1, 0));
       const Vec4f got = to_float(fb.color()(x, y));
       for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], expected[k], 0.6 / 255) << x << "," << y << " channel " << k;
     }

@@ -10,6 +10,9 @@
 //
 // A failing case writes a diff picture to the test's temporary folder (path in the failure message): red = only
 // Tessera covers, green = only OpenGL covers, blue = depth differs beyond the tolerance, yellow = color beyond it.
+#include "osmesa_compare.hpp"
+
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -18,9 +21,6 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
-#include "osmesa_compare.hpp"
 #include "osmesa_renderer.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
@@ -95,8 +95,8 @@ std::vector<Scene> scenes() {
   std::vector<Scene> s;
   s.push_back({"sphere_perspective", sphere(), 320, 240, persp(45, 320, 240, 0.5, 10),
                look_at({0.3, 0.5, 3.2}, {0, 0, 0}, up) * rotate_y(0.3)});
-  s.push_back({"sphere_ortho", sphere(), 257, 211, ortho(-1.5, 1.5, -1.2, 1.3, 0.1, 10),
-               look_at({1, 2, 3}, {0, 0, 0}, up)});
+  s.push_back(
+      {"sphere_ortho", sphere(), 257, 211, ortho(-1.5, 1.5, -1.2, 1.3, 0.1, 10), look_at({1, 2, 3}, {0, 0, 0}, up)});
   s.push_back({"torus_oblique", torus(), 320, 240, persp(60, 320, 240, 0.5, 10),
                look_at({2.0, -1.6, 1.8}, {0, 0, 0}, up) * rotate_x(0.4)});
   s.push_back({"cube_perspective", faceted_cube(), 300, 300, persp(50, 300, 300, 1, 10),
@@ -123,7 +123,7 @@ std::vector<Scene> scenes() {
 
 struct DrawSetup {
   bool lit = false;
-  bool flat = false;       // GL_FLAT / ShadingModel::flat
+  bool flat = false;  // GL_FLAT / ShadingModel::flat
   bool cull_back = false;
   bool point_light = false;
   bool vertex_colors = false;  // unlit: the mesh's per-vertex colors, else one flat color
@@ -164,7 +164,7 @@ TriMesh mesh_for(const Scene& scene, const DrawSetup& setup) {
 
 GlFrame render_gl(const Scene& scene, const DrawSetup& setup) {
   return reference::render_osmesa(mesh_for(scene, setup), scene.width, scene.height, gl_state(scene, setup),
-                                   setup.immediate ? GlSubmit::Immediate : GlSubmit::VertexArrays);
+                                  setup.immediate ? GlSubmit::immediate : GlSubmit::vertex_arrays);
 }
 
 // Tessera with the same state: matrices loaded as OpenGL's, the light set under an identity model-view (eye space).
@@ -181,8 +181,9 @@ raster3d::Framebuffer render_tessera(const Scene& scene, const DrawSetup& setup)
                                Vec3f(gl.light.specular)});
   ctx.material(raster3d::Material{Vec3f(gl.material.ambient), Vec3f(gl.material.diffuse), Vec3f(gl.material.specular),
                                   Vec3f(gl.material.emission), gl.material.shininess});
-  ctx.shading(!setup.lit ? raster3d::ShadingModel::unlit
-                         : setup.flat ? raster3d::ShadingModel::flat : raster3d::ShadingModel::gouraud);
+  ctx.shading(!setup.lit   ? raster3d::ShadingModel::unlit
+              : setup.flat ? raster3d::ShadingModel::flat
+                           : raster3d::ShadingModel::gouraud);
   ctx.cull(setup.cull_back ? raster3d::CullMode::back : raster3d::CullMode::none);
   ctx.color(kFlatColor);
   ctx.load_matrix(scene.model_view);
@@ -206,15 +207,15 @@ raster3d::Framebuffer render_tessera(const Scene& scene, const DrawSetup& setup)
 constexpr uint32_t kDepthTolerance = 2;  // units of 2^-24, for the pixels whose depth is not bit-identical
 
 struct Comparison {
-  size_t covered = 0;         // pixels covered by either renderer
-  size_t coverage_diff = 0;   // covered by one only
+  size_t covered = 0;           // pixels covered by either renderer
+  size_t coverage_diff = 0;     // covered by one only
   size_t depth_exact_diff = 0;  // covered by both, any difference in the 24-bit depth
-  size_t depth_diff = 0;      // covered by both, depth differs by more than kDepthTolerance
-  size_t color_diff = 0;      // covered by either, some channel beyond the tolerance (coverage differences count)
+  size_t depth_diff = 0;        // covered by both, depth differs by more than kDepthTolerance
+  size_t color_diff = 0;        // covered by either, some channel beyond the tolerance (coverage differences count)
   uint32_t max_depth_diff = 0;
   int max_color_diff = 0;
-  std::string example;        // the first differing pixel, both renderers' values
-  std::string diff_picture;   // written when something differs
+  std::string example;       // the first differing pixel, both renderers' values
+  std::string diff_picture;  // written when something differs
 
   // Same coverage and bit-identical depth.
   double coverage_depth_match() const { return 1.0 - double(coverage_diff + depth_exact_diff) / double(covered); }
@@ -239,8 +240,8 @@ Comparison compare(const raster3d::Framebuffer& t, const GlFrame& g, int toleran
         c.max_depth_diff = std::max(c.max_depth_diff, dt > dg ? dt - dg : dg - dt);
         c.max_color_diff = std::max(c.max_color_diff, worst);
       }
-      if (c.example.empty() && (in_t != in_g || (in_t && (dt > dg ? dt - dg : dg - dt) > kDepthTolerance) ||
-                                worst > tolerance))
+      if (c.example.empty() &&
+          (in_t != in_g || (in_t && (dt > dg ? dt - dg : dg - dt) > kDepthTolerance) || worst > tolerance))
         c.example = fmt::format("pixel ({}, {}): tessera depth {} rgb {},{},{}; OpenGL depth {} rgb {},{},{}", x, y, dt,
                                 t.color()(x, y).x, t.color()(x, y).y, t.color()(x, y).z, dg, g.channel(x, y, 0),
                                 g.channel(x, y, 1), g.channel(x, y, 2));
@@ -272,9 +273,7 @@ std::string describe(const Comparison& c) {
       "covered {} px: coverage differs on {}, depth on {} ({} beyond {} units, by up to {}), color on {} (by up "
       "to {}/255); first: {}; diff picture: {}",
       c.covered, c.coverage_diff, c.depth_exact_diff, c.depth_diff, kDepthTolerance, c.max_depth_diff, c.color_diff,
-      c.max_color_diff,
-      c.example.empty() ? "none" : c.example,
-      c.diff_picture.empty() ? "none" : c.diff_picture);
+      c.max_color_diff, c.example.empty() ? "none" : c.example, c.diff_picture.empty() ? "none" : c.diff_picture);
 }
 
 void PrintTo(const Scene& scene, std::ostream* out) { *out << scene.name; }
@@ -428,8 +427,8 @@ TEST(OsmesaReference, FrameIsTopRowFirstWithTheExpectedDepth) {
   triangle.positions = {{-0.5, 0.2, 0.5}, {0.5, 0.2, 0.5}, {0.0, 0.9, 0.5}};  // NDC, identity matrices
   triangle.indices = {0, 1, 2};
   const GlState state;
-  const GlFrame immediate = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::Immediate);
-  const GlFrame arrays = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::VertexArrays);
+  const GlFrame immediate = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::immediate);
+  const GlFrame arrays = reference::render_osmesa(triangle, 40, 40, state, GlSubmit::vertex_arrays);
   EXPECT_EQ(immediate.rgb, arrays.rgb);
   EXPECT_EQ(immediate.depth, arrays.depth);
   // Column 20 (x_ndc = 0.025) crosses the triangle for window y in [24, 37.3): GL rows 24..36 (centers inside),

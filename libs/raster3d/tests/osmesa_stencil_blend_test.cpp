@@ -1,13 +1,12 @@
 // raster3d's stencil buffer and blending against Mesa's (OSMesa, llvmpipe): sequences of draws with their depth,
 // stencil and blend state drawn by both, every buffer compared pixel by pixel (the rest of the OSMesa comparisons:
 // osmesa_compare_test.cpp).
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "osmesa_compare.hpp"
 #include "osmesa_renderer.hpp"
@@ -41,8 +40,13 @@ static_assert(int(raster3d::StencilOp::invert) == int(reference::GlStencilOp::in
               int(raster3d::StencilOp::incr_wrap) == int(reference::GlStencilOp::incr_wrap));
 
 reference::GlStencilFace gl_stencil_face(const raster3d::StencilFace& f) {
-  return {reference::GlCompare(int(f.func)), f.ref, f.mask, f.write_mask, reference::GlStencilOp(int(f.fail)),
-          reference::GlStencilOp(int(f.zfail)), reference::GlStencilOp(int(f.zpass))};
+  return {reference::GlCompare(int(f.func)),
+          f.ref,
+          f.mask,
+          f.write_mask,
+          reference::GlStencilOp(int(f.fail)),
+          reference::GlStencilOp(int(f.zfail)),
+          reference::GlStencilOp(int(f.zpass))};
 }
 
 // One draw: triangles (counterclockwise = front), their unlit color and alpha, the rasterizer state.
@@ -55,7 +59,7 @@ struct FlatDraw {
 
 // Both renderers start from color kBackground, depth 1 and stencil `clear_stencil`.
 raster3d::Framebuffer draw_tessera_flat(int width, int height, const Mat4& projection, const Mat4& view,
-                                           uint8_t clear_stencil, const std::vector<FlatDraw>& draws) {
+                                        uint8_t clear_stencil, const std::vector<FlatDraw>& draws) {
   raster3d::Framebuffer fb(width, height);
   fb.clear(kBackground);
   fb.clear_stencil(clear_stencil);
@@ -71,7 +75,7 @@ raster3d::Framebuffer draw_tessera_flat(int width, int height, const Mat4& proje
 }
 
 GlFrame draw_gl_flat(int width, int height, const Mat4& projection, const Mat4& view, uint8_t clear_stencil,
-                        const std::vector<FlatDraw>& draws) {
+                     const std::vector<FlatDraw>& draws) {
   reference::OsmesaContext gl(width, height);
   for (size_t k = 0; k < draws.size(); ++k) {
     const raster3d::RasterState& r = draws[k].state;
@@ -95,7 +99,7 @@ GlFrame draw_gl_flat(int width, int height, const Mat4& projection, const Mat4& 
     s.clear_stencil = clear_stencil;
     s.clear = k == 0;
     gl.begin(s);
-    gl.draw(reference::GlMesh(draws[k].mesh), GlSubmit::VertexArrays);
+    gl.draw(reference::GlMesh(draws[k].mesh), GlSubmit::vertex_arrays);
   }
   return gl.read();
 }
@@ -305,7 +309,7 @@ TEST(OsmesaCompareStencil, StencilOpsAndMasksMatchOpenGL) {
   for (int layer = 0; layer < 3; ++layer)
     for (int r = 0; r < rows; ++r) {
       FlatDraw d{.mesh = rect(0, w, r * 3, r * 3 + 3, 0.0, pick(2) == 0),
-                    .color = {float(pick(256)) / 255.0f, float(pick(256)) / 255.0f, float(pick(256)) / 255.0f}};
+                 .color = {float(pick(256)) / 255.0f, float(pick(256)) / 255.0f, float(pick(256)) / 255.0f}};
       d.state.depth_test = pick(4) != 0;
       d.state.depth_write = false;
       d.state.color_write = pick(2) == 0;

@@ -554,16 +554,26 @@ TEST(Raster, BlendingIsOpenGLsFormulaWithinOneStep) {
   const auto value = [&] { return float(rng.next_u32() >> 24) / 255.0f; };
   const auto real_factor = [](BlendFactor b, const Vec4& s, const Vec4& d, int c) {
     switch (b) {
-      case BlendFactor::zero: return 0.0;
-      case BlendFactor::one: return 1.0;
-      case BlendFactor::src_color: return s[c];
-      case BlendFactor::one_minus_src_color: return 1 - s[c];
-      case BlendFactor::dst_color: return d[c];
-      case BlendFactor::one_minus_dst_color: return 1 - d[c];
-      case BlendFactor::src_alpha: return s.w;
-      case BlendFactor::one_minus_src_alpha: return 1 - s.w;
-      case BlendFactor::dst_alpha: return d.w;
-      case BlendFactor::one_minus_dst_alpha: return 1 - d.w;
+      case BlendFactor::zero:
+        return 0.0;
+      case BlendFactor::one:
+        return 1.0;
+      case BlendFactor::src_color:
+        return s[c];
+      case BlendFactor::one_minus_src_color:
+        return 1 - s[c];
+      case BlendFactor::dst_color:
+        return d[c];
+      case BlendFactor::one_minus_dst_color:
+        return 1 - d[c];
+      case BlendFactor::src_alpha:
+        return s.w;
+      case BlendFactor::one_minus_src_alpha:
+        return 1 - s.w;
+      case BlendFactor::dst_alpha:
+        return d.w;
+      case BlendFactor::one_minus_dst_alpha:
+        return 1 - d.w;
     }
     return 0.0;
   };
@@ -609,8 +619,8 @@ TEST(Raster, BlendingIsOpenGLsFormulaWithinOneStep) {
     state.blend_function = {BlendFactor::src_alpha, BlendFactor::one_minus_src_alpha};
     draw_triangles(fb, state, 4, quad, testing::FlatVertexShader{corners.data()},
                    Translucent<testing::FlatFragmentShader>{{Vec3f(0.9f, 0.1f, 0.3f)}, alpha});
-    const glm::u8vec4 expected = alpha == 1 ? glm::u8vec4(to_color8(Vec3f(0.9f, 0.1f, 0.3f)))
-                                            : glm::u8vec4(to_color8(Vec3f(0.2f, 0.4f, 0.6f)));
+    const glm::u8vec4 expected =
+        alpha == 1 ? glm::u8vec4(to_color8(Vec3f(0.9f, 0.1f, 0.3f))) : glm::u8vec4(to_color8(Vec3f(0.2f, 0.4f, 0.6f)));
     EXPECT_EQ(Vec3(fb.color()(1, 1)), Vec3(expected)) << alpha;
   }
 }

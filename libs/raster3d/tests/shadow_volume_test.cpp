@@ -38,9 +38,7 @@ Caster place(const PolyMesh& mesh, double s, const Vec3& center) {
 }
 
 /// A floor square at y = 0, [-r, r] in x and z, facing up.
-Caster floor_square(float r) {
-  return {{{-r, 0, -r}, {-r, 0, r}, {r, 0, r}, {r, 0, -r}}, {0, 1, 2, 0, 2, 3}};
-}
+Caster floor_square(float r) { return {{{-r, 0, -r}, {-r, 0, r}, {r, 0, r}, {r, 0, -r}}, {0, 1, 2, 0, 2, 3}}; }
 
 /// Whether the segment from p to the light crosses a caster triangle (double precision, t in (1e-6, 1)).
 bool ray_blocked(const Vec3& p, const Vec3& light, const std::vector<Caster>& casters) {
@@ -201,8 +199,7 @@ TEST(ShadowVolume, OpenAndNonManifoldMeshesGiveClosedVolumes) {
   EXPECT_TRUE(shadow_volume(square.positions, square.indices, Vec4f(0, -4, 0, 1)).sides.empty());
   // Three triangles on one edge (a non-manifold fan), all facing up: the edge is walked twice one way and once the
   // other, so it is extruded once.
-  const Caster fan = {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, -1}, {0.5f, 0, 1}, {0.4f, 0, 2}},
-                      {0, 1, 2, 1, 0, 3, 1, 0, 4}};
+  const Caster fan = {{{0, 0, 0}, {1, 0, 0}, {0.5f, 0, -1}, {0.5f, 0, 1}, {0.4f, 0, 2}}, {0, 1, 2, 1, 0, 3, 1, 0, 4}};
   const ShadowVolume f = shadow_volume(fan.positions, fan.indices, Vec4f(0, 1, 0, 0));
   EXPECT_TRUE(closed(f));
 }

@@ -30,9 +30,7 @@ struct WindowShader {
 struct FlatVertexShader {
   const Vec3f* positions = nullptr;
   Mat4f model_view_projection{1.0f};
-  VertexOut<NoVaryings> operator()(uint32_t i) const {
-    return {gl_transform(model_view_projection, positions[i]), {}};
-  }
+  VertexOut<NoVaryings> operator()(uint32_t i) const { return {gl_transform(model_view_projection, positions[i]), {}}; }
 };
 
 /// One constant color for every fragment.

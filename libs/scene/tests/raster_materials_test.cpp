@@ -126,8 +126,9 @@ TEST(SceneCamera, ShadowMapsOverTheMemoryBudgetAreRefused) {
   EXPECT_NO_THROW(rasterize_scene(scene, 16, 16, RasterShadows::map, 512));
   EXPECT_NO_THROW(rasterize_scene(scene, 16, 16, RasterShadows::volumes, 16384));  // no maps
   MemoryBudget::set_limit(0);
-  EXPECT_EQ(message, "rasterize: 2 shadow maps of 512x512 texels needs about 3.0 MiB, the memory budget is 2.0 MiB "
-                     "(raise it with --max-memory SIZE)");
+  EXPECT_EQ(message,
+            "rasterize: 2 shadow maps of 512x512 texels needs about 3.0 MiB, the memory budget is 2.0 MiB "
+            "(raise it with --max-memory SIZE)");
 }
 
 TEST(SceneCamera, OrthographicSilhouetteDoesNotChangeWithDistance) {

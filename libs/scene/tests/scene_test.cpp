@@ -3,7 +3,6 @@
 #include "tessera/scene/scene.hpp"
 
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -77,7 +76,8 @@ TEST(Scene, DuplicateKeysAreRefusedWithTheirPath) {
             "test.json: camera: duplicate key 'eye' (each key may appear once in an object)");
   // The same key in sibling objects and nested arrays is fine.
   EXPECT_EQ(error_of(with_objects(R"([{"type": "sphere", "material": "m", "center": [0, 0, 0]},
-                                      {"type": "sphere", "material": "m", "center": [[1], 0, 0]}])")).find("duplicate"),
+                                      {"type": "sphere", "material": "m", "center": [[1], 0, 0]}])"))
+                .find("duplicate"),
             std::string::npos);
 }
 
@@ -133,7 +133,8 @@ TEST(Scene, ErrorsNameTheJsonPath) {
   // A transform the parser accepts (no zero factor) but the ray tracer cannot invert: the error names the object.
   try {
     to_ray_scene(parse_scene(with_objects(R"([{"type": "sphere", "material": "m"},
-        {"type": "sphere", "material": "m", "transform": [{"scale": [1e-30, 1, 1]}]}])"), "test.json", "."));
+        {"type": "sphere", "material": "m", "transform": [{"scale": [1e-30, 1, 1]}]}])"),
+                             "test.json", "."));
     ADD_FAILURE() << "no error";
   } catch (const InvalidInput& e) {
     EXPECT_STREQ(e.what(), "test.json: objects[1]: Instance: the transform is singular (determinant 1e-30)");
@@ -269,7 +270,8 @@ std::pair<int, int> shadow_differences(const ImageRGB& raster, const ImageRGB& t
 Scene shadow_scene(const std::string& lights) {
   const std::string json = R"({"image": {"size": [160, 120], "background": [0, 0, 0]}, "ambient": 0.1,
       "camera": {"eye": [0, 6, 7], "center": [0, 0, 0], "up": [0, 1, 0], "fovy": 45},
-      "lights": )" + lights + R"(,
+      "lights": )" + lights +
+                           R"(,
       "materials": {"floor": {"diffuse": 0.8}, "m": {"diffuse": 0.6}},
       "objects": [{"type": "plane", "material": "floor"},
                   {"type": "sphere", "center": [-1, 1, 0], "radius": 1, "material": "m"},

@@ -4,10 +4,10 @@
 // coordinate becomes subnormal, with no overflow (inf - inf made NaN vertices of finite input) or underflow.
 #pragma once
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 
@@ -20,8 +20,8 @@ void require_finite(const std::vector<V>& values, const char* what, const char* 
   for (size_t i = 0; i < values.size(); ++i)
     for (int a = 0; a < V::length(); ++a)
       if (!std::isfinite(values[i][a]))
-        throw InvalidInput(fmt::format("{}: {} {} of the result is not finite ({}; are the input's values finite?)", what,
-                                       attribute, i, values[i][a]));
+        throw InvalidInput(fmt::format("{}: {} {} of the result is not finite ({}; are the input's values finite?)",
+                                       what, attribute, i, values[i][a]));
 }
 
 }  // namespace tessera::detail

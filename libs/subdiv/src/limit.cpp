@@ -31,7 +31,8 @@ LimitSurface limit_with(const TopologyTables& t, const detail::LevelSharpness& s
         continue;
       }
       for (uint32_t i = 0; i < edges; ++i) ring[i] = p[t.ring_neighbor(v, i)];
-      for (uint32_t i = 0; i < faces; ++i) diagonal[i] = p[t.corner_vertex(t.next_corner(t.next_corner(t.ring_corners(v)[i])))];
+      for (uint32_t i = 0; i < faces; ++i)
+        diagonal[i] = p[t.corner_vertex(t.next_corner(t.next_corner(t.ring_corners(v)[i])))];
 
       VertexMask mask;
       switch (sharpness.rule(v, ring_sharpness)) {
@@ -90,8 +91,8 @@ LimitSurface limit_surface(const PolyMesh& mesh, const SubdivisionOptions& optio
                                : "limit_surface: Loop limit masks need triangles");
   const TopologyTables topology(mesh.face_offsets, mesh.face_vertices, mesh.vertex_count());
   const detail::LevelSharpness sharpness(topology, mesh, options.boundary);
-  // Tangents of coordinates beyond 2^128 would overflow their cross product's length (and below 2^-128 underflow it): such
-  // meshes are evaluated scaled by a power of two (rescale_exponent, tessera/math/power_of_two.hpp).
+  // Tangents of coordinates beyond 2^128 would overflow their cross product's length (and below 2^-128 underflow it):
+  // such meshes are evaluated scaled by a power of two (rescale_exponent, tessera/math/power_of_two.hpp).
   const int e = rescale_exponent(std::span<const Vec3>(mesh.positions));
   std::vector<Vec3> scaled;
   if (e) {

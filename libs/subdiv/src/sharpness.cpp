@@ -15,8 +15,7 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
     touched_[v] = 1;
   };
   for (const EdgeCrease& c : mesh.creases) {
-    if (std::isnan(c.sharpness))
-      throw InvalidInput(fmt::format("crease ({}, {}): sharpness is NaN", c.v0, c.v1));
+    if (std::isnan(c.sharpness)) throw InvalidInput(fmt::format("crease ({}, {}): sharpness is NaN", c.v0, c.v1));
     const uint32_t e = topology.find_edge(c.v0, c.v1);
     if (e == TopologyTables::kNone)
       throw InvalidInput(fmt::format("crease ({}, {}) names no edge of the mesh", c.v0, c.v1));
@@ -24,9 +23,8 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
       if (edges_.empty()) {
         // One entry per edge at every level: zeroed in parallel.
         edges_.resize(topology.edge_count());
-        parallel_for(0, int64_t(edges_.size()), 1 << 16, [&](int64_t b, int64_t end) {
-          std::fill(edges_.begin() + b, edges_.begin() + end, 0.0f);
-        });
+        parallel_for(0, int64_t(edges_.size()), 1 << 16,
+                     [&](int64_t b, int64_t end) { std::fill(edges_.begin() + b, edges_.begin() + end, 0.0f); });
       }
       edges_[e] = std::min(c.sharpness, kInfiniteSharpness);
       tagged_edge_ids_.push_back(e);
@@ -48,7 +46,8 @@ LevelSharpness::LevelSharpness(const TopologyTables& topology, const PolyMesh& m
       touch(c.v);
     }
   }
-  std::sort(corner_tags_.begin(), corner_tags_.end(), [](const VertexCorner& a, const VertexCorner& b) { return a.v < b.v; });
+  std::sort(corner_tags_.begin(), corner_tags_.end(),
+            [](const VertexCorner& a, const VertexCorner& b) { return a.v < b.v; });
   corner_tags_.erase(std::unique(corner_tags_.begin(), corner_tags_.end(),
                                  [](const VertexCorner& a, const VertexCorner& b) { return a.v == b.v; }),
                      corner_tags_.end());

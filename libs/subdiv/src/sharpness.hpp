@@ -43,7 +43,7 @@ class LevelSharpness {
 
  private:
   const TopologyTables& topology_;
-  RawVector<float> edges_;   // per edge (empty when no edge is tagged)
+  RawVector<float> edges_;       // per edge (empty when no edge is tagged)
   std::vector<float> vertices_;  // per vertex (empty when no vertex is sharp)
   std::vector<uint32_t> tagged_edge_ids_;
   std::vector<VertexCorner> corner_tags_;

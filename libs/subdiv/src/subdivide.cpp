@@ -13,8 +13,8 @@
 #include "tessera/core/memory.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
-#include "tessera/math/power_of_two.hpp"
 #include "tessera/core/progress.hpp"
+#include "tessera/math/power_of_two.hpp"
 #include "tessera/subdiv/topology.hpp"
 
 namespace tessera {
@@ -105,8 +105,18 @@ class LevelRefiner {
         } else {
           const uint32_t e0 = edge_point(t_.corner_edge(o)), e1 = edge_point(t_.corner_edge(o + 1)),
                          e2 = edge_point(t_.corner_edge(o + 2));
-          const uint32_t tri[12] = {t_.corner_vertex(o),     e0, e2, t_.corner_vertex(o + 1), e1, e0,
-                                    t_.corner_vertex(o + 2), e2, e1, e0,                      e1, e2};
+          const uint32_t tri[12] = {t_.corner_vertex(o),
+                                    e0,
+                                    e2,
+                                    t_.corner_vertex(o + 1),
+                                    e1,
+                                    e0,
+                                    t_.corner_vertex(o + 2),
+                                    e2,
+                                    e1,
+                                    e0,
+                                    e1,
+                                    e2};
           std::copy(std::begin(tri), std::end(tri), out + 12 * size_t(f));
         }
       }
@@ -274,8 +284,7 @@ class LevelRefiner {
       detail::crease_ends(child, ends);
       child_mask = crease_vertex_mask(ends[0], ends[1]);
     }
-    return blend(parent_mask, child_mask,
-                 transition_weight(method_, parent_vertex, child_vertex, parent, child));
+    return blend(parent_mask, child_mask, transition_weight(method_, parent_vertex, child_vertex, parent, child));
   }
 
   template <class T>
@@ -294,8 +303,8 @@ class LevelRefiner {
       value += ring * m.ring + faces * m.face;
     }
     if (m.crease != 0.0)
-      value += (parent[t_.ring_neighbor(v, m.crease_ends[0])] + parent[t_.ring_neighbor(v, m.crease_ends[1])]) *
-               m.crease;
+      value +=
+          (parent[t_.ring_neighbor(v, m.crease_ends[0])] + parent[t_.ring_neighbor(v, m.crease_ends[1])]) * m.crease;
     return value;
   }
 
@@ -364,12 +373,12 @@ void check_memory(const PolyMesh& mesh, const SubdivisionOptions& options, bool 
   uint64_t faces = first;
   for (int level = 1; level < options.levels; ++level) faces = saturating_product({faces, 4});
   const uint64_t per_corner = sizeof(uint32_t) + (mesh.corner_uvs.empty() ? 0 : sizeof(Vec2));
-  const uint64_t per_vertex = sizeof(Vec3) + (mesh.uvs.empty() ? 0 : sizeof(Vec2)) +
-                              (mesh.colors.empty() ? 0 : sizeof(Vec3));
+  const uint64_t per_vertex =
+      sizeof(Vec3) + (mesh.uvs.empty() ? 0 : sizeof(Vec2)) + (mesh.colors.empty() ? 0 : sizeof(Vec3));
   const uint64_t per_face = corners * per_corner + sizeof(uint32_t) + (quads ? per_vertex : per_vertex / 2);
-  MemoryBudget::check(saturating_product({faces, per_face, 3}),
-                      fmt::format("subdivide: {} levels of {} faces ({} faces)", options.levels, mesh.face_count(),
-                                  faces));
+  MemoryBudget::check(
+      saturating_product({faces, per_face, 3}),
+      fmt::format("subdivide: {} levels of {} faces ({} faces)", options.levels, mesh.face_count(), faces));
 }
 
 }  // namespace

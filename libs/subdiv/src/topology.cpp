@@ -101,9 +101,10 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
   });
   if (bad_face != kNoError) {
     const uint64_t f = bad_face;
-    throw InvalidInput(fmt::format("subdivision: face {} has fewer than 3 vertices, an index out of range (>= {}) or "
-                                   "a repeated vertex; faces need at least 3 distinct vertices",
-                                   f, vertex_count));
+    throw InvalidInput(
+        fmt::format("subdivision: face {} has fewer than 3 vertices, an index out of range (>= {}) or "
+                    "a repeated vertex; faces need at least 3 distinct vertices",
+                    f, vertex_count));
   }
 
   // Corners grouped by vertex (a parallel counting sort; the order inside a group does not matter, see build_rings).
@@ -156,9 +157,10 @@ TopologyTables::TopologyTables(std::span<const uint32_t> face_offsets, std::span
   });
   if (bad_corner != kNoError) {
     const auto k = uint32_t(uint64_t(bad_corner));
-    throw TopologyError(fmt::format("subdivision: non-manifold edge ({}, {}): more than two faces share it, or two "
-                                    "faces of opposite orientation",
-                                    face_vertices_[k], face_vertices_[next_corner(k)]));
+    throw TopologyError(
+        fmt::format("subdivision: non-manifold edge ({}, {}): more than two faces share it, or two "
+                    "faces of opposite orientation",
+                    face_vertices_[k], face_vertices_[next_corner(k)]));
   }
 
   build_edges(chunk_totals(corners, [&](int64_t b, int64_t e) { return count_edge_owners(b, e); }));
@@ -231,8 +233,8 @@ void TopologyTables::build_rings() {
     }
   });
   if (bad_vertex != kNoError)
-    throw TopologyError(fmt::format("subdivision: non-manifold vertex {}: its faces do not form a single fan",
-                                    uint64_t(bad_vertex)));
+    throw TopologyError(
+        fmt::format("subdivision: non-manifold vertex {}: its faces do not form a single fan", uint64_t(bad_vertex)));
   max_valence_ = max_valence;
 }
 
@@ -305,7 +307,8 @@ TopologyTables::TopologyTables(const TopologyTables& parent, Split split, std::s
   uint32_t max_face = 0;
   if (quads) {
     max_face = parent.uniform_size_;
-    for (uint32_t f = 0; f < faces && parent.uniform_size_ == 0; ++f) max_face = std::max(max_face, parent.face_size(f));
+    for (uint32_t f = 0; f < faces && parent.uniform_size_ == 0; ++f)
+      max_face = std::max(max_face, parent.face_size(f));
     parallel_for(0, faces, kGrain, [&](int64_t b, int64_t e) {
       for (int64_t f = b; f < e; ++f) {
         const uint32_t o = parent.face_offset(f), n = parent.face_size(f);

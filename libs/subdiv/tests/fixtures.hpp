@@ -53,7 +53,9 @@ inline PolyMesh triangulated_hull(std::vector<Vec3> positions, double edge) {
   PolyMesh m;
   m.positions = std::move(positions);
   const auto n = uint32_t(m.positions.size());
-  auto adjacent = [&](uint32_t a, uint32_t b) { return std::abs(glm::distance(m.positions[a], m.positions[b]) - edge) < 1e-9; };
+  auto adjacent = [&](uint32_t a, uint32_t b) {
+    return std::abs(glm::distance(m.positions[a], m.positions[b]) - edge) < 1e-9;
+  };
   for (uint32_t a = 0; a < n; ++a)
     for (uint32_t b = a + 1; b < n; ++b)
       for (uint32_t c = b + 1; c < n; ++c) {
@@ -109,7 +111,8 @@ inline PolyMesh torus(int n, int m, bool triangles = false) {
     for (int j = 0; j < m; ++j) {
       const double u = 2.0 * 3.14159265358979323846 * i / n, v = 2.0 * 3.14159265358979323846 * j / m;
       const double r = 0.7 * (1.0 + 0.05 * rng.uniform(-1.0, 1.0));
-      mesh.positions.push_back({(2.0 + r * std::cos(v)) * std::cos(u), r * std::sin(v), (2.0 + r * std::cos(v)) * std::sin(u)});
+      mesh.positions.push_back(
+          {(2.0 + r * std::cos(v)) * std::cos(u), r * std::sin(v), (2.0 + r * std::cos(v)) * std::sin(u)});
     }
   auto id = [&](int i, int j) { return uint32_t((i % n) * m + (j % m)); };
   for (int i = 0; i < n; ++i)

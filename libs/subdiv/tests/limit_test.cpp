@@ -85,8 +85,9 @@ std::vector<LimitCase> limit_cases() {
       {"grid_edge_and_corner", test::grid(5, 4), {.levels = 2, .boundary = BoundaryInterpolation::edge_and_corner}},
       {"creased_cube_s3", test::creased_cube(3.0f), {.levels = 2}},
       {"creased_cube_inf", test::creased_cube(10.0f), {.levels = 2}},
-      {"loop_icosahedron_level0", test::icosahedron(), {.scheme = SubdivisionScheme::loop, .levels = 0,
-                                                         .loop_weights = LoopWeights::loop}},
+      {"loop_icosahedron_level0",
+       test::icosahedron(),
+       {.scheme = SubdivisionScheme::loop, .levels = 0, .loop_weights = LoopWeights::loop}},
       {"loop_icosahedron_level2", test::icosahedron(), loop2},
       {"loop_grid_edge_only", tri_grid, loop2},
       {"loop_grid_edge_and_corner", tri_grid, loop_corner},
@@ -98,8 +99,9 @@ INSTANTIATE_TEST_SUITE_P(Cases, LimitMatchesOpenSubdiv, ::testing::ValuesIn(limi
 
 // Independent of OpenSubdiv: the limit of a vertex is where its refined copies converge (vertex v keeps index v).
 TEST(Limit, IsWhereRefinementConverges) {
-  for (const auto& [mesh, scheme] : {std::pair{test::icosahedron(), SubdivisionScheme::loop},
-                                     std::pair{catmull_clark_subdivide(test::house()), SubdivisionScheme::catmull_clark}}) {
+  for (const auto& [mesh, scheme] :
+       {std::pair{test::icosahedron(), SubdivisionScheme::loop},
+        std::pair{catmull_clark_subdivide(test::house()), SubdivisionScheme::catmull_clark}}) {
     const SubdivisionOptions options{.scheme = scheme};  // the notes' Loop weights
     const LimitSurface limit = limit_surface(mesh, options);
     double previous = 1e300;

@@ -109,7 +109,8 @@ struct CornerSample {
 /// Refines `mesh` (with corner_uvs, one face-varying channel whose values are the corners themselves) with
 /// OpenSubdiv, the uvs by FVAR_LINEAR_ALL, and returns the corners of every face of the last level.
 inline std::vector<CornerSample> osd_refine_face_varying(const PolyMesh& mesh, const SubdivisionOptions& o) {
-  std::vector<int> sizes, indices(mesh.face_vertices.begin(), mesh.face_vertices.end()), fvar(mesh.face_vertices.size());
+  std::vector<int> sizes, indices(mesh.face_vertices.begin(), mesh.face_vertices.end()),
+      fvar(mesh.face_vertices.size());
   for (size_t f = 0; f < mesh.face_count(); ++f) sizes.push_back(int(mesh.face_size(f)));
   for (size_t c = 0; c < fvar.size(); ++c) fvar[c] = int(c);
   osd::TopologyDescriptor::FVarChannel channel;

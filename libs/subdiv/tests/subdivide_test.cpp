@@ -81,7 +81,8 @@ TEST(Loop, NotesRulesOnTheIcosahedron) {
   EXPECT_NEAR(glm::distance(out.positions[0], (1.0 - 5.0 * beta) * ico.positions[0] + beta * ring), 0.0, 1e-14);
   const auto [a, b] = t.edge_vertices(0);
   const auto k = t.edge_corners(0);
-  const Vec3 c = ico.positions[t.corner_vertex(t.prev_corner(k[0]))], d = ico.positions[t.corner_vertex(t.prev_corner(k[1]))];
+  const Vec3 c = ico.positions[t.corner_vertex(t.prev_corner(k[0]))],
+             d = ico.positions[t.corner_vertex(t.prev_corner(k[1]))];
   EXPECT_NEAR(glm::distance(out.positions[12], 0.375 * (ico.positions[a] + ico.positions[b]) + 0.125 * (c + d)), 0.0,
               1e-14);
 }
@@ -241,7 +242,8 @@ TEST(Subdivide, FaceVaryingUvsMatchOpenSubdivLinearInterpolation) {
       {with_uvs(cube()), {.levels = 2}},
       {with_uvs(test::house()), {.levels = 2}},
       {with_uvs(test::grid(3, 3)), {.levels = 3}},
-      {with_uvs(test::icosahedron()), {.scheme = SubdivisionScheme::loop, .levels = 2, .loop_weights = LoopWeights::loop}},
+      {with_uvs(test::icosahedron()),
+       {.scheme = SubdivisionScheme::loop, .levels = 2, .loop_weights = LoopWeights::loop}},
   };
   const auto sorted = [](std::vector<test::CornerSample> corners) {
     const auto key = [](const test::CornerSample& c) {
@@ -308,8 +310,8 @@ TEST_P(MatchesOpenSubdiv, Levels1To3) {
     ASSERT_EQ(mesh.face_count(), reference.face_count(level)) << "level " << level;
     const double deviation =
         test::point_set_distance(mesh.positions, reference.positions(level), 1e-3 * diagonal) / diagonal;
-    std::printf("[reference] %-28s level %d: %zu vertices, max deviation %.2e of the diagonal\n", c.name.c_str(),
-                level, mesh.vertex_count(), deviation);
+    std::printf("[reference] %-28s level %d: %zu vertices, max deviation %.2e of the diagonal\n", c.name.c_str(), level,
+                mesh.vertex_count(), deviation);
     EXPECT_LE(deviation, 1e-6) << "level " << level;
   }
 }
@@ -366,12 +368,12 @@ TEST(Loop, NotesBetaDiffersFromOpenSubdivOnlyAtExtraordinaryVertices) {
   // Valence 5 (icosahedron): Warren's beta 3/40 vs Loop's 0.0797...; valence 6 (torus): both 1/16.
   const SubdivisionOptions warren{.scheme = SubdivisionScheme::loop, .levels = 1};
   const PolyMesh ico = test::icosahedron();
-  const double d_ico = test::point_set_distance(subdivide(ico, warren).positions,
-                                                test::osd_refine(ico, warren).positions(1), 1.0);
+  const double d_ico =
+      test::point_set_distance(subdivide(ico, warren).positions, test::osd_refine(ico, warren).positions(1), 1.0);
   EXPECT_GT(d_ico, 1e-3);
   const PolyMesh torus = test::torus(20, 20, true);  // all valence 6
-  const double d_torus = test::point_set_distance(subdivide(torus, warren).positions,
-                                                  test::osd_refine(torus, warren).positions(1), 1.0);
+  const double d_torus =
+      test::point_set_distance(subdivide(torus, warren).positions, test::osd_refine(torus, warren).positions(1), 1.0);
   EXPECT_LT(d_torus, 1e-12);
 }
 

@@ -94,9 +94,9 @@ TEST(TopologyTables, GridBoundary) {
 }
 
 TEST(TopologyTables, RejectsBadFacesAndNonManifolds) {
-  EXPECT_THROW(build({0, 2}, {0, 1}, 2), InvalidInput);           // a 2-gon
-  EXPECT_THROW(build({0, 3}, {0, 1, 5}, 3), InvalidInput);        // index out of range
-  EXPECT_THROW(build({0, 4}, {0, 1, 2, 1}, 3), InvalidInput);     // repeated vertex
+  EXPECT_THROW(build({0, 2}, {0, 1}, 2), InvalidInput);                  // a 2-gon
+  EXPECT_THROW(build({0, 3}, {0, 1, 5}, 3), InvalidInput);               // index out of range
+  EXPECT_THROW(build({0, 4}, {0, 1, 2, 1}, 3), InvalidInput);            // repeated vertex
   EXPECT_THROW(build({0, 3, 6}, {0, 1, 2, 0, 1, 3}, 4), TopologyError);  // same edge, same direction
   // Three triangles on edge 0-1.
   EXPECT_THROW(build({0, 3, 6, 9}, {0, 1, 2, 1, 0, 3, 1, 0, 4}, 5), TopologyError);
@@ -126,7 +126,8 @@ PolyMesh split_faces(const TopologyTables& t, TopologyTables::Split split) {
         child.add_face({t.corner_vertex(o + j), edge_point(o + j), uint32_t(t.vertex_count() + f),
                         edge_point(o + (j + n - 1) % n)});
     } else {
-      for (uint32_t j = 0; j < 3; ++j) child.add_face({t.corner_vertex(o + j), edge_point(o + j), edge_point(o + (j + 2) % 3)});
+      for (uint32_t j = 0; j < 3; ++j)
+        child.add_face({t.corner_vertex(o + j), edge_point(o + j), edge_point(o + (j + 2) % 3)});
       child.add_face({edge_point(o), edge_point(o + 1), edge_point(o + 2)});
     }
   }
@@ -146,9 +147,11 @@ void expect_same_tables(const TopologyTables& a, const TopologyTables& b) {
   for (uint32_t v = 0; v < a.vertex_count(); ++v) {
     ASSERT_EQ(a.is_boundary_vertex(v), b.is_boundary_vertex(v)) << "vertex " << v;
     const auto ra = a.ring_corners(v), rb = b.ring_corners(v);
-    ASSERT_EQ(std::vector<uint32_t>(ra.begin(), ra.end()), std::vector<uint32_t>(rb.begin(), rb.end())) << "vertex " << v;
+    ASSERT_EQ(std::vector<uint32_t>(ra.begin(), ra.end()), std::vector<uint32_t>(rb.begin(), rb.end()))
+        << "vertex " << v;
     const auto na = a.ring_neighbors(v), nb = b.ring_neighbors(v);
-    ASSERT_EQ(std::vector<uint32_t>(na.begin(), na.end()), std::vector<uint32_t>(nb.begin(), nb.end())) << "vertex " << v;
+    ASSERT_EQ(std::vector<uint32_t>(na.begin(), na.end()), std::vector<uint32_t>(nb.begin(), nb.end()))
+        << "vertex " << v;
   }
 }
 
@@ -158,16 +161,20 @@ TEST(TopologyTables, DerivedLevelsEqualLevelsBuiltFromFaces) {
   PolyMesh with_isolated = test::grid(3, 2);
   with_isolated.positions.push_back({5, 5, 5});
   const std::pair<PolyMesh, TopologyTables::Split> cases[] = {
-      {test::cube(), TopologyTables::Split::quads},           {test::grid(4, 3), TopologyTables::Split::quads},
-      {test::house(), TopologyTables::Split::quads},          {with_isolated, TopologyTables::Split::quads},
-      {test::icosahedron(), TopologyTables::Split::triangles}, {test::torus(6, 5, true), TopologyTables::Split::triangles},
+      {test::cube(), TopologyTables::Split::quads},
+      {test::grid(4, 3), TopologyTables::Split::quads},
+      {test::house(), TopologyTables::Split::quads},
+      {with_isolated, TopologyTables::Split::quads},
+      {test::icosahedron(), TopologyTables::Split::triangles},
+      {test::torus(6, 5, true), TopologyTables::Split::triangles},
       {triangulate(test::grid(4, 3)), TopologyTables::Split::triangles}};
   for (const auto& [cage, split] : cases) {
     std::vector<PolyMesh> levels{cage};
     auto derived = std::make_unique<TopologyTables>(cage.face_offsets, cage.face_vertices, cage.vertex_count());
     for (int level = 1; level <= 3; ++level) {
       const size_t vertices = derived->vertex_count() +
-                              (split == TopologyTables::Split::quads ? derived->face_count() : 0) + derived->edge_count();
+                              (split == TopologyTables::Split::quads ? derived->face_count() : 0) +
+                              derived->edge_count();
       levels.push_back(split_faces(*derived, split));
       const PolyMesh& child = levels.back();
       derived = std::make_unique<TopologyTables>(*derived, split, child.face_offsets, child.face_vertices);

@@ -1,9 +1,9 @@
 // The SVG document parser: the builder that turns the XML reader's events (xml.hpp) into shapes with resolved styles
 // and transforms.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "svg_syntax.hpp"
 #include "tessera/core/atomic_file.hpp"
@@ -20,18 +20,18 @@ using xml::Attribute;
 using xml::Event;
 // A paint as specified: currentColor is resolved when a shape is painted, from its `color` property.
 struct PaintSpec {
-  enum class Kind { None, Color, CurrentColor };
-  Kind kind = Kind::None;
+  enum class Kind { none, color, current_color };
+  Kind kind = Kind::none;
   Vec4f color{0, 0, 0, 1};
 };
 
 // The properties of the subset: all inherited except opacity and display (SVG 1.1 property index).
 struct Properties {
-  PaintSpec fill{PaintSpec::Kind::Color, {0, 0, 0, 1}};
+  PaintSpec fill{PaintSpec::Kind::color, {0, 0, 0, 1}};
   PaintSpec stroke;
   Vec4f color{0, 0, 0, 1};
   float fill_opacity = 1, stroke_opacity = 1;
-  FillRule fill_rule = FillRule::NonZero;
+  FillRule fill_rule = FillRule::non_zero;
   StrokeStyle stroke_style;
   bool visible = true;
 };
@@ -45,19 +45,19 @@ struct Frame {
   bool shape = false;       // a shape element: its children are never rendered
 };
 
-enum class ElementKind { Container, Shape, Descriptive, Unsupported };
+enum class ElementKind { container, shape, descriptive, unsupported };
 
 ElementKind element_kind(std::string_view name) {
   static constexpr std::string_view kShapes[] = {"rect", "circle", "ellipse", "line", "polyline", "polygon", "path"};
-  if (name == "g" || name == "a") return ElementKind::Container;
-  if (std::find(std::begin(kShapes), std::end(kShapes), name) != std::end(kShapes)) return ElementKind::Shape;
-  if (name == "title" || name == "desc" || name == "metadata") return ElementKind::Descriptive;
-  return ElementKind::Unsupported;
+  if (name == "g" || name == "a") return ElementKind::container;
+  if (std::find(std::begin(kShapes), std::end(kShapes), name) != std::end(kShapes)) return ElementKind::shape;
+  if (name == "title" || name == "desc" || name == "metadata") return ElementKind::descriptive;
+  return ElementKind::unsupported;
 }
 
 // Properties that change the picture but are unsupported: counted as warnings when not "none".
 bool is_unsupported_property(std::string_view name) {
-  static constexpr std::string_view kNames[] = {"stroke-dasharray", "clip-path", "mask",      "filter",
+  static constexpr std::string_view kNames[] = {"stroke-dasharray", "clip-path",    "mask",       "filter",
                                                 "marker",           "marker-start", "marker-mid", "marker-end"};
   return std::find(std::begin(kNames), std::end(kNames), name) != std::end(kNames);
 }
@@ -92,9 +92,11 @@ class DocumentBuilder {
     if (event.name != "svg")
       fail(event.offset, fmt::format("expected <svg> as the root element, got <{}>", event.name));
     root(event);
-    while ((event = reader_.next()).kind != Event::Kind::Eof) {
-      if (event.kind == Event::Kind::Start) start_element(event);
-      else end_element();
+    while ((event = reader_.next()).kind != Event::Kind::eof) {
+      if (event.kind == Event::Kind::start)
+        start_element(event);
+      else
+        end_element();
     }
     if (!unsupported_elements_.empty())
       document_.warnings.push_back("unsupported SVG elements ignored: " + unsupported_elements_.list());
@@ -151,10 +153,12 @@ class DocumentBuilder {
       const std::vector<double> v = checked(e, *a, svg::parse_number_list);
       if (v.size() != 4)
         fail(a->value_offset, fmt::format("attribute 'viewBox' of <svg>: expected 4 numbers (min-x min-y width "
-                                          "height), got {}", v.size()));
+                                          "height), got {}",
+                                          v.size()));
       if (v[2] <= 0 || v[3] <= 0)
         fail(a->value_offset, fmt::format("attribute 'viewBox' of <svg>: width and height must be positive, got "
-                                          "{} and {}", v[2], v[3]));
+                                          "{} and {}",
+                                          v[2], v[3]));
       document_.view_box = Vec4(v[0], v[1], v[2], v[3]);
     }
     if (const Attribute* a = find(e, "preserveAspectRatio")) document_.aspect = aspect(e, *a);
@@ -177,17 +181,21 @@ class DocumentBuilder {
         pos += part.size() + 1;
       }
       if (!words.empty() && words[0].first == "defer") words.erase(words.begin());
-      if (words.empty() || words.size() > 2) throw SvgValueError(0, "expected an alignment such as xMidYMid and "
-                                                                    "optionally meet or slice");
+      if (words.empty() || words.size() > 2)
+        throw SvgValueError(0,
+                            "expected an alignment such as xMidYMid and "
+                            "optionally meet or slice");
       const auto [align, align_pos] = words[0];
-      const auto factor = [](std::string_view m) { return m == "Min" ? 0.0 : m == "Mid" ? 0.5 : m == "Max" ? 1.0 : -1; };
+      const auto factor = [](std::string_view m) {
+        return m == "Min" ? 0.0 : m == "Mid" ? 0.5 : m == "Max" ? 1.0 : -1;
+      };
       if (align == "none") {
         result.none = true;
       } else {
         const bool ok = align.size() == 8 && align[0] == 'x' && align[4] == 'Y' && factor(align.substr(1, 3)) >= 0 &&
                         factor(align.substr(5, 3)) >= 0;
-        if (!ok) throw SvgValueError(align_pos, fmt::format("expected none or x(Min|Mid|Max)Y(Min|Mid|Max), got '{}'",
-                                                            align));
+        if (!ok)
+          throw SvgValueError(align_pos, fmt::format("expected none or x(Min|Mid|Max)Y(Min|Mid|Max), got '{}'", align));
         result.align_x = factor(align.substr(1, 3));
         result.align_y = factor(align.substr(5, 3));
       }
@@ -206,13 +214,13 @@ class DocumentBuilder {
     frame.own_opacity = 1;
     frame.shape = false;
     ElementKind kind = element_kind(e.name);
-    if (parent.shape && kind != ElementKind::Descriptive) kind = ElementKind::Unsupported;  // never rendered
-    if (parent.rendering && kind == ElementKind::Unsupported) unsupported_elements_.add(e.name);
+    if (parent.shape && kind != ElementKind::descriptive) kind = ElementKind::unsupported;  // never rendered
+    if (parent.rendering && kind == ElementKind::unsupported) unsupported_elements_.add(e.name);
     bool display = true;
-    if (parent.rendering && (kind == ElementKind::Container || kind == ElementKind::Shape))
+    if (parent.rendering && (kind == ElementKind::container || kind == ElementKind::shape))
       apply_presentation(e, parent, frame, display);
-    frame.rendering = parent.rendering && display && (kind == ElementKind::Container || kind == ElementKind::Shape);
-    frame.shape = kind == ElementKind::Shape;
+    frame.rendering = parent.rendering && display && (kind == ElementKind::container || kind == ElementKind::shape);
+    frame.shape = kind == ElementKind::shape;
     frame.group_opacity = parent.group_opacity * frame.own_opacity;
     stack_.push();
     if (frame.rendering)
@@ -283,7 +291,7 @@ class DocumentBuilder {
     } else if (name == "opacity") {
       frame.own_opacity = parse(svg::parse_opacity);
     } else if (name == "fill-rule") {
-      p.fill_rule = keyword({"nonzero", "evenodd"}) == 0 ? FillRule::NonZero : FillRule::EvenOdd;
+      p.fill_rule = keyword({"nonzero", "evenodd"}) == 0 ? FillRule::non_zero : FillRule::even_odd;
     } else if (name == "stroke-width") {
       p.stroke_style.width = parse([](std::string_view text) {
         const double w = svg::parse_length(text);
@@ -291,10 +299,10 @@ class DocumentBuilder {
         return w;
       });
     } else if (name == "stroke-linejoin") {
-      static constexpr LineJoin kJoins[] = {LineJoin::Miter, LineJoin::Round, LineJoin::Bevel};
+      static constexpr LineJoin kJoins[] = {LineJoin::miter, LineJoin::round, LineJoin::bevel};
       p.stroke_style.join = kJoins[keyword({"miter", "round", "bevel"})];
     } else if (name == "stroke-linecap") {
-      static constexpr LineCap kCaps[] = {LineCap::Butt, LineCap::Round, LineCap::Square};
+      static constexpr LineCap kCaps[] = {LineCap::butt, LineCap::round, LineCap::square};
       p.stroke_style.cap = kCaps[keyword({"butt", "round", "square"})];
     } else if (name == "stroke-miterlimit") {
       p.stroke_style.miter_limit = parse([](std::string_view text) {
@@ -315,7 +323,7 @@ class DocumentBuilder {
   PaintSpec paint(std::string_view text) {
     const std::string_view t = trim(text);
     if (t == "none") return {};
-    if (t == "currentColor") return {PaintSpec::Kind::CurrentColor, {}};
+    if (t == "currentColor") return {PaintSpec::Kind::current_color, {}};
     if (t.substr(0, 4) == "url(") {
       const size_t close = t.find(')');
       if (close == std::string_view::npos) throw SvgValueError(text.find("url("), "expected ')' to close url(");
@@ -323,12 +331,12 @@ class DocumentBuilder {
       const std::string_view fallback = trim(t.substr(close + 1));
       return fallback.empty() ? PaintSpec{} : paint(fallback);
     }
-    return {PaintSpec::Kind::Color, parse_svg_color(text)};
+    return {PaintSpec::Kind::color, parse_svg_color(text)};
   }
 
   static SvgPaint resolve(const PaintSpec& spec, const Properties& p) {
-    if (spec.kind == PaintSpec::Kind::None) return std::nullopt;
-    return spec.kind == PaintSpec::Kind::Color ? spec.color : p.color;
+    if (spec.kind == PaintSpec::Kind::none) return std::nullopt;
+    return spec.kind == PaintSpec::Kind::color ? spec.color : p.color;
   }
 
   void add_shape(const Event& e, const Frame& frame) {
@@ -338,8 +346,8 @@ class DocumentBuilder {
     shape.subpaths = geometry(e);
     shape.transform = stack_.top();
     const Properties& p = frame.properties;
-    shape.style = {resolve(p.fill, p),     resolve(p.stroke, p), p.fill_opacity, p.stroke_opacity,
-                   frame.group_opacity,    p.fill_rule,          p.stroke_style};
+    shape.style = {resolve(p.fill, p),  resolve(p.stroke, p), p.fill_opacity, p.stroke_opacity,
+                   frame.group_opacity, p.fill_rule,          p.stroke_style};
     if (p.visible && !shape.subpaths.empty()) document_.shapes.push_back(std::move(shape));
   }
 
@@ -363,7 +371,9 @@ class DocumentBuilder {
       if (w == 0 || h == 0) return out;
       using Kind = SvgSegment::Kind;
       SvgSubpath s{{x + rx, y}, {}, true};
-      const auto line = [&](double px, double py) { s.segments.push_back({Kind::Line, Vec2(0.0), Vec2(0.0), {px, py}}); };
+      const auto line = [&](double px, double py) {
+        s.segments.push_back({Kind::line, Vec2(0.0), Vec2(0.0), {px, py}});
+      };
       const auto corner = [&](double cx, double cy, double theta, double ex, double ey) {
         if (rx > 0 && ry > 0) svg::append_arc_cubics(s.segments, {cx, cy}, rx, ry, 0, theta, kPi / 2, {ex, ey});
       };
@@ -384,8 +394,8 @@ class DocumentBuilder {
       if (rx > 0 && ry > 0) closed_curve({length(e, "cx", 0), length(e, "cy", 0)}, rx, ry);
     } else if (e.name == "line") {
       const Vec2 end(length(e, "x2", 0), length(e, "y2", 0));
-      out.push_back({{length(e, "x1", 0), length(e, "y1", 0)}, {{SvgSegment::Kind::Line, Vec2(0.0), Vec2(0.0), end}},
-                     false});
+      out.push_back(
+          {{length(e, "x1", 0), length(e, "y1", 0)}, {{SvgSegment::Kind::line, Vec2(0.0), Vec2(0.0), end}}, false});
     } else {  // polyline, polygon
       const Attribute* a = find(e, "points");
       const std::vector<double> v = a ? checked(e, *a, svg::parse_number_list) : std::vector<double>{};
@@ -395,7 +405,7 @@ class DocumentBuilder {
       if (v.size() < 4) return out;
       SvgSubpath s{{v[0], v[1]}, {}, e.name == "polygon"};
       for (size_t i = 2; i < v.size(); i += 2)
-        s.segments.push_back({SvgSegment::Kind::Line, Vec2(0.0), Vec2(0.0), {v[i], v[i + 1]}});
+        s.segments.push_back({SvgSegment::Kind::line, Vec2(0.0), Vec2(0.0), {v[i], v[i + 1]}});
       out.push_back(std::move(s));
     }
     return out;

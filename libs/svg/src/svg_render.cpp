@@ -1,10 +1,10 @@
 // The SVG renderer: viewport mapping, flattening in device space, clipping to the image, and fill/stroke through the
 // canvas's fill_path and stroke_path.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/curves/bezier.hpp"
@@ -60,9 +60,9 @@ std::vector<SvgPolyline> flatten(const std::vector<SvgSubpath>& subpaths, const 
     SvgPolyline line{{transform_point(m, sub.start)}, sub.closed};
     for (const SvgSegment& s : sub.segments) {
       const Vec2 p0 = line.points.back(), c1 = transform_point(m, s.c1), end = transform_point(m, s.end);
-      if (s.kind == SvgSegment::Kind::Line)
+      if (s.kind == SvgSegment::Kind::line)
         line.points.push_back(end);
-      else if (s.kind == SvgSegment::Kind::Quadratic)
+      else if (s.kind == SvgSegment::Kind::quadratic)
         flatten_curve(elevate_degree(quadratic(p0, c1, end)), tolerance, cull, 0, line.points);
       else
         flatten_curve(cubic(p0, c1, transform_point(m, s.c2), end), tolerance, cull, 0, line.points);
@@ -178,7 +178,7 @@ void draw_shape(ImageRGBA& image, const std::string& source, const SvgShape& sha
     const Path outline = stroke_outline(lines, box, image_box, style.stroke_style, a);
     for (const auto& contour : outline.contours)
       if (!std::all_of(contour.begin(), contour.end(), finite)) overflow(source, shape);
-    fill_path(image, outline, FillRule::NonZero, with_opacity(*style.stroke, style.stroke_opacity * style.opacity),
+    fill_path(image, outline, FillRule::non_zero, with_opacity(*style.stroke, style.stroke_opacity * style.opacity),
               options.antialias);
   }
 }
@@ -210,8 +210,10 @@ Size2 svg_output_size(const SvgDocument& document, const SvgRenderOptions& optio
   if (w <= 0 || h <= 0) {
     const std::optional<Vec2> intrinsic = viewport_size(document);
     if (!intrinsic)
-      throw InvalidInput(fmt::format("{}: the SVG has no size (width/height or viewBox missing or zero); give the "
-                                     "output size", document.source));
+      throw InvalidInput(
+          fmt::format("{}: the SVG has no size (width/height or viewBox missing or zero); give the "
+                      "output size",
+                      document.source));
     if (w <= 0 && h <= 0) {
       w = std::ceil(intrinsic->x);
       h = std::ceil(intrinsic->y);
@@ -222,16 +224,16 @@ Size2 svg_output_size(const SvgDocument& document, const SvgRenderOptions& optio
     }
   }
   if (!(w >= 1 && w <= 65536 && h >= 1 && h <= 65536))
-    throw InvalidInput(fmt::format("{}: output size {}x{} is invalid (1 to 65536 pixels per side)", document.source,
-                                   w, h));
+    throw InvalidInput(
+        fmt::format("{}: output size {}x{} is invalid (1 to 65536 pixels per side)", document.source, w, h));
   return {int(w), int(h)};
 }
 
 Mat3 svg_viewport_transform(const SvgDocument& document, int width, int height) {
   const std::optional<Vec2> viewport = viewport_size(document);
   if (!viewport) return Mat3(1.0);
-  const Mat3 to_viewport = document.view_box ? fit(*document.view_box, viewport->x, viewport->y, document.aspect)
-                                             : Mat3(1.0);
+  const Mat3 to_viewport =
+      document.view_box ? fit(*document.view_box, viewport->x, viewport->y, document.aspect) : Mat3(1.0);
   // The viewport scaled into the image, centered (xMidYMid meet), when the image size differs from it.
   return fit(Vec4(0, 0, viewport->x, viewport->y), width, height, SvgAspect{}) * to_viewport;
 }
@@ -249,7 +251,8 @@ ImageRGBA render_svg(const SvgDocument& document, const SvgRenderOptions& option
                       fmt::format("{}: rendering at {}x{} pixels", document.source, size.width, size.height));
   ImageRGBA image(size.width, size.height, options.background);
   const Mat3 view = svg_viewport_transform(document, size.width, size.height);
-  for (const SvgShape& shape : document.shapes) draw_shape(image, document.source, shape, view * shape.transform, options);
+  for (const SvgShape& shape : document.shapes)
+    draw_shape(image, document.source, shape, view * shape.transform, options);
   return image;
 }
 

@@ -1,5 +1,9 @@
 // The grammars of SVG attribute values: numbers, lengths, lists, opacities, path data (SVG 1.1 section 8.3 and the
 // arc implementation notes F.6), transform lists (section 7.6) and colors (CSS Color Level 3 keywords).
+#include "svg_syntax.hpp"
+
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -7,9 +11,6 @@
 #include <cmath>
 #include <optional>
 
-#include <fmt/format.h>
-
-#include "svg_syntax.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/svg/svg.hpp"
 #include "xml.hpp"
@@ -179,7 +180,7 @@ void append_arc_cubics(std::vector<SvgSegment>& out, const Vec2& center, double 
     const double t0 = theta1 + i * step, t1 = t0 + step;
     const Vec2 p0(std::cos(t0), std::sin(t0)), p3(std::cos(t1), std::sin(t1));
     const Vec2 c1 = p0 + k * Vec2(-p0.y, p0.x), c2 = p3 - k * Vec2(-p3.y, p3.x);
-    out.push_back({SvgSegment::Kind::Cubic, map(c1), map(c2), i + 1 == pieces ? end : map(p3)});
+    out.push_back({SvgSegment::Kind::cubic, map(c1), map(c2), i + 1 == pieces ? end : map(p3)});
   }
 }
 
@@ -202,26 +203,34 @@ class PathBuilder {
         current_ = start_ = pt(0);
         open_ = true;
         break;
-      case 'L': line_to(pt(0)); break;
-      case 'H': line_to({origin.x + a[0], cur.y}); break;
-      case 'V': line_to({cur.x, origin.y + a[0]}); break;
+      case 'L':
+        line_to(pt(0));
+        break;
+      case 'H':
+        line_to({origin.x + a[0], cur.y});
+        break;
+      case 'V':
+        line_to({cur.x, origin.y + a[0]});
+        break;
       case 'C':
         cubic_control = pt(2);
-        add({SvgSegment::Kind::Cubic, pt(0), pt(2), pt(4)});
+        add({SvgSegment::Kind::cubic, pt(0), pt(2), pt(4)});
         break;
       case 'S':
         cubic_control = pt(0);
-        add({SvgSegment::Kind::Cubic, last_cubic_ ? 2.0 * cur - *last_cubic_ : cur, pt(0), pt(2)});
+        add({SvgSegment::Kind::cubic, last_cubic_ ? 2.0 * cur - *last_cubic_ : cur, pt(0), pt(2)});
         break;
       case 'Q':
         quad_control = pt(0);
-        add({SvgSegment::Kind::Quadratic, pt(0), Vec2(0.0), pt(2)});
+        add({SvgSegment::Kind::quadratic, pt(0), Vec2(0.0), pt(2)});
         break;
       case 'T':
         quad_control = last_quad_ ? 2.0 * cur - *last_quad_ : cur;
-        add({SvgSegment::Kind::Quadratic, *quad_control, Vec2(0.0), pt(0)});
+        add({SvgSegment::Kind::quadratic, *quad_control, Vec2(0.0), pt(0)});
         break;
-      case 'A': arc_to(a[0], a[1], a[2], a[3] != 0, a[4] != 0, pt(5)); break;
+      case 'A':
+        arc_to(a[0], a[1], a[2], a[3] != 0, a[4] != 0, pt(5));
+        break;
       default:  // 'Z'
         if (open_) subpaths_.back().closed = true;
         current_ = start_;
@@ -248,7 +257,7 @@ class PathBuilder {
     segments().push_back(segment);
     current_ = segment.end;
   }
-  void line_to(const Vec2& p) { add({SvgSegment::Kind::Line, Vec2(0.0), Vec2(0.0), p}); }
+  void line_to(const Vec2& p) { add({SvgSegment::Kind::line, Vec2(0.0), Vec2(0.0), p}); }
 
   // SVG 1.1 F.6.5: endpoint to center parameterization, with F.6.6's correction of out-of-range radii.
   void arc_to(double rx, double ry, double phi_degrees, bool large_arc, bool sweep, const Vec2& end) {
@@ -294,13 +303,24 @@ class PathBuilder {
 // Number of arguments of a path command, -1 for a letter that is not one.
 int path_arity(char c) {
   switch (c & ~0x20) {
-    case 'Z': return 0;
-    case 'H': case 'V': return 1;
-    case 'M': case 'L': case 'T': return 2;
-    case 'S': case 'Q': return 4;
-    case 'C': return 6;
-    case 'A': return 7;
-    default: return -1;
+    case 'Z':
+      return 0;
+    case 'H':
+    case 'V':
+      return 1;
+    case 'M':
+    case 'L':
+    case 'T':
+      return 2;
+    case 'S':
+    case 'Q':
+      return 4;
+    case 'C':
+      return 6;
+    case 'A':
+      return 7;
+    default:
+      return -1;
   }
 }
 
@@ -341,7 +361,7 @@ std::vector<SvgSubpath> parse_svg_path_data(std::string_view d) {
         comma = s.skip_comma_space();
       }
       builder.apply(op, args);
-      if (!comma && !s.at_number()) break;  // the next command letter (or the end)
+      if (!comma && !s.at_number()) break;                      // the next command letter (or the end)
       if (op == 'M' || op == 'm') op = char(op + ('L' - 'M'));  // implicit lineto after a moveto's first pair
     }
   }
@@ -394,7 +414,8 @@ Mat3 parse_svg_transform(std::string_view text) {
       t = shear2d(0, std::tan(radians(a[0])));
     } else {
       s.fail_at(name_pos, fmt::format("unknown transform function '{}' (expected matrix, translate, scale, rotate, "
-                                      "skewX or skewY)", name));
+                                      "skewX or skewY)",
+                                      name));
     }
     result = result * t;
     s.skip_comma_space();
@@ -413,42 +434,153 @@ struct NamedColor {
   uint32_t rgb;
 };
 constexpr NamedColor kNamedColors[] = {
-    {"aliceblue", 0xf0f8ff}, {"antiquewhite", 0xfaebd7}, {"aqua", 0x00ffff}, {"aquamarine", 0x7fffd4},
-    {"azure", 0xf0ffff}, {"beige", 0xf5f5dc}, {"bisque", 0xffe4c4}, {"black", 0x000000}, {"blanchedalmond", 0xffebcd},
-    {"blue", 0x0000ff}, {"blueviolet", 0x8a2be2}, {"brown", 0xa52a2a}, {"burlywood", 0xdeb887},
-    {"cadetblue", 0x5f9ea0}, {"chartreuse", 0x7fff00}, {"chocolate", 0xd2691e}, {"coral", 0xff7f50},
-    {"cornflowerblue", 0x6495ed}, {"cornsilk", 0xfff8dc}, {"crimson", 0xdc143c}, {"cyan", 0x00ffff},
-    {"darkblue", 0x00008b}, {"darkcyan", 0x008b8b}, {"darkgoldenrod", 0xb8860b}, {"darkgray", 0xa9a9a9},
-    {"darkgreen", 0x006400}, {"darkgrey", 0xa9a9a9}, {"darkkhaki", 0xbdb76b}, {"darkmagenta", 0x8b008b},
-    {"darkolivegreen", 0x556b2f}, {"darkorange", 0xff8c00}, {"darkorchid", 0x9932cc}, {"darkred", 0x8b0000},
-    {"darksalmon", 0xe9967a}, {"darkseagreen", 0x8fbc8f}, {"darkslateblue", 0x483d8b}, {"darkslategray", 0x2f4f4f},
-    {"darkslategrey", 0x2f4f4f}, {"darkturquoise", 0x00ced1}, {"darkviolet", 0x9400d3}, {"deeppink", 0xff1493},
-    {"deepskyblue", 0x00bfff}, {"dimgray", 0x696969}, {"dimgrey", 0x696969}, {"dodgerblue", 0x1e90ff},
-    {"firebrick", 0xb22222}, {"floralwhite", 0xfffaf0}, {"forestgreen", 0x228b22}, {"fuchsia", 0xff00ff},
-    {"gainsboro", 0xdcdcdc}, {"ghostwhite", 0xf8f8ff}, {"gold", 0xffd700}, {"goldenrod", 0xdaa520},
-    {"gray", 0x808080}, {"green", 0x008000}, {"greenyellow", 0xadff2f}, {"grey", 0x808080}, {"honeydew", 0xf0fff0},
-    {"hotpink", 0xff69b4}, {"indianred", 0xcd5c5c}, {"indigo", 0x4b0082}, {"ivory", 0xfffff0}, {"khaki", 0xf0e68c},
-    {"lavender", 0xe6e6fa}, {"lavenderblush", 0xfff0f5}, {"lawngreen", 0x7cfc00}, {"lemonchiffon", 0xfffacd},
-    {"lightblue", 0xadd8e6}, {"lightcoral", 0xf08080}, {"lightcyan", 0xe0ffff}, {"lightgoldenrodyellow", 0xfafad2},
-    {"lightgray", 0xd3d3d3}, {"lightgreen", 0x90ee90}, {"lightgrey", 0xd3d3d3}, {"lightpink", 0xffb6c1},
-    {"lightsalmon", 0xffa07a}, {"lightseagreen", 0x20b2aa}, {"lightskyblue", 0x87cefa}, {"lightslategray", 0x778899},
-    {"lightslategrey", 0x778899}, {"lightsteelblue", 0xb0c4de}, {"lightyellow", 0xffffe0}, {"lime", 0x00ff00},
-    {"limegreen", 0x32cd32}, {"linen", 0xfaf0e6}, {"magenta", 0xff00ff}, {"maroon", 0x800000},
-    {"mediumaquamarine", 0x66cdaa}, {"mediumblue", 0x0000cd}, {"mediumorchid", 0xba55d3}, {"mediumpurple", 0x9370db},
-    {"mediumseagreen", 0x3cb371}, {"mediumslateblue", 0x7b68ee}, {"mediumspringgreen", 0x00fa9a},
-    {"mediumturquoise", 0x48d1cc}, {"mediumvioletred", 0xc71585}, {"midnightblue", 0x191970}, {"mintcream", 0xf5fffa},
-    {"mistyrose", 0xffe4e1}, {"moccasin", 0xffe4b5}, {"navajowhite", 0xffdead}, {"navy", 0x000080},
-    {"oldlace", 0xfdf5e6}, {"olive", 0x808000}, {"olivedrab", 0x6b8e23}, {"orange", 0xffa500},
-    {"orangered", 0xff4500}, {"orchid", 0xda70d6}, {"palegoldenrod", 0xeee8aa}, {"palegreen", 0x98fb98},
-    {"paleturquoise", 0xafeeee}, {"palevioletred", 0xdb7093}, {"papayawhip", 0xffefd5}, {"peachpuff", 0xffdab9},
-    {"peru", 0xcd853f}, {"pink", 0xffc0cb}, {"plum", 0xdda0dd}, {"powderblue", 0xb0e0e6}, {"purple", 0x800080},
-    {"red", 0xff0000}, {"rosybrown", 0xbc8f8f}, {"royalblue", 0x4169e1}, {"saddlebrown", 0x8b4513},
-    {"salmon", 0xfa8072}, {"sandybrown", 0xf4a460}, {"seagreen", 0x2e8b57}, {"seashell", 0xfff5ee},
-    {"sienna", 0xa0522d}, {"silver", 0xc0c0c0}, {"skyblue", 0x87ceeb}, {"slateblue", 0x6a5acd},
-    {"slategray", 0x708090}, {"slategrey", 0x708090}, {"snow", 0xfffafa}, {"springgreen", 0x00ff7f},
-    {"steelblue", 0x4682b4}, {"tan", 0xd2b48c}, {"teal", 0x008080}, {"thistle", 0xd8bfd8}, {"tomato", 0xff6347},
-    {"turquoise", 0x40e0d0}, {"violet", 0xee82ee}, {"wheat", 0xf5deb3}, {"white", 0xffffff}, {"whitesmoke", 0xf5f5f5},
-    {"yellow", 0xffff00}, {"yellowgreen", 0x9acd32},
+    {"aliceblue", 0xf0f8ff},
+    {"antiquewhite", 0xfaebd7},
+    {"aqua", 0x00ffff},
+    {"aquamarine", 0x7fffd4},
+    {"azure", 0xf0ffff},
+    {"beige", 0xf5f5dc},
+    {"bisque", 0xffe4c4},
+    {"black", 0x000000},
+    {"blanchedalmond", 0xffebcd},
+    {"blue", 0x0000ff},
+    {"blueviolet", 0x8a2be2},
+    {"brown", 0xa52a2a},
+    {"burlywood", 0xdeb887},
+    {"cadetblue", 0x5f9ea0},
+    {"chartreuse", 0x7fff00},
+    {"chocolate", 0xd2691e},
+    {"coral", 0xff7f50},
+    {"cornflowerblue", 0x6495ed},
+    {"cornsilk", 0xfff8dc},
+    {"crimson", 0xdc143c},
+    {"cyan", 0x00ffff},
+    {"darkblue", 0x00008b},
+    {"darkcyan", 0x008b8b},
+    {"darkgoldenrod", 0xb8860b},
+    {"darkgray", 0xa9a9a9},
+    {"darkgreen", 0x006400},
+    {"darkgrey", 0xa9a9a9},
+    {"darkkhaki", 0xbdb76b},
+    {"darkmagenta", 0x8b008b},
+    {"darkolivegreen", 0x556b2f},
+    {"darkorange", 0xff8c00},
+    {"darkorchid", 0x9932cc},
+    {"darkred", 0x8b0000},
+    {"darksalmon", 0xe9967a},
+    {"darkseagreen", 0x8fbc8f},
+    {"darkslateblue", 0x483d8b},
+    {"darkslategray", 0x2f4f4f},
+    {"darkslategrey", 0x2f4f4f},
+    {"darkturquoise", 0x00ced1},
+    {"darkviolet", 0x9400d3},
+    {"deeppink", 0xff1493},
+    {"deepskyblue", 0x00bfff},
+    {"dimgray", 0x696969},
+    {"dimgrey", 0x696969},
+    {"dodgerblue", 0x1e90ff},
+    {"firebrick", 0xb22222},
+    {"floralwhite", 0xfffaf0},
+    {"forestgreen", 0x228b22},
+    {"fuchsia", 0xff00ff},
+    {"gainsboro", 0xdcdcdc},
+    {"ghostwhite", 0xf8f8ff},
+    {"gold", 0xffd700},
+    {"goldenrod", 0xdaa520},
+    {"gray", 0x808080},
+    {"green", 0x008000},
+    {"greenyellow", 0xadff2f},
+    {"grey", 0x808080},
+    {"honeydew", 0xf0fff0},
+    {"hotpink", 0xff69b4},
+    {"indianred", 0xcd5c5c},
+    {"indigo", 0x4b0082},
+    {"ivory", 0xfffff0},
+    {"khaki", 0xf0e68c},
+    {"lavender", 0xe6e6fa},
+    {"lavenderblush", 0xfff0f5},
+    {"lawngreen", 0x7cfc00},
+    {"lemonchiffon", 0xfffacd},
+    {"lightblue", 0xadd8e6},
+    {"lightcoral", 0xf08080},
+    {"lightcyan", 0xe0ffff},
+    {"lightgoldenrodyellow", 0xfafad2},
+    {"lightgray", 0xd3d3d3},
+    {"lightgreen", 0x90ee90},
+    {"lightgrey", 0xd3d3d3},
+    {"lightpink", 0xffb6c1},
+    {"lightsalmon", 0xffa07a},
+    {"lightseagreen", 0x20b2aa},
+    {"lightskyblue", 0x87cefa},
+    {"lightslategray", 0x778899},
+    {"lightslategrey", 0x778899},
+    {"lightsteelblue", 0xb0c4de},
+    {"lightyellow", 0xffffe0},
+    {"lime", 0x00ff00},
+    {"limegreen", 0x32cd32},
+    {"linen", 0xfaf0e6},
+    {"magenta", 0xff00ff},
+    {"maroon", 0x800000},
+    {"mediumaquamarine", 0x66cdaa},
+    {"mediumblue", 0x0000cd},
+    {"mediumorchid", 0xba55d3},
+    {"mediumpurple", 0x9370db},
+    {"mediumseagreen", 0x3cb371},
+    {"mediumslateblue", 0x7b68ee},
+    {"mediumspringgreen", 0x00fa9a},
+    {"mediumturquoise", 0x48d1cc},
+    {"mediumvioletred", 0xc71585},
+    {"midnightblue", 0x191970},
+    {"mintcream", 0xf5fffa},
+    {"mistyrose", 0xffe4e1},
+    {"moccasin", 0xffe4b5},
+    {"navajowhite", 0xffdead},
+    {"navy", 0x000080},
+    {"oldlace", 0xfdf5e6},
+    {"olive", 0x808000},
+    {"olivedrab", 0x6b8e23},
+    {"orange", 0xffa500},
+    {"orangered", 0xff4500},
+    {"orchid", 0xda70d6},
+    {"palegoldenrod", 0xeee8aa},
+    {"palegreen", 0x98fb98},
+    {"paleturquoise", 0xafeeee},
+    {"palevioletred", 0xdb7093},
+    {"papayawhip", 0xffefd5},
+    {"peachpuff", 0xffdab9},
+    {"peru", 0xcd853f},
+    {"pink", 0xffc0cb},
+    {"plum", 0xdda0dd},
+    {"powderblue", 0xb0e0e6},
+    {"purple", 0x800080},
+    {"red", 0xff0000},
+    {"rosybrown", 0xbc8f8f},
+    {"royalblue", 0x4169e1},
+    {"saddlebrown", 0x8b4513},
+    {"salmon", 0xfa8072},
+    {"sandybrown", 0xf4a460},
+    {"seagreen", 0x2e8b57},
+    {"seashell", 0xfff5ee},
+    {"sienna", 0xa0522d},
+    {"silver", 0xc0c0c0},
+    {"skyblue", 0x87ceeb},
+    {"slateblue", 0x6a5acd},
+    {"slategray", 0x708090},
+    {"slategrey", 0x708090},
+    {"snow", 0xfffafa},
+    {"springgreen", 0x00ff7f},
+    {"steelblue", 0x4682b4},
+    {"tan", 0xd2b48c},
+    {"teal", 0x008080},
+    {"thistle", 0xd8bfd8},
+    {"tomato", 0xff6347},
+    {"turquoise", 0x40e0d0},
+    {"violet", 0xee82ee},
+    {"wheat", 0xf5deb3},
+    {"white", 0xffffff},
+    {"whitesmoke", 0xf5f5f5},
+    {"yellow", 0xffff00},
+    {"yellowgreen", 0x9acd32},
 };
 
 Vec4f from_rgb24(uint32_t rgb) {
@@ -514,7 +646,8 @@ Vec4f parse_svg_color(std::string_view text) {
                                    [](const svg::NamedColor& c, const std::string& n) { return c.name < n; });
   if (name.empty() || it == std::end(svg::kNamedColors) || it->name != name)
     s.fail_at(start, fmt::format("unknown color '{}' (expected #rgb, #rrggbb, rgb(r, g, b), rgba(r, g, b, a) or a "
-                                 "CSS color keyword)", printable(trim(text))));
+                                 "CSS color keyword)",
+                                 printable(trim(text))));
   s.expect_end();
   return svg::from_rgb24(it->rgb);
 }

@@ -1,12 +1,12 @@
 // The XML reader of the svg module (xml.hpp): XML 1.0 well-formedness for what an SVG file holds.
 #include "xml.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parse.hpp"
@@ -84,7 +84,7 @@ Event Reader::next() {
         map_.fail(pos_, fmt::format("unexpected end of file: expected </{}> to close <{}> from line {}",
                                     open_.back().name, open_.back().name, map_.line(open_.back().offset)));
       if (!root_seen_) map_.fail(pos_, fmt::format("no root element: expected <{}>", root_));
-      return {Event::Kind::Eof, {}, pos_, {}};
+      return {Event::Kind::eof, {}, pos_, {}};
     }
     if (text_[pos_] != '<') {
       text();
@@ -196,7 +196,7 @@ void Reader::text() {
 Event Reader::start_tag() {
   const size_t start = pos_++;
   if (root_closed_) map_.fail(start, "content after the end of the root element");
-  Event event{Event::Kind::Start, read_name("an element name after '<'"), start, {}};
+  Event event{Event::Kind::start, read_name("an element name after '<'"), start, {}};
   for (;;) {
     const bool space = skip_space();
     if (pos_ >= text_.size())
@@ -268,7 +268,7 @@ Event Reader::end_tag() {
 }
 
 Event Reader::close_top() {
-  Event event{Event::Kind::End, std::move(open_.back().name), open_.back().offset, {}};
+  Event event{Event::Kind::end, std::move(open_.back().name), open_.back().offset, {}};
   open_.pop_back();
   root_closed_ = open_.empty();
   return event;

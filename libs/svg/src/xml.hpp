@@ -48,7 +48,7 @@ struct Attribute {
 
 /// A start tag (an empty-element tag gives a Start and then an End), an end tag, or the end of the document.
 struct Event {
-  enum class Kind { Start, End, Eof };
+  enum class Kind { start, end, eof };
   Kind kind;
   std::string name;
   size_t offset;  ///< of the tag's '<' (for an empty element's End, that of its start tag)

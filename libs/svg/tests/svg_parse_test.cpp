@@ -16,9 +16,12 @@ namespace {
 using namespace test;
 using ::testing::HasSubstr;
 
-std::string svg_error(std::string_view text) { return error_of([&] { parse_svg(text, "t.svg"); }); }
+std::string svg_error(std::string_view text) {
+  return error_of([&] { parse_svg(text, "t.svg"); });
+}
 
-// ---- documents ---------------------------------------------------------------------------------------------------------
+// ---- documents
+// ---------------------------------------------------------------------------------------------------------
 
 TEST(SvgDocument, StyleAttributeBeatsPresentationAttributes) {
   const auto d = parse(R"~(<rect width="5" height="5" fill="red" style="fill: #0000ff ;stroke:lime;stroke-width:2px"
@@ -47,9 +50,9 @@ TEST(SvgDocument, InheritanceThroughGroups) {
   expect_color(*a.fill, 0, 128 / 255.f, 0);
   expect_color(*a.stroke, 1, 0, 0);
   EXPECT_EQ(a.stroke_style.width, 3);
-  EXPECT_EQ(a.fill_rule, FillRule::EvenOdd);
-  EXPECT_EQ(a.stroke_style.join, LineJoin::Round);
-  EXPECT_EQ(a.stroke_style.cap, LineCap::Square);
+  EXPECT_EQ(a.fill_rule, FillRule::even_odd);
+  EXPECT_EQ(a.stroke_style.join, LineJoin::round);
+  EXPECT_EQ(a.stroke_style.cap, LineCap::square);
   EXPECT_FLOAT_EQ(a.fill_opacity, 0.25f);
   EXPECT_FLOAT_EQ(a.opacity, 0.25f);  // group opacity multiplied down
   const SvgStyle& b = d.shapes[1].style;
@@ -62,9 +65,9 @@ TEST(SvgDocument, InheritanceThroughGroups) {
   const SvgStyle& c = d.shapes[2].style;
   expect_color(*c.fill, 0, 0, 0);
   EXPECT_FALSE(c.stroke.has_value());
-  EXPECT_EQ(c.fill_rule, FillRule::NonZero);
+  EXPECT_EQ(c.fill_rule, FillRule::non_zero);
   EXPECT_EQ(c.stroke_style.miter_limit, 9);
-  EXPECT_EQ(c.stroke_style.join, LineJoin::Bevel);
+  EXPECT_EQ(c.stroke_style.join, LineJoin::bevel);
   EXPECT_EQ(d.shapes[2].line, 11);
 }
 
@@ -106,7 +109,8 @@ TEST(SvgDocument, ViewBoxMapping) {
   const Mat3 m = svg_viewport_transform(meet, 200, 100);  // scale 2, centered horizontally
   expect_near(transform_point(m, {0, 0}), {50, 0});
   expect_near(transform_point(m, {50, 50}), {150, 100});
-  const auto slice = parse("", R"~(width="200" height="100" viewBox="10 10 50 50" preserveAspectRatio="xMinYMax slice")~");
+  const auto slice =
+      parse("", R"~(width="200" height="100" viewBox="10 10 50 50" preserveAspectRatio="xMinYMax slice")~");
   const Mat3 s = svg_viewport_transform(slice, 200, 100);  // scale 4, bottom aligned
   expect_near(transform_point(s, {10, 60}), {0, 100});
   expect_near(transform_point(s, {60, 10}), {200, -100});
@@ -134,13 +138,15 @@ TEST(SvgDocument, UnsupportedContentIsCountedOnce) {
   ASSERT_EQ(d.warnings.size(), 3u);
   EXPECT_EQ(d.warnings[0], "unsupported SVG elements ignored: text (3), defs (1), animate (1)");
   EXPECT_EQ(d.warnings[1], "unsupported SVG attributes ignored: stroke-dasharray (1)");
-  EXPECT_EQ(d.warnings[2], "unsupported paint servers (url(...)) replaced by their fallback color or none: url(#g) (2)");
+  EXPECT_EQ(d.warnings[2],
+            "unsupported paint servers (url(...)) replaced by their fallback color or none: url(#g) (2)");
   ASSERT_EQ(d.shapes.size(), 3u);
   expect_color(*d.shapes[0].style.fill, 1, 0, 0);
   EXPECT_FALSE(d.shapes[1].style.fill.has_value());
 }
 
-// ---- error messages -----------------------------------------------------------------------------------------------------
+// ---- error messages
+// -----------------------------------------------------------------------------------------------------
 
 TEST(SvgErrors, MalformedDocumentsNameLineColumnAndWhatWasExpected) {
   EXPECT_EQ(svg_error("<svg>\n  <g>\n</svg>"), "t.svg:3:1: expected </g> to close <g> from line 2, got </svg>");
@@ -151,8 +157,9 @@ TEST(SvgErrors, MalformedDocumentsNameLineColumnAndWhatWasExpected) {
             "t.svg:1:16: attribute 'x' of <rect>: unit 'x' is not supported (lengths are px or unitless)");
   EXPECT_EQ(svg_error("<svg><rect width='2mm'/></svg>"),
             "t.svg:1:20: attribute 'width' of <rect>: unit 'mm' is not supported (lengths are px or unitless)");
-  EXPECT_EQ(svg_error("<svg>\n  <path d=\"M 0 0 L 5 5 K\"/></svg>"),
-            "t.svg:2:24: attribute 'd' of <path>: expected a path command (M L H V C S Q T A Z or lower case), got 'K'");
+  EXPECT_EQ(
+      svg_error("<svg>\n  <path d=\"M 0 0 L 5 5 K\"/></svg>"),
+      "t.svg:2:24: attribute 'd' of <path>: expected a path command (M L H V C S Q T A Z or lower case), got 'K'");
   EXPECT_EQ(svg_error("<svg><rect style='fill: red; stroke: #12'/></svg>"),
             "t.svg:1:38: property 'stroke' in style of <rect>: expected a color #rgb or #rrggbb, got '#12'");
   EXPECT_EQ(svg_error("<svg><rect style='fill red'/></svg>"),
@@ -206,10 +213,18 @@ TEST(SvgErrors, NoCrashOnGarbage) {
     for (int k = 0; k < edits && !text.empty(); ++k) {
       const size_t pos = rng() % text.size();
       switch (rng() % 4) {
-        case 0: text[pos] = char(rng() % 256); break;
-        case 1: text[pos] = alphabet[rng() % alphabet.size()]; break;
-        case 2: text.erase(pos, 1 + rng() % 8); break;
-        default: text.resize(std::max<size_t>(pos, 1)); break;
+        case 0:
+          text[pos] = char(rng() % 256);
+          break;
+        case 1:
+          text[pos] = alphabet[rng() % alphabet.size()];
+          break;
+        case 2:
+          text.erase(pos, 1 + rng() % 8);
+          break;
+        default:
+          text.resize(std::max<size_t>(pos, 1));
+          break;
       }
     }
     try {

@@ -1,12 +1,11 @@
 // The SVG renderer (svg_render.cpp): the pixel-center rule against a point-in-polygon oracle, and antialiased output
 // against rsvg-convert (librsvg) when it is installed.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-
-#include <fmt/format.h>
 
 #include "svg_test_util.hpp"
 #include "tessera/image/image_io.hpp"
@@ -17,7 +16,8 @@ namespace {
 
 using namespace test;
 
-// ---- rendering: the pixel-center rule ------------------------------------------------------------------------------------
+// ---- rendering: the pixel-center rule
+// ------------------------------------------------------------------------------------
 
 // Winding number of the pixel center p around the (implicitly closed) polylines, counting a crossing when the edge is
 // strictly right of p and spans [y0, y1): centers on left and top edges are inside, on right and bottom edges outside.
@@ -63,7 +63,7 @@ TEST(SvgRender, WithoutAntialiasingCoverageIsThePixelCenterRule) {
     for (int y = 0; y < image.height(); ++y)
       for (int x = 0; x < image.width(); ++x) {
         const int w = winding(lines, {x + 0.5, y + 0.5});
-        const bool inside = shape.style.fill_rule == FillRule::NonZero ? w != 0 : (w & 1) != 0;
+        const bool inside = shape.style.fill_rule == FillRule::non_zero ? w != 0 : (w & 1) != 0;
         inside_count += inside;
         if (inside == (image(x, y).w == 1.0f) && (image(x, y).w == 0 || image(x, y).w == 1)) continue;
         if (++mismatches <= 5)
@@ -74,7 +74,8 @@ TEST(SvgRender, WithoutAntialiasingCoverageIsThePixelCenterRule) {
   }
 }
 
-// ---- rendering: comparison with rsvg-convert --------------------------------------------------------------------------
+// ---- rendering: comparison with rsvg-convert
+// --------------------------------------------------------------------------
 
 struct Difference {
   double rmse = 0;        // over the RGB channels, values in [0, 1]
@@ -113,8 +114,8 @@ std::pair<ImageRGBA, ImageRGBA> render_both(const std::string& name, const std::
   SvgRenderOptions options;
   options.background = Vec4f(1, 1, 1, 1);
   ImageRGBA ours = render_svg(doc, options);
-  const std::string command = fmt::format("rsvg-convert -b white -w {} -h {} -o '{}' '{}'", ours.width(),
-                                          ours.height(), out.string(), in.string());
+  const std::string command = fmt::format("rsvg-convert -b white -w {} -h {} -o '{}' '{}'", ours.width(), ours.height(),
+                                          out.string(), in.string());
   EXPECT_EQ(std::system(command.c_str()), 0) << command;
   ImageRGBA theirs = read_image(out);
   if (std::getenv("TESSERA_SVG_KEEP")) write_image(dir / (name + ".tessera.png"), ours);

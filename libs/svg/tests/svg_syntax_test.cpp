@@ -1,11 +1,10 @@
 // The grammars of SVG attribute values (svg_syntax.cpp): path data with arcs, transform lists and colors, with the
 // character each error names.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "svg_test_util.hpp"
 #include "tessera/math/transform.hpp"
@@ -18,7 +17,8 @@ using namespace test;
 using ::testing::HasSubstr;
 using Kind = SvgSegment::Kind;
 
-// ---- path data -------------------------------------------------------------------------------------------------------
+// ---- path data
+// -------------------------------------------------------------------------------------------------------
 
 TEST(SvgPathData, CompactNumbers) {
   const auto p = parse_svg_path_data("M1.5.5L-1-2l1e-3.5.25-1E+1");
@@ -41,7 +41,7 @@ TEST(SvgPathData, RelativeEqualsAbsoluteAndImplicitRepeats) {
     expect_near((*p)[0].start, abs[0].start);
     ASSERT_EQ((*p)[0].segments.size(), 3u);
     for (size_t i = 0; i < 3; ++i) {
-      EXPECT_EQ((*p)[0].segments[i].kind, Kind::Line);
+      EXPECT_EQ((*p)[0].segments[i].kind, Kind::line);
       expect_near((*p)[0].segments[i].end, abs[0].segments[i].end);
     }
   }
@@ -57,7 +57,7 @@ TEST(SvgPathData, SmoothCurvesReflectTheLastControlPoint) {
   expect_near(c[0].segments[2].end, {13, 14});
   const auto q = parse_svg_path_data("M0 0 Q1 1 2 0 T4 0 t2 0");
   ASSERT_EQ(q[0].segments.size(), 3u);
-  EXPECT_EQ(q[0].segments[1].kind, Kind::Quadratic);
+  EXPECT_EQ(q[0].segments[1].kind, Kind::quadratic);
   expect_near(q[0].segments[1].c1, {3, -1});
   expect_near(q[0].segments[2].c1, {5, 1});
   // S and T after another command use the current point as the first control point.
@@ -97,12 +97,12 @@ TEST(SvgPathData, ArcsFollowTheEndpointToCenterConversion) {
   // Degenerate arcs: a zero radius is a line, equal endpoints draw nothing.
   const auto line = parse_svg_path_data("M0 0 A0 5 0 0 1 10 0 A5 5 0 0 1 10 0");
   ASSERT_EQ(line[0].segments.size(), 1u);
-  EXPECT_EQ(line[0].segments[0].kind, Kind::Line);
+  EXPECT_EQ(line[0].segments[0].kind, Kind::line);
   // Finite numbers whose arc overflows (an endpoint 1e300 away from a radius 1e10 arc: fuzz_svg found the NaN piece
   // count, undefined behaviour) draw the line to the endpoint.
   const auto huge = parse_svg_path_data("M0 0 a1e10 1e10 0 1 1 1e-9 1e300");
   ASSERT_EQ(huge[0].segments.size(), 1u);
-  EXPECT_EQ(huge[0].segments[0].kind, Kind::Line);
+  EXPECT_EQ(huge[0].segments[0].kind, Kind::line);
   EXPECT_EQ(huge[0].segments[0].end, Vec2(1e-9, 1e300));
 }
 
@@ -122,7 +122,8 @@ TEST(SvgPathData, ErrorsNameTheCharacterAndWhatWasExpected) {
   EXPECT_THAT(error_of([] { parse_svg_path_data("M . 1"); }), HasSubstr("got '.'"));
 }
 
-// ---- transforms and colors ---------------------------------------------------------------------------------------------
+// ---- transforms and colors
+// ---------------------------------------------------------------------------------------------
 
 TEST(SvgTransform, ListsComposeAsTheMatrixStack) {
   expect_matrix_near(parse_svg_transform("translate(10,20) rotate(30) scale(2 3)"),

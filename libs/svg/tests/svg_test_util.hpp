@@ -1,14 +1,13 @@
 #pragma once
 // Helpers shared by the svg module's tests: comparisons with tolerances, the message of an expected InvalidInput, a
 // document from a body, and the check that flattened arcs lie on their ellipse.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "tessera/core/error.hpp"
 #include "tessera/svg/svg.hpp"

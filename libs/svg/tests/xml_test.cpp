@@ -23,7 +23,7 @@ std::vector<Event> events(std::string_view text, std::string_view root = "doc") 
   xml::Reader reader(text, map, root);
   std::vector<Event> out;
   do out.push_back(reader.next());
-  while (out.back().kind != Event::Kind::Eof);
+  while (out.back().kind != Event::Kind::eof);
   return out;
 }
 
@@ -31,14 +31,14 @@ TEST(XmlReader, EventsInDocumentOrder) {
   const std::string text = "<doc a='1'>\n  <e b=\"x&amp;y\"/><f></f>\n</doc>";
   const auto e = events(text);
   ASSERT_EQ(e.size(), 7u);
-  const Event::Kind S = Event::Kind::Start, E = Event::Kind::End;
-  const std::vector<std::pair<Event::Kind, std::string>> expected = {
-      {S, "doc"}, {S, "e"}, {E, "e"}, {S, "f"}, {E, "f"}, {E, "doc"}};
+  const Event::Kind S = Event::Kind::start, E = Event::Kind::end;
+  const std::vector<std::pair<Event::Kind, std::string>> expected = {{S, "doc"}, {S, "e"}, {E, "e"},
+                                                                     {S, "f"},   {E, "f"}, {E, "doc"}};
   for (size_t i = 0; i < expected.size(); ++i) {
     EXPECT_EQ(e[i].kind, expected[i].first) << i;
     EXPECT_EQ(e[i].name, expected[i].second) << i;
   }
-  EXPECT_EQ(e[6].kind, Event::Kind::Eof);
+  EXPECT_EQ(e[6].kind, Event::Kind::eof);
   // Offsets of each '<' counted by hand; an empty element's End carries its start tag's offset.
   EXPECT_EQ(e[0].offset, 0u);
   EXPECT_EQ(e[1].offset, 14u);
@@ -61,7 +61,7 @@ TEST(XmlReader, AttributesAreDecodedWithTheirOffsets) {
   EXPECT_EQ(b.value, "x<y");
   EXPECT_EQ(b.name_offset, 11u);
   EXPECT_EQ(b.value_offset, 17u);
-  EXPECT_FALSE(b.verbatim);  // an entity shifts the columns inside the value
+  EXPECT_FALSE(b.verbatim);                      // an entity shifts the columns inside the value
   EXPECT_EQ(e[0].attributes[2].value, "t u v");  // white space characters become spaces
 }
 
@@ -69,10 +69,10 @@ TEST(XmlReader, EofRepeatsAndTheExpectedRootIsNamed) {
   const std::string text = "<doc/>  <!-- after -->\n";
   const xml::SourceMap map(text, "t.xml");
   xml::Reader reader(text, map, "doc");
-  EXPECT_EQ(reader.next().kind, Event::Kind::Start);
-  EXPECT_EQ(reader.next().kind, Event::Kind::End);
-  EXPECT_EQ(reader.next().kind, Event::Kind::Eof);
-  EXPECT_EQ(reader.next().kind, Event::Kind::Eof);
+  EXPECT_EQ(reader.next().kind, Event::Kind::start);
+  EXPECT_EQ(reader.next().kind, Event::Kind::end);
+  EXPECT_EQ(reader.next().kind, Event::Kind::eof);
+  EXPECT_EQ(reader.next().kind, Event::Kind::eof);
   EXPECT_EQ(error_of([] { events(" <!-- only a comment -->", "html"); }),
             "t.xml:1:25: no root element: expected <html>");
   EXPECT_EQ(error_of([] { events("<a>\n<b>\n</a>"); }), "t.xml:3:1: expected </b> to close <b> from line 2, got </a>");
@@ -96,7 +96,8 @@ TEST(SvgDocument, XmlFeatures) {
       "<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" \"http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd\" [\n"
       "  <!ENTITY x \"<>\">\n]>\n<!-- a comment -->\n"
       "<svg width='10' height=\"10\"><![CDATA[ <rect/> ]]><g><!-- <rect/> --></g>\n"
-      "<path d='M&#48; 0 L&#x35; 5 5 0' fill='&#x72;&#101;d' stroke=\"rgb(0,0,0)\" data-x=\"&lt;&amp;&gt;&quot;&apos;\"/>"
+      "<path d='M&#48; 0 L&#x35; 5 5 0' fill='&#x72;&#101;d' stroke=\"rgb(0,0,0)\" "
+      "data-x=\"&lt;&amp;&gt;&quot;&apos;\"/>"
       "</svg>\n<!-- trailing -->\n",
       "t.svg");
   ASSERT_EQ(d.shapes.size(), 1u);

@@ -1,12 +1,12 @@
 #include "tessera/volume/marching_cubes.hpp"
 
+#include <fmt/format.h>
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <bit>
 #include <memory>
 #include <vector>
-
-#include <fmt/format.h>
-#include <tbb/enumerable_thread_specific.h>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -90,7 +90,11 @@ template <class V>
 class Extractor {
  public:
   Extractor(const Volume<float>& v, const MarchingCubesOptions& o)
-      : v_(v), o_(o), d_(v.dims()), data_(v.voxels().data()), plane_(size_t(d_.x) * size_t(d_.y)),
+      : v_(v),
+        o_(o),
+        d_(v.dims()),
+        data_(v.voxels().data()),
+        plane_(size_t(d_.x) * size_t(d_.y)),
         per_difference_(std::min({v.spacing().x, v.spacing().y, v.spacing().z}) / v.spacing()),
         words_(size_t(d_.x + 63) / 64) {}
 
@@ -155,10 +159,11 @@ class Extractor {
   void check_output_memory(const Counts& total, uint64_t triangle_extra) const {
     const uint64_t vertices = total.vertices + total.centers;
     const uint64_t per_vertex = sizeof(V) * (o_.normals ? 2 : 1), per_triangle = 3 * sizeof(uint32_t) + triangle_extra;
-    const uint64_t bytes = saturating_product({vertices, per_vertex}) + saturating_product({total.triangles, per_triangle});
-    MemoryBudget::check(saturating_product({bytes, 3}),
-                        fmt::format("marching cubes: an iso-surface of {} triangles and {} vertices", total.triangles,
-                                    vertices));
+    const uint64_t bytes =
+        saturating_product({vertices, per_vertex}) + saturating_product({total.triangles, per_triangle});
+    MemoryBudget::check(
+        saturating_product({bytes, 3}),
+        fmt::format("marching cubes: an iso-surface of {} triangles and {} vertices", total.triangles, vertices));
   }
 
   /// Packs plane z's inside flags (value >= iso) into rows of words; bits past the row's end are 0.
@@ -338,8 +343,10 @@ class Extractor {
       tris = triangles_ + 3 * first_[size_t(s)].triangles;
     }
     classify(z0, lo.data());
-    if constexpr (kWrite) number_plane(lo.data(), z0, lo_id.get(), next, true);
-    else counts.vertices += count_plane(lo.data());
+    if constexpr (kWrite)
+      number_plane(lo.data(), z0, lo_id.get(), next, true);
+    else
+      counts.vertices += count_plane(lo.data());
     std::array<uint32_t, 12 + mc::kMaxCenters> id{};
     for (int z = z0; z < z1; ++z) {
       classify(z + 1, hi.data());
@@ -360,8 +367,10 @@ class Extractor {
         }
       }
       if (z + 1 < z1 || top) {
-        if constexpr (kWrite) number_plane(hi.data(), z + 1, hi_id.get(), next, true);
-        else counts.vertices += count_plane(hi.data());
+        if constexpr (kWrite)
+          number_plane(hi.data(), z + 1, hi_id.get(), next, true);
+        else
+          counts.vertices += count_plane(hi.data());
       } else if constexpr (kWrite) {
         uint32_t neighbour = uint32_t(first_[size_t(s) + 1].vertices);  // the next slab numbers this plane first
         number_plane(hi.data(), z + 1, hi_id.get(), neighbour, false);
@@ -465,8 +474,8 @@ class Extractor {
 PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options) {
   PolyMesh mesh;
   const auto fresh = [](auto& array, size_t n) { resize_fresh(array, n); };
-  const uint64_t triangles = Extractor<Vec3>(volume, options).run(mesh.positions, mesh.normals, mesh.face_vertices, fresh,
-                                                                 sizeof(uint32_t));
+  const uint64_t triangles =
+      Extractor<Vec3>(volume, options).run(mesh.positions, mesh.normals, mesh.face_vertices, fresh, sizeof(uint32_t));
   resize_fresh(mesh.face_offsets, size_t(triangles) + 1);
   uint32_t* offsets = mesh.face_offsets.data();
   parallel_for(0, int64_t(triangles) + 1, 1 << 16, [&](int64_t b, int64_t e) {

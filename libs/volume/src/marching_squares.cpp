@@ -1,9 +1,9 @@
 #include "tessera/volume/marching_squares.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <unordered_map>
-
-#include <fmt/format.h>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/memory_budget.hpp"
@@ -31,8 +31,8 @@ std::vector<Polyline> marching_squares(const DepthImage& field, float iso) {
         int c = 0;
         for (int k = 0; k < 4; ++k) c |= int(v[k] >= iso) << k;
         if (c == 0 || c == 15) continue;
-        const int64_t e[4] = {2 * (int64_t(y) * w + x), 2 * (int64_t(y) * w + x + 1) + 1,
-                              2 * (int64_t(y + 1) * w + x), 2 * (int64_t(y) * w + x) + 1};  // edges 0-1, 1-2, 2-3, 3-0
+        const int64_t e[4] = {2 * (int64_t(y) * w + x), 2 * (int64_t(y) * w + x + 1) + 1, 2 * (int64_t(y + 1) * w + x),
+                              2 * (int64_t(y) * w + x) + 1};  // edges 0-1, 1-2, 2-3, 3-0
         const auto add = [&](int from, int to) { add_segment(e[from], e[to]); };
         const bool center_inside = (v[0] + v[1] + v[2] + v[3]) / 4 >= iso;
         if (c == 5) {  // saddle, corners 0 and 2 inside: joined cuts off corners 1 and 3, separated cuts off 0 and 2

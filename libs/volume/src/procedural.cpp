@@ -47,10 +47,8 @@ Volume<float> make_gyroid(int n, double periods) {
 }
 
 Volume<float> make_metaballs(int n) {
-  static constexpr std::array<std::array<double, 4>, 4> kBalls{{{-0.35, -0.2, 0.0, 0.35},
-                                                                {0.35, -0.15, 0.1, 0.3},
-                                                                {0.0, 0.35, -0.1, 0.32},
-                                                                {0.05, 0.0, 0.45, 0.22}}};
+  static constexpr std::array<std::array<double, 4>, 4> kBalls{
+      {{-0.35, -0.2, 0.0, 0.35}, {0.35, -0.15, 0.1, 0.3}, {0.0, 0.35, -0.1, 0.32}, {0.05, 0.0, 0.45, 0.22}}};
   return sample_field(n, [](const Vec3& p) {
     double sum = 0;
     for (const auto& b : kBalls) {
@@ -76,7 +74,8 @@ Volume<float> make_noise(int n, uint64_t seed, double frequency) {
     double sum = 0;
     for (int c = 0; c < 8; ++c) {
       const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-      sum += (dx ? s.x : 1 - s.x) * (dy ? s.y : 1 - s.y) * (dz ? s.z : 1 - s.z) * lattice(octave, i + dx, j + dy, k + dz);
+      sum +=
+          (dx ? s.x : 1 - s.x) * (dy ? s.y : 1 - s.y) * (dz ? s.z : 1 - s.z) * lattice(octave, i + dx, j + dy, k + dz);
     }
     return sum;
   };
@@ -99,13 +98,18 @@ bool make_procedural(const std::string& spec, Volume<float>& out) {
       throw InvalidInput(fmt::format("size of procedural volume '{}' must be in 2..{}", spec, 1 << 30));
     return int(n);
   };
-  if (parts.size() == 2 && name == "sphere") out = make_sphere(size());
-  else if (parts.size() == 2 && name == "torus") out = make_torus(size());
-  else if (parts.size() == 2 && name == "gyroid") out = make_gyroid(size());
-  else if (parts.size() == 2 && name == "metaballs") out = make_metaballs(size());
+  if (parts.size() == 2 && name == "sphere")
+    out = make_sphere(size());
+  else if (parts.size() == 2 && name == "torus")
+    out = make_torus(size());
+  else if (parts.size() == 2 && name == "gyroid")
+    out = make_gyroid(size());
+  else if (parts.size() == 2 && name == "metaballs")
+    out = make_metaballs(size());
   else if (name == "noise" && parts.size() <= 3)
     out = make_noise(size(), parts.size() == 3 ? uint64_t(parse_int(parts[2], "noise seed")) : 1);
-  else return false;
+  else
+    return false;
   return true;
 }
 

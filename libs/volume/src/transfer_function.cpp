@@ -1,13 +1,13 @@
 // Transfer functions: points, presets on the object's scale of a value profile (Otsu's threshold), and the JSON
 // and CSV files of `--tf`.
+#include <fmt/ranges.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <tuple>
-
-#include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/parse.hpp"
@@ -31,7 +31,8 @@ Vec4f TransferFunction::operator()(float v) const {
   if (points_.empty()) return Vec4f(0.0f);
   if (v <= points_.front().value) return Vec4f(points_.front().color, points_.front().opacity);
   if (v >= points_.back().value) return Vec4f(points_.back().color, points_.back().opacity);
-  const auto hi = std::upper_bound(points_.begin(), points_.end(), v, [](float x, const Point& p) { return x < p.value; });
+  const auto hi =
+      std::upper_bound(points_.begin(), points_.end(), v, [](float x, const Point& p) { return x < p.value; });
   const auto lo = hi - 1;
   // In double: the difference of two finite floats can overflow a float (values of both signs near its limit).
   const float t = float((double(v) - lo->value) / (double(hi->value) - lo->value));
@@ -108,7 +109,8 @@ TransferFunction on_scale(const std::vector<ScalePoint>& points, const ValueProf
   const double exponent = TransferFunction::kReferenceDiagonal / std::max(p.diagonal, 1e-30);
   std::vector<TransferFunction::Point> out;
   for (const auto& q : points)
-    out.push_back({float(p.value_at(q.s)), q.color, float(std::clamp(1 - std::pow(1 - q.opacity, exponent), 0.0, 1.0))});
+    out.push_back(
+        {float(p.value_at(q.s)), q.color, float(std::clamp(1 - std::pow(1 - q.opacity, exponent), 0.0, 1.0))});
   return TransferFunction(std::move(out));
 }
 
@@ -119,7 +121,9 @@ const std::vector<std::pair<std::string, std::vector<ScalePoint>>>& preset_table
   static const std::vector<std::pair<std::string, std::vector<ScalePoint>>> table = {
       {"ct-bone", {{0.19, {0.9f, 0.6f, 0.4f}, 0}, {0.27, {0.95f, 0.9f, 0.8f}, 0.6}, {0.72, {1, 1, 0.95f}, 0.9}}},
       {"ct-skin",
-       {{-0.13, {0.8f, 0.5f, 0.4f}, 0}, {-0.02, {0.9f, 0.7f, 0.6f}, 0.15}, {0.24, {0.9f, 0.7f, 0.6f}, 0.15},
+       {{-0.13, {0.8f, 0.5f, 0.4f}, 0},
+        {-0.02, {0.9f, 0.7f, 0.6f}, 0.15},
+        {0.24, {0.9f, 0.7f, 0.6f}, 0.15},
         {0.35, {1, 1, 0.95f}, 0.8}}},
       {"mri", {{-0.12, {0.5f, 0.3f, 0.3f}, 0}, {0.14, {0.9f, 0.75f, 0.6f}, 0.1}, {1.0, {1, 1, 1}, 0.5}}},
   };
@@ -141,9 +145,10 @@ TransferFunction TransferFunction::preset(const std::string& name, const ValuePr
   for (const auto& [key, points] : preset_table()) {
     if (key != name) continue;
     if (!profile.separable())
-      throw InvalidInput(fmt::format("preset '{}' cannot apply: every voxel has the value {}, so there is no tissue to "
-                                     "tell from the background (use --tf or the default transfer function)",
-                                     name, profile.lo));
+      throw InvalidInput(
+          fmt::format("preset '{}' cannot apply: every voxel has the value {}, so there is no tissue to "
+                      "tell from the background (use --tf or the default transfer function)",
+                      name, profile.lo));
     return on_scale(points, profile);
   }
   throw InvalidInput(fmt::format("unknown transfer-function preset '{}' ({})", name, fmt::join(preset_names(), ", ")));
@@ -177,7 +182,8 @@ TransferFunction TransferFunction::from_json(const std::string& text, const std:
     const auto j = nlohmann::json::parse(text);
     std::vector<Point> points;
     for (const auto& p : j.at("points")) {
-      if (!p.is_array() || p.size() != 5) throw InvalidInput(fmt::format("{}: each point is [value, r, g, b, opacity]", name));
+      if (!p.is_array() || p.size() != 5)
+        throw InvalidInput(fmt::format("{}: each point is [value, r, g, b, opacity]", name));
       const double v[5] = {p[0].get<double>(), p[1].get<double>(), p[2].get<double>(), p[3].get<double>(),
                            p[4].get<double>()};
       points.push_back(point_of(v, name));

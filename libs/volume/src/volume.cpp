@@ -14,28 +14,35 @@ namespace tessera {
 
 std::string voxel_type_name(VoxelType type) {
   switch (type) {
-    case VoxelType::UInt8: return "uint8";
-    case VoxelType::UInt16: return "uint16";
-    case VoxelType::Int16: return "int16";
-    case VoxelType::Float32: return "float32";
+    case VoxelType::uint8:
+      return "uint8";
+    case VoxelType::uint16:
+      return "uint16";
+    case VoxelType::int16:
+      return "int16";
+    case VoxelType::float32:
+      return "float32";
   }
   return "?";
 }
 
 VoxelType parse_voxel_type(const std::string& name) {
-  if (name == "uint8" || name == "uchar" || name == "unsigned char" || name == "uint8_t") return VoxelType::UInt8;
-  if (name == "uint16" || name == "ushort" || name == "unsigned short" || name == "uint16_t") return VoxelType::UInt16;
-  if (name == "int16" || name == "short" || name == "signed short" || name == "int16_t") return VoxelType::Int16;
-  if (name == "float32" || name == "float") return VoxelType::Float32;
+  if (name == "uint8" || name == "uchar" || name == "unsigned char" || name == "uint8_t") return VoxelType::uint8;
+  if (name == "uint16" || name == "ushort" || name == "unsigned short" || name == "uint16_t") return VoxelType::uint16;
+  if (name == "int16" || name == "short" || name == "signed short" || name == "int16_t") return VoxelType::int16;
+  if (name == "float32" || name == "float") return VoxelType::float32;
   throw InvalidInput(fmt::format("unknown voxel type '{}' (expected uint8, uint16, int16 or float32)", name));
 }
 
 size_t voxel_size(VoxelType type) {
   switch (type) {
-    case VoxelType::UInt8: return 1;
-    case VoxelType::UInt16:
-    case VoxelType::Int16: return 2;
-    case VoxelType::Float32: return 4;
+    case VoxelType::uint8:
+      return 1;
+    case VoxelType::uint16:
+    case VoxelType::int16:
+      return 2;
+    case VoxelType::float32:
+      return 4;
   }
   return 0;
 }
@@ -46,8 +53,8 @@ uint64_t checked_voxel_count(const glm::ivec3& dims) {
   // Each factor is < 2^31, so the product of two fits in 64 bits; check before the third multiplication.
   const uint64_t xy = uint64_t(dims.x) * uint64_t(dims.y);
   if (xy > kMaxVoxels || xy * uint64_t(dims.z) > kMaxVoxels)
-    throw InvalidInput(fmt::format("volume dimensions {}x{}x{} exceed the limit of {} voxels", dims.x, dims.y, dims.z,
-                                   kMaxVoxels));
+    throw InvalidInput(
+        fmt::format("volume dimensions {}x{}x{} exceed the limit of {} voxels", dims.x, dims.y, dims.z, kMaxVoxels));
   return xy * uint64_t(dims.z);
 }
 
@@ -163,9 +170,9 @@ std::vector<uint64_t> histogram(const Volume<T>& v, int bins, double lo, double 
 }
 
 Axis parse_axis(const std::string& text) {
-  if (text == "x" || text == "X") return Axis::X;
-  if (text == "y" || text == "Y") return Axis::Y;
-  if (text == "z" || text == "Z") return Axis::Z;
+  if (text == "x" || text == "X") return Axis::x;
+  if (text == "y" || text == "Y") return Axis::y;
+  if (text == "z" || text == "Z") return Axis::z;
   throw InvalidInput(fmt::format("axis: expected x, y or z, got '{}'", text));
 }
 
@@ -175,16 +182,16 @@ DepthImage slice(const Volume<T>& v, Axis axis, int index) {
   const int a = int(axis);
   if (index < 0 || index >= d[a])
     throw InvalidInput(fmt::format("slice {} is outside the volume's {} range [0, {})", index, "xyz"[a], d[a]));
-  const int w = axis == Axis::X ? d.y : d.x, h = axis == Axis::Z ? d.y : d.z;
+  const int w = axis == Axis::x ? d.y : d.x, h = axis == Axis::z ? d.y : d.z;
   DepthImage out(w, h);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
-      out(i, j) = float(axis == Axis::Z ? v(i, j, index) : axis == Axis::Y ? v(i, index, j) : v(index, i, j));
+      out(i, j) = float(axis == Axis::z ? v(i, j, index) : axis == Axis::y ? v(i, index, j) : v(index, i, j));
   return out;
 }
 
-#define TESSERA_VOLUME_INSTANTIATE(T)                                                \
-  template std::pair<double, double> value_range(const Volume<T>&);                 \
+#define TESSERA_VOLUME_INSTANTIATE(T)                                              \
+  template std::pair<double, double> value_range(const Volume<T>&);                \
   template std::vector<uint64_t> histogram(const Volume<T>&, int, double, double); \
   template DepthImage slice(const Volume<T>&, Axis, int);
 TESSERA_VOLUME_INSTANTIATE(uint8_t)

@@ -22,7 +22,7 @@ template <class T>
 Volume<T> decode_typed(std::string_view voxels, const RawLayout& layout) {
   Volume<T> v(layout.dims, T{}, layout.spacing, layout.origin);
   std::memcpy(v.voxels().data(), voxels.data(), v.voxel_count() * sizeof(T));
-  const bool swap = (layout.endian == Endian::Big) == (std::endian::native == std::endian::little);
+  const bool swap = (layout.endian == Endian::big) == (std::endian::native == std::endian::little);
   if (swap && sizeof(T) > 1)
     for (T& x : v.voxels()) {
       auto* b = reinterpret_cast<unsigned char*>(&x);
@@ -37,8 +37,9 @@ std::string inflate_exact(std::string_view in, uint64_t size, const std::string&
     throw InvalidInput(fmt::format("{}: gzip data over 4 GiB is not supported", name));
   // Deflate compresses at most about 1032:1, so a header asking for more than that is hostile (no huge allocation).
   if (size > 1032 * uint64_t(in.size()) + 64)
-    throw InvalidInput(fmt::format("{}: {} bytes of gzip data at byte offset {} cannot hold the {} bytes the header says",
-                                   name, in.size(), offset, size));
+    throw InvalidInput(
+        fmt::format("{}: {} bytes of gzip data at byte offset {} cannot hold the {} bytes the header says", name,
+                    in.size(), offset, size));
   std::string out(size_t(size), '\0');
   z_stream zs{};
   if (inflateInit2(&zs, 15 + 32) != Z_OK) throw InvalidInput(fmt::format("{}: zlib initialization failed", name));
@@ -76,7 +77,8 @@ Vec3 parse_vector3(std::string_view text, const std::string& where) {
     if (c == '(' || c == ')' || c == ',') c = ' ';
   std::istringstream in(cleaned);
   std::string a, b, c;
-  if (!(in >> a >> b >> c)) throw InvalidInput(located(where, fmt::format("expected 3 numbers, got '{}'", printable(text))));
+  if (!(in >> a >> b >> c))
+    throw InvalidInput(located(where, fmt::format("expected 3 numbers, got '{}'", printable(text))));
   return {parse_double(a, where), parse_double(b, where), parse_double(c, where)};
 }
 
@@ -155,35 +157,40 @@ std::string lower(std::string s) {
 AnyVolume decode_raw(std::string_view bytes, const RawLayout& layout, const std::string& name) {
   const uint64_t need = byte_count(layout);
   if (layout.header_skip > bytes.size() || bytes.size() - layout.header_skip < need)
-    throw InvalidInput(fmt::format("{}: file is too short: {}x{}x{} {} voxels need {} bytes from byte offset {}, the file "
-                                   "has {} bytes",
-                                   name, layout.dims.x, layout.dims.y, layout.dims.z, voxel_type_name(layout.type), need,
-                                   layout.header_skip, bytes.size()));
+    throw InvalidInput(
+        fmt::format("{}: file is too short: {}x{}x{} {} voxels need {} bytes from byte offset {}, the file "
+                    "has {} bytes",
+                    name, layout.dims.x, layout.dims.y, layout.dims.z, voxel_type_name(layout.type), need,
+                    layout.header_skip, bytes.size()));
   // The box must be finite: spacings near DBL_MAX put the far corner at infinity, and every mesh vertex or ray
   // distance computed from it would be too.
   const Vec3 far = layout.origin + layout.spacing * Vec3(layout.dims - 1);
   for (int a = 0; a < 3; ++a)
     if (!std::isfinite(layout.origin[a]) || !std::isfinite(layout.spacing[a]) || !std::isfinite(far[a]))
-      throw InvalidInput(fmt::format("{}: origin ({}, {}, {}) and spacing ({}, {}, {}) put the volume's box beyond the "
-                                     "finite numbers",
-                                     name, layout.origin.x, layout.origin.y, layout.origin.z, layout.spacing.x,
-                                     layout.spacing.y, layout.spacing.z));
+      throw InvalidInput(
+          fmt::format("{}: origin ({}, {}, {}) and spacing ({}, {}, {}) put the volume's box beyond the "
+                      "finite numbers",
+                      name, layout.origin.x, layout.origin.y, layout.origin.z, layout.spacing.x, layout.spacing.y,
+                      layout.spacing.z));
   const std::string_view voxels = bytes.substr(size_t(layout.header_skip));
   switch (layout.type) {
-    case VoxelType::UInt8: return decode_typed<uint8_t>(voxels, layout);
-    case VoxelType::UInt16: return decode_typed<uint16_t>(voxels, layout);
-    case VoxelType::Int16: return decode_typed<int16_t>(voxels, layout);
-    case VoxelType::Float32: {
+    case VoxelType::uint8:
+      return decode_typed<uint8_t>(voxels, layout);
+    case VoxelType::uint16:
+      return decode_typed<uint16_t>(voxels, layout);
+    case VoxelType::int16:
+      return decode_typed<int16_t>(voxels, layout);
+    case VoxelType::float32: {
       // NaN or infinite voxels would reach value ranges, transfer functions and mesh vertices (NaN output, exit 0).
       Volume<float> v = decode_typed<float>(voxels, layout);
       const auto bad = std::find_if(v.voxels().begin(), v.voxels().end(), [](float x) { return !std::isfinite(x); });
       if (bad != v.voxels().end()) {
         const size_t i = size_t(bad - v.voxels().begin());
         const size_t nx = size_t(layout.dims.x), nxy = nx * size_t(layout.dims.y);
-        throw InvalidInput(fmt::format("{}: voxel ({}, {}, {}) at byte offset {} is {}: float volumes must hold finite "
-                                       "values",
-                                       name, i % nx, i / nx % size_t(layout.dims.y), i / nxy,
-                                       layout.header_skip + i * sizeof(float), *bad));
+        throw InvalidInput(fmt::format(
+            "{}: voxel ({}, {}, {}) at byte offset {} is {}: float volumes must hold finite "
+            "values",
+            name, i % nx, i / nx % size_t(layout.dims.y), i / nxy, layout.header_skip + i * sizeof(float), *bad));
       }
       return v;
     }
@@ -222,20 +229,28 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
     if (line.find(":=") != std::string_view::npos) continue;  // key/value pairs
     const size_t colon = line.find(": ");
     const std::string where = at_line(name, line_no);
-    if (colon == std::string_view::npos) throw InvalidInput(located(where, fmt::format("expected 'field: value', got '{}'", printable(line))));
+    if (colon == std::string_view::npos)
+      throw InvalidInput(located(where, fmt::format("expected 'field: value', got '{}'", printable(line))));
     const std::string field = lower(std::string(trim(line.substr(0, colon))));
     const std::string_view value = trim(line.substr(colon + 2));
     if (field == "type") {
       const std::string t = lower(std::string(value));
-      if (t == "uchar" || t == "unsigned char" || t == "uint8" || t == "uint8_t") layout.type = VoxelType::UInt8;
-      else if (t == "ushort" || t == "unsigned short" || t == "uint16" || t == "uint16_t" || t == "unsigned short int") layout.type = VoxelType::UInt16;
-      else if (t == "short" || t == "signed short" || t == "int16" || t == "int16_t" || t == "short int") layout.type = VoxelType::Int16;
-      else if (t == "float") layout.type = VoxelType::Float32;
-      else throw InvalidInput(located(where, fmt::format("unsupported type '{}' (uchar, ushort, short, float)", printable(value))));
+      if (t == "uchar" || t == "unsigned char" || t == "uint8" || t == "uint8_t")
+        layout.type = VoxelType::uint8;
+      else if (t == "ushort" || t == "unsigned short" || t == "uint16" || t == "uint16_t" || t == "unsigned short int")
+        layout.type = VoxelType::uint16;
+      else if (t == "short" || t == "signed short" || t == "int16" || t == "int16_t" || t == "short int")
+        layout.type = VoxelType::int16;
+      else if (t == "float")
+        layout.type = VoxelType::float32;
+      else
+        throw InvalidInput(
+            located(where, fmt::format("unsupported type '{}' (uchar, ushort, short, float)", printable(value))));
       have_type = true;
     } else if (field == "dimension") {
       dimension = int(parse_int(value, where));
-      if (dimension != 3) throw InvalidInput(located(where, fmt::format("only 3D volumes are supported, got dimension {}", dimension)));
+      if (dimension != 3)
+        throw InvalidInput(located(where, fmt::format("only 3D volumes are supported, got dimension {}", dimension)));
     } else if (field == "sizes") {
       layout.dims = parse_dims(words(value), where);
       have_sizes = true;
@@ -246,8 +261,9 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
         throw InvalidInput(located(where, fmt::format("unsupported encoding '{}' (raw, gzip)", printable(value))));
     } else if (field == "endian") {
       const std::string e = lower(std::string(value));
-      if (e != "little" && e != "big") throw InvalidInput(located(where, fmt::format("endian must be little or big, got '{}'", printable(value))));
-      layout.endian = e == "big" ? Endian::Big : Endian::Little;
+      if (e != "little" && e != "big")
+        throw InvalidInput(located(where, fmt::format("endian must be little or big, got '{}'", printable(value))));
+      layout.endian = e == "big" ? Endian::big : Endian::little;
       have_endian = true;
     } else if (field == "spacings") {
       const auto w = words(value);
@@ -296,7 +312,8 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
   const std::string data_name = data_file.empty() ? name : shown_path(base_dir / data_file);
   if (encoding == "gzip") {
     if (layout.header_skip > payload.size())
-      throw InvalidInput(fmt::format("{}: byte skip {} is past the end ({} bytes)", data_name, layout.header_skip, payload.size()));
+      throw InvalidInput(
+          fmt::format("{}: byte skip {} is past the end ({} bytes)", data_name, layout.header_skip, payload.size()));
     const std::string raw = inflate_exact(payload.substr(size_t(layout.header_skip)), byte_count(layout), data_name,
                                           payload_offset + layout.header_skip);
     RawLayout inner = layout;
@@ -307,10 +324,10 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
   // rather than read in part. (A short file is decode_raw's error.)
   const uint64_t need = byte_count(layout);
   if (layout.header_skip <= payload.size() && payload.size() - layout.header_skip > need)
-    throw InvalidInput(fmt::format("{}: the data holds {} bytes from byte offset {}, more than the {} bytes that the "
-                                   "header's sizes and type say",
-                                   data_name, payload.size() - layout.header_skip, payload_offset + layout.header_skip,
-                                   need));
+    throw InvalidInput(
+        fmt::format("{}: the data holds {} bytes from byte offset {}, more than the {} bytes that the "
+                    "header's sizes and type say",
+                    data_name, payload.size() - layout.header_skip, payload_offset + layout.header_skip, need));
   try {
     return decode_raw(payload, layout, data_name);
   } catch (const InvalidInput& e) {
@@ -335,7 +352,8 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
     const std::string where = at_line(name, line_no);
     const size_t eq = line.find('=');
     if (trim(line).empty()) continue;
-    if (eq == std::string::npos) throw InvalidInput(located(where, fmt::format("expected 'Key = Value', got '{}'", printable(line))));
+    if (eq == std::string::npos)
+      throw InvalidInput(located(where, fmt::format("expected 'Key = Value', got '{}'", printable(line))));
     const std::string key(trim(std::string_view(line).substr(0, eq)));
     const std::string value(trim(std::string_view(line).substr(eq + 1)));
     if (key == "NDims") {
@@ -344,12 +362,14 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
       layout.dims = parse_dims(words(value), where);
       have_dims = true;
     } else if (key == "ElementType") {
-      static const std::pair<const char*, VoxelType> kTypes[] = {{"MET_UCHAR", VoxelType::UInt8},
-                                                                 {"MET_USHORT", VoxelType::UInt16},
-                                                                 {"MET_SHORT", VoxelType::Int16},
-                                                                 {"MET_FLOAT", VoxelType::Float32}};
-      const auto it = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const auto& t) { return value == t.first; });
-      if (it == std::end(kTypes)) throw InvalidInput(located(where, fmt::format("unsupported ElementType '{}'", printable(value))));
+      static const std::pair<const char*, VoxelType> kTypes[] = {{"MET_UCHAR", VoxelType::uint8},
+                                                                 {"MET_USHORT", VoxelType::uint16},
+                                                                 {"MET_SHORT", VoxelType::int16},
+                                                                 {"MET_FLOAT", VoxelType::float32}};
+      const auto it =
+          std::find_if(std::begin(kTypes), std::end(kTypes), [&](const auto& t) { return value == t.first; });
+      if (it == std::end(kTypes))
+        throw InvalidInput(located(where, fmt::format("unsupported ElementType '{}'", printable(value))));
       layout.type = it->second;
       have_type = true;
     } else if (key == "ElementSpacing" || key == "ElementSize") {
@@ -359,7 +379,7 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
     } else if (key == "Offset" || key == "Origin" || key == "Position") {
       layout.origin = parse_vector3(value, where);
     } else if (key == "ElementByteOrderMSB" || key == "BinaryDataByteOrderMSB") {
-      layout.endian = lower(value) == "true" ? Endian::Big : Endian::Little;
+      layout.endian = lower(value) == "true" ? Endian::big : Endian::little;
     } else if (key == "HeaderSize") {
       const long long skip = parse_int(value, where);
       if (skip < 0) throw InvalidInput(located(where, "HeaderSize -1 is not supported"));
@@ -379,8 +399,8 @@ AnyVolume read_mhd(const std::filesystem::path& path) {
 Volume<uint8_t> read_slices(const std::vector<std::filesystem::path>& files, const Vec3& spacing) {
   if (files.empty()) throw InvalidInput("a slice stack needs at least one image");
   if (files.size() > size_t(1) << 30)
-    throw InvalidInput(fmt::format("a slice stack of {} images is more than the {} a volume holds", files.size(),
-                                   1 << 30));
+    throw InvalidInput(
+        fmt::format("a slice stack of {} images is more than the {} a volume holds", files.size(), 1 << 30));
   Volume<uint8_t> v;
   for (size_t z = 0; z < files.size(); ++z) {
     const ImageRGBA image = read_image(files[z]);  // the reader refuses one slice over the budget from its header
@@ -424,8 +444,9 @@ std::string voxel_bytes(const AnyVolume& volume, Endian endian) {
         using T = typename std::decay_t<decltype(v)>::Value;
         std::string bytes(v.voxel_count() * sizeof(T), '\0');
         std::memcpy(bytes.data(), v.voxels().data(), bytes.size());
-        if ((endian == Endian::Big) == (std::endian::native == std::endian::little) && sizeof(T) > 1)
-          for (size_t i = 0; i < bytes.size(); i += sizeof(T)) std::reverse(bytes.begin() + long(i), bytes.begin() + long(i + sizeof(T)));
+        if ((endian == Endian::big) == (std::endian::native == std::endian::little) && sizeof(T) > 1)
+          for (size_t i = 0; i < bytes.size(); i += sizeof(T))
+            std::reverse(bytes.begin() + long(i), bytes.begin() + long(i + sizeof(T)));
         return bytes;
       },
       volume);
@@ -463,7 +484,7 @@ void write_nrrd(const std::filesystem::path& path, const AnyVolume& volume, bool
       "NRRD0004\n# written by Tessera\ntype: {}\ndimension: 3\nsizes: {} {} {}\nendian: little\nencoding: {}\n"
       "space dimension: 3\nspace directions: ({},0,0) (0,{},0) (0,0,{})\nspace origin: ({},{},{})\n",
       kNrrdType[volume.index()], d.x, d.y, d.z, gz ? "gzip" : "raw", s.x, s.y, s.z, o.x, o.y, o.z);
-  const std::string bytes = voxel_bytes(volume, Endian::Little);
+  const std::string bytes = voxel_bytes(volume, Endian::little);
   if (detached) {
     const auto data_path = std::filesystem::path(path).replace_extension(".raw");
     write_file_atomic(data_path, bytes);

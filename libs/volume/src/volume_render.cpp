@@ -20,16 +20,18 @@ namespace {
 /// InvalidInput for a negative or non-finite step, or one giving more than kMaxSamplesPerRay samples across the box.
 float sample_step(const Volume<float>& volume, const VolumeRenderOptions& options) {
   if (!(options.step >= 0) || !std::isfinite(options.step))
-    throw InvalidInput(fmt::format("step {} must be a finite distance >= 0 (0: half the smallest spacing)", options.step));
+    throw InvalidInput(
+        fmt::format("step {} must be a finite distance >= 0 (0: half the smallest spacing)", options.step));
   const Vec3 sp = volume.spacing();
   const double step = options.step > 0 ? double(options.step) : 0.5 * std::min({sp.x, sp.y, sp.z});
   const double diagonal = glm::length(volume.to_world(Vec3(volume.dims() - 1)) - volume.origin());
   const double samples = std::ceil(diagonal / step);
   if (!(samples <= double(VolumeRenderOptions::kMaxSamplesPerRay)))
-    throw InvalidInput(fmt::format("step {} gives {:.3g} samples per ray across the volume's box (diagonal {:.6g}); at "
-                                   "most {} are allowed: use a step of at least {:.3g}",
-                                   float(step), samples, diagonal, VolumeRenderOptions::kMaxSamplesPerRay,
-                                   diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay)));
+    throw InvalidInput(
+        fmt::format("step {} gives {:.3g} samples per ray across the volume's box (diagonal {:.6g}); at "
+                    "most {} are allowed: use a step of at least {:.3g}",
+                    float(step), samples, diagonal, VolumeRenderOptions::kMaxSamplesPerRay,
+                    diagonal / double(VolumeRenderOptions::kMaxSamplesPerRay)));
   return float(step);
 }
 
@@ -104,7 +106,8 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
 #if TESSERA_VOLUME_AVX2
   // The gathers index the packed voxels with int32, and march8 divides cells by the block size in float.
   const bool simd = options.simd && cpu_features().avx2 && cpu_features().fma &&
-                    packed.voxels.size() < (size_t(1) << 31) && glm::all(glm::lessThan(packed.dims, glm::ivec3(1 << 23)));
+                    packed.voxels.size() < (size_t(1) << 31) &&
+                    glm::all(glm::lessThan(packed.dims, glm::ivec3(1 << 23)));
 #else
   const bool simd = false;
 #endif

@@ -39,7 +39,8 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
     first[a] = _mm256_load_ps(f[a]);
     delta[a] = _mm256_load_ps(d[a]);
     inv_delta[a] = _mm256_div_ps(_mm256_set1_ps(1.0f), delta[a]);
-    forward[a] = _mm256_and_ps(_mm256_cmp_ps(delta[a], _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));  // 1 or 0
+    forward[a] =
+        _mm256_and_ps(_mm256_cmp_ps(delta[a], _mm256_setzero_ps(), _CMP_GT_OQ), _mm256_set1_ps(1.0f));  // 1 or 0
     moving[a] = _mm256_cmp_ps(delta[a], _mm256_setzero_ps(), _CMP_NEQ_OQ);
     light[a] = _mm256_load_ps(l[a]);
     hi[a] = _mm256_set1_ps(float(vol.dims[a] - 1));
@@ -50,8 +51,8 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
   const __m256 nf = _mm256_cvtepi32_ps(n_all);
   const glm::ivec3 steps = vol.corner_steps();
   // Corner offsets in voxels (a corner is 64 bits: value and gradient x, gradient y and z).
-  const int corner[8] = {0, steps.x, steps.y, steps.y + steps.x, steps.z, steps.z + steps.x, steps.z + steps.y,
-                         steps.z + steps.y + steps.x};
+  const int corner[8] = {0,       steps.x,           steps.y,           steps.y + steps.x,
+                         steps.z, steps.z + steps.x, steps.z + steps.y, steps.z + steps.y + steps.x};
   const __m256i stride_y = _mm256_set1_epi32(int(vol.stride_y)), stride_z = _mm256_set1_epi32(int(vol.stride_z));
   const __m256i count_x = _mm256_set1_epi32(blocks.count.x), count_y = _mm256_set1_epi32(blocks.count.y);
   const __m256 block_size = _mm256_set1_ps(float(blocks.size)), inv_block = _mm256_set1_ps(1.0f / float(blocks.size));
@@ -72,7 +73,8 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
   // critical path is then only the empty-block jump.
   for (;;) {
     const __m256i marching = _mm256_cmpgt_epi32(n_regular, k);
-    const __m256i active = _mm256_and_si256(marching, _mm256_castps_si256(_mm256_cmp_ps(a_acc, termination, _CMP_LT_OQ)));
+    const __m256i active =
+        _mm256_and_si256(marching, _mm256_castps_si256(_mm256_cmp_ps(a_acc, termination, _CMP_LT_OQ)));
     if (_mm256_testz_si256(active, active)) break;
     const __m256 kf = _mm256_cvtepi32_ps(k);
     __m256i cell[3], block[3];
@@ -83,29 +85,34 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
       offset[a] = _mm256_sub_ps(q, _mm256_cvtepi32_ps(cell[a]));
       // cell / size: (cell + 0.5) / size is at least 0.5 / size from a whole number, far more than the rounding
       // (cells < 2^23), so truncating it is exact.
-      const __m256 quotient = _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(cell[a]), _mm256_set1_ps(0.5f)), inv_block);
+      const __m256 quotient =
+          _mm256_mul_ps(_mm256_add_ps(_mm256_cvtepi32_ps(cell[a]), _mm256_set1_ps(0.5f)), inv_block);
       block[a] = _mm256_min_epi32(_mm256_cvttps_epi32(quotient), last_block[a]);
     }
-    const __m256i block_index =
-        _mm256_add_epi32(block[0], _mm256_mullo_epi32(count_x, _mm256_add_epi32(block[1], _mm256_mullo_epi32(count_y, block[2]))));
-    const __m256i is_empty = _mm256_cmpgt_epi32(_mm256_i32gather_epi32(blocks.empty.data(), block_index, 4), _mm256_setzero_si256());
+    const __m256i block_index = _mm256_add_epi32(
+        block[0], _mm256_mullo_epi32(count_x, _mm256_add_epi32(block[1], _mm256_mullo_epi32(count_y, block[2]))));
+    const __m256i is_empty =
+        _mm256_cmpgt_epi32(_mm256_i32gather_epi32(blocks.empty.data(), block_index, 4), _mm256_setzero_si256());
     // Branchless: whether some lane jumps is a coin toss in noisy data.
     const __m256i skip = _mm256_and_si256(is_empty, marching);
     __m256 exit = infinity;
     for (int a = 0; a < 3; ++a) {
       const __m256 b = _mm256_cvtepi32_ps(block[a]);
       const __m256 bound = _mm256_mul_ps(_mm256_add_ps(b, forward[a]), block_size);  // the far side of the block
-      exit = _mm256_min_ps(exit, _mm256_blendv_ps(infinity, _mm256_mul_ps(_mm256_sub_ps(bound, first[a]), inv_delta[a]), moving[a]));
+      exit = _mm256_min_ps(
+          exit, _mm256_blendv_ps(infinity, _mm256_mul_ps(_mm256_sub_ps(bound, first[a]), inv_delta[a]), moving[a]));
     }
     const __m256i inside = _mm256_castps_si256(_mm256_cmp_ps(exit, nf, _CMP_LT_OQ));
     // Where the exit is beyond the ray, cvtt would overflow: those lanes take n instead.
-    const __m256i jump = _mm256_max_epi32(k, _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_min_ps(exit, nf)), _mm256_set1_epi32(1)));
+    const __m256i jump =
+        _mm256_max_epi32(k, _mm256_sub_epi32(_mm256_cvttps_epi32(_mm256_min_ps(exit, nf)), _mm256_set1_epi32(1)));
     k = _mm256_blendv_epi8(k, _mm256_blendv_epi8(n_all, jump, inside), skip);
     const __m256i sample = _mm256_andnot_si256(is_empty, active);
     if (!_mm256_testz_si256(sample, sample)) {
-      const __m256i base = _mm256_permutevar8x32_epi32(
-          _mm256_add_epi32(_mm256_add_epi32(cell[0], _mm256_mullo_epi32(cell[1], stride_y)), _mm256_mullo_epi32(cell[2], stride_z)),
-          halves);
+      const __m256i base =
+          _mm256_permutevar8x32_epi32(_mm256_add_epi32(_mm256_add_epi32(cell[0], _mm256_mullo_epi32(cell[1], stride_y)),
+                                                       _mm256_mullo_epi32(cell[2], stride_z)),
+                                      halves);
       const __m128i base_a = _mm256_castsi256_si128(base), base_b = _mm256_extracti128_si256(base, 1);
       __m256 x_lerped[4][4];  // [corner pair (y, z)][component]
       for (int pair = 0; pair < 4; ++pair) {
@@ -145,11 +152,13 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
       __m256 r = _mm256_shuffle_ps(rg_a, rg_b, _MM_SHUFFLE(2, 0, 2, 0));
       __m256 g = _mm256_shuffle_ps(rg_a, rg_b, _MM_SHUFFLE(3, 1, 3, 1));
       __m256 b = _mm256_shuffle_ps(ba_a, ba_b, _MM_SHUFFLE(2, 0, 2, 0));
-      const __m256 w = _mm256_and_ps(_mm256_shuffle_ps(ba_a, ba_b, _MM_SHUFFLE(3, 1, 3, 1)), _mm256_castsi256_ps(sample));
+      const __m256 w =
+          _mm256_and_ps(_mm256_shuffle_ps(ba_a, ba_b, _MM_SHUFFLE(3, 1, 3, 1)), _mm256_castsi256_ps(sample));
       if (o.shading) {
         const __m256 len2 = _mm256_fmadd_ps(s[1], s[1], _mm256_fmadd_ps(s[2], s[2], _mm256_mul_ps(s[3], s[3])));
         const __m256 lit = _mm256_cmp_ps(len2, _mm256_set1_ps(cast.min_gradient2), _CMP_GT_OQ);
-        const __m256 dot = _mm256_fmadd_ps(s[1], light[0], _mm256_fmadd_ps(s[2], light[1], _mm256_mul_ps(s[3], light[2])));
+        const __m256 dot =
+            _mm256_fmadd_ps(s[1], light[0], _mm256_fmadd_ps(s[2], light[1], _mm256_mul_ps(s[3], light[2])));
         const __m256 abs_dot = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), dot);
         // 1 / |g| by rsqrt and one Newton step (relative error ~1e-7, shorter latency than sqrt and div).
         const __m256 len2_or_1 = _mm256_blendv_ps(one, len2, lit);
@@ -170,7 +179,8 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
           const __m256 p1 = _mm256_i32gather_ps(cast.power.values.data() + 1, pi, 4);
           pw = lerp(p0, p1, _mm256_sub_ps(ps, _mm256_cvtepi32_ps(pi)));
         }
-        const __m256 shade = _mm256_blendv_ps(one, _mm256_fmadd_ps(_mm256_set1_ps(o.diffuse), cosine, _mm256_set1_ps(o.ambient)), lit);
+        const __m256 shade =
+            _mm256_blendv_ps(one, _mm256_fmadd_ps(_mm256_set1_ps(o.diffuse), cosine, _mm256_set1_ps(o.ambient)), lit);
         const __m256 highlight = _mm256_and_ps(_mm256_mul_ps(_mm256_set1_ps(o.specular), pw), lit);
         r = _mm256_fmadd_ps(r, shade, highlight);
         g = _mm256_fmadd_ps(g, shade, highlight);

@@ -2,13 +2,13 @@
 // The ray caster's prepared data, shared by the scalar caster (volume_render.cpp) and the AVX2 marcher
 // (volume_render_avx2.cpp, compiled with -mavx2 -mfma): the packed volume, the tabulated transfer function, the
 // empty-block grid, the specular power, a ray's samples and the scalar march(). Private to libs/volume.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
-
-#include <fmt/format.h>
 #if defined(__x86_64__) || defined(__i386__)
 #include <immintrin.h>
 #endif
@@ -74,7 +74,8 @@ struct PackedVolume {
   void pack_row(const Volume<float>& v, int y, int z, const Vec3& unit, double lo, Corner* out) const {
     const glm::ivec3 d = v.dims();
     const float* row = &v(0, y, z);
-    const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, d.y - 1), z0 = std::max(z - 1, 0), z1 = std::min(z + 1, d.z - 1);
+    const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, d.y - 1), z0 = std::max(z - 1, 0),
+              z1 = std::min(z + 1, d.z - 1);
     const float* ylo = &v(0, y0, z);
     const float* yhi = &v(0, y1, z);
     const float* zlo = &v(0, y, z0);
@@ -143,10 +144,11 @@ struct PackedVolume {
 struct TransferTable {
   static constexpr int kSize = 16384;
   static constexpr float kScale = float(kSize - 1) / 65535.0f;  ///< entry = (quantized + 32768) * kScale, rounded
-  std::vector<Vec4f> entries;    ///< rgb, alpha per step
+  std::vector<Vec4f> entries;                                   ///< rgb, alpha per step
   std::vector<int> lit_before;  ///< entries with a non-zero alpha before entry i (for any_lit)
 
-  TransferTable(const TransferFunction& tf, double lo, double hi, float step) : entries(kSize), lit_before(kSize + 1, 0) {
+  TransferTable(const TransferFunction& tf, double lo, double hi, float step)
+      : entries(kSize), lit_before(kSize + 1, 0) {
     // In double: hi - lo of two finite floats can overflow a float; each entry's value lies in [lo, hi].
     const double span = hi > lo ? hi - lo : 0.0;
     for (int i = 0; i < kSize; ++i) {
@@ -162,7 +164,9 @@ struct TransferTable {
   static int index(float quantized) { return std::clamp(int((quantized + 32768.0f) * kScale + 0.5f), 0, kSize - 1); }
   const Vec4f& operator()(float quantized) const { return entries[size_t(index(quantized))]; }
   /// Whether some value in quantized [lo, hi] has a non-zero alpha (interpolated values stay in that range).
-  bool any_lit(int lo, int hi) const { return lit_before[size_t(index(float(hi))) + 1] > lit_before[size_t(index(float(lo)))]; }
+  bool any_lit(int lo, int hi) const {
+    return lit_before[size_t(index(float(hi))) + 1] > lit_before[size_t(index(float(lo)))];
+  }
 };
 
 /// Empty flags per block of `block` cells per side: a block is empty when every table entry its voxels' quantized
@@ -170,7 +174,7 @@ struct TransferTable {
 struct BlockGrid {
   int size;
   glm::ivec3 count;
-  std::vector<int32_t> empty;                 ///< int32 so that 8 lanes can gather them
+  std::vector<int32_t> empty;                   ///< int32 so that 8 lanes can gather them
   std::array<std::vector<int32_t>, 3> of_cell;  ///< block coordinate of each cell coordinate, per axis
 
   BlockGrid(const PackedVolume& v, int block, const TransferTable& table) : size(block) {
@@ -198,7 +202,9 @@ struct BlockGrid {
         of_cell[size_t(axis)][size_t(c)] = std::min(c / size, count[axis] - 1);
     }
   }
-  size_t index(const glm::ivec3& b) const { return size_t(b.x) + size_t(count.x) * (size_t(b.y) + size_t(count.y) * size_t(b.z)); }
+  size_t index(const glm::ivec3& b) const {
+    return size_t(b.x) + size_t(count.x) * (size_t(b.y) + size_t(count.y) * size_t(b.z));
+  }
   /// The block of a cell (a table per axis: a division per axis and sample showed in the profile).
   glm::ivec3 block_of(const glm::ivec3& cell) const {
     return {of_cell[0][size_t(cell.x)], of_cell[1][size_t(cell.y)], of_cell[2][size_t(cell.z)]};
@@ -278,7 +284,8 @@ struct Caster {
       const Vec4f s = volume.interpolate(cell, offset);
       Vec4f c = table(s.x);
       // An empty last segment (last_fraction 0) adds nothing, even where the entry is opaque (0 * -inf).
-      if (last) c.w = ray.last_fraction > 0 ? float(-std::expm1(double(ray.last_fraction) * std::log1p(-double(c.w)))) : 0.0f;
+      if (last)
+        c.w = ray.last_fraction > 0 ? float(-std::expm1(double(ray.last_fraction) * std::log1p(-double(c.w)))) : 0.0f;
       Vec3f rgb(c);
       if (options.shading) {
         const Vec3f g(s.y, s.z, s.w);
@@ -294,7 +301,6 @@ struct Caster {
     }
   }
 };
-
 
 #if defined(__x86_64__) || defined(__i386__)
 #define TESSERA_VOLUME_AVX2 1

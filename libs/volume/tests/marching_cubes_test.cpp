@@ -1,8 +1,7 @@
 #include "tessera/volume/marching_cubes.hpp"
 
-#include <unistd.h>
-
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -59,7 +58,8 @@ Volume<float> embedded_cube(const std::array<float, 8>& values, float outside) {
 /// Random corner values for a case: inside corners in [0.5, 1], outside in [0, 0.5).
 std::array<float, 8> random_corners(int cube_case, Rng& rng) {
   std::array<float, 8> v{};
-  for (int c = 0; c < 8; ++c) v[size_t(c)] = (cube_case >> c) & 1 ? 0.5f + 0.5f * rng.uniform() : 0.4995f * rng.uniform();
+  for (int c = 0; c < 8; ++c)
+    v[size_t(c)] = (cube_case >> c) & 1 ? 0.5f + 0.5f * rng.uniform() : 0.4995f * rng.uniform();
   return v;
 }
 
@@ -156,8 +156,8 @@ TEST(MarchingCubes, NormalsAreUnitWhereGradientsOverflowFloat) {
 }
 
 // Issue 24, class 3: the output was allocated whatever its size. Pass 1 counts it exactly, and the budget is checked
-// there: three times the arrays' bytes (a PolyMesh: 24-byte positions and normals, 3 indices and an offset per triangle;
-// an IsoSurface: 12-byte vectors and 3 indices), refused one byte below and accepted at the bound.
+// there: three times the arrays' bytes (a PolyMesh: 24-byte positions and normals, 3 indices and an offset per
+// triangle; an IsoSurface: 12-byte vectors and 3 indices), refused one byte below and accepted at the bound.
 TEST(MarchingCubes, OutputOverTheMemoryBudgetIsRefusedAfterCounting) {
   const auto v = make_sphere(40, 0.7);
   const PolyMesh mesh = marching_cubes(v, {});
@@ -177,8 +177,8 @@ TEST(MarchingCubes, OutputOverTheMemoryBudgetIsRefusedAfterCounting) {
     MemoryBudget::set_limit(0);
     return message;
   };
-  const std::string what = fmt::format("marching cubes: an iso-surface of {} triangles and {} vertices needs about ",
-                                       triangles, vertices);
+  const std::string what =
+      fmt::format("marching cubes: an iso-surface of {} triangles and {} vertices needs about ", triangles, vertices);
   EXPECT_NE(refused(poly_bytes - 1, [&] { marching_cubes(v, {}); }).find(what), std::string::npos);
   EXPECT_EQ(refused(poly_bytes, [&] { marching_cubes(v, {}); }), "no error");
   EXPECT_NE(refused(iso_bytes - 1, [&] { extract_iso_surface(v, {}); }).find(what), std::string::npos);
@@ -273,7 +273,8 @@ TEST(MarchingCubes, IsoSurfaceIsTheMeshInFloatForAnyThreadCount) {
     ASSERT_EQ(one.vertex_count(), mesh.positions.size());
     ASSERT_EQ(one.normals.size(), mesh.normals.size());
     ASSERT_GT(one.triangle_count(), 100u);
-    EXPECT_TRUE(std::equal(one.indices.begin(), one.indices.end(), mesh.face_vertices.begin(), mesh.face_vertices.end()));
+    EXPECT_TRUE(
+        std::equal(one.indices.begin(), one.indices.end(), mesh.face_vertices.begin(), mesh.face_vertices.end()));
     for (size_t i = 0; i < mesh.positions.size(); ++i) {
       ASSERT_EQ(one.positions[i], Vec3f(mesh.positions[i])) << i;
       ASSERT_EQ(one.normals[i], Vec3f(mesh.normals[i])) << i;
@@ -365,7 +366,9 @@ std::vector<Field> reference_fields() {
 }
 
 /// Area in voxel units (the references get unit spacing).
-double voxel_area(const PolyMesh& m, const Volume<float>& v) { return surface_area(m) / (v.spacing().x * v.spacing().x); }
+double voxel_area(const PolyMesh& m, const Volume<float>& v) {
+  return surface_area(m) / (v.spacing().x * v.spacing().x);
+}
 
 /// "name method" -> {tris, area} from one reference run over all fields (cached), or empty when unavailable.
 const std::map<std::string, std::pair<double, double>>& reference_results() {

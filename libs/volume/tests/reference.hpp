@@ -1,5 +1,8 @@
 #pragma once
-// Runs tests/mc_reference.py (scikit-image, VTK) on a field; tests skip when /usr/bin/python3 or the package is missing.
+// Runs tests/mc_reference.py (scikit-image, VTK) on a field; tests skip when /usr/bin/python3 or the package is
+// missing.
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -7,8 +10,6 @@
 #include <optional>
 #include <sstream>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "tessera/volume/volume.hpp"
 
@@ -30,7 +31,8 @@ inline std::optional<std::string> run_reference(const std::string& args) {
 
 /// Writes a float field as little-endian float32 raw into the temp folder; returns its path.
 inline std::filesystem::path write_temp_field(const Volume<float>& v, const std::string& name) {
-  const auto path = std::filesystem::temp_directory_path() / fmt::format("tessera_volume_test_{}_{}.raw", name, ::getpid());
+  const auto path =
+      std::filesystem::temp_directory_path() / fmt::format("tessera_volume_test_{}_{}.raw", name, ::getpid());
   std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(v.voxels().data()), std::streamsize(v.voxel_count() * sizeof(float)));
   return path;

@@ -1,9 +1,8 @@
 #include "tessera/volume/volume_io.hpp"
 
+#include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <filesystem>
 
@@ -28,16 +27,16 @@ const Volume<T>& as(const AnyVolume& v) {
 
 TEST(VolumeIo, RawDecodesBothByteOrdersAndSkipsHeaders) {
   const std::string bytes("HDR\x01\x02\x03\x04\x05\x06\x07\x08", 11);
-  RawLayout layout{.dims = {2, 2, 1}, .type = VoxelType::UInt16, .endian = Endian::Big, .header_skip = 3};
+  RawLayout layout{.dims = {2, 2, 1}, .type = VoxelType::uint16, .endian = Endian::big, .header_skip = 3};
   const auto big = as<uint16_t>(decode_raw(bytes, layout, "t.raw"));
   EXPECT_EQ(big(0, 0, 0), 0x0102);
   EXPECT_EQ(big(1, 1, 0), 0x0708);
-  layout.endian = Endian::Little;
+  layout.endian = Endian::little;
   EXPECT_EQ(as<uint16_t>(decode_raw(bytes, layout, "t.raw"))(0, 0, 0), 0x0201);
 }
 
 TEST(VolumeIo, ShortRawFileNamesSizesAndOffset) {
-  RawLayout layout{.dims = {4, 4, 4}, .type = VoxelType::Int16};
+  RawLayout layout{.dims = {4, 4, 4}, .type = VoxelType::int16};
   try {
     decode_raw(std::string(100, '\0'), layout, "short.raw");
     FAIL();
@@ -65,8 +64,10 @@ TEST(VolumeIo, NrrdRoundTripAttachedGzipAndDetached) {
   v(2, 1, 1) = -1234;
   write_nrrd(scratch("s.nrrd"), v);
   EXPECT_EQ(as<int16_t>(read_volume(scratch("s.nrrd").string()))(2, 1, 1), -1234);
-  write_raw(scratch("s.raw"), v, Endian::Big);
-  EXPECT_EQ(as<int16_t>(read_raw(scratch("s.raw"), {.dims = {3, 2, 2}, .type = VoxelType::Int16, .endian = Endian::Big}))(2, 1, 1), -1234);
+  write_raw(scratch("s.raw"), v, Endian::big);
+  EXPECT_EQ(as<int16_t>(read_raw(scratch("s.raw"),
+                                 {.dims = {3, 2, 2}, .type = VoxelType::int16, .endian = Endian::big}))(2, 1, 1),
+            -1234);
 }
 
 TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
@@ -78,18 +79,23 @@ TEST(VolumeIo, HostileNrrdHeadersGiveLocatedErrors) {
     }
     return std::string("no error");
   };
-  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 99999999999 2 2\n\n").find("h.nrrd:4"), std::string::npos);
-  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1073741824 1073741824 64\n\n").find("exceed"), std::string::npos);
-  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\nabc").find("data starts at byte offset 62"),
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 99999999999 2 2\n\n").find("h.nrrd:4"),
             std::string::npos);
-  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1000 1000 1000\nencoding: gzip\n\nxx").find("cannot hold"),
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1073741824 1073741824 64\n\n").find("exceed"),
             std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\n\nabc")
+                .find("data starts at byte offset 62"),
+            std::string::npos);
+  EXPECT_NE(
+      message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1000 1000 1000\nencoding: gzip\n\nxx").find("cannot hold"),
+      std::string::npos);
   // Issue 24, class 5: data longer than the header says was read in part, silently.
   EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 1 1 2\nencoding: raw\n\nabc")
                 .find("h.nrrd: the data holds 3 bytes from byte offset 62, more than the 2 bytes"),
             std::string::npos);
   EXPECT_NE(message("NRRD0004\ntype: double\n").find("h.nrrd:2"), std::string::npos);
-  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"), std::string::npos);
+  EXPECT_NE(message("NRRD0004\ntype: uchar\ndimension: 3\nsizes: 2 2 2\ndata file: x.raw\n").find("detached"),
+            std::string::npos);
   EXPECT_NE(message("P6\n").find("magic"), std::string::npos);
 }
 
@@ -114,7 +120,8 @@ TEST(VolumeIo, HeadersNamingDevicesOrFifosAndHugeDimsGiveLocatedErrors) {
     write_file_atomic(mhd, "NDims = 3\nDimSize = 4 4 4\nElementType = MET_UCHAR\nElementDataFile = " + data + "\n");
     EXPECT_EQ(message(mhd), fmt::format("{}: data file '{}' is {}: a header's data file must be a regular file",
                                         mhd.string(), data, kind));
-    write_file_atomic(nhdr, "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: " + data + "\n");
+    write_file_atomic(nhdr,
+                      "NRRD0004\ntype: uchar\ndimension: 3\nsizes: 4 4 4\nencoding: raw\ndata file: " + data + "\n");
     EXPECT_EQ(message(nhdr), fmt::format("{}: data file '{}' is {}: a header's data file must be a regular file",
                                          nhdr.string(), data, kind));
   }
@@ -201,7 +208,7 @@ TEST(VolumeIo, SliceStacksOverTheMemoryBudgetAreRefusedAfterTheFirstSlice) {
 // of any type, 4 times the old estimate for uint8. to_float moves a float volume that is no longer needed.
 TEST(VolumeIo, TheEstimateCountsTheFloatCopyAndFloatVolumesAreMoved) {
   write_file_atomic(scratch("m.raw"), std::string(1000000, '\x07'));
-  const RawLayout layout{.dims = {100, 100, 100}, .type = VoxelType::UInt8};
+  const RawLayout layout{.dims = {100, 100, 100}, .type = VoxelType::uint8};
   MemoryBudget::set_limit(8000000 - 1);
   std::string message = "no error";
   try {
@@ -237,15 +244,17 @@ TEST(VolumeIo, NonFiniteVoxelsAndBoxesAreRefused) {
     Volume<float> v(glm::ivec3(3, 2, 2), 1.0f);
     v(1, 0, 1) = bad;  // voxel 7: byte offset 28 of the data
     const std::string bytes(reinterpret_cast<const char*>(v.voxels().data()), v.voxel_count() * sizeof(float));
-    const RawLayout layout{.dims = {3, 2, 2}, .type = VoxelType::Float32};
+    const RawLayout layout{.dims = {3, 2, 2}, .type = VoxelType::float32};
     const std::string what = fmt::format("{}", bad);
-    EXPECT_EQ(message([&] { decode_raw(bytes, layout, "v.raw"); }),
-              fmt::format("v.raw: voxel (1, 0, 1) at byte offset 28 is {}: float volumes must hold finite values", what));
+    EXPECT_EQ(
+        message([&] { decode_raw(bytes, layout, "v.raw"); }),
+        fmt::format("v.raw: voxel (1, 0, 1) at byte offset 28 is {}: float volumes must hold finite values", what));
     write_nrrd(scratch("nan.nrrd"), v);
     EXPECT_NE(message([&] { read_volume(scratch("nan.nrrd").string()); }).find("voxel (1, 0, 1)"), std::string::npos);
   }
-  RawLayout huge{.dims = {3, 3, 3}, .type = VoxelType::UInt8, .spacing = {1e308, 1, 1}};
-  EXPECT_NE(message([&] { decode_raw(std::string(27, '\0'), huge, "h.raw"); }).find("h.raw: origin"), std::string::npos);
+  RawLayout huge{.dims = {3, 3, 3}, .type = VoxelType::uint8, .spacing = {1e308, 1, 1}};
+  EXPECT_NE(message([&] { decode_raw(std::string(27, '\0'), huge, "h.raw"); }).find("h.raw: origin"),
+            std::string::npos);
   huge.spacing = {1, 1, 1};
   huge.origin = {0, NAN, 0};
   EXPECT_NE(message([&] { decode_raw(std::string(27, '\0'), huge, "h.raw"); }).find("beyond the finite numbers"),
@@ -269,7 +278,7 @@ TEST(VolumeIo, MetaImageHeadsqFromSharedData) {
   const auto path = std::filesystem::path(TESSERA_SHARED_DATA) / "volumes/headsq_64x64x93_int16le.mhd";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << "shared data not present";
   const AnyVolume v = read_volume(path.string());
-  ASSERT_EQ(voxel_type(v), VoxelType::Int16);
+  ASSERT_EQ(voxel_type(v), VoxelType::int16);
   EXPECT_EQ(dims_of(v), glm::ivec3(64, 64, 93));
   EXPECT_DOUBLE_EQ(spacing_of(v).z, 1.5);
   const auto [lo, hi] = value_range(as<int16_t>(v));

@@ -162,7 +162,8 @@ VolumeRenderOptions metaball_view() {
   VolumeRenderOptions o;
   o.camera.eye = {0.5, 0.8, 3.5};
   o.width = o.height = 64;
-  o.transfer = TransferFunction({{0.6f, {1, 0.6f, 0.3f}, 0}, {1.0f, {1, 0.8f, 0.5f}, 0.6f}, {1.4f, {1, 0.95f, 0.8f}, 1.0f}});
+  o.transfer =
+      TransferFunction({{0.6f, {1, 0.6f, 0.3f}, 0}, {1.0f, {1, 0.8f, 0.5f}, 0.6f}, {1.4f, {1, 0.95f, 0.8f}, 1.0f}});
   return o;
 }
 
@@ -172,7 +173,7 @@ TEST(VolumeRender, MatchesTheDirectPerSampleEvaluation) {
   const ImageRGB fast = render_volume(v, o), direct = direct_render(v, o);
   double sum = 0;
   for (const auto& p : direct.pixels()) sum += p.x;
-  ASSERT_GT(sum, 50.0);  // the picture is not empty
+  ASSERT_GT(sum, 50.0);                 // the picture is not empty
   EXPECT_GT(psnr(fast, direct), 50.0);  // 57.7 dB measured
   EXPECT_LT(rmse(fast, direct), 0.003);
 }
@@ -292,7 +293,8 @@ Camera three_quarter(const Volume<float>& v) {
   Camera c;
   c.fovy = radians(30.0);
   c.center = mid;
-  c.eye = mid + Vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)) * (1.1 * r / std::sin(c.fovy / 2));
+  c.eye = mid + Vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az)) *
+                    (1.1 * r / std::sin(c.fovy / 2));
   return c;
 }
 
@@ -413,7 +415,9 @@ TEST(TransferFunction, RefusesNumbersBeyondFloatAndInterpolatesExtremePoints) {
   EXPECT_EQ(message([] { TransferFunction::from_json(R"({"points": [[1e300, 0, 0, 0, 0]]})", "t.json"); }),
             "t.json: 1e+300 does not fit a float");
   EXPECT_EQ(message([] { TransferFunction({{0, {0, -1, 0}, 0}}); }), "color component -1 is outside [0, 1000000]");
-  EXPECT_EQ(message([] { TransferFunction({{0, {2e6f, 0, 0}, 0}}); }),
+  EXPECT_EQ(message([] {
+              TransferFunction({{0, {2e6f, 0, 0}, 0}});
+            }),
             "color component 2000000 is outside [0, 1000000]");
   EXPECT_EQ(message([] { TransferFunction({{INFINITY, {0, 0, 0}, 0}}); }), "point value inf is not finite");
   const auto tf = TransferFunction::from_json(R"({"points": [[-3e38, 0, 0, 0, 0], [3e38, 1, 1, 1, 1]]})", "t.json");
@@ -494,8 +498,7 @@ TEST(VolumeRender, AnEmptyLastSegmentAddsNothingEvenWhenOpaque) {
     const ImageRGB img = render_volume(v, o);
     const Vec3f reference = img(1, 6);
     ASSERT_GT(reference.x, 0.05f);
-    for (int i = 0; i < 5; ++i)
-      EXPECT_NEAR(img(i, 6).x, reference.x, 1e-3f) << i << " simd " << simd;  // NaN fails too
+    for (int i = 0; i < 5; ++i) EXPECT_NEAR(img(i, 6).x, reference.x, 1e-3f) << i << " simd " << simd;  // NaN fails too
   }
 }
 

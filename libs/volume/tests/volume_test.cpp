@@ -7,7 +7,6 @@
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/rng.hpp"
-
 #include "tessera/volume/procedural.hpp"
 
 namespace tessera {
@@ -38,13 +37,13 @@ TEST(Volume, RangeHistogramAndSlices) {
   EXPECT_EQ(hi, 250);
   const auto h = histogram(v, 4, 0, 256);
   EXPECT_EQ(h, (std::vector<uint64_t>{11, 0, 0, 1}));
-  const DepthImage z = slice(v, Axis::Z, 0), x = slice(v, Axis::X, 2), y = slice(v, Axis::Y, 1);
+  const DepthImage z = slice(v, Axis::z, 0), x = slice(v, Axis::x, 2), y = slice(v, Axis::y, 1);
   EXPECT_EQ(z.width(), 3);
   EXPECT_EQ(z(2, 1), 250);
   EXPECT_EQ(x.width(), 2);
   EXPECT_EQ(x(1, 0), 250);
   EXPECT_EQ(y(0, 1), 0);
-  EXPECT_THROW(slice(v, Axis::Z, 2), InvalidInput);
+  EXPECT_THROW(slice(v, Axis::z, 2), InvalidInput);
   EXPECT_THROW(parse_axis("w"), InvalidInput);
 }
 

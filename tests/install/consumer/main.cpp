@@ -10,10 +10,14 @@
 
 int main() {
   // --- the README example ---
-  tessera::Canvas canvas(400, 400);                     // Processing's size(400, 400)
+  tessera::Canvas canvas(400, 400);  // Processing's size(400, 400)
   canvas.background({1, 1, 1, 1});
   canvas.fill({1.0f, 150 / 255.0f, 150 / 255.0f, 1});  // the notes' pink
-  canvas.push_matrix(); canvas.translate(200, 200); canvas.rotate(0.3); canvas.rect(-50, -50, 100, 100); canvas.pop_matrix();
+  canvas.push_matrix();
+  canvas.translate(200, 200);
+  canvas.rotate(0.3);
+  canvas.rect(-50, -50, 100, 100);
+  canvas.pop_matrix();
   canvas.save("square.png");
   tessera::write_mesh("cube3.obj", tessera::catmull_clark_subdivide(tessera::make_cube(), 3));
   // --- checks ---

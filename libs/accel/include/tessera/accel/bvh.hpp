@@ -29,8 +29,9 @@ struct BvhSettings {
   enum class Build { binned_sah, bottom_up } build = Build::binned_sah;
 };
 
-/// A flattened node (32 bytes, aligned so that no node straddles two cache lines). Interior (count 0): the first child follows the node, the second is at `first`;
-/// `axis` is the axis along which the first child lies before the second. Leaf: prim_indices()[first, first + count).
+/// A flattened node (32 bytes, aligned so that no node straddles two cache lines). Interior (count 0): the first child
+/// follows the node, the second is at `first`; `axis` is the axis along which the first child lies before the second.
+/// Leaf: prim_indices()[first, first + count).
 struct alignas(32) BvhNode {
   AABB box;
   int32_t first;
@@ -51,7 +52,8 @@ struct RayBoxTest {
   int neg[3];
 
   explicit RayBoxTest(const Ray& ray)
-      : origin(ray.origin), inv_dir(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z),
+      : origin(ray.origin),
+        inv_dir(1.0f / ray.dir.x, 1.0f / ray.dir.y, 1.0f / ray.dir.z),
         // The sign bit, as inv_dir has it: -0 is negative (1 / -0 = -inf), else an axis-parallel ray along -0 would
         // take the far plane for the near one and miss every box (an orthographic eye ray along -z, say).
         neg{std::signbit(ray.dir.x), std::signbit(ray.dir.y), std::signbit(ray.dir.z)} {}

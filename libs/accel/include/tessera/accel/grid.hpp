@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <limits>
 #include <span>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "tessera/accel/bvh.hpp"
 #include "tessera/math/ray.hpp"

@@ -29,8 +29,8 @@ class MeshAccel {
   MeshAccel() = default;
   /// Builds the BVH (parallel, deterministic). Throws InvalidInput for an index out of range or a non-finite vertex.
   /// Leaves hold at most settings.max_leaf_size triangles, capped at 128. The binary tree's leaves hold at most 4
-  /// (one block); the collapse merges subtrees into larger leaves where the wide tree's SAH cost says so. simd_width 4 or 8 forces the wide
-  /// tree's width (8 needs AVX2); 0 picks the widest this CPU runs.
+  /// (one block); the collapse merges subtrees into larger leaves where the wide tree's SAH cost says so. simd_width 4
+  /// or 8 forces the wide tree's width (8 needs AVX2); 0 picks the widest this CPU runs.
   explicit MeshAccel(const TriMesh& mesh, const BvhSettings& settings = default_settings(), int simd_width = 0);
 
   /// The default build settings for meshes: leaves of up to 8 triangles (two blocks of 4, where the collapse finds

@@ -13,12 +13,12 @@
 namespace tessera {
 
 /// A color model, in the order of the command line's list.
-enum class ColorModel { Rgb, Cmy, Cmyk, Hsv, Hls, Yiq, Xyz, Xyy, Srgb };
+enum class ColorModel { rgb, cmy, cmyk, hsv, hls, yiq, xyz, xyy, srgb };
 
 /// Every model, in enum order.
-inline constexpr std::array<ColorModel, 9> kColorModels = {ColorModel::Rgb, ColorModel::Cmy, ColorModel::Cmyk,
-                                                           ColorModel::Hsv, ColorModel::Hls, ColorModel::Yiq,
-                                                           ColorModel::Xyz, ColorModel::Xyy, ColorModel::Srgb};
+inline constexpr std::array<ColorModel, 9> kColorModels = {ColorModel::rgb, ColorModel::cmy, ColorModel::cmyk,
+                                                           ColorModel::hsv, ColorModel::hls, ColorModel::yiq,
+                                                           ColorModel::xyz, ColorModel::xyy, ColorModel::srgb};
 
 /// The model's lower-case name: "rgb", "cmy", "cmyk", "hsv", "hls", "yiq", "xyz", "xyy", "srgb".
 std::string_view model_name(ColorModel model);
@@ -48,7 +48,7 @@ std::vector<double> convert(ColorModel from, ColorModel to, std::span<const doub
 void convert_many(ColorModel from, ColorModel to, std::span<const double> in, std::span<double> out);
 
 /// Units for hue on the command line (the library uses turns).
-enum class HueUnit { Degrees, Turns, Radians };
+enum class HueUnit { degrees, turns, radians };
 
 /// The number of `unit`s in one full turn: 360, 1 or 2 pi.
 double full_turn(HueUnit unit);

@@ -4,10 +4,10 @@
 // What a user can cause (a malformed file, a bad option) is reported with a typed exception derived from
 // tessera::Error that says where (file, line or byte offset) and what was expected. Broken invariants inside the
 // library are reported by TESSERA_CHECK, which prints the failed expression and its operands.
+#include <fmt/format.h>
+
 #include <stdexcept>
 #include <string>
-
-#include <fmt/format.h>
 
 namespace tessera {
 
@@ -60,13 +60,13 @@ namespace detail {
 #define TESSERA_CHECK(cond) \
   ((cond) ? (void)0 : ::tessera::detail::check_failed(__FILE__, __LINE__, #cond, std::string()))
 
-#define TESSERA_CHECK_OP_(a, op, b)                                                                        \
-  do {                                                                                                     \
-    const auto& tessera_a_ = (a);                                                                          \
-    const auto& tessera_b_ = (b);                                                                          \
-    if (!(tessera_a_ op tessera_b_))                                                                       \
-      ::tessera::detail::check_failed(__FILE__, __LINE__, #a " " #op " " #b,                               \
-                                      fmt::format("{} vs {}", tessera_a_, tessera_b_));                   \
+#define TESSERA_CHECK_OP_(a, op, b)                                                     \
+  do {                                                                                  \
+    const auto& tessera_a_ = (a);                                                       \
+    const auto& tessera_b_ = (b);                                                       \
+    if (!(tessera_a_ op tessera_b_))                                                    \
+      ::tessera::detail::check_failed(__FILE__, __LINE__, #a " " #op " " #b,            \
+                                      fmt::format("{} vs {}", tessera_a_, tessera_b_)); \
   } while (false)
 
 /// Binary checks that print both operands, as pbrt's CHECK_EQ and friends.

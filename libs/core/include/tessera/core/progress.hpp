@@ -14,10 +14,10 @@ class Progress {
  public:
   /// How every Progress of the process reports.
   enum class Mode {
-    Auto,   ///< a bar when stderr is a terminal, else nothing (the default)
-    Bar,    ///< a bar redrawn at most ten times a second
-    Plain,  ///< one line when the phase starts, one per 10% step, one when it ends (for logs)
-    None,   ///< nothing (the CLI's --quiet)
+    automatic,  ///< a bar when stderr is a terminal, else nothing (the default)
+    bar,        ///< a bar redrawn at most ten times a second
+    plain,      ///< one line when the phase starts, one per 10% step, one when it ends (for logs)
+    none,       ///< nothing (the CLI's --quiet)
   };
 
   /// `label` names the job; `total` is the number of units.
@@ -31,7 +31,7 @@ class Progress {
   /// Erases the bar.
   void done();
 
-  /// Silences every progress report of the process (the CLI's --quiet): set_mode(Mode::None).
+  /// Silences every progress report of the process (the CLI's --quiet): set_mode(Mode::none).
   static void set_quiet(bool quiet);
   /// Chooses how every later Progress reports (the CLI's --progress).
   static void set_mode(Mode mode);
@@ -43,7 +43,7 @@ class Progress {
   std::string label_;
   int64_t total_;
   std::atomic<int64_t> count_{0};
-  Mode mode_;  ///< Bar, Plain or None (Auto resolved at construction)
+  Mode mode_;                      ///< Bar, Plain or None (Auto resolved at construction)
   std::atomic<int> last_step_{0};  ///< Plain: the last 10% step printed
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_;

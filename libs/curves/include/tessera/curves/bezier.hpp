@@ -108,10 +108,10 @@ BezierCurve<P> cubic(const P& p1, const P& p2, const P& p3, const P& p4);
 
 /// How smoothly two consecutive curves join (each level implies the ones before it).
 enum class Continuity {
-  None,  ///< the end of the first is not the start of the second
-  C0,    ///< positions meet
-  G1,    ///< and the end tangents point the same way
-  C1,    ///< and the end derivatives are equal: n(P_n - P_{n-1}) = m(Q_1 - Q_0)
+  none,  ///< the end of the first is not the start of the second
+  c0,    ///< positions meet
+  g1,    ///< and the end tangents point the same way
+  c1,    ///< and the end derivatives are equal: n(P_n - P_{n-1}) = m(Q_1 - Q_0)
 };
 
 /// The continuity at the joint a(1) = b(0), within `tolerance` (absolute, on positions and derivatives; G1 compares

@@ -55,17 +55,17 @@ int flatness_steps(const BezierPatch& patch, double tolerance, int max_steps = 2
 
 /// Which side of the patches the normals and counterclockwise triangles face.
 enum class PatchOrientation {
-  AsGiven,  ///< du x dv, as the data is wound
-  Flipped,  ///< dv x du
-  Outward,  ///< as given or flipped, whichever makes the signed volume about the control points' centroid positive:
-            ///< outward for closed (or nearly closed, like the teapot) models, arbitrary for an open sheet
+  as_given,  ///< du x dv, as the data is wound
+  flipped,   ///< dv x du
+  outward,   ///< as given or flipped, whichever makes the signed volume about the control points' centroid positive:
+             ///< outward for closed (or nearly closed, like the teapot) models, arbitrary for an open sheet
 };
 
 /// How to tessellate patches.
 struct PatchTessellation {
   int steps = 8;         ///< uniform: every patch on an (steps+1) x (steps+1) grid of (u, v) (DESIGN.md section 4)
   double tolerance = 0;  ///< > 0: adaptive, each patch gets flatness_steps(patch, tolerance, steps) instead
-  PatchOrientation orientation = PatchOrientation::AsGiven;
+  PatchOrientation orientation = PatchOrientation::as_given;
 };
 
 /// Tessellates patches into one TriMesh: per patch, (n+1)² vertices with position, unit normal and uv = (u, v), and

@@ -10,10 +10,10 @@ namespace tessera {
 
 /// Cyclic color ramps for escape times.
 enum class Palette {
-  Classic,  ///< deep blue -> white -> gold -> dark (the familiar Ultra Fractal look)
-  Fire,     ///< black -> red -> orange -> yellow -> white
-  Ocean,    ///< navy -> teal -> pale cyan
-  Gray,     ///< black -> white
+  classic,  ///< deep blue -> white -> gold -> dark (the familiar Ultra Fractal look)
+  fire,     ///< black -> red -> orange -> yellow -> white
+  ocean,    ///< navy -> teal -> pale cyan
+  gray,     ///< black -> white
 };
 
 /// "classic", "fire", "ocean" or "gray".
@@ -30,7 +30,7 @@ double smooth_iteration(uint32_t n, double norm2, double escape_radius);
 
 /// How escape times become colors.
 struct ColorOptions {
-  Palette palette = Palette::Classic;
+  Palette palette = Palette::classic;
   double period = 12;              ///< the palette repeats every `period` units of sqrt(nu) (> 0)
   double phase = 0;                ///< palette offset in [0, 1)
   Vec3f inside{0.0f, 0.0f, 0.0f};  ///< color of points that never escaped

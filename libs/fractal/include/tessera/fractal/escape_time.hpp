@@ -31,10 +31,10 @@ struct ComplexView {
 
 /// The instruction set an escape-time loop runs on.
 enum class SimdPath {
-  Auto,    ///< the widest the CPU supports (AVX-512, else AVX2 with FMA, else scalar)
-  Scalar,  ///< one point at a time: the reference
-  Avx2,    ///< 4 doubles per vector (needs AVX2 and FMA)
-  Avx512,  ///< 8 doubles per vector (needs AVX-512F)
+  automatic,  ///< the widest the CPU supports (AVX-512, else AVX2 with FMA, else scalar)
+  scalar,     ///< one point at a time: the reference
+  avx2,       ///< 4 doubles per vector (needs AVX2 and FMA)
+  avx512,     ///< 8 doubles per vector (needs AVX-512F)
 };
 
 /// True when this CPU can run `path` (Auto and Scalar always can). Asks core's cpu_features().
@@ -48,10 +48,10 @@ SimdPath parse_simd_path(std::string_view name);
 
 /// Settings of an escape-time computation.
 struct EscapeOptions {
-  int max_iterations = 1000;       ///< iteration cap (>= 1); points that have not escaped by then are inside
-  double escape_radius = 256;      ///< R in [2, 1e6]: |z| > R escapes (a large R makes smooth coloring smoother)
-  bool interior_checks = true;     ///< Mandelbrot only: c in the main cardioid or period-2 bulb is inside at once
-  SimdPath simd = SimdPath::Auto;  ///< which loop runs; throws InvalidInput when the CPU lacks it
+  int max_iterations = 1000;            ///< iteration cap (>= 1); points that have not escaped by then are inside
+  double escape_radius = 256;           ///< R in [2, 1e6]: |z| > R escapes (a large R makes smooth coloring smoother)
+  bool interior_checks = true;          ///< Mandelbrot only: c in the main cardioid or period-2 bulb is inside at once
+  SimdPath simd = SimdPath::automatic;  ///< which loop runs; throws InvalidInput when the CPU lacks it
 };
 
 /// Per-pixel result of an escape-time computation.

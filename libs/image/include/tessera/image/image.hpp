@@ -2,15 +2,15 @@
 // Image<T>: a width x height grid of pixels, row 0 at the top, rows contiguous; and ImageView<T>, a window into one.
 //
 // Pixel (x, y) covers [x, x+1) x [y, y+1) and its center is (x + 0.5, y + 0.5) (DESIGN.md section 3).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <type_traits>
 #include <vector>
-
-#include <fmt/format.h>
-#include <glm/glm.hpp>
 
 #include "tessera/core/error.hpp"
 
@@ -25,8 +25,8 @@ class ImageView {
       : data_(data), width_(width), height_(height), stride_(stride) {}
   /// A read-only view of a writable one.
   template <class U>
-    requires std::is_same_v<T, const U>
-  ImageView(const ImageView<U>& other)  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
+  requires std::is_same_v<T, const U> ImageView(
+      const ImageView<U>& other)  // NOLINT(google-explicit-constructor): mirrors T* -> const T*
       : data_(other.row(0)), width_(other.width()), height_(other.height()), stride_(other.stride()) {}
 
   /// Size in pixels.
@@ -108,9 +108,9 @@ class Image {
   std::vector<T> pixels_;
 };
 
-using ImageRGB = Image<glm::vec3>;     ///< linear float RGB, the renderers' output
-using ImageRGBA = Image<glm::vec4>;    ///< linear float RGBA
-using ImageRGBA8 = Image<glm::u8vec4>; ///< 8-bit RGBA, what 8-bit files hold
-using DepthImage = Image<float>;       ///< one float per pixel (depth buffers, scalar fields)
+using ImageRGB = Image<glm::vec3>;      ///< linear float RGB, the renderers' output
+using ImageRGBA = Image<glm::vec4>;     ///< linear float RGBA
+using ImageRGBA8 = Image<glm::u8vec4>;  ///< 8-bit RGBA, what 8-bit files hold
+using DepthImage = Image<float>;        ///< one float per pixel (depth buffers, scalar fields)
 
 }  // namespace tessera

@@ -15,9 +15,8 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "tessera/image/image.hpp"
 
@@ -96,8 +95,8 @@ class Texture2D {
 
   int width_ = 0, height_ = 0;
   bool rgba8_ = false;
-  std::vector<ImageRGBA> levels_;     // rgba32f
-  std::vector<ImageRGBA8> levels8_;   // rgba8
+  std::vector<ImageRGBA> levels_;    // rgba32f
+  std::vector<ImageRGBA8> levels8_;  // rgba8
   Sampler sampler_;
 };
 

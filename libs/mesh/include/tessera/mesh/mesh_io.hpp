@@ -20,7 +20,7 @@ namespace tessera {
 class Progress;
 
 /// The mesh file formats.
-enum class MeshFormat { Obj, Ply, Off, Stl };
+enum class MeshFormat { obj, ply, off, stl };
 
 /// Options of the writers.
 struct MeshWriteOptions {

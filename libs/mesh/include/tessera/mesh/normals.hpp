@@ -8,8 +8,8 @@ namespace tessera {
 
 /// How vertex normals average the normals of the faces around a vertex.
 enum class NormalWeighting {
-  Area,   ///< weight by face area (sum of the unnormalized cross products)
-  Angle,  ///< weight by the face's interior angle at the vertex (Thürmer and Wüthrich 1998)
+  area,   ///< weight by face area (sum of the unnormalized cross products)
+  angle,  ///< weight by the face's interior angle at the vertex (Thürmer and Wüthrich 1998)
 };
 
 /// Half the sum of the cross products of a fan from corner 0: the vector area of face f (length = area for planar
@@ -24,9 +24,9 @@ Vec3 face_normal(const PolyMesh& mesh, size_t f);
 std::vector<Vec3> face_normals(const PolyMesh& mesh);
 
 /// Unit vertex normals averaged from the faces around each vertex; (0, 0, 0) for unreferenced vertices.
-std::vector<Vec3> vertex_normals(const PolyMesh& mesh, NormalWeighting weighting = NormalWeighting::Area);
+std::vector<Vec3> vertex_normals(const PolyMesh& mesh, NormalWeighting weighting = NormalWeighting::area);
 
 /// Sets mesh.normals to vertex_normals(mesh, weighting) and clears face-varying normals.
-void compute_vertex_normals(PolyMesh& mesh, NormalWeighting weighting = NormalWeighting::Area);
+void compute_vertex_normals(PolyMesh& mesh, NormalWeighting weighting = NormalWeighting::area);
 
 }  // namespace tessera

@@ -9,14 +9,14 @@
 namespace tessera {
 
 enum class SmoothingMethod {
-  Laplacian,  ///< uniform weights, the notes' umbrella operator: x += lambda (average of neighbours - x)
-  Cotangent,  ///< weights (cot alpha + cot beta) / 2 of the angles facing each edge (Desbrun et al. 1999)
-  Taubin,     ///< uniform weights, a lambda step then a mu step per iteration (Taubin 1995)
+  laplacian,  ///< uniform weights, the notes' umbrella operator: x += lambda (average of neighbours - x)
+  cotangent,  ///< weights (cot alpha + cot beta) / 2 of the angles facing each edge (Desbrun et al. 1999)
+  taubin,     ///< uniform weights, a lambda step then a mu step per iteration (taubin 1995)
 };
 
 /// Parameters of smooth(); the defaults are Taubin's (lambda = 0.5, mu = -0.53, pass band k_pb ~ 0.1).
 struct SmoothingOptions {
-  SmoothingMethod method = SmoothingMethod::Laplacian;
+  SmoothingMethod method = SmoothingMethod::laplacian;
   int iterations = 10;       ///< steps (Taubin: pairs of steps), >= 0
   double lambda = 0.5;       ///< the shrinking step, in (0, 1]; 1 replaces a vertex by its neighbours' average
   double mu = -0.53;         ///< Taubin's inflating step, < -lambda

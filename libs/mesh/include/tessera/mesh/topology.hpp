@@ -12,11 +12,11 @@
 namespace tessera {
 
 /// An edge is a boundary edge (1 face), a manifold edge (2 faces) or a non-manifold edge (3 or more faces).
-enum class EdgeKind : uint8_t { Boundary, Manifold, NonManifold };
+enum class EdgeKind : uint8_t { boundary, manifold, non_manifold };
 
 /// A vertex is isolated (no face), interior (its faces form one closed fan), on the boundary (one open fan), on a
 /// non-manifold edge, or a non-manifold "pinch" vertex whose faces form several fans (a bowtie).
-enum class VertexKind : uint8_t { Isolated, Interior, Boundary, OnNonManifoldEdge, NonManifoldFan };
+enum class VertexKind : uint8_t { isolated, interior, boundary, on_non_manifold_edge, non_manifold_fan };
 
 /// The undirected edges of a polygon mesh and the face corners along each ("half-edges": corner c stands for the
 /// directed edge from its vertex to the next corner's vertex in its face).
@@ -32,7 +32,7 @@ struct EdgeTable {
   /// The number of faces along edge e (with multiplicity).
   uint32_t valence(size_t e) const { return offsets[e + 1] - offsets[e]; }
   EdgeKind kind(size_t e) const {
-    return valence(e) == 1 ? EdgeKind::Boundary : valence(e) == 2 ? EdgeKind::Manifold : EdgeKind::NonManifold;
+    return valence(e) == 1 ? EdgeKind::boundary : valence(e) == 2 ? EdgeKind::manifold : EdgeKind::non_manifold;
   }
 };
 

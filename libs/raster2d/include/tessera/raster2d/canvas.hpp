@@ -30,10 +30,10 @@ Vec4f rgb255(int r, int g, int b, int a = 255);
 Vec4f gray255(int v, int a = 255);
 
 /// What begin_shape() builds from its vertices (Processing's beginShape kinds; Polygon is the default, no argument).
-enum class ShapeKind { Polygon, Points, Lines, Triangles, TriangleStrip, TriangleFan, Quads, QuadStrip };
+enum class ShapeKind { polygon, points, lines, triangles, triangle_strip, triangle_fan, quads, quad_strip };
 
 /// How arc() closes (Processing's OPEN, CHORD, PIE). Open fills the region up to the chord but strokes only the arc.
-enum class ArcMode { Open, Chord, Pie };
+enum class ArcMode { open, chord, pie };
 
 /// A Processing-style drawing surface over an ImageRGBA. Every drawing call ends in write_pixel(). Filling is the
 /// scanline rasterizer of scanline.hpp; strokes of a device width above one pixel are outlines (stroke_path) filled
@@ -79,13 +79,14 @@ class Canvas {
   void ellipse(double cx, double cy, double w, double h);
   /// The part of ellipse(cx, cy, w, h) from angle `start` to `stop` (radians, stop >= start; nothing when stop <
   /// start, at most one full turn).
-  void arc(double cx, double cy, double w, double h, double start, double stop, ArcMode mode = ArcMode::Open);
+  void arc(double cx, double cy, double w, double h, double start, double stop, ArcMode mode = ArcMode::open);
   void triangle(double x0, double y0, double x1, double y1, double x2, double y2);
   void quad(double x0, double y0, double x1, double y1, double x2, double y2, double x3, double y3);
 
-  // ---- Shapes from vertices ------------------------------------------------------------------------------------------
+  // ---- Shapes from vertices
+  // ------------------------------------------------------------------------------------------
   /// Starts collecting vertices. Throws InvalidInput when a shape is already open.
-  void begin_shape(ShapeKind kind = ShapeKind::Polygon);
+  void begin_shape(ShapeKind kind = ShapeKind::polygon);
   /// Adds a vertex (transformed by the CTM now, as Processing). Throws InvalidInput outside begin_shape/end_shape.
   void vertex(double x, double y);
   /// A cubic Bezier from the last vertex through controls (cx1, cy1), (cx2, cy2) to (x, y), flattened by
@@ -101,7 +102,8 @@ class Canvas {
   /// begin_shape or with an open contour.
   void end_shape(bool close = false);
 
-  // ---- Transformations (each multiplies the CTM on the right: the call written last acts first) ----------------------
+  // ---- Transformations (each multiplies the CTM on the right: the call written last acts first)
+  // ----------------------
   void push_matrix() { stack_.push(); }
   /// Throws InvalidInput on underflow (a pop without a push).
   void pop_matrix() { stack_.pop(); }
@@ -121,7 +123,8 @@ class Canvas {
   /// The current transformation matrix.
   const Mat3& matrix() const { return stack_.top(); }
 
-  // ---- Pixels --------------------------------------------------------------------------------------------------------
+  // ---- Pixels
+  // --------------------------------------------------------------------------------------------------------
   /// Composites `color` (straight RGBA, its alpha scaled by `coverage` in [0, 1]) source-over onto pixel (x, y);
   /// pixels outside the canvas are ignored. The primitive every drawing call ends in.
   void write_pixel(int x, int y, const Vec4f& color, float coverage = 1.0f);
@@ -144,9 +147,9 @@ class Canvas {
   std::optional<Vec4f> fill_ = Vec4f(1, 1, 1, 1);
   std::optional<Vec4f> stroke_ = Vec4f(0, 0, 0, 1);
   double stroke_weight_ = 1;
-  StrokeStyle stroke_style_{1, LineJoin::Miter, LineCap::Round, 4};
+  StrokeStyle stroke_style_{1, LineJoin::miter, LineCap::round, 4};
   bool smooth_ = true;
-  FillRule fill_rule_ = FillRule::NonZero;
+  FillRule fill_rule_ = FillRule::non_zero;
   // The shape under construction (device coordinates): contour 0 is the outline, the rest are holes; vertices go to
   // contours_[current_] (non-zero between begin_contour and end_contour).
   std::optional<ShapeKind> shape_;

@@ -52,7 +52,7 @@ void line_wu(double x0, double y0, double x1, double y1, PixelPlot plot);
 std::vector<Vec2> circle_segments(int n = 20);
 
 /// Which line algorithm draw_line() uses.
-enum class LineAlgorithm { Dda, Bresenham, Wu };
+enum class LineAlgorithm { dda, bresenham, wu };
 
 /// Draws a line into `image` (pixel-index coordinates as above), blending `color` (straight RGBA) source-over with
 /// its alpha scaled by each pixel's intensity; pixels outside the image are skipped. Bresenham rounds the endpoints

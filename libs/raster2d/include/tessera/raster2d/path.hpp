@@ -14,8 +14,8 @@ namespace tessera {
 
 /// Which points a set of closed contours encloses.
 enum class FillRule {
-  NonZero,  ///< winding number != 0
-  EvenOdd,  ///< odd number of crossings
+  non_zero,  ///< winding number != 0
+  even_odd,  ///< odd number of crossings
 };
 
 /// Closed polygonal contours (each implicitly closed back to its first point), in device pixel coordinates.
@@ -24,16 +24,16 @@ struct Path {
 };
 
 /// How stroke segments meet.
-enum class LineJoin { Miter, Round, Bevel };
+enum class LineJoin { miter, round, bevel };
 /// How open strokes end.
-enum class LineCap { Butt, Round, Square };
+enum class LineCap { butt, round, square };
 
 /// Stroke parameters (SVG/Processing semantics).
 struct StrokeStyle {
-  double width = 1;          ///< full line width in pixels
-  LineJoin join = LineJoin::Miter;
-  LineCap cap = LineCap::Butt;
-  double miter_limit = 4;    ///< miter length / width above which a miter becomes a bevel
+  double width = 1;  ///< full line width in pixels
+  LineJoin join = LineJoin::miter;
+  LineCap cap = LineCap::butt;
+  double miter_limit = 4;  ///< miter length / width above which a miter becomes a bevel
 };
 
 /// Fills `path` into `target` with `color` (straight, non-premultiplied RGBA, alpha scales coverage), compositing
@@ -41,7 +41,7 @@ struct StrokeStyle {
 /// pixel's coverage is its area fraction inside the path. Throws nothing; contours with < 3 points add nothing.
 void fill_path(ImageRGBA& target, const Path& path, FillRule rule, const Vec4f& color, bool antialias);
 
-/// The outline of a stroked polyline as a path to fill with FillRule::NonZero. A closed polyline gets joins all
+/// The outline of a stroked polyline as a path to fill with FillRule::non_zero. A closed polyline gets joins all
 /// around and no caps.
 Path stroke_path(const std::vector<Vec2>& polyline, bool closed, const StrokeStyle& style);
 

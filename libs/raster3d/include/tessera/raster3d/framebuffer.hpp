@@ -1,6 +1,6 @@
 #pragma once
-// Framebuffer: the color, depth and stencil buffers the 3D pipeline draws into, double buffered (the notes' "Memory 1 used for
-// display, Memory 2 for creating the next image").
+// Framebuffer: the color, depth and stencil buffers the 3D pipeline draws into, double buffered (the notes' "Memory 1
+// used for display, Memory 2 for creating the next image").
 //
 // Color is 8-bit RGBA, as an OpenGL RGBA8 framebuffer: a fragment's color is clamped to [0, 1] and rounded to
 // nearest when written, so results compare with Mesa pixel for pixel. Depth is a 24-bit unsigned normalized integer
@@ -45,12 +45,13 @@ namespace detail {
 struct RasterScratch;  // binning memory reused from draw to draw (detail/pipeline_setup.hpp)
 }  // namespace detail
 
-/// Color, depth and stencil buffers of width x height pixels, with a back buffer (drawn into) and a front buffer (shown).
-/// The pipeline's raster thread may still be writing the buffers after a Context call returns: read them through
-/// Context::framebuffer(), which waits; clear_*, swap, moves and the destructor wait too.
+/// Color, depth and stencil buffers of width x height pixels, with a back buffer (drawn into) and a front buffer
+/// (shown). The pipeline's raster thread may still be writing the buffers after a Context call returns: read them
+/// through Context::framebuffer(), which waits; clear_*, swap, moves and the destructor wait too.
 class Framebuffer {
  public:
-  /// A width x height framebuffer, color black, depth cleared to the far plane, stencil 0. Throws InvalidInput for sizes < 1.
+  /// A width x height framebuffer, color black, depth cleared to the far plane, stencil 0. Throws InvalidInput for
+  /// sizes < 1.
   Framebuffer(int width, int height);
   /// A width x height framebuffer with a depth buffer alone: no color or stencil buffers (their images are empty).
   /// Draws into it write depth only, as with the color mask off; a draw with the stencil test on throws InvalidInput.

@@ -77,9 +77,9 @@ struct RasterState {
   DepthFunc depth_func = DepthFunc::less;
   bool depth_write = true;  ///< store the depth of passing fragments (glDepthMask)
   CullMode cull = CullMode::none;
-  bool flat = false;     ///< varyings are the last vertex's, not interpolated (GL_FLAT)
-  bool painter = false;  ///< the painter's algorithm: sort by average depth, draw far to near, no
-                         ///< depth test or write (the notes' alternative to the z-buffer)
+  bool flat = false;          ///< varyings are the last vertex's, not interpolated (GL_FLAT)
+  bool painter = false;       ///< the painter's algorithm: sort by average depth, draw far to near, no
+                              ///< depth test or write (the notes' alternative to the z-buffer)
   bool color_write = true;    ///< store the fragment shader's color (glColorMask)
   bool stencil_test = false;  ///< the stencil test and its operations (GL_STENCIL_TEST)
   StencilFace stencil_front;  ///< for front faces (counterclockwise on screen), lines and points

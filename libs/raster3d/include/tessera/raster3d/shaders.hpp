@@ -78,7 +78,7 @@ concept DerivativeFragmentShader =
 /// color)` (RGBA), or a DerivativeFragmentShader.
 template <class FS, class V>
 concept FragmentShader = DerivativeFragmentShader<FS, V> || PlainFragmentShaderWriting<FS, V, Vec3f> ||
-                         PlainFragmentShaderWriting<FS, V, Vec4f>;
+    PlainFragmentShaderWriting<FS, V, Vec4f>;
 
 /// Calls fs in whichever form it has (the derivatives are ignored by the plain forms); an RGB shader's alpha is 1.
 /// A shader callable with both Vec3f and Vec4f is called with Vec3f.
@@ -108,12 +108,11 @@ struct Translucent {
   float alpha = 1;
 
   template <class V>
-    requires(FragmentShader<FS, V> && !DerivativeFragmentShader<FS, V>)
-  bool operator()(const V& in, Vec4f& color) const {
+  requires(FragmentShader<FS, V> && !DerivativeFragmentShader<FS, V>) bool operator()(const V& in, Vec4f& color) const {
     return run_fragment_shader(shader, in, in, in, color) && (color.w *= alpha, true);
   }
   template <class V>
-    requires DerivativeFragmentShader<FS, V>
+  requires DerivativeFragmentShader<FS, V>
   bool operator()(const V& in, const V& ddx, const V& ddy, Vec4f& color) const {
     return run_fragment_shader(shader, in, ddx, ddy, color) && (color.w *= alpha, true);
   }

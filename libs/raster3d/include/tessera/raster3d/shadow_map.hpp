@@ -8,9 +8,9 @@
 // centers, P lies anywhere in its texel). Here the bias follows the receiver: the depth of P's tangent plane is
 // predicted at each texel center it is compared with (receiver-plane depth bias, Isidoro 2006), with an allowance
 // of one texel's depth change along that plane (as glPolygonOffset(1, 1) gives the caster) for a mesh's facets
-// turning within the filter's reach, and a small constant for the map's 24-bit rounding. With pcf > 0 the comparison is made at the (2 pcf + 1)^2 texels around P'
-// and the visibility is the fraction that pass (percentage-closer filtering, Reeves, Salesin and Cook 1987): soft,
-// antialiased shadow edges.
+// turning within the filter's reach, and a small constant for the map's 24-bit rounding. With pcf > 0 the comparison is
+// made at the (2 pcf + 1)^2 texels around P' and the visibility is the fraction that pass (percentage-closer filtering,
+// Reeves, Salesin and Cook 1987): soft, antialiased shadow edges.
 #include <cstdint>
 #include <vector>
 

@@ -15,8 +15,8 @@
 
 #include "tessera/image/texture.hpp"
 #include "tessera/raster3d/context.hpp"
-#include "tessera/raster3d/pipeline.hpp"
 #include "tessera/raster3d/lighting.hpp"
+#include "tessera/raster3d/pipeline.hpp"
 #include "tessera/raster3d/shaders.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
 
@@ -32,8 +32,7 @@ struct UvTangents {
 /// over its triangles (triangles with a degenerate uv triangle are skipped; a vertex with none gets zero tangents,
 /// which leave its normal unbumped). Throws InvalidInput when uvs and positions differ in size or an index is out of
 /// range.
-UvTangents uv_tangents(std::span<const Vec3f> positions, std::span<const Vec2f> uvs,
-                       std::span<const uint32_t> indices);
+UvTangents uv_tangents(std::span<const Vec3f> positions, std::span<const Vec2f> uvs, std::span<const uint32_t> indices);
 
 /// Blinn's bump-mapped normal for the surface P(u, v) displaced by B(u, v) along its unit normal n:
 /// N' = N + (B_u (N x P_t) - B_v (N x P_s)) / |N| with N = P_s x P_t, written with the unit n as
@@ -58,11 +57,11 @@ struct SurfaceMaps {
   const Texture2D* texture = nullptr;  ///< multiplies the surface color (the sampler's filter; trilinear uses lod)
   const Texture2D* bump = nullptr;     ///< height map (red channel), needs the vertex shader's tangents
   float bump_scale = 0.02f;            ///< height of a texel value 1, in object units (negative: bright is low)
-  const EnvironmentMap* environment = nullptr;  ///< lat-long radiance around the scene (world space)
-  const CubeMap* cube = nullptr;                ///< or a cube map (render_cube_map); used when set
-  float reflectivity = 0;                       ///< adds reflectivity x environment(R)
+  const EnvironmentMap* environment = nullptr;         ///< lat-long radiance around the scene (world space)
+  const CubeMap* cube = nullptr;                       ///< or a cube map (render_cube_map); used when set
+  float reflectivity = 0;                              ///< adds reflectivity x environment(R)
   std::array<const ShadowMap*, kMaxLights> shadows{};  ///< light i's shadow map (world space), or null (unshadowed)
-  int shadow_pcf = 1;                                   ///< their filter radius in texels
+  int shadow_pcf = 1;                                  ///< their filter radius in texels
 };
 
 /// The uniforms of the surface shaders.
@@ -70,11 +69,11 @@ struct SurfaceUniforms {
   Mat4f model_view_projection{1.0f};
   Mat4f model_view{1.0f};
   Mat3f normal_matrix{1.0f};
-  Mat4f eye_to_world{1.0f};     ///< the inverse view matrix: environment and shadow lookups are in world space
-  Vec4f viewer{0, 0, 0, 1};     ///< the eye in eye space, homogeneous (see viewer_of): E = viewer.xyz - p viewer.w
-  PreparedLighting lighting;    ///< prepare with color_material on, so that the textured color is C_r
-  Vec3f color{1, 1, 1};         ///< the surface color for vertices without one
-  float light0 = 1;             ///< light 0's visibility before the shadow map's (0: the dark pass of shadow volumes)
+  Mat4f eye_to_world{1.0f};   ///< the inverse view matrix: environment and shadow lookups are in world space
+  Vec4f viewer{0, 0, 0, 1};   ///< the eye in eye space, homogeneous (see viewer_of): E = viewer.xyz - p viewer.w
+  PreparedLighting lighting;  ///< prepare with color_material on, so that the textured color is C_r
+  Vec3f color{1, 1, 1};       ///< the surface color for vertices without one
+  float light0 = 1;           ///< light 0's visibility before the shadow map's (0: the dark pass of shadow volumes)
   SurfaceMaps maps;
 
   /// Sets the matrices, eye_to_world and viewer for a camera (projection, view) and an object's model matrix.
@@ -104,8 +103,8 @@ struct SurfaceVertexShader {
     const Mat3f linear(u.model_view);  // tangents are directions on the surface: the model-view's linear part
     return {gl_transform(u.model_view_projection, attributes.positions[i]),
             {u.normal_matrix * attributes.normals[i], Vec3f(u.model_view * object), attributes.color_or(i, u.color),
-             attributes.uvs ? attributes.uvs[i] : Vec2f(0),
-             tangents_u ? linear * tangents_u[i] : Vec3f(0), tangents_v ? linear * tangents_v[i] : Vec3f(0)}};
+             attributes.uvs ? attributes.uvs[i] : Vec2f(0), tangents_u ? linear * tangents_u[i] : Vec3f(0),
+             tangents_v ? linear * tangents_v[i] : Vec3f(0)}};
   }
 };
 

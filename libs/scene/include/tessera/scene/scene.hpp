@@ -23,9 +23,9 @@ namespace tessera {
 struct SceneImage {
   int width = 640, height = 480;
   static constexpr int kMaxSamples = 1 << 16;  ///< the most samples per pixel a scene (or --spp) may ask for
-  int samples = 1;         ///< samples per pixel
-  int max_depth = 5;       ///< recursion depth (1 = eye rays only)
-  Vec3f background{0.0f};  ///< color of rays that leave the scene
+  int samples = 1;                             ///< samples per pixel
+  int max_depth = 5;                           ///< recursion depth (1 = eye rays only)
+  Vec3f background{0.0f};                      ///< color of rays that leave the scene
 };
 
 /// A pinhole or thin-lens camera, perspective or orthographic.

@@ -50,10 +50,10 @@ struct EdgeMask {
 
 /// Weights of a new vertex point (or of a limit position).
 struct VertexMask {
-  double vertex = 1.0;                ///< weight of the vertex itself
-  double ring = 0.0;                  ///< weight of the far end of every incident edge
-  double face = 0.0;                  ///< weight of every incident face's point
-  double crease = 0.0;                ///< additional weight of the far ends of ring edges crease_ends[0] and [1]
+  double vertex = 1.0;               ///< weight of the vertex itself
+  double ring = 0.0;                 ///< weight of the far end of every incident edge
+  double face = 0.0;                 ///< weight of every incident face's point
+  double crease = 0.0;               ///< additional weight of the far ends of ring edges crease_ends[0] and [1]
   uint32_t crease_ends[2] = {0, 0};  ///< ring indices of the two sharp edges of a crease
 };
 
@@ -80,8 +80,8 @@ VertexRule vertex_rule(float vertex_sharpness, int sharp_edges);
 
 /// The weight of the parent rule when a vertex's rule changes between levels (OpenSubdiv's
 /// ComputeFractionalWeightAtVertex): the mean sharpness of what decays to smooth, clamped to 1.
-float transition_weight(CreaseMethod method, float parent_vertex, float child_vertex, std::span<const float> parent_edges,
-                        std::span<const float> child_edges);
+float transition_weight(CreaseMethod method, float parent_vertex, float child_vertex,
+                        std::span<const float> parent_edges, std::span<const float> child_edges);
 
 /// The crease rule (6v + v1 + v2)/8 (the notes' sharp crease) with v1, v2 the far ends of ring edges end0 and end1.
 VertexMask crease_vertex_mask(uint32_t end0, uint32_t end1);

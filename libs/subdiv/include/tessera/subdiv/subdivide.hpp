@@ -24,7 +24,7 @@ enum class BoundaryInterpolation {
 /// Settings of subdivide(). The defaults are the notes' rules; crease method and triangle rule as OpenSubdiv's.
 struct SubdivisionOptions {
   SubdivisionScheme scheme = SubdivisionScheme::catmull_clark;
-  int levels = 1;                                                ///< refinement steps, 0..12
+  int levels = 1;  ///< refinement steps, 0..12
   BoundaryInterpolation boundary = BoundaryInterpolation::edge_only;
   CreaseMethod crease_method = CreaseMethod::uniform;            ///< decay of semi-sharp creases
   LoopWeights loop_weights = LoopWeights::warren;                ///< the notes' beta, or Loop's original

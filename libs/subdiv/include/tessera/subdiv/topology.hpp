@@ -25,8 +25,7 @@ class TopologyTables {
   /// The tables keep views of both arrays, which must outlive them and stay unchanged.
   /// Throws InvalidInput for a face with fewer than 3 vertices, a repeated vertex or an index >= vertex_count, and
   /// TopologyError for a non-manifold edge or vertex or neighbours of opposite orientation.
-  TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices,
-                 size_t vertex_count);
+  TopologyTables(std::span<const uint32_t> face_offsets, std::span<const uint32_t> face_vertices, size_t vertex_count);
 
   /// How one uniform refinement step splits the faces (subdivide.hpp): every n-gon into n quads, child face k made
   /// from parent corner k as (vertex, edge point, face point, previous edge point); or every triangle f into the
@@ -131,10 +130,10 @@ class TopologyTables {
   void build_rings();
 
   std::span<const uint32_t> face_offsets_, face_vertices_;
-  uint32_t uniform_size_ = 0;                   // the size of every face, 0 when sizes differ
-  RawVector<uint32_t> corner_faces_;    // empty when every face has uniform_size_ corners
+  uint32_t uniform_size_ = 0;         // the size of every face, 0 when sizes differ
+  RawVector<uint32_t> corner_faces_;  // empty when every face has uniform_size_ corners
   RawVector<uint32_t> corner_edges_, twins_;
-  RawVector<uint32_t> edge_corners_;    // the first corner of every edge
+  RawVector<uint32_t> edge_corners_;  // the first corner of every edge
   RawVector<uint32_t> vertex_offsets_, ring_corners_;
   RawVector<uint32_t> ring_neighbors_;  // corner_vertex(next_corner(k)) of every ring corner k
   RawVector<uint8_t> boundary_vertex_;

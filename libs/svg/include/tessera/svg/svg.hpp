@@ -25,8 +25,8 @@ namespace tessera {
 /// (controls c1, c2) Bezier to `end`. The parser resolves H/V, the smooth forms S/T, relative commands and elliptical
 /// arcs (as cubics) into these three kinds.
 struct SvgSegment {
-  enum class Kind { Line, Quadratic, Cubic };
-  Kind kind = Kind::Line;
+  enum class Kind { line, quadratic, cubic };
+  Kind kind = Kind::line;
   Vec2 c1{0.0}, c2{0.0};
   Vec2 end{0.0};
 };
@@ -48,14 +48,14 @@ struct SvgStyle {
   float fill_opacity = 1;
   float stroke_opacity = 1;
   float opacity = 1;  ///< the element's opacity times its ancestors' (group opacity approximated per element)
-  FillRule fill_rule = FillRule::NonZero;
+  FillRule fill_rule = FillRule::non_zero;
   StrokeStyle stroke_style;  ///< width in user units
 };
 
 /// One painted element (rect, circle, ellipse, line, polyline, polygon or path).
 struct SvgShape {
-  std::string element;  ///< the element's name, e.g. "rect"
-  long line = 0;        ///< line of its start tag in the source
+  std::string element;               ///< the element's name, e.g. "rect"
+  long line = 0;                     ///< line of its start tag in the source
   std::vector<SvgSubpath> subpaths;  ///< its geometry in user coordinates
   Mat3 transform{1.0};  ///< user coordinates to the root's (viewBox) coordinates: the product of the transform lists
   SvgStyle style;
@@ -102,10 +102,10 @@ Vec4f parse_svg_color(std::string_view text);
 
 /// How a document becomes an image.
 struct SvgRenderOptions {
-  int width = 0, height = 0;        ///< output size in pixels; 0 takes the document's (see svg_output_size)
-  bool antialias = true;            ///< area coverage; false fills pixels whose center is inside
-  Vec4f background{0, 0, 0, 0};     ///< straight RGBA the image starts with (transparent by default)
-  double tolerance = 0.1;           ///< curve flattening tolerance in device pixels
+  int width = 0, height = 0;     ///< output size in pixels; 0 takes the document's (see svg_output_size)
+  bool antialias = true;         ///< area coverage; false fills pixels whose center is inside
+  Vec4f background{0, 0, 0, 0};  ///< straight RGBA the image starts with (transparent by default)
+  double tolerance = 0.1;        ///< curve flattening tolerance in device pixels
 };
 
 /// The image size render_svg uses: the options' when set, otherwise the root's width/height (rounded up), falling back

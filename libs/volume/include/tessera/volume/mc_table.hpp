@@ -45,7 +45,8 @@ int ambiguous_faces(int cube_case);
 /// off the outside corners); otherwise they are separated. `split_shared_faces` puts a center vertex in polygons that
 /// hold both segments of one face, so that no diagonal can be shared with the neighbouring cell (keeps the mesh
 /// manifold). Other polygons are split along those of `diagonals` (pairs of edges) that join two of their vertices
-/// and fanned from their lowest edge otherwise. Source: the construction above; cases 0-255 (throws InvalidInput outside).
+/// and fanned from their lowest edge otherwise. Source: the construction above; cases 0-255 (throws InvalidInput
+/// outside).
 CaseTriangles triangulate_case(int cube_case, int join, bool split_shared_faces,
                                std::span<const std::array<int, 2>> diagonals = {});
 

@@ -3,6 +3,8 @@
 //
 // Voxel (x, y, z) sits at world point origin + spacing * (x, y, z); x varies fastest in memory, then y, then z
 // (index = x + nx * (y + ny * z)), as raw CT/MRI files store them. Values between voxels are trilinear.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -12,8 +14,6 @@
 #include <variant>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "tessera/core/error.hpp"
 #include "tessera/image/image.hpp"
 #include "tessera/math/types.hpp"
@@ -21,7 +21,7 @@
 namespace tessera {
 
 /// Voxel types the readers produce.
-enum class VoxelType { UInt8, UInt16, Int16, Float32 };
+enum class VoxelType { uint8, uint16, int16, float32 };
 
 /// The name used by the CLI and NRRD ("uint8", "uint16", "int16", "float32").
 std::string voxel_type_name(VoxelType type);
@@ -45,7 +45,8 @@ class Volume {
   /// An empty volume (0 voxels).
   Volume() = default;
   /// A volume filled with `value`. Throws InvalidInput for non-positive or absurd dims.
-  explicit Volume(const glm::ivec3& dims, T value = T{}, const Vec3& spacing = Vec3(1.0), const Vec3& origin = Vec3(0.0))
+  explicit Volume(const glm::ivec3& dims, T value = T{}, const Vec3& spacing = Vec3(1.0),
+                  const Vec3& origin = Vec3(0.0))
       : dims_(dims), spacing_(spacing), origin_(origin) {
     voxels_.assign(size_t(checked_voxel_count(dims)), value);
     if (!(spacing.x > 0 && spacing.y > 0 && spacing.z > 0))
@@ -61,7 +62,9 @@ class Volume {
   bool empty() const { return voxels_.empty(); }
 
   /// Linear index of voxel (x, y, z); no bounds check.
-  size_t index(int x, int y, int z) const { return size_t(x) + size_t(dims_.x) * (size_t(y) + size_t(dims_.y) * size_t(z)); }
+  size_t index(int x, int y, int z) const {
+    return size_t(x) + size_t(dims_.x) * (size_t(y) + size_t(dims_.y) * size_t(z));
+  }
   /// Voxel (x, y, z); no bounds check.
   T& operator()(int x, int y, int z) { return voxels_[index(x, y, z)]; }
   const T& operator()(int x, int y, int z) const { return voxels_[index(x, y, z)]; }
@@ -81,7 +84,8 @@ class Volume {
                 fz = std::clamp(p.z, 0.0f, float(dims_.z - 1));
     const int x0 = std::min(int(fx), std::max(dims_.x - 2, 0)), y0 = std::min(int(fy), std::max(dims_.y - 2, 0)),
               z0 = std::min(int(fz), std::max(dims_.z - 2, 0));
-    const int x1 = std::min(x0 + 1, dims_.x - 1), y1 = std::min(y0 + 1, dims_.y - 1), z1 = std::min(z0 + 1, dims_.z - 1);
+    const int x1 = std::min(x0 + 1, dims_.x - 1), y1 = std::min(y0 + 1, dims_.y - 1),
+              z1 = std::min(z0 + 1, dims_.z - 1);
     const double tx = fx - float(x0), ty = fy - float(y0), tz = fz - float(z0);
     const auto v = [&](int x, int y, int z) { return double((*this)(x, y, z)); };
     const double c00 = v(x0, y0, z0) + tx * (v(x1, y0, z0) - v(x0, y0, z0));
@@ -144,7 +148,7 @@ template <class T>
 std::vector<uint64_t> histogram(const Volume<T>& v, int bins, double lo, double hi);
 
 /// An axis of the grid.
-enum class Axis { X = 0, Y = 1, Z = 2 };
+enum class Axis { x = 0, y = 1, z = 2 };
 /// Parses "x", "y" or "z". Throws InvalidInput.
 Axis parse_axis(const std::string& text);
 

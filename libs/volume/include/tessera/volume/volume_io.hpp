@@ -14,16 +14,16 @@
 
 namespace tessera {
 
-enum class Endian { Little, Big };
+enum class Endian { little, big };
 
 /// How raw voxels are laid out (what --dims, --dtype, --endian, --spacing and --header-skip say).
 struct RawLayout {
-  glm::ivec3 dims{0};                ///< voxels along x, y, z (x fastest)
-  VoxelType type = VoxelType::UInt8;
-  Endian endian = Endian::Little;
+  glm::ivec3 dims{0};  ///< voxels along x, y, z (x fastest)
+  VoxelType type = VoxelType::uint8;
+  Endian endian = Endian::little;
   Vec3 spacing{1.0};
   Vec3 origin{0.0};
-  uint64_t header_skip = 0;          ///< bytes before the first voxel
+  uint64_t header_skip = 0;  ///< bytes before the first voxel
 };
 
 /// Decodes voxels from `bytes` (the whole file; the voxels start at layout.header_skip). `name` is used in messages.
@@ -54,7 +54,7 @@ Volume<uint8_t> read_slices(const std::vector<std::filesystem::path>& files, con
 AnyVolume read_volume(const std::string& name, const RawLayout& raw = {});
 
 /// Writes the voxels as raw bytes in the given byte order (atomically).
-void write_raw(const std::filesystem::path& path, const AnyVolume& volume, Endian endian = Endian::Little);
+void write_raw(const std::filesystem::path& path, const AnyVolume& volume, Endian endian = Endian::little);
 /// Writes NRRD atomically: a ".nhdr" path gets a detached header plus "<stem>.raw" beside it; any other path gets an
 /// attached header. `gzip` selects the gzip encoding (attached only).
 void write_nrrd(const std::filesystem::path& path, const AnyVolume& volume, bool gzip = false);

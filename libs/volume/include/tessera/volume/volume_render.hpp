@@ -82,17 +82,17 @@ struct VolumeRenderOptions {
   /// The most samples a ray may take across the volume's box (its diagonal / step): a step so small that it asks
   /// for more is refused (it would take hours, and float sample positions stop advancing below half an ulp).
   static constexpr int64_t kMaxSamplesPerRay = int64_t(1) << 20;
-  Camera camera;                 ///< camera.aspect is set from width / height
+  Camera camera;  ///< camera.aspect is set from width / height
   int width = 256, height = 256;
-  float step = 0;                ///< world distance between samples; 0 = half the smallest spacing (see kMaxSamplesPerRay)
-  TransferFunction transfer;     ///< used unless mip
-  bool mip = false;              ///< maximum-intensity projection: gray = (max - lo) / (hi - lo) of the volume range
-  bool shading = true;           ///< gradient shading: ambient + diffuse + Blinn specular, headlight
+  float step = 0;             ///< world distance between samples; 0 = half the smallest spacing (see kMaxSamplesPerRay)
+  TransferFunction transfer;  ///< used unless mip
+  bool mip = false;           ///< maximum-intensity projection: gray = (max - lo) / (hi - lo) of the volume range
+  bool shading = true;        ///< gradient shading: ambient + diffuse + Blinn specular, headlight
   float ambient = 0.3f, diffuse = 0.7f, specular = 0.3f, shininess = 32.0f;
-  float termination = 0.99f;     ///< early ray termination when accumulated opacity reaches this
-  bool skip_empty = true;        ///< skip blocks whose values all map to zero opacity (same image, faster)
-  int block = 8;                 ///< voxels per empty-space block side
-  bool simd = true;              ///< 8 rays at a time with AVX2 where the CPU has it (same image up to rounding)
+  float termination = 0.99f;  ///< early ray termination when accumulated opacity reaches this
+  bool skip_empty = true;     ///< skip blocks whose values all map to zero opacity (same image, faster)
+  int block = 8;              ///< voxels per empty-space block side
+  bool simd = true;           ///< 8 rays at a time with AVX2 where the CPU has it (same image up to rounding)
   Vec3f background{0.0f};
   /// Called (from worker threads, concurrently) with the number of pixels of each finished tile, for progress reports.
   std::function<void(int64_t pixels)> progress;
@@ -100,7 +100,8 @@ struct VolumeRenderOptions {
 
 /// Ray-casts `volume` into an image (parallel tiles; identical for any thread count). Throws InvalidInput for an
 /// empty volume, a non-positive size, a negative or non-finite step, or a step that gives more than
-/// VolumeRenderOptions::kMaxSamplesPerRay samples across the volume's box. The same as VolumeRenderer(volume).render(options).
+/// VolumeRenderOptions::kMaxSamplesPerRay samples across the volume's box. The same as
+/// VolumeRenderer(volume).render(options).
 ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& options);
 
 /// A volume prepared for ray casting (its values and central-difference gradients quantized to 16 bits and

@@ -298,8 +298,8 @@ template <DepthFunc F, class Pixels>
 /// ordinary shading (out of line: it leaves the ordinary loops' code as it was).
 template <int N, class V, class FS, DepthFunc F>
 [[gnu::noinline]] void raster_record_masked(Framebuffer& fb, const TriangleRecord& r, const float* data,
-                                            const SetupParams& params, bool depth_write, int x0, int x1, int y0,
-                                            int y1, const FS& fs) {
+                                            const SetupParams& params, bool depth_write, int x0, int x1, int y0, int y1,
+                                            const FS& fs) {
   const bool constant = r.constant || N == 0;
   Vec4f constant_color(0);
   bool constant_kept = false;

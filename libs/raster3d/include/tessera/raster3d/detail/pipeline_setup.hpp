@@ -89,7 +89,7 @@ struct PreparedVertex {
 /// The kPassChunks chunks of one setup pass: what one raster job reads.
 using SetupPass = std::vector<SetupChunk>;
 
-class RasterThread;  // the framebuffer's raster thread (pipeline_schedule.cpp)
+class RasterThread;     // the framebuffer's raster thread (pipeline_schedule.cpp)
 struct PipelineArenas;  // the oneTBB arenas of pipeline_for (pipeline_schedule.cpp)
 
 /// Memory reused from draw to draw, and the raster thread, owned by the Framebuffer.
@@ -105,8 +105,8 @@ struct RasterScratch {
     std::vector<uint32_t> indices;         // the triangles' indices, in drawing order
   };
   std::array<DrawInput, 2> inputs;
-  int input = 0;                   // the current draw's set
-  std::vector<uint32_t> order;     // painter's algorithm: the sorted triangle indices
+  int input = 0;                            // the current draw's set
+  std::vector<uint32_t> order;              // painter's algorithm: the sorted triangle indices
   std::atomic<uint64_t> job_rasterized{0};  // triangles set up by raster jobs, until the caller collects them
   // Double buffered: setup fills passes[next_pass] while the raster thread reads the other one.
   std::array<SetupPass, 2> passes;
@@ -147,9 +147,9 @@ bool raster_idle(const RasterScratch& scratch) noexcept;
 
 /// What setup needs to know about a draw.
 struct SetupParams {
-  const float* vertices;  // vertex stage output
+  const float* vertices;                     // vertex stage output
   const PreparedVertex* prepared = nullptr;  // per vertex (prepare_vertices)
-  int varying_count;      // N
+  int varying_count;                         // N
   bool flat, painter;
   int cull;  // 0 none, 1 back, 2 front
   bool color_write, stencil_test, blend;
