@@ -1,0 +1,48 @@
+#include "tessera/sketch/registry.hpp"
+
+#include <algorithm>
+#include <array>
+
+#include "sketches/sketches.hpp"
+
+namespace tessera {
+namespace {
+
+// The pointer circles the canvas once in 60 frames, then presses and drags.
+constexpr std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes round, then drags
+1 mouse_move 200 120
+6 mouse_move 257 143
+11 mouse_move 280 200
+16 mouse_move 257 257
+21 mouse_move 200 280
+26 mouse_move 143 257
+31 mouse_move 120 200
+36 mouse_move 143 143
+41 mouse_move 200 120
+46 mouse_press left
+46 mouse_move 240 160
+51 mouse_move 280 200
+56 mouse_release left
+)";
+
+// Sorted by name (find_sketch searches it; --list prints it in this order).
+const std::array kSketches = {
+    SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D)",
+               sketches::make_pink_square, kPinkSquareDemo, 60},
+    SketchInfo{"rotating_cube",
+               "A cube with colored faces turning in 3D, double buffered (space pauses)",
+               sketches::make_rotating_cube,
+               {},
+               60},
+};
+
+}  // namespace
+
+std::span<const SketchInfo> builtin_sketches() { return kSketches; }
+
+const SketchInfo* find_sketch(std::string_view name) {
+  const auto it = std::find_if(kSketches.begin(), kSketches.end(), [&](const SketchInfo& s) { return s.name == name; });
+  return it == kSketches.end() ? nullptr : &*it;
+}
+
+}  // namespace tessera

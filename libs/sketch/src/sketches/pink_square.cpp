@@ -1,0 +1,28 @@
+// The notes' first sketch made live: a pink (255, 150, 150) square that follows the mouse, on white. Pressing a
+// button makes it darker while held.
+//
+//   void setup() { size(400, 400); noStroke(); }
+//   void draw() { background(255); fill(255, 150, 150); rect(mouseX - 25, mouseY - 25, 50, 50); }
+#include "sketches/sketches.hpp"
+
+namespace tessera::sketches {
+namespace {
+
+class PinkSquare : public Sketch {
+ public:
+  void setup() override {
+    size(400, 400);
+    no_stroke();
+  }
+  void draw() override {
+    background(rgb255(255, 255, 255));
+    fill(mouse_is_pressed ? rgb255(220, 90, 120) : rgb255(255, 150, 150));
+    rect(mouse_x - 25, mouse_y - 25, 50, 50);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Sketch> make_pink_square() { return std::make_unique<PinkSquare>(); }
+
+}  // namespace tessera::sketches
