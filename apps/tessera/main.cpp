@@ -31,6 +31,7 @@ void setup_mesh(CLI::App&, CommonOptions&);
 void setup_patch(CLI::App&, CommonOptions&);
 void setup_raster(CLI::App&, CommonOptions&);
 void setup_render(CLI::App&, CommonOptions&);
+void setup_sketch(CLI::App&, CommonOptions&);
 void setup_trace(CLI::App&, CommonOptions&);
 void setup_volume(CLI::App&, CommonOptions&);
 
@@ -50,6 +51,7 @@ const Command kCommands[] = {
     {"raster", "Z-buffered 3D rasterization of a mesh (flat, Gouraud or Phong shading)", setup_raster},
     {"render", "Render a scene file or a built-in scene (ray tracing or rasterization)", setup_render},
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
+    {"sketch", "Run a Processing sketch of the notes, in a window or headless (--list shows them)", setup_sketch},
     {"bench", "Measure hot paths: bench raycast MESH (rays per second)", setup_bench},
 };
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <cstdlib>
 
 #include "tessera/core/error.hpp"
 #include "tessera/sketch/runner.hpp"
@@ -88,9 +89,16 @@ class SdlWindow final : public Window {
   SdlWindow(const std::string& title, int width, int height) : width_(width), height_(height) {
     // Tessera handles SIGINT and SIGTERM itself (no partial output files): SDL must not turn them into SDL_QUIT.
     SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
-    if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0)
-      throw Error(fmt::format("no display to open a window on ({}); run with --headless to render without one",
-                              SDL_GetError()));
+    // Without X11 or Wayland SDL falls back to its offscreen driver, whose windows nobody sees: that is no display,
+    // unless SDL_VIDEODRIVER asks for it.
+    const bool chosen = std::getenv("SDL_VIDEODRIVER") != nullptr;
+    if (!chosen && !std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY")) no_display("DISPLAY is not set");
+    if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) no_display(SDL_GetError());
+    const std::string driver = SDL_GetCurrentVideoDriver();
+    if (!chosen && (driver == "offscreen" || driver == "dummy")) {
+      SDL_QuitSubSystem(SDL_INIT_VIDEO);
+      no_display("only SDL's offscreen driver is available");
+    }
     window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width, height,
                                SDL_WINDOW_RESIZABLE | SDL_WINDOW_ALLOW_HIGHDPI);
     if (!window_) fail("cannot open a window");
@@ -173,6 +181,9 @@ class SdlWindow final : public Window {
     pointer_x_ = x;
     pointer_y_ = y;
     events.push_back({.kind = InputKind::mouse_move, .x = x, .y = y});
+  }
+  [[noreturn]] static void no_display(const std::string& why) {
+    throw Error(fmt::format("no display to open a window on ({}); run with --headless to render without one", why));
   }
   [[noreturn]] void fail(const char* what) {
     const std::string message = sdl_error(what);

@@ -19,7 +19,7 @@ class RotatingCube : public Sketch {
     gtClear(0.1f, 0.1f, 0.15f);
     gtPerspective(std::numbers::pi / 4, 0.5, 20);
     gtLoadIdentity();
-    gtLookAt(0, 1.5, 5, 0, 0, 0, 0, 1, 0);
+    gtLookAt(0, 2, 7, 0, 0, 0, 0, 1, 0);
     // Half a turn every 2 seconds (millis() is the frames' time when headless, so recordings are exact).
     const double angle = millis() * std::numbers::pi / 2000.0;
     gtRotateX(0.4 + (mouse_x - width / 2.0) * 0.002);
