@@ -7,7 +7,7 @@ OUT ?= out
 CMAKE ?= cmake
 TESSERA := build/release/apps/tessera/tessera
 
-.PHONY: all deps build demo test bench asan install clean
+.PHONY: all deps build demo test lint bench asan install clean
 
 all: build
 
@@ -27,10 +27,19 @@ demo:
 	$(TESSERA) demo -o $(OUT)
 	@echo "demo pictures written to $(OUT)/ (open $(OUT)/index.html)"
 
-# The release build's tests, then the clang sanitizer build's unit tests and fuzz runs (make asan).
+# The format check, the release build's tests, then the clang sanitizer build's unit tests and fuzz runs (make asan),
+# then clang-tidy's check for new findings (on the clang build's compile commands).
 test: build
+	scripts/check-format.sh
 	ctest --preset release
 	@$(MAKE) --no-print-directory asan
+	scripts/check-tidy.sh build/asan
+
+# The tree formatted as .clang-format says, and no clang-tidy finding that .clang-tidy-baseline does not list.
+lint: deps
+	scripts/check-format.sh
+	@$(CMAKE) --preset asan >/dev/null
+	scripts/check-tidy.sh build/asan
 
 bench: deps
 	@$(CMAKE) --preset bench >/dev/null

@@ -20,6 +20,8 @@ test_packages=(
   xvfb xauth
   # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang
   clang libclang-rt-14-dev
+  # the format and lint checks of make test
+  clang-format clang-tidy
 )
 
 case "${1:-all}" in
