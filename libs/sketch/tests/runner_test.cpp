@@ -31,10 +31,12 @@ TEST(Registry, SortedFindableAndDescribed) {
   const auto all = builtin_sketches();
   ASSERT_GE(all.size(), 2u);
   for (size_t i = 0; i < all.size(); ++i) {
-    if (i > 0) EXPECT_LT(all[i - 1].name, all[i].name);
+    if (i > 0) {
+      EXPECT_LT(all[i - 1].name, all[i].name);
+    }
     EXPECT_FALSE(all[i].description.empty());
     EXPECT_EQ(find_sketch(all[i].name), &all[i]);
-    if (!all[i].demo_input.empty()) EXPECT_NO_THROW(parse_input_script(all[i].demo_input, all[i].name));
+    EXPECT_NO_THROW(parse_input_script(all[i].demo_input, all[i].name));
   }
   EXPECT_EQ(find_sketch("no_such_sketch"), nullptr);
 }

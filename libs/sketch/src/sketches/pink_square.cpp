@@ -1,5 +1,5 @@
 // The notes' first sketch made live: a pink (255, 150, 150) square that follows the mouse, on white. Pressing a
-// button makes it darker while held.
+// button makes it darker while held; the key 's' toggles a black outline.
 //
 //   void setup() { size(400, 400); noStroke(); }
 //   void draw() { background(255); fill(255, 150, 150); rect(mouseX - 25, mouseY - 25, 50, 50); }
@@ -10,15 +10,24 @@ namespace {
 
 class PinkSquare : public Sketch {
  public:
-  void setup() override {
-    size(400, 400);
-    no_stroke();
-  }
+  void setup() override { size(400, 400); }
   void draw() override {
     background(rgb255(255, 255, 255));
     fill(mouse_is_pressed ? rgb255(220, 90, 120) : rgb255(255, 150, 150));
+    if (outlined_) {
+      stroke(rgb255(0, 0, 0));
+      stroke_weight(4);
+    } else {
+      no_stroke();
+    }
     rect(mouse_x - 25, mouse_y - 25, 50, 50);
   }
+  void key_pressed() override {
+    if (key == 's') outlined_ = !outlined_;
+  }
+
+ private:
+  bool outlined_ = false;
 };
 
 }  // namespace

@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# tessera sketch --window, for real: under xvfb-run, `tessera sketch pink_square --window` opens an X window; xdotool
+# moves the real pointer into it, drags, types a key, hands the focus to another window and back, resizes the window
+# (the sketch keeps its 400x400 and is drawn scaled to fit, letterboxed), and a WM_DELETE_WINDOW message closes it.
+# After each step ImageMagick's `import` grabs the window, and the grab is compared with the headless render of the
+# same state (a script with the same mouse position, button and key): within 1/255 on at least 99% of the pixels
+# (PIL and numpy, independent of Tessera). Skips (77) without xvfb-run, xdotool, import, PIL or an SDL2 build.
+set -euo pipefail
+tessera=$1 scratch=$2
+python=/usr/bin/python3
+fail() { echo "sketch_window.sh: $*"; exit 1; }
+
+if [ "${3:-}" != --inside ]; then
+  for tool in xvfb-run xdotool import; do
+    command -v $tool >/dev/null || { echo "sketch_window.sh: skipped, no $tool"; exit 77; }
+  done
+  "$python" -c 'import PIL, numpy' 2>/dev/null || { echo "sketch_window.sh: skipped, no PIL/numpy"; exit 77; }
+  rm -rf "$scratch" && mkdir -p "$scratch"
+  if env -u DISPLAY -u WAYLAND_DISPLAY "$tessera" sketch pink_square --window --frames 1 2>&1 |
+      grep -q "built without SDL2"; then
+    echo "sketch_window.sh: skipped, tessera was built without SDL2"
+    exit 77
+  fi
+  exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$tessera" "$scratch" --inside
+fi
+
+# ---- inside the X server ------------------------------------------------------------------------------------------
+# The headless picture of a state: `script` lines at frame 1, one frame, the last frame as PNG.
+headless() {  # NAME SCRIPT
+  printf '%b' "$2" >"$scratch/$1.txt"
+  "$tessera" sketch pink_square --headless --frames 1 --input "$scratch/$1.txt" -o "$scratch/$1-headless.png"
+}
+grab() { sleep 0.6; import -window "$wid" "$scratch/$1-window.png"; }
+# Compares the grab with the headless render; with a scale, the window shows the sketch scaled by that factor at
+# offset (ox, oy) and the grab is sampled at the centers of the sketch's pixels (and the bars must be black).
+compare() {  # NAME [SCALE OX OY]
+  "$python" - "$scratch/$1-window.png" "$scratch/$1-headless.png" "${2:-1}" "${3:-0}" "${4:-0}" <<'PY'
+import sys
+import numpy as np
+from PIL import Image
+grab = np.asarray(Image.open(sys.argv[1]).convert("RGB")).astype(int)
+want = np.asarray(Image.open(sys.argv[2]).convert("RGB")).astype(int)
+scale, ox, oy = float(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
+h, w = want.shape[:2]
+if scale != 1:
+    ys = oy + np.floor((np.arange(h) + 0.5) * scale).astype(int)
+    xs = ox + np.floor((np.arange(w) + 0.5) * scale).astype(int)
+    bars = np.concatenate([grab[:, :ox].reshape(-1, 3), grab[:, ox + int(w * scale):].reshape(-1, 3)])
+    if bars.size and bars.max() > 1:
+        sys.exit(f"{sys.argv[1]}: the letterbox bars are not black (max {bars.max()})")
+    grab = grab[ys][:, xs]
+if grab.shape != want.shape:
+    sys.exit(f"{sys.argv[1]}: grab {grab.shape} vs headless {want.shape}")
+close = (np.abs(grab - want).max(axis=2) <= 1).mean()
+print(f"{sys.argv[1]}: {100 * close:.3f}% of pixels within 1/255")
+sys.exit(0 if close >= 0.99 else 1)
+PY
+}
+
+"$tessera" sketch pink_square --window --seconds 60 >"$scratch/window.out" 2>&1 &
+pid=$!
+wid=$(timeout 20 xdotool search --sync --name "tessera sketch pink_square" | head -1)
+[ -n "$wid" ] || fail "no window appeared: $(cat "$scratch/window.out")"
+xdotool getwindowgeometry "$wid" | grep -q "Geometry: 400x400" || fail "the window is not 400x400"
+start=$(date +%s)
+
+# The pointer moves into the window: the square follows it.
+xdotool mousemove --window "$wid" 100 80
+grab move
+headless move "1 mouse_move 100 80\n"
+compare move || fail "move: the window differs from the headless render"
+
+# A drag: the square darkens while the button is held.
+xdotool mousedown 1
+xdotool mousemove --window "$wid" 150 120
+grab drag
+headless drag "1 mouse_move 100 80\n1 mouse_press left\n1 mouse_move 150 120\n"
+compare drag || fail "drag: the window differs from the headless render"
+xdotool mouseup 1
+
+# A key: 's' toggles the outline (typed through XTEST into the focused window).
+xdotool windowfocus --sync "$wid"
+xdotool key s
+grab key
+headless key "1 mouse_move 150 120\n1 key_press s\n"
+compare key || fail "key: the window differs from the headless render"
+
+# Focus loss: another window takes the focus; the sketch keeps running and takes it back.
+xmessage -name other "another window" &
+other_pid=$!
+other=$(timeout 10 xdotool search --sync --name "^other$" | head -1 || true)
+[ -z "$other" ] || xdotool windowfocus --sync "$other"
+sleep 0.5
+kill -0 $pid || fail "the sketch ended when it lost the focus"
+xdotool windowfocus --sync "$wid"
+xdotool mousemove --window "$wid" 200 220
+grab focus
+headless focus "1 mouse_move 200 220\n1 key_press s\n"
+compare focus || fail "after the focus came back: the window differs from the headless render"
+kill $other_pid 2>/dev/null || true
+
+# Resize to 800x600: the 400x400 sketch is drawn 1.5x (600x600) centered, black bars of 100 pixels left and right;
+# the pointer at window (475, 375) is sketch pixel (250, 250).
+xdotool windowsize --sync "$wid" 800 600
+xdotool mousemove --window "$wid" 475 375
+grab resize
+headless resize "1 mouse_move 250 250\n1 key_press s\n"
+file "$scratch/resize-window.png" | grep -q "800 x 600" || fail "the grab after the resize is not 800x600"
+compare resize 1.5 100 0 || fail "resize: the window differs from the headless render scaled 1.5x"
+
+# Close: the window manager's close message (WM_DELETE_WINDOW, as a title bar's close button sends) ends the run.
+"$python" - "$wid" <<'PY'
+import ctypes, ctypes.util, sys
+x = ctypes.cdll.LoadLibrary(ctypes.util.find_library("X11"))
+x.XOpenDisplay.restype = ctypes.c_void_p
+x.XInternAtom.restype = ctypes.c_ulong
+x.XInternAtom.argtypes = [ctypes.c_void_p, ctypes.c_char_p, ctypes.c_int]
+display = x.XOpenDisplay(None)
+window = ctypes.c_ulong(int(sys.argv[1]))
+protocols, delete = x.XInternAtom(display, b"WM_PROTOCOLS", 0), x.XInternAtom(display, b"WM_DELETE_WINDOW", 0)
+class ClientMessage(ctypes.Structure):
+    _fields_ = [("type", ctypes.c_int), ("serial", ctypes.c_ulong), ("send_event", ctypes.c_int),
+                ("display", ctypes.c_void_p), ("window", ctypes.c_ulong), ("message_type", ctypes.c_ulong),
+                ("format", ctypes.c_int), ("data", ctypes.c_long * 5), ("pad", ctypes.c_long * 12)]
+event = ClientMessage(type=33, send_event=1, display=display, window=window, message_type=protocols, format=32)
+event.data[0], event.data[1] = delete, 0
+x.XSendEvent.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_int, ctypes.c_long, ctypes.c_void_p]
+x.XSendEvent(display, window, 0, 0, ctypes.byref(event))
+x.XFlush(display)
+PY
+status=0
+wait $pid || status=$?
+[ $status -eq 0 ] || fail "the sketch exited $status after the close message: $(cat "$scratch/window.out")"
+[ $(( $(date +%s) - start )) -lt 50 ] || fail "the close message did not end the sketch (it ran to --seconds)"
+echo "sketch_window.sh: ok"
