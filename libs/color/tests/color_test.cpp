@@ -95,7 +95,11 @@ TEST(ColorEdgeCases, BlackAndWhite) {
   // CMYK: K carries the gray, C'M'Y' the color.
   const Vec4 dark_red = rgb_to_cmyk(Vec3(0.5, 0.0, 0.0));
   EXPECT_NEAR(dark_red.w, 0.5, 1e-15);
-  expect_near3(Vec3(dark_red), Vec3(0.0, 1.0, 1.0), 1e-15, "dark red CMY'");
+  // Back from CMYK: C = C'(1 - K) + K, and R = (1 - C')(1 - K) (hand-computed for (0.2, 0.4, 0.6, 0.5)).
+  expect_near3(cmyk_to_cmy(Vec4(0.2, 0.4, 0.6, 0.5)), Vec3(0.6, 0.7, 0.8), 1e-15, "CMY of a CMYK");
+  expect_near3(cmyk_to_rgb(Vec4(0.2, 0.4, 0.6, 0.5)), Vec3(0.4, 0.3, 0.2), 1e-15, "RGB of a CMYK");
+  expect_near3(cmyk_to_rgb(dark_red), Vec3(0.5, 0.0, 0.0), 1e-15, "dark red round trip");
+  expect_near3(cmyk_to_rgb(Vec4(0.7, 0.1, 0.3, 1.0)), Vec3(0.0), 0.0, "K = 1 is black whatever C'M'Y'");
 }
 
 TEST(ColorEdgeCases, NotesHueAnglesAndTheCube) {

@@ -183,6 +183,49 @@ TEST(Context, UniformNormalGivesTheShadingEquationEverywhere) {
   }
 }
 
+TEST(Context, DisabledLightLeavesTheAmbientTerm) {
+  // glDisable(GL_LIGHT0): the shading equation without the light's terms, the model ambient times the material's
+  // ambient (0.2 * 0.3, 0.2 * 0.5, 0.2 * 0.7), rounded to 8 bits: (15, 26, 36).
+  Context ctx(8, 8);
+  ctx.ortho(-1, 1, -1, 1, -1, 1);
+  ctx.shading(ShadingModel::gouraud);
+  ctx.material(Material::plastic({0.3f, 0.5f, 0.7f}, 5));
+  ctx.light(0, Light{{0, 0, 1, 0}});
+  ctx.enable_light(0, false);
+  ctx.normal({0, 0, 1});
+  ctx.begin(Primitive::quads);
+  for (auto [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) ctx.vertex(x, y, 0);
+  ctx.end();
+  for (auto c : ctx.framebuffer().color().pixels()) ASSERT_EQ(c, glm::u8vec4(15, 26, 36, 255));
+  ctx.enable_light(0, true);  // back on: the head-on light adds the diffuse color and the highlight
+  ctx.clear({0, 0, 0});
+  ctx.begin(Primitive::quads);
+  for (auto [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) ctx.vertex(x, y, 0);
+  ctx.end();
+  EXPECT_GT(int(ctx.framebuffer().color().pixels()[0].x), 15 + 60);
+  EXPECT_THROW(ctx.enable_light(8, true), InvalidInput);
+}
+
+TEST(Context, WireframeDrawsTheEdgesNotTheFaces) {
+  // Two triangles of a square (the diagonal shared): five edges. Unlit white lines on black in a 64 x 64
+  // window over [0, 64]^2: the square's outline covers 4 sides of ~40 pixels, the diagonal ~40 more (one per column).
+  Context ctx(64, 64);
+  ctx.ortho(0, 64, 0, 64, -1, 1);
+  ctx.shading(ShadingModel::unlit);
+  ctx.color({1, 1, 1});
+  TriMesh square;
+  square.positions = {{12.5, 12.5, 0}, {52.5, 12.5, 0}, {52.5, 52.5, 0}, {12.5, 52.5, 0}};
+  square.indices = {0, 1, 2, 0, 2, 3};
+  ctx.draw_wireframe(square);
+  ctx.flush();
+  int lit = 0;
+  for (auto c : ctx.framebuffer().color().pixels()) lit += c.x > 0;
+  EXPECT_GE(lit, 4 * 40 + 40 - 8);  // corners shared by two sides, the diagonal's ends on corners
+  EXPECT_LE(lit, 4 * 41 + 41);
+  // Inside the triangles nothing is filled: the pixel at (20, 40) (above the diagonal, off every edge) stays black.
+  EXPECT_EQ(ctx.framebuffer().color().pixels()[size_t(40 * 64 + 20)].x, 0);
+}
+
 TEST(Context, PrimitiveAssemblyCoversLikeExplicitTriangles) {
   // A strip, a fan, quads and a polygon over the same region as triangles: identical coverage.
   const std::vector<Vec3> ring = {{-0.9, -0.8, 0}, {0.7, -0.9, 0}, {0.9, 0.6, 0}, {-0.2, 0.95, 0}, {-0.95, 0.3, 0}};
