@@ -9,6 +9,7 @@
 #endif
 
 #include "tessera/core/parallel.hpp"
+#include "tessera/core/parse.hpp"
 
 namespace tessera {
 
@@ -28,10 +29,14 @@ std::string voxel_type_name(VoxelType type) {
 
 VoxelType parse_voxel_type(const std::string& name) {
   if (name == "uint8" || name == "uchar" || name == "unsigned char" || name == "uint8_t") return VoxelType::uint8;
-  if (name == "uint16" || name == "ushort" || name == "unsigned short" || name == "uint16_t") return VoxelType::uint16;
-  if (name == "int16" || name == "short" || name == "signed short" || name == "int16_t") return VoxelType::int16;
+  if (name == "uint16" || name == "ushort" || name == "unsigned short" || name == "uint16_t" ||
+      name == "unsigned short int")
+    return VoxelType::uint16;
+  if (name == "int16" || name == "short" || name == "signed short" || name == "int16_t" || name == "short int")
+    return VoxelType::int16;
   if (name == "float32" || name == "float") return VoxelType::float32;
-  throw InvalidInput(fmt::format("unknown voxel type '{}' (expected uint8, uint16, int16 or float32)", name));
+  throw InvalidInput(
+      fmt::format("unknown voxel type '{}' (expected uint8, uint16, int16 or float32)", printable(name)));
 }
 
 size_t voxel_size(VoxelType type) {

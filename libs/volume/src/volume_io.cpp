@@ -234,18 +234,12 @@ AnyVolume parse_nrrd(std::string_view data, const std::string& name, const std::
     const std::string field = lower(std::string(trim(line.substr(0, colon))));
     const std::string_view value = trim(line.substr(colon + 2));
     if (field == "type") {
-      const std::string t = lower(std::string(value));
-      if (t == "uchar" || t == "unsigned char" || t == "uint8" || t == "uint8_t")
-        layout.type = VoxelType::uint8;
-      else if (t == "ushort" || t == "unsigned short" || t == "uint16" || t == "uint16_t" || t == "unsigned short int")
-        layout.type = VoxelType::uint16;
-      else if (t == "short" || t == "signed short" || t == "int16" || t == "int16_t" || t == "short int")
-        layout.type = VoxelType::int16;
-      else if (t == "float")
-        layout.type = VoxelType::float32;
-      else
+      try {
+        layout.type = parse_voxel_type(lower(std::string(value)));
+      } catch (const InvalidInput&) {
         throw InvalidInput(
             located(where, fmt::format("unsupported type '{}' (uchar, ushort, short, float)", printable(value))));
+      }
       have_type = true;
     } else if (field == "dimension") {
       dimension = int(parse_int(value, where));
