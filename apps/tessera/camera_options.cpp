@@ -9,7 +9,6 @@
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
-#include "tessera/raytrace/sampling.hpp"
 #include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
@@ -185,17 +184,6 @@ void add_samples_option(CLI::App& command, int& samples) {
                   "pixel centers")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
-}
-
-Vec2 pixel_sample(int s, int n, uint32_t pattern) {
-  if (n == 1) return {0.5, 0.5};
-  return Vec2(stratified_sample(uint32_t(s), uint32_t(n), pattern));
-}
-
-Mat4 jittered_projection(const Mat4& projection, const Vec2& sample, int width, int height) {
-  // The pipeline samples GL pixel (i, j) at its center; the picture must move by (0.5 - sample) pixels for the center
-  // to see what lies at the sample. GL's y runs up the image, the sample's down.
-  return translate((1 - 2 * sample.x) / width, -(1 - 2 * sample.y) / height, 0) * projection;
 }
 
 }  // namespace tessera::cli

@@ -6,6 +6,7 @@
 
 #include "tessera/core/parse.hpp"
 #include "tessera/math/camera.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
 
@@ -57,13 +58,6 @@ struct CameraOptions {
 /// Adds `--samples N` (anti-aliasing: N samples per pixel, 1 to 1024) to a command.
 void add_samples_option(CLI::App& command, int& samples);
 
-/// Where sample s of a pixel's n samples (--samples) lies in the pixel, in [0, 1)^2 with y down the image: the pixel
-/// center for n = 1 (the unsampled picture), else Kensler's correlated multi-jittered pattern `pattern`, stratified in
-/// a ceil(sqrt n) grid and in 1/n strata along each axis (raytrace/sampling.hpp).
-Vec2 pixel_sample(int s, int n, uint32_t pattern);
-
-/// `projection` moved on screen so that the pipeline's pixel centers see the image at `sample` (a pixel_sample) of
-/// each pixel of a width x height image: clip x += (1 - 2 sample.x) w / width, clip y -= (1 - 2 sample.y) w / height.
-Mat4 jittered_projection(const Mat4& projection, const Vec2& sample, int width, int height);
+// The --samples pattern and jitter (pixel_sample, jittered_projection) are the mesh view's, in scene's mesh_view.hpp.
 
 }  // namespace tessera::cli
