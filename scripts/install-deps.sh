@@ -9,11 +9,11 @@ demo_packages=(
   # build
   cmake ninja-build g++ pkg-config
   # libraries
-  libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev
+  libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev libgif-dev
 )
 test_packages=(
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin python3-pil
+  libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin python3-pil ffmpeg
   # reference peers (tests and benchmarks only, never the implementation)
   libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
   # a virtual X server: Debian's VTK needs a display for its volume ray-cast mapper (bench_volume under xvfb-run)

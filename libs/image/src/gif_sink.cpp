@@ -1,0 +1,149 @@
+// Animated GIF output through giflib's streaming encoder: the screen descriptor and the NETSCAPE2.0 loop extension
+// at the first frame, then per frame a graphic control extension (the delay), an image descriptor with a local color
+// table when the frame does not use the global one, and the LZW-coded indices. Bytes go straight to an AtomicFile.
+#include <gif_lib.h>
+
+#include <algorithm>
+
+#include "animation_sinks.hpp"
+#include "tessera/core/atomic_file.hpp"
+#include "tessera/core/parse.hpp"
+
+namespace tessera::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// giflib's output callback: appends to the AtomicFile's stream; a short count makes giflib report a write error.
+int write_to_stream(GifFileType* gif, const GifByteType* data, int size) {
+  auto& out = *static_cast<std::ostream*>(gif->UserData);
+  out.write(reinterpret_cast<const char*>(data), size);
+  return out ? size : 0;
+}
+
+struct ColorMapDeleter {
+  void operator()(ColorMapObject* map) const { GifFreeMapObject(map); }
+};
+using ColorMap = std::unique_ptr<ColorMapObject, ColorMapDeleter>;
+
+/// A GIF color table of `palette`, padded with black to the power of two (at least 2) that GIF tables must have.
+ColorMap color_map(const std::vector<Rgb8>& palette) {
+  int size = 2;
+  while (size < int(palette.size())) size *= 2;
+  std::vector<GifColorType> colors(size_t(size), GifColorType{0, 0, 0});
+  for (size_t i = 0; i < palette.size(); ++i) colors[i] = {palette[i].x, palette[i].y, palette[i].z};
+  ColorMap map(GifMakeMapObject(size, colors.data()));
+  if (!map) throw std::bad_alloc();
+  return map;
+}
+
+uint32_t pack(Rgb8 c) { return uint32_t(c.x) << 16 | uint32_t(c.y) << 8 | c.z; }
+
+class GifSink final : public Rgb8Sink {
+ public:
+  GifSink(const fs::path& path, const AnimationOptions& options)
+      : Rgb8Sink(options.srgb), path_(path), options_(options), file_(path) {
+    int error = 0;
+    gif_ = EGifOpen(&file_.stream(), write_to_stream, &error);
+    if (!gif_) fail(error);
+    EGifSetGifVersion(gif_, true);  // GIF89a: the extensions need it (giflib cannot tell while streaming)
+  }
+  ~GifSink() override {
+    if (gif_) EGifCloseFile(gif_, nullptr);  // frees giflib's state; the AtomicFile then removes the temporary
+  }
+  GifSink(const GifSink&) = delete;
+  GifSink& operator=(const GifSink&) = delete;
+
+  int bytes_per_pixel() const override { return Rgb8Sink::bytes_per_pixel() + 1; }  // + the palette indices
+
+  void finish() override {
+    int error = 0;
+    const int status = EGifCloseFile(gif_, &error);  // writes the trailer and frees, even on error
+    gif_ = nullptr;
+    if (status == GIF_ERROR) fail(error);
+    file_.commit();
+  }
+
+ protected:
+  void write_rgb8(const std::vector<Rgb8>& pixels, int width, int height, long long index) override {
+    if (width > 65535 || height > 65535)
+      throw InvalidInput(fmt::format("'{}': a GIF is at most 65535x65535 pixels, the frames are {}x{}",
+                                     printable(path_.string()), width, height));
+    indices_.resize(pixels.size());
+    PaletteMapper* mapper = &*global_;
+    ColorMap local;
+    if (index == 0) {
+      start(pixels, width, height);
+    } else if (!uses_global(pixels)) {
+      local_.emplace(quantize_palette(pixels));
+      local = color_map(local_->palette());
+      mapper = &*local_;
+    }
+    map_to_palette(pixels, width, height, *mapper, options_.dither, indices_);
+
+    const int delay = AnimationWriter::gif_delay_cs(options_.fps, index);
+    // Graphic control: disposal 1 (leave the frame in place), no transparency; the delay little-endian.
+    GifByteType control[4] = {0x04, GifByteType(delay & 0xFF), GifByteType(delay >> 8), 0};
+    check(EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, 4, control));
+    check(EGifPutImageDesc(gif_, 0, 0, width, height, false, local.get()));
+    check(EGifPutLine(gif_, indices_.data(), width * height));
+  }
+
+ private:
+  /// The first frame: its palette becomes the global table; the screen descriptor and loop extension go out.
+  void start(const std::vector<Rgb8>& pixels, int width, int height) {
+    global_.emplace(quantize_palette(pixels));
+    for (const Rgb8& c : global_->palette()) global_colors_.push_back(pack(c));
+    std::sort(global_colors_.begin(), global_colors_.end());
+    const ColorMap map = color_map(global_->palette());
+    check(EGifPutScreenDesc(gif_, width, height, 8, 0, map.get()));
+    if (options_.loop >= 0) {
+      // NETSCAPE2.0 application extension: sub-block 1, then the loop count little-endian (0 = forever).
+      const GifByteType loop[3] = {1, GifByteType(options_.loop & 0xFF), GifByteType(options_.loop >> 8)};
+      check(EGifPutExtensionLeader(gif_, APPLICATION_EXT_FUNC_CODE));
+      check(EGifPutExtensionBlock(gif_, 11, "NETSCAPE2.0"));
+      check(EGifPutExtensionBlock(gif_, 3, loop));
+      check(EGifPutExtensionTrailer(gif_));
+    }
+  }
+
+  /// Whether a later frame takes the global table: always (shared), never (per frame), or when the table holds
+  /// every color of the frame (automatic).
+  bool uses_global(const std::vector<Rgb8>& pixels) const {
+    switch (options_.palette) {
+      case GifPalette::shared:
+        return true;
+      case GifPalette::per_frame:
+        return false;
+      case GifPalette::automatic:
+        break;
+    }
+    const auto colors = distinct_colors(pixels);
+    return colors && std::all_of(colors->begin(), colors->end(), [&](Rgb8 c) {
+             return std::binary_search(global_colors_.begin(), global_colors_.end(), pack(c));
+           });
+  }
+
+  void check(int status) const {
+    if (status == GIF_ERROR) fail(gif_->Error);
+  }
+  [[noreturn]] void fail(int error) const {
+    throw IoError(fmt::format("cannot write '{}': giflib: {}", printable(path_.string()), GifErrorString(error)));
+  }
+
+  fs::path path_;
+  AnimationOptions options_;
+  AtomicFile file_;
+  GifFileType* gif_ = nullptr;
+  std::optional<PaletteMapper> global_, local_;
+  std::vector<uint32_t> global_colors_;  // the global table as sorted 0xRRGGBB, for the automatic test
+  std::vector<uint8_t> indices_;
+};
+
+}  // namespace
+
+std::unique_ptr<AnimationSink> make_gif_sink(const fs::path& path, const AnimationOptions& options) {
+  return std::make_unique<GifSink>(path, options);
+}
+
+}  // namespace tessera::detail
