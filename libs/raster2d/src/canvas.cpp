@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tessera/color/color.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/curves/flatten.hpp"
 #include "tessera/image/image_io.hpp"
@@ -18,6 +19,42 @@ constexpr double kEllipseTolerance = 0.05;  // device pixels between an ellipse 
 constexpr double kBezierTolerance = 0.02;   // device pixels between a Bezier and its polyline
 
 float channel255(int v) { return float(std::clamp(v, 0, 255)) / 255.0f; }
+
+// A colorMode number as a fraction of its range: clamped to [0, max] as Processing clamps (NaN reads as 0).
+double in_range(double v, double max) { return v > 0 ? std::min(v, max) / max : 0.0; }
+
+Vec4f texel(const Vec4f& t) { return t; }
+Vec4f texel(const glm::u8vec4& t) { return Vec4f(t) / 255.0f; }
+
+// The texel nearest to image point uv (texel (i, j) covers [i, i+1) x [j, j+1)), clamped to the image.
+template <class Texel>
+Vec4f sample_nearest(const Image<Texel>& img, const Vec2& uv) {
+  const int i = int(std::clamp(std::floor(uv.x), 0.0, double(img.width() - 1)));
+  const int j = int(std::clamp(std::floor(uv.y), 0.0, double(img.height() - 1)));
+  return texel(img(i, j));
+}
+
+// Bilinear between the four texel centers around uv, indices clamped to the image, interpolated premultiplied (so a
+// transparent texel's color does not bleed into its neighbours); a point on a texel center returns that texel as is.
+template <class Texel>
+Vec4f sample_bilinear(const Image<Texel>& img, const Vec2& uv) {
+  const double u = uv.x - 0.5, v = uv.y - 0.5;
+  const double fu = std::floor(u), fv = std::floor(v);
+  const float tu = float(u - fu), tv = float(v - fv);
+  const auto at = [&](double i, double j) {
+    return texel(
+        img(int(std::clamp(i, 0.0, double(img.width() - 1))), int(std::clamp(j, 0.0, double(img.height() - 1)))));
+  };
+  if (tu == 0 && tv == 0) return at(fu, fv);
+  const auto premultiplied = [&](double i, double j) {
+    const Vec4f t = at(i, j);
+    return Vec4f(Vec3f(t) * t.w, t.w);
+  };
+  const Vec4f top = glm::mix(premultiplied(fu, fv), premultiplied(fu + 1, fv), tu);
+  const Vec4f bottom = glm::mix(premultiplied(fu, fv + 1), premultiplied(fu + 1, fv + 1), tu);
+  const Vec4f p = glm::mix(top, bottom, tv);
+  return p.w > 0 ? Vec4f(Vec3f(p) / p.w, p.w) : Vec4f(0);
+}
 
 /// `width`, once a width x height canvas is known to fit the memory budget (a canvas's size comes from its user:
 /// volume contour's PNG is 4 times the slice). Per pixel: the float RGBA image (16 bytes) and the 8-bit copy that
@@ -39,6 +76,26 @@ Canvas::Canvas(int width, int height) : image_(budgeted_width(width, height), he
 void Canvas::save(const std::filesystem::path& path) const { write_image(path, image_); }
 
 void Canvas::background(const Vec4f& color) { image_.fill(color); }
+
+void Canvas::color_mode(ColorMode mode, double max1, double max2, double max3, double max_alpha) {
+  for (const double m : {max1, max2, max3, max_alpha})
+    if (!(m > 0) || !std::isfinite(m))
+      throw InvalidInput(
+          fmt::format("color_mode ranges must be finite numbers > 0, got {}, {}, {}, {}", max1, max2, max3, max_alpha));
+  color_mode_ = mode;
+  color_max_ = Vec4(max1, max2, max3, max_alpha);
+}
+
+Vec4f Canvas::color(double gray, double alpha) const {
+  const auto g = float(in_range(gray, color_max_.x));
+  return {g, g, g, float(in_range(alpha, color_max_.w))};
+}
+
+Vec4f Canvas::color(double v1, double v2, double v3, double alpha) const {
+  Vec3 c(in_range(v1, color_max_.x), in_range(v2, color_max_.y), in_range(v3, color_max_.z));
+  if (color_mode_ == ColorMode::hsb) c = hsv_to_rgb(c);  // hue in turns: 1 (the hue's max) is red again
+  return {Vec3f(c), float(in_range(alpha, color_max_.w))};
+}
 
 void Canvas::stroke_weight(double weight) {
   if (!(weight >= 0) || !std::isfinite(weight))
@@ -188,6 +245,65 @@ void Canvas::arc(double cx, double cy, double w, double h, double start, double 
   fill_device(Path{{pts}});
   stroke_device(pts, mode != ArcMode::open);
 }
+
+// ---- Text -----------------------------------------------------------------------------------------------------------
+
+void Canvas::text_size(double px) {
+  if (!(px > 0) || !std::isfinite(px))
+    throw InvalidInput(fmt::format("text_size must be a finite number > 0, got {}", px));
+  text_scale_ = px / font::kSize;
+}
+
+double Canvas::text_width(std::string_view str) const { return font::text_width(str) * text_scale_; }
+
+void Canvas::text(std::string_view str, double x, double y) {
+  if (!fill_ || str.empty()) return;
+  // Where the first baseline lies below y, in font units (Processing's text(): multi-line CENTER and BOTTOM move up
+  // by the extra lines).
+  const double extra = (font::line_count(str) - 1) * font::kLineHeight;
+  double baseline = 0;
+  switch (text_align_.second) {
+    case TextAlignY::baseline:
+      break;
+    case TextAlignY::top:
+      baseline = font::kAscent;
+      break;
+    case TextAlignY::center:
+      baseline = (font::kAscent - extra) / 2;
+      break;
+    case TextAlignY::bottom:
+      baseline = -(font::kDescent + extra);
+      break;
+  }
+  const double s = text_scale_;
+  const auto at = [&](int u, int v) { return to_device(x + u * s, y + (baseline + v) * s); };
+  Path glyphs;
+  for (const font::TextRun& run : font::text_runs(str, text_align_.first))
+    glyphs.contours.push_back({at(run.x0, run.y), at(run.x1, run.y), at(run.x1, run.y + 1), at(run.x0, run.y + 1)});
+  paint(glyphs, FillRule::non_zero, *fill_);
+}
+
+// ---- Images ---------------------------------------------------------------------------------------------------------
+
+template <class Texel>
+void Canvas::draw_image(const Image<Texel>& img, double x, double y, double w, double h) {
+  if (img.empty()) return;
+  // Image point (u, v) lands on user point (x + u w / width, y + v h / height), then the CTM.
+  const Mat3 placement = stack_.top() * translate2d(x, y) * scale2d(w / img.width(), h / img.height());
+  const double det = glm::determinant(placement);
+  if (!std::isfinite(det) || det == 0) return;
+  const Mat3 to_image = glm::inverse(placement);
+  const Path footprint{{{to_device(x, y), to_device(x + w, y), to_device(x + w, y + h), to_device(x, y + h)}}};
+  scan_path(footprint, FillRule::non_zero, width(), height(), smooth_, [&](int py, int x0, int x1, const float* c) {
+    for (int px = x0; px < x1; ++px) {
+      const Vec2 uv = transform_point(to_image, Vec2(px + 0.5, py + 0.5));
+      write_pixel(px, py, smooth_ ? sample_bilinear(img, uv) : sample_nearest(img, uv), c ? c[px - x0] : 1.0f);
+    }
+  });
+}
+
+void Canvas::image(const ImageRGBA& img, double x, double y, double w, double h) { draw_image(img, x, y, w, h); }
+void Canvas::image(const ImageRGBA8& img, double x, double y, double w, double h) { draw_image(img, x, y, w, h); }
 
 // ---- Shapes ---------------------------------------------------------------------------------------------------------
 

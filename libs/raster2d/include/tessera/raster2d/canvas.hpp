@@ -8,18 +8,25 @@
 //
 // Processing -> Tessera: size(w, h) -> Canvas(w, h); background, fill/noFill, stroke/noStroke, strokeWeight,
 // strokeJoin, strokeCap, smooth/noSmooth -> background, fill/no_fill, stroke/no_stroke, stroke_weight, stroke_join,
-// stroke_cap, smooth/no_smooth; point, line, rect, ellipse, arc, triangle, quad -> the same names; beginShape(kind),
-// vertex, bezierVertex, quadraticVertex, beginContour, endContour, endShape(CLOSE) -> begin_shape(ShapeKind),
-// vertex, bezier_vertex, quadratic_vertex, begin_contour, end_contour, end_shape(true); pushMatrix, popMatrix,
-// translate, rotate, scale, shearX, shearY, applyMatrix, resetMatrix -> push_matrix, pop_matrix, translate, rotate,
-// scale, shear_x, shear_y, apply_matrix, reset_matrix; save(path) -> save(path). Only Processing's default modes are
-// offered (rectMode(CORNER), ellipseMode(CENTER)).
+// stroke_cap, smooth/no_smooth (background, fill and stroke take a Vec4f or Processing's numbers: gray, gray + alpha,
+// three components, three + alpha); colorMode(RGB|HSB, max...), color(...) -> color_mode(ColorMode::rgb|hsb, max...),
+// color(...); point, line, rect, ellipse, arc, triangle, quad -> the same names; beginShape(kind), vertex,
+// bezierVertex, quadraticVertex, beginContour, endContour, endShape(CLOSE) -> begin_shape(ShapeKind), vertex,
+// bezier_vertex, quadratic_vertex, begin_contour, end_contour, end_shape(true); pushMatrix, popMatrix, translate,
+// rotate, scale, shearX, shearY, applyMatrix, resetMatrix -> push_matrix, pop_matrix, translate, rotate, scale,
+// shear_x, shear_y, apply_matrix, reset_matrix; text, textSize, textAlign, textWidth, textAscent, textDescent -> text,
+// text_size, text_align(TextAlignX, TextAlignY), text_width, text_ascent, text_descent (the built-in bitmap font of
+// font.hpp, no textFont); image(img, x, y[, w, h]) -> image(img, x, y[, w, h]); save(path) -> save(path). Only
+// Processing's default modes are offered (rectMode(CORNER), ellipseMode(CENTER), imageMode(CORNER)).
 #include <filesystem>
 #include <optional>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tessera/image/image.hpp"
 #include "tessera/math/matrix_stack.hpp"
+#include "tessera/raster2d/font.hpp"
 #include "tessera/raster2d/path.hpp"
 
 namespace tessera {
@@ -31,6 +38,9 @@ Vec4f gray255(int v, int a = 255);
 
 /// What begin_shape() builds from its vertices (Processing's beginShape kinds; Polygon is the default, no argument).
 enum class ShapeKind { polygon, points, lines, triangles, triangle_strip, triangle_fan, quads, quad_strip };
+
+/// How color_mode() reads the numbers given to fill, stroke, background and color (Processing's RGB and HSB).
+enum class ColorMode { rgb, hsb };
 
 /// How arc() closes (Processing's OPEN, CHORD, PIE). Open fills the region up to the chord but strokes only the arc.
 enum class ArcMode { open, chord, pie };
@@ -54,9 +64,24 @@ class Canvas {
   // ---- Style -------------------------------------------------------------------------------------------------------
   /// Replaces every pixel with `color` (no blending), as Processing's background().
   void background(const Vec4f& color);
+  /// background(color(...)): the numbers read as color() reads them.
+  void background(double gray) { background(color(gray)); }
+  void background(double gray, double alpha) { background(color(gray, alpha)); }
+  void background(double v1, double v2, double v3) { background(color(v1, v2, v3)); }
+  void background(double v1, double v2, double v3, double alpha) { background(color(v1, v2, v3, alpha)); }
   void fill(const Vec4f& color) { fill_ = color; }
+  /// fill(color(...)): the numbers read as color() reads them.
+  void fill(double gray) { fill(color(gray)); }
+  void fill(double gray, double alpha) { fill(color(gray, alpha)); }
+  void fill(double v1, double v2, double v3) { fill(color(v1, v2, v3)); }
+  void fill(double v1, double v2, double v3, double alpha) { fill(color(v1, v2, v3, alpha)); }
   void no_fill() { fill_.reset(); }
   void stroke(const Vec4f& color) { stroke_ = color; }
+  /// stroke(color(...)): the numbers read as color() reads them.
+  void stroke(double gray) { stroke(color(gray)); }
+  void stroke(double gray, double alpha) { stroke(color(gray, alpha)); }
+  void stroke(double v1, double v2, double v3) { stroke(color(v1, v2, v3)); }
+  void stroke(double v1, double v2, double v3, double alpha) { stroke(color(v1, v2, v3, alpha)); }
   void no_stroke() { stroke_.reset(); }
   /// Stroke width in user units (scaled by the CTM). Throws InvalidInput when negative or not finite.
   void stroke_weight(double weight);
@@ -67,6 +92,29 @@ class Canvas {
   void no_smooth() { smooth_ = false; }
   /// The rule for shapes with contours (a Tessera extension; Processing's behavior is NonZero, the default).
   void fill_rule(FillRule rule) { fill_rule_ = rule; }
+
+  // ---- Color (Processing's colorMode and color) --------------------------------------------------------------------
+  /// colorMode(mode): how later numbers are read; the ranges stay (Processing's start: RGB, every range 255).
+  void color_mode(ColorMode mode) { color_mode_ = mode; }
+  /// colorMode(mode, max): every range, alpha's too, becomes [0, max]. Throws InvalidInput unless max > 0 and finite.
+  void color_mode(ColorMode mode, double max) { color_mode(mode, max, max, max, max); }
+  /// colorMode(mode, max1, max2, max3): the three components' ranges (red, green, blue or hue, saturation,
+  /// brightness); alpha's stays. Throws InvalidInput unless each max > 0 and finite.
+  void color_mode(ColorMode mode, double max1, double max2, double max3) {
+    color_mode(mode, max1, max2, max3, color_max_.w);
+  }
+  /// colorMode(mode, max1, max2, max3, maxA). Throws InvalidInput unless each max > 0 and finite.
+  void color_mode(ColorMode mode, double max1, double max2, double max3, double max_alpha);
+  /// color(gray): as Processing, a gray read against the FIRST range (in HSB too: colorMode(HSB, 360, 100, 100) makes
+  /// color(180) a middle gray), clamped to it; opaque.
+  Vec4f color(double gray) const { return color(gray, color_max_.w); }
+  /// color(gray, alpha): alpha read against the alpha range.
+  Vec4f color(double gray, double alpha) const;
+  /// color(v1, v2, v3): red, green, blue (RGB) or hue, saturation, brightness (HSB; libs/color's hsv_to_rgb), each
+  /// clamped to [0, its max] and divided by it; opaque. In HSB a hue of max is red again.
+  Vec4f color(double v1, double v2, double v3) const { return color(v1, v2, v3, color_max_.w); }
+  /// color(v1, v2, v3, alpha).
+  Vec4f color(double v1, double v2, double v3, double alpha) const;
 
   // ---- Primitives (user coordinates, transformed by the CTM) -------------------------------------------------------
   /// A point in the stroke color: one pixel, or a disk of diameter stroke_weight when that exceeds one pixel.
@@ -123,6 +171,43 @@ class Canvas {
   /// The current transformation matrix.
   const Mat3& matrix() const { return stack_.top(); }
 
+  // ---- Text: the built-in bitmap font (font.hpp), drawn in the fill color under the CTM --------------------------
+  /// Draws `str` anchored at (x, y) as text_align() says ('\n' starts a line text_leading() lower; '\r' is ignored;
+  /// characters outside printable ASCII draw a box). Each ink pixel of a glyph is a square of side text_size() / 8
+  /// user units, and the squares are filled as one path under the CTM: with an integer scale and whole device
+  /// coordinates every glyph pixel is exactly scale x scale device pixels; otherwise no_smooth() samples the bitmap at
+  /// pixel centers (nearest neighbour) and smooth() gives each pixel its covered area. Nothing without a fill.
+  void text(std::string_view str, double x, double y);
+  /// textSize(px): the height from the top of the capitals to the bottom of the descenders, in user units; the
+  /// bitmap's 8 rows are scaled by px / 8 (Tessera's default is 8, the font's native size; Processing's is 12).
+  /// Throws InvalidInput unless px > 0 and finite.
+  void text_size(double px);
+  /// textAlign(alignX, alignY) (Processing's default: LEFT, BASELINE).
+  void text_align(TextAlignX x, TextAlignY y = TextAlignY::baseline) { text_align_ = {x, y}; }
+  /// textWidth(str): the widest line's advance width (6 units a character, so a trailing column of gap included).
+  double text_width(std::string_view str) const;
+  /// textAscent(): the capitals' height, 7/8 of text_size().
+  double text_ascent() const { return font::kAscent * text_scale_; }
+  /// textDescent(): the descenders' depth below the baseline, 1/8 of text_size().
+  double text_descent() const { return font::kDescent * text_scale_; }
+  /// The distance from one line's baseline to the next: 10/8 of text_size().
+  double text_leading() const { return font::kLineHeight * text_scale_; }
+
+  // ---- Images (Processing's image(), imageMode(CORNER)) --------------------------------------------------------
+  /// Draws `img` with its top-left corner at (x, y), one image pixel per user unit, under the CTM.
+  void image(const ImageRGBA& img, double x, double y) { image(img, x, y, img.width(), img.height()); }
+  /// Draws `img` stretched over the rectangle (x, y, w, h) under the CTM (negative w or h mirror it). Each device
+  /// pixel the rectangle covers (its footprint is filled as rect() fills, so smooth() antialiases its edges) maps its
+  /// center back through the inverse of CTM x the rectangle's placement and samples the image there: smooth() samples
+  /// bilinearly between texel centers (clamped at the image's edges), no_smooth() takes the nearest texel (Processing
+  /// ties image smoothing to smooth() the same way). The sample, straight RGBA, is composited source-over with its
+  /// alpha times the coverage; an identity placement copies the image exactly in either mode. Nothing when the image
+  /// is empty or the placement is singular.
+  void image(const ImageRGBA& img, double x, double y, double w, double h);
+  /// The same for an 8-bit image (each channel / 255, no gamma).
+  void image(const ImageRGBA8& img, double x, double y) { image(img, x, y, img.width(), img.height()); }
+  void image(const ImageRGBA8& img, double x, double y, double w, double h);
+
   // ---- Pixels
   // --------------------------------------------------------------------------------------------------------
   /// Composites `color` (straight RGBA, its alpha scaled by `coverage` in [0, 1]) source-over onto pixel (x, y);
@@ -141,6 +226,8 @@ class Canvas {
   void point_device(const Vec2& p);
   void draw_device_polygon(const std::vector<Vec2>& points);  // fill and closed stroke
   void require_shape(const char* what) const;
+  template <class Texel>
+  void draw_image(const Image<Texel>& img, double x, double y, double w, double h);
 
   ImageRGBA image_;
   MatrixStack2 stack_;
@@ -150,6 +237,10 @@ class Canvas {
   StrokeStyle stroke_style_{1, LineJoin::miter, LineCap::round, 4};
   bool smooth_ = true;
   FillRule fill_rule_ = FillRule::non_zero;
+  ColorMode color_mode_ = ColorMode::rgb;
+  Vec4 color_max_{255, 255, 255, 255};  // the ranges of colorMode: v1, v2, v3, alpha
+  double text_scale_ = 1;               // user units per font unit: text_size() / 8
+  std::pair<TextAlignX, TextAlignY> text_align_{TextAlignX::left, TextAlignY::baseline};
   // The shape under construction (device coordinates): contour 0 is the outline, the rest are holes; vertices go to
   // contours_[current_] (non-zero between begin_contour and end_contour).
   std::optional<ShapeKind> shape_;
