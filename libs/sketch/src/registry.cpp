@@ -27,6 +27,21 @@ constexpr std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes 
 
 // Sorted by name (find_sketch searches it; --list prints it in this order).
 const std::array kSketches = {
+    SketchInfo{"bezier", "The notes' cubic Bezier curve with draggable control points and de Casteljau's construction",
+               sketches::make_bezier, sketches::kBezierDemo, 180},
+    SketchInfo{"body",
+               "The notes' body hierarchy (torso, arms of extent + hand) waving, angles from frame_count",
+               sketches::make_body,
+               {},
+               120},
+    SketchInfo{"mandelbrot_zoom",
+               "A smooth exponential zoom into the Mandelbrot set's seahorse valley (click recenters)",
+               sketches::make_mandelbrot_zoom,
+               {},
+               240},
+    SketchInfo{"marching_squares",
+               "The notes' marching squares: contours of a field, the iso value following the mouse's x",
+               sketches::make_marching_squares, sketches::kMarchingSquaresDemo, 180},
     SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D)",
                sketches::make_pink_square, kPinkSquareDemo, 60},
     SketchInfo{"rotating_cube",
@@ -34,6 +49,11 @@ const std::array kSketches = {
                sketches::make_rotating_cube,
                {},
                60},
+    SketchInfo{"transformations",
+               "The notes' 2D transformations animated: translate, rotate about a pivot, scale, shear",
+               sketches::make_transformations,
+               {},
+               120},
 };
 
 }  // namespace

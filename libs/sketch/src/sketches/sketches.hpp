@@ -1,6 +1,7 @@
 #pragma once
 // The built-in sketches' factories (one source each under src/sketches/), listed in src/registry.cpp's table.
 #include <memory>
+#include <string_view>
 
 #include "tessera/sketch/sketch.hpp"
 
@@ -8,5 +9,12 @@ namespace tessera::sketches {
 
 std::unique_ptr<Sketch> make_pink_square();
 std::unique_ptr<Sketch> make_rotating_cube();
+std::unique_ptr<Sketch> make_bezier();
+extern const std::string_view kBezierDemo;  // bezier's demo input
+std::unique_ptr<Sketch> make_body();
+std::unique_ptr<Sketch> make_mandelbrot_zoom();
+std::unique_ptr<Sketch> make_marching_squares();
+extern const std::string_view kMarchingSquaresDemo;  // marching_squares' demo input
+std::unique_ptr<Sketch> make_transformations();
 
 }  // namespace tessera::sketches

@@ -1,0 +1,38 @@
+#pragma once
+// The marching-squares sketch's class, private to the sketch module and its tests (which read its field, iso value
+// and contours to count the segments independently).
+#include <vector>
+
+#include "tessera/image/image.hpp"
+#include "tessera/sketch/sketch.hpp"
+#include "tessera/volume/marching_squares.hpp"
+
+namespace tessera::sketches {
+
+/// The notes' 2D marching-squares example with a draggable iso value (marching_squares.cpp says what it draws).
+class MarchingSquaresSketch : public Sketch {
+ public:
+  static constexpr int kSamples = 25;  ///< samples per side
+  static constexpr int kCell = 16;     ///< pixels between samples; sample (i, j) is at pixel (16 i + 8, 16 j + 8)
+
+  void setup() override;
+  void draw() override;
+  void mouse_moved() override { follow_mouse(); }
+  void mouse_dragged() override { follow_mouse(); }
+
+  /// The field: kSamples^2 values from 0 to about 10, three Gaussian hills.
+  const DepthImage& field() const { return field_; }
+  /// The iso value: 5 (the notes' "value >= 5") until the mouse moves, then 10 mouse_x / width.
+  float iso() const { return iso_; }
+  /// The contours drawn by the last draw(), in sample coordinates.
+  const std::vector<Polyline>& contours() const { return contours_; }
+
+ private:
+  void follow_mouse();
+
+  DepthImage field_;
+  float iso_ = 5;
+  std::vector<Polyline> contours_;
+};
+
+}  // namespace tessera::sketches
