@@ -23,6 +23,8 @@ constexpr std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes 
 46 mouse_move 240 160
 51 mouse_move 280 200
 56 mouse_release left
+58 key_press s
+59 key_release s
 )";
 
 // Sorted by name (find_sketch searches it; --list prints it in this order).
@@ -42,7 +44,7 @@ const std::array kSketches = {
     SketchInfo{"marching_squares",
                "The notes' marching squares: contours of a field, the iso value following the mouse's x",
                sketches::make_marching_squares, sketches::kMarchingSquaresDemo, 180},
-    SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D)",
+    SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D; s: outline)",
                sketches::make_pink_square, kPinkSquareDemo, 60},
     SketchInfo{"rotating_cube",
                "A cube with colored faces turning in 3D, double buffered (space pauses)",

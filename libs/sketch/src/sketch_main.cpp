@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -13,6 +15,7 @@
 namespace tessera {
 
 int sketch_main(int argc, char** argv, const SketchFactory& factory) {
+  const auto start = std::chrono::steady_clock::now();
   const std::string program = argc > 0 ? std::filesystem::path(argv[0]).filename().string() : "sketch";
   CLI::App app{"A Tessera sketch: runs in a window, or headless with -o (docs/sketch.md)", program};
   RunOptions options;
@@ -32,7 +35,7 @@ int sketch_main(int argc, char** argv, const SketchFactory& factory) {
   app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
   app.add_option("--seed", options.seed, "Seed of random()");
   app.add_flag("--srgb", options.srgb, "Encode 8-bit frames with the sRGB curve");
-  app.add_flag("--stats", stats, "Print frames, draws, width, height and timings as key=value lines");
+  app.add_flag("--stats", stats, "Print width, height, pixels, frames, draws and timings as key=value lines");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -53,9 +56,12 @@ int sketch_main(int argc, char** argv, const SketchFactory& factory) {
     options.mode = window || (!headless && output.empty()) ? RunMode::window : RunMode::headless;
     const std::unique_ptr<Sketch> sketch = factory();
     const RunResult r = run_sketch(*sketch, options);
+    // The keys of `tessera sketch --stats` (docs/cli.md's vocabulary).
     if (stats)
-      fmt::print("frames={}\ndraws={}\nwidth={}\nheight={}\ncompute_s={:.6f}\nwrite_s={:.6f}\n", r.frames, r.draws,
-                 r.width, r.height, r.draw_seconds, r.write_seconds);
+      fmt::print(
+          "width={}\nheight={}\npixels={}\nframes={}\ndraws={}\ncompute_s={:.6f}\nwrite_s={:.6f}\ntotal_s={:.6f}\n",
+          r.width, r.height, int64_t(r.width) * r.height, r.frames, r.draws, r.draw_seconds, r.write_seconds,
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: error: {}\n", program, e.what());
     return 1;

@@ -25,10 +25,21 @@ enum class MouseButton { none, left, right, center };
 /// says which: Key::up, Key::shift, ...). For a character key, `key_code` is its Java virtual-key code, as Processing's
 /// (the upper-case letter or the digit).
 struct Key {
-  static constexpr int coded = 0xFFFF;
-  static constexpr int backspace = 8, tab = 9, enter = 10, escape = 27, delete_key = 127;
-  static constexpr int shift = 16, control = 17, alt = 18;
-  static constexpr int left = 37, up = 38, right = 39, down = 40;
+  enum : int {
+    coded = 0xFFFF,
+    backspace = 8,
+    tab = 9,
+    enter = 10,
+    escape = 27,
+    delete_key = 127,
+    shift = 16,
+    control = 17,
+    alt = 18,
+    left = 37,
+    up = 38,
+    right = 39,
+    down = 40,
+  };
 };
 
 /// What happened.
