@@ -70,16 +70,22 @@ class GifSink final : public Rgb8Sink {
       throw InvalidInput(fmt::format("'{}': a GIF is at most 65535x65535 pixels, the frames are {}x{}",
                                      printable(path_.string()), width, height));
     indices_.resize(pixels.size());
+    // A frame of at most 256 colors is exact with its own palette or a global one holding them all, and then
+    // dithering has no error to spread: the frame is mapped directly.
+    const auto colors = distinct_colors(pixels);
+    bool exact = colors.has_value();
     PaletteMapper* mapper = &*global_;
     ColorMap local;
     if (index == 0) {
-      start(pixels, width, height);
-    } else if (!uses_global(pixels)) {
-      local_.emplace(quantize_palette(pixels));
+      start(colors ? *colors : quantize_palette(pixels), width, height);
+    } else if (uses_global(colors)) {
+      exact = exact && in_global(*colors);
+    } else {
+      local_.emplace(colors ? *colors : quantize_palette(pixels));
       local = color_map(local_->palette());
       mapper = &*local_;
     }
-    map_to_palette(pixels, width, height, *mapper, options_.dither, indices_);
+    map_to_palette(pixels, width, height, *mapper, options_.dither && !exact, indices_);
 
     const int delay = AnimationWriter::gif_delay_cs(options_.fps, index);
     // Graphic control: disposal 1 (leave the frame in place), no transparency; the delay little-endian.
@@ -91,8 +97,8 @@ class GifSink final : public Rgb8Sink {
 
  private:
   /// The first frame: its palette becomes the global table; the screen descriptor and loop extension go out.
-  void start(const std::vector<Rgb8>& pixels, int width, int height) {
-    global_.emplace(quantize_palette(pixels));
+  void start(std::vector<Rgb8> palette, int width, int height) {
+    global_.emplace(std::move(palette));
     for (const Rgb8& c : global_->palette()) global_colors_.push_back(pack(c));
     std::sort(global_colors_.begin(), global_colors_.end());
     const ColorMap map = color_map(global_->palette());
@@ -109,7 +115,7 @@ class GifSink final : public Rgb8Sink {
 
   /// Whether a later frame takes the global table: always (shared), never (per frame), or when the table holds
   /// every color of the frame (automatic).
-  bool uses_global(const std::vector<Rgb8>& pixels) const {
+  bool uses_global(const std::optional<std::vector<Rgb8>>& colors) const {
     switch (options_.palette) {
       case GifPalette::shared:
         return true;
@@ -118,10 +124,14 @@ class GifSink final : public Rgb8Sink {
       case GifPalette::automatic:
         break;
     }
-    const auto colors = distinct_colors(pixels);
-    return colors && std::all_of(colors->begin(), colors->end(), [&](Rgb8 c) {
-             return std::binary_search(global_colors_.begin(), global_colors_.end(), pack(c));
-           });
+    return colors && in_global(*colors);
+  }
+
+  /// Whether the global table holds every one of `colors`.
+  bool in_global(const std::vector<Rgb8>& colors) const {
+    return std::all_of(colors.begin(), colors.end(), [&](Rgb8 c) {
+      return std::binary_search(global_colors_.begin(), global_colors_.end(), pack(c));
+    });
   }
 
   void check(int status) const {
