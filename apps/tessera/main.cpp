@@ -33,6 +33,7 @@ void setup_raster(CLI::App&, CommonOptions&);
 void setup_render(CLI::App&, CommonOptions&);
 void setup_sketch(CLI::App&, CommonOptions&);
 void setup_trace(CLI::App&, CommonOptions&);
+void setup_view(CLI::App&, CommonOptions&);
 void setup_volume(CLI::App&, CommonOptions&);
 
 namespace {
@@ -52,6 +53,8 @@ const Command kCommands[] = {
     {"render", "Render a scene file or a built-in scene (ray tracing or rasterization)", setup_render},
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
     {"sketch", "Run a Processing sketch of the notes, in a window or headless (--list shows them)", setup_sketch},
+    {"view", "View a mesh, scene, volume or Bezier patches: orbit, pan, zoom, shading keys; --headless --orbit N",
+     setup_view},
     {"bench", "Measure hot paths: bench raycast MESH (rays per second)", setup_bench},
 };
 

@@ -1,0 +1,123 @@
+#include "mesh_display.hpp"
+
+#include <fmt/format.h>
+
+#include "tessera/core/parallel.hpp"
+#include "tessera/raster3d/framebuffer.hpp"
+#include "view_mode.hpp"
+
+namespace tessera::detail {
+namespace {
+
+/// The viewer's background: a dark gray, so that black (unlit back faces, shadows) stays visible.
+const Vec3f kBackground{0.1f, 0.1f, 0.12f};
+
+/// A checkerboard of 8 x 8 cells over the unit square of uvs (what `t` shows without a texture image).
+std::shared_ptr<const Texture2D> checkerboard() {
+  constexpr int kSize = 256, kCell = kSize / 8;
+  ImageRGBA8 image(kSize, kSize);
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x)
+      image(x, y) = ((x / kCell + y / kCell) % 2) ? glm::u8vec4(235, 225, 200, 255) : glm::u8vec4(60, 90, 160, 255);
+  return std::make_shared<const Texture2D>(std::move(image), Sampler{.filter = Filter::trilinear});
+}
+
+}  // namespace
+
+void to_frame(const ImageRGB& picture, ImageRGBA8& out) {
+  parallel_for(0, picture.height(), 16, [&](int64_t y0, int64_t y1) {
+    for (int y = int(y0); y < int(y1); ++y) {
+      // Channel by channel on the raw arrays, which the compiler vectorizes.
+      const float* in = &picture.row(y)->x;
+      uint8_t* o = &out.row(y)->x;
+      for (int x = 0; x < picture.width(); ++x) {
+        o[4 * x] = raster3d::to_unorm8(in[3 * x]);
+        o[4 * x + 1] = raster3d::to_unorm8(in[3 * x + 1]);
+        o[4 * x + 2] = raster3d::to_unorm8(in[3 * x + 2]);
+        o[4 * x + 3] = 255;
+      }
+    }
+  });
+}
+
+MeshDisplay::MeshDisplay(ViewShading shading, const std::string& texture, int up_axis)
+    : shading_(shading), texture_path_(texture), up_axis_(up_axis) {}
+
+void MeshDisplay::set_mesh(PolyMesh mesh) {
+  has_uvs_ = !mesh.uvs.empty() || !mesh.corner_uvs.empty();
+  if (!has_uvs_) textured_ = false;
+  view_.emplace(std::move(mesh), options());
+}
+
+MeshViewOptions MeshDisplay::options() const {
+  MeshViewOptions o;
+  o.background = kBackground;
+  switch (shading_) {
+    case ViewShading::unlit:
+      o.shading = MeshShading::unlit;
+      break;
+    case ViewShading::flat:
+      o.shading = MeshShading::flat;
+      break;
+    case ViewShading::gouraud:
+    case ViewShading::wireframe:
+      o.shading = MeshShading::gouraud;
+      break;
+    case ViewShading::phong:
+      o.shading = MeshShading::phong;
+      break;
+    case ViewShading::normals:
+      o.shading = MeshShading::normals;
+      break;
+  }
+  o.wireframe = shading_ == ViewShading::wireframe ? MeshWireframe::alone
+                : edges_                           ? MeshWireframe::over
+                                                   : MeshWireframe::none;
+  o.shadows = o.floor = shadows_;
+  o.up_axis = up_axis_;
+  if (textured_) {
+    if (!texture_)
+      texture_ =
+          texture_path_.empty() ? checkerboard() : std::make_shared<const Texture2D>(load_texture(texture_path_));
+    o.texture = texture_;
+  }
+  return o;
+}
+
+void MeshDisplay::render(const Camera& camera, ImageRGBA8& out) const {
+  to_frame(view_->render(camera, out.width(), out.height()).color, out);
+}
+
+bool MeshDisplay::key(int key) {
+  note_.clear();
+  if (key >= '1' && key <= '6') {
+    shading_ = ViewShading(key - '1');
+  } else if (key == 'w') {
+    edges_ = !edges_;
+  } else if (key == 'd') {
+    shadows_ = !shadows_;
+  } else if (key == 't') {
+    if (!has_uvs_) {
+      note_ = "no texture coordinates";
+      return true;
+    }
+    textured_ = !textured_;
+  } else {
+    return false;
+  }
+  view_->set_options(options());
+  return true;
+}
+
+std::string MeshDisplay::describe() const {
+  std::string s(shading_name(shading_));
+  if (const MeshViewOptions o = view_->options(); o.maps() && shading_ != ViewShading::phong)
+    s += " (per pixel with maps)";
+  if (edges_ && shading_ != ViewShading::wireframe) s += ", edges";
+  if (shadows_) s += ", shadows";
+  if (textured_) s += ", texture";
+  if (!note_.empty()) s += fmt::format(" [{}]", note_);
+  return s;
+}
+
+}  // namespace tessera::detail
