@@ -70,6 +70,7 @@ namespace detail {
 
 void SketchAccess::begin(Sketch& s, uint64_t seed, std::optional<std::pair<int, int>> size_override, bool wall_clock) {
   s.random_seed(seed);
+  s.noise_ = ProcessingNoise(int64_t(seed));
   s.size_override_ = size_override;
   s.wall_clock_ = wall_clock;
   s.start_ = std::chrono::steady_clock::now();

@@ -278,6 +278,38 @@ TEST(Sketch, ThreeDimensionalFramesAreDoubleBuffered) {
   EXPECT_EQ(&gt::gtCurrent(), &s.context());
 }
 
+/// Processing's noise() (seeded by --seed, reseeded by noise_seed), color_mode(HSB) and text() through the canvas.
+struct NoiseAndText : Sketch {
+  float seeded = 0, reseeded = 0;
+  void setup() override {
+    size(60, 20);
+    seeded = noise(0.5, 1.5, 2.5);
+    noise_seed(9);
+    reseeded = noise(3.25);
+  }
+  void draw() override {
+    color_mode(ColorMode::hsb, 360, 100, 100);
+    background(120, 100, 100);  // hue 120: pure green
+    fill(0, 100, 100);          // hue 0: pure red
+    text("Hi", 2, 12);
+  }
+};
+
+TEST(Sketch, NoiseColorModeAndTextReachTheLibrary) {
+  NoiseAndText s;
+  RunOptions o = frames(1);
+  o.seed = 3;
+  ImageRGBA8 picture;
+  run_sketch(s, o, [&](int, const ImageRGBA8& p) { picture = p; });
+  EXPECT_EQ(s.seeded, ProcessingNoise(3).noise(0.5f, 1.5f, 2.5f));
+  EXPECT_EQ(s.reseeded, ProcessingNoise(9).noise(3.25f));
+  EXPECT_EQ(picture(59, 19), glm::u8vec4(0, 255, 0, 255));
+  int red = 0;
+  for (int y = 0; y < 20; ++y)
+    for (int x = 0; x < 60; ++x) red += picture(x, y) == glm::u8vec4(255, 0, 0, 255);
+  EXPECT_GT(red, 10);  // the letters' pixels
+}
+
 TEST(Sketch, OptionsAreChecked) {
   Recorder s;
   RunOptions o;

@@ -44,7 +44,7 @@ struct RunOptions {
   std::filesystem::path input;              ///< [--input script.txt] scripted input events (input.hpp)
   std::vector<InputEvent> events;           ///< more scripted events (a built-in's demo input, tests)
   int threads = 0;                          ///< [--threads N] worker threads (0 = all cores); never changes pixels
-  uint64_t seed = 0;                        ///< [--seed N] the random() generator's seed before setup()
+  uint64_t seed = 0;                        ///< [--seed N] the seed of random() and noise() before setup()
   bool srgb = false;                        ///< [--srgb] 8-bit frames sRGB-encoded (window and files alike)
   std::string title = "tessera sketch";     ///< the window's title
 };

@@ -15,8 +15,12 @@
 //   size(w, h), size(w, h, P3D) -> size(w, h), size(w, h, Renderer::p3d); frameRate(fps) -> frame_rate(fps);
 //   millis, noLoop, loop, redraw, exit -> millis, no_loop, loop, redraw, exit; saveFrame("frame-####.png") ->
 //   save_frame("frame-####.png"); random(hi), random(lo, hi), randomSeed -> random, random_seed;
-//   the drawing calls (background, fill, stroke, rect, ellipse, beginShape, pushMatrix, translate, ...) -> the Canvas's
-//   names (canvas.hpp), forwarded with all their overloads; canvas() is the Canvas itself.
+//   noise(x, y, z), noiseSeed, noiseDetail -> noise, noise_seed, noise_detail (math/noise.hpp's ProcessingNoise: the
+//   values of Processing's noise() for the same seed);
+//   the drawing calls (background, fill, stroke, rect, ellipse, beginShape, pushMatrix, translate, colorMode, color,
+//   text, textSize, textAlign, textWidth, image, ...) -> the Canvas's names (canvas.hpp: background, fill, stroke,
+//   rect, ellipse, begin_shape, push_matrix, translate, color_mode, color, text, text_size, text_align, text_width,
+//   image, ...), forwarded with all their overloads; canvas() is the Canvas itself.
 // In 3D (size(w, h, Renderer::p3d)) the sketch draws with the notes' gt functions (raster3d/gt.hpp) on a
 // raster3d::Context that is current whenever the runner calls the sketch; the runner presents each frame by swapping
 // the context's buffers after draw() (double buffering: the window shows the front buffer while draw() paints the
@@ -30,6 +34,7 @@
 
 #include "tessera/core/rng.hpp"
 #include "tessera/image/image.hpp"
+#include "tessera/math/noise.hpp"
 #include "tessera/raster2d/canvas.hpp"
 #include "tessera/raster3d/context.hpp"
 #include "tessera/sketch/input.hpp"
@@ -124,6 +129,13 @@ class Sketch {
   double random(double lo, double hi) { return rng_.uniform(lo, hi); }
   /// Restarts the generator from `seed` (the same seed, the same numbers).
   void random_seed(uint64_t seed) { rng_ = Rng(0, seed); }
+  /// Processing's noise(x, y, z): smooth noise in [0, 1) (ProcessingNoise; seeded by the runner's --seed).
+  float noise(double x, double y = 0, double z = 0) const { return noise_.noise(float(x), float(y), float(z)); }
+  /// noiseSeed(seed): the values Processing's noise() gives after noiseSeed(seed).
+  void noise_seed(int64_t seed) { noise_.noise_seed(seed); }
+  /// noiseDetail(octaves) and noiseDetail(octaves, falloff).
+  void noise_detail(int octaves) { noise_.noise_detail(octaves); }
+  void noise_detail(int octaves, double falloff) { noise_.noise_detail(octaves, falloff); }
 
   // ---- The pictures -----------------------------------------------------------------------------------------------
   /// The 2D canvas. Throws InvalidInput in a 3D sketch.
@@ -174,6 +186,16 @@ class Sketch {
   TESSERA_SKETCH_FORWARD(shear_y)
   TESSERA_SKETCH_FORWARD(apply_matrix)
   TESSERA_SKETCH_FORWARD(reset_matrix)
+  TESSERA_SKETCH_FORWARD(color_mode)
+  TESSERA_SKETCH_FORWARD(color)
+  TESSERA_SKETCH_FORWARD(text)
+  TESSERA_SKETCH_FORWARD(text_size)
+  TESSERA_SKETCH_FORWARD(text_align)
+  TESSERA_SKETCH_FORWARD(text_width)
+  TESSERA_SKETCH_FORWARD(text_ascent)
+  TESSERA_SKETCH_FORWARD(text_descent)
+  TESSERA_SKETCH_FORWARD(text_leading)
+  TESSERA_SKETCH_FORWARD(image)
 #undef TESSERA_SKETCH_FORWARD
 
  private:
@@ -190,6 +212,7 @@ class Sketch {
   double frame_time_ms_ = 0;
   std::chrono::steady_clock::time_point start_;
   Rng rng_;
+  ProcessingNoise noise_;
   // Processing's three mouse positions: the last event's (pmouse in callbacks) and the last frame's (pmouse in draw).
   int event_mouse_x_ = 0, event_mouse_y_ = 0, frame_mouse_x_ = 0, frame_mouse_y_ = 0;
   int buttons_down_ = 0, keys_down_ = 0;
