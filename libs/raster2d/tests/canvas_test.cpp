@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <random>
+#include <tuple>
+#include <utility>
 
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/math/transform.hpp"
@@ -286,6 +291,280 @@ TEST(Canvas, SizesOverTheMemoryBudgetAreRefusedBeforeAllocating) {
             "a 300x300 canvas needs about 1.7 MiB, the memory budget is 1.0 MiB (raise it with --max-memory "
             "SIZE)");
   EXPECT_THROW(Canvas(-1, 5), InvalidInput);
+}
+
+// ---- Text
+// -------------------------------------------------------------------------------------------------------------
+
+// The pixels a canvas drew on (alpha > 0 on a transparent canvas), and their bounding box [x0, x1) x [y0, y1).
+struct Ink {
+  int count = 0, x0 = 1 << 20, y0 = 1 << 20, x1 = -1, y1 = -1;
+};
+Ink ink_of(const Canvas& c) {
+  Ink ink;
+  for (int y = 0; y < c.height(); ++y)
+    for (int x = 0; x < c.width(); ++x)
+      if (c.image()(x, y).w > 0) {
+        ++ink.count;
+        ink.x0 = std::min(ink.x0, x);
+        ink.y0 = std::min(ink.y0, y);
+        ink.x1 = std::max(ink.x1, x + 1);
+        ink.y1 = std::max(ink.y1, y + 1);
+      }
+  return ink;
+}
+
+bool same_pixels(const Canvas& a, const Canvas& b) {
+  return std::ranges::equal(a.image().pixels(), b.image().pixels());
+}
+
+Canvas text_canvas() {
+  Canvas c(120, 90);
+  c.background(Vec4f(0));
+  c.fill(Vec4f(1, 1, 1, 1));
+  return c;
+}
+
+TEST(CanvasText, GlyphPixelsAtNativeSizeAndScaled) {
+  for (const bool smooth : {false, true}) {
+    Canvas c = text_canvas();
+    smooth ? c.smooth() : c.no_smooth();
+    c.text("I", 10, 20);  // baseline y = 20: the capital covers rows 13 .. 19
+    const Ink i = ink_of(c);
+    EXPECT_EQ(i.count, 11);
+    EXPECT_EQ(std::tuple(i.x0, i.y0, i.x1, i.y1), std::tuple(11, 13, 14, 20));
+    EXPECT_EQ(c.image()(12, 16), Vec4f(1, 1, 1, 1));  // the stem, fully covered
+    EXPECT_EQ(c.image()(11, 16), Vec4f(0));
+  }
+  Canvas dot = text_canvas(), space = text_canvas(), big = text_canvas();
+  dot.text(".", 0, 30);
+  EXPECT_EQ(ink_of(dot).count, 4);
+  space.text("   ", 0, 30);
+  EXPECT_EQ(ink_of(space).count, 0);
+  big.text_size(24);  // 3 pixels a font unit
+  big.text("I", 10, 40);
+  EXPECT_EQ(ink_of(big).count, 11 * 9);
+  EXPECT_EQ(big.text_ascent(), 21);
+  EXPECT_EQ(big.text_descent(), 3);
+  EXPECT_EQ(big.text_leading(), 30);
+  EXPECT_EQ(big.text_width("I."), 36);
+  EXPECT_THROW(big.text_size(0), InvalidInput);
+  EXPECT_THROW(big.text_size(std::nan("")), InvalidInput);
+}
+
+TEST(CanvasText, AlignmentArithmetic) {
+  // "Hi" at text_size 16 (2 pixels a unit) is 24 wide; its ink spans units [0, 10) across and the 7 capital rows.
+  const auto box = [](TextAlignX ax, TextAlignY ay, std::string_view text, double x, double y) {
+    Canvas c = text_canvas();
+    c.no_smooth();
+    c.text_size(16);
+    c.text_align(ax, ay);
+    c.text(text, x, y);
+    const Ink i = ink_of(c);
+    return std::tuple(i.x0, i.y0, i.x1, i.y1);
+  };
+  EXPECT_EQ(box(TextAlignX::left, TextAlignY::baseline, "Hi", 10, 30), std::tuple(10, 16, 30, 30));
+  EXPECT_EQ(box(TextAlignX::center, TextAlignY::top, "Hi", 50, 30), std::tuple(38, 30, 58, 44));
+  EXPECT_EQ(box(TextAlignX::right, TextAlignY::bottom, "Hi", 100, 50), std::tuple(76, 34, 96, 48));  // y - descent
+  EXPECT_EQ(box(TextAlignX::left, TextAlignY::center, "Hi", 10, 40), std::tuple(10, 33, 30, 47));    // caps about y
+  // Two lines: baseline moves up by one leading (20) for BOTTOM and by half of it for CENTER (Processing's text()).
+  EXPECT_EQ(box(TextAlignX::left, TextAlignY::baseline, "H\nH", 10, 30), std::tuple(10, 16, 20, 50));
+  EXPECT_EQ(box(TextAlignX::left, TextAlignY::bottom, "H\nH", 10, 80), std::tuple(10, 44, 20, 78));
+  EXPECT_EQ(box(TextAlignX::left, TextAlignY::center, "H\nH", 10, 40), std::tuple(10, 23, 20, 57));
+  // Each line is aligned on its own.
+  EXPECT_EQ(box(TextAlignX::right, TextAlignY::baseline, "H\nHH", 100, 30), std::tuple(76, 16, 98, 50));
+  Canvas c = text_canvas();
+  c.text_size(16);
+  EXPECT_EQ(c.text_width("Hi"), 24);
+  EXPECT_EQ(c.text_width("Hi\nthere"), 60);
+}
+
+TEST(CanvasText, FollowsTheMatrixAndTheFill) {
+  // Text under translate(30, 40) is the text drawn at (30, 40); under scale(2) the text at size 16.
+  Canvas moved = text_canvas(), direct = text_canvas(), scaled = text_canvas(), sized = text_canvas();
+  moved.translate(30, 40);
+  moved.text("Tessera 26", 0, 0);
+  direct.text("Tessera 26", 30, 40);
+  EXPECT_TRUE(same_pixels(moved, direct));
+  scaled.scale(2);
+  scaled.text("g!", 5, 20);
+  sized.text_size(16);
+  sized.text("g!", 10, 40);
+  EXPECT_TRUE(same_pixels(scaled, sized));
+  // A quarter turn about the anchor: the stem of 'I' (column 2, rows -6 .. -2) becomes a row, as rotate() maps
+  // (u, v) to (-v, u) about it.
+  Canvas turned = text_canvas();
+  turned.no_smooth();
+  turned.translate(50, 50);
+  turned.rotate(kPi / 2);
+  turned.text("I", 0, 0);
+  const Ink t = ink_of(turned);
+  EXPECT_EQ(t.count, 11);
+  EXPECT_EQ(std::tuple(t.x0, t.y0, t.x1, t.y1), std::tuple(50, 51, 57, 54));  // x = 50 - v, v in [-7, 0]; y = 50 + u
+  for (int x = 51; x < 56; ++x) EXPECT_EQ(turned.image()(x, 52).w, 1.0f) << x;
+  // The fill color, composited; nothing without a fill.
+  Canvas red = text_canvas();
+  red.fill(Vec4f(1, 0, 0, 0.5f));
+  red.text(".", 0, 10);
+  EXPECT_EQ(red.image()(1, 8), Vec4f(1, 0, 0, 0.5f));
+  red.no_fill();
+  red.text("I", 20, 20);
+  EXPECT_EQ(ink_of(red).count, 4);
+}
+
+// ---- Images
+// -----------------------------------------------------------------------------------------------------------
+
+ImageRGBA test_image(int w, int h, float alpha = 1) {
+  ImageRGBA img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) img(x, y) = Vec4f(float(x) / w, float(y) / h, float((x * 7 + y * 3) % 5) / 4, alpha);
+  return img;
+}
+
+TEST(CanvasImage, IdentityAndTranslateCopyExactly) {
+  const ImageRGBA img = test_image(13, 9);
+  for (const bool smooth : {false, true}) {
+    Canvas c(40, 30);
+    const Vec4f back(0.2f, 0.3f, 0.4f, 1);
+    c.background(back);
+    smooth ? c.smooth() : c.no_smooth();
+    c.translate(5, 2);
+    c.image(img, 2, 3);  // lands at (7, 5)
+    for (int y = 0; y < 30; ++y)
+      for (int x = 0; x < 40; ++x) {
+        const bool in = x >= 7 && x < 20 && y >= 5 && y < 14;
+        ASSERT_EQ(c.image()(x, y), in ? img(x - 7, y - 5) : back) << x << "," << y << " smooth " << smooth;
+      }
+  }
+}
+
+TEST(CanvasImage, TwiceTheSizeNearestAndBilinear) {
+  const ImageRGBA img = test_image(6, 5);
+  Canvas nearest(20, 16), bilinear(20, 16);
+  nearest.no_smooth();
+  nearest.image(img, 3, 4, 12, 10);
+  bilinear.image(img, 3, 4, 12, 10);
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 12; ++i) {
+      // Nearest: each texel a 2 x 2 block.
+      ASSERT_EQ(nearest.image()(3 + i, 4 + j), img(i / 2, j / 2)) << i << "," << j;
+      // Bilinear: destination pixel i samples u = (i + 0.5) / 2, a quarter texel before or after texel i / 2's
+      // center, so weights 1/4 and 3/4 toward the neighbour on that side (clamped at the edges).
+      const auto axis = [](int i, int n) {
+        const int t = i / 2, other = std::clamp(i % 2 ? t + 1 : t - 1, 0, n - 1);
+        return std::pair(std::pair(t, 0.75), std::pair(other, 0.25));
+      };
+      const auto [ux, vx] = axis(i, 6);
+      const auto [uy, vy] = axis(j, 5);
+      const Vec4 want = Vec4(img(ux.first, uy.first)) * ux.second * uy.second +
+                        Vec4(img(vx.first, uy.first)) * vx.second * uy.second +
+                        Vec4(img(ux.first, vy.first)) * ux.second * vy.second +
+                        Vec4(img(vx.first, vy.first)) * vx.second * vy.second;
+      const Vec4f got = bilinear.image()(3 + i, 4 + j);
+      for (int k = 0; k < 4; ++k) ASSERT_NEAR(got[k], want[k], 1e-6) << i << "," << j << " channel " << k;
+    }
+  // Outside the rectangle nothing changed.
+  EXPECT_EQ(nearest.image()(2, 4), gray255(204));
+  EXPECT_EQ(nearest.image()(15, 4), gray255(204));
+  EXPECT_EQ(nearest.image()(3, 14), gray255(204));
+}
+
+TEST(CanvasImage, RotatedMirroredBlendedAndEightBit) {
+  // A quarter turn: image pixel (i, j) lands on device pixel (9 - j, i) under translate(10, 0) rotate(pi / 2).
+  const ImageRGBA img = test_image(4, 3);
+  Canvas turned(12, 12);
+  turned.no_smooth();
+  turned.translate(10, 0);
+  turned.rotate(kPi / 2);
+  turned.image(img, 0, 0);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(turned.image()(9 - j, i), img(i, j)) << i << "," << j;
+  // A negative width mirrors: image(img, x + w, y, -w, h) puts texel i at x + w - 1 - i.
+  Canvas mirrored(12, 12);
+  mirrored.image(img, 8, 1, -4, 3);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(mirrored.image()(7 - i, 1 + j), img(i, j));
+  // Straight alpha composited over an opaque background: a src + (1 - a) dst.
+  const ImageRGBA glass = test_image(3, 3, 0.25f);
+  Canvas over(5, 5);
+  over.background(Vec4f(0, 0, 1, 1));
+  over.image(glass, 1, 1);
+  const Vec4f got = over.image()(2, 3), src = glass(1, 2);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], 0.25f * src[k] + 0.75f * (k == 2 ? 1.0f : 0.0f), 1e-6);
+  EXPECT_FLOAT_EQ(got.w, 1);
+  // 8-bit images: each channel / 255.
+  ImageRGBA8 bytes(2, 1);
+  bytes(0, 0) = {255, 0, 51, 255};
+  bytes(1, 0) = {0, 102, 255, 255};
+  Canvas eight(3, 2);
+  eight.image(bytes, 1, 1);
+  EXPECT_EQ(eight.image()(1, 1), Vec4f(1, 0, 0.2f, 1));
+  EXPECT_EQ(eight.image()(2, 1), Vec4f(0, 0.4f, 1, 1));
+  // Empty images and singular placements draw nothing.
+  Canvas none(4, 4);
+  none.image(ImageRGBA(), 0, 0);
+  none.image(img, 0, 0, 0, 3);
+  none.scale(0);
+  none.image(img, 0, 0);
+  EXPECT_TRUE(same_pixels(none, Canvas(4, 4)));
+}
+
+// ---- Color modes
+// ------------------------------------------------------------------------------------------------------
+
+void expect_color(const Vec4f& got, const Vec4& want) {
+  for (int k = 0; k < 4; ++k) EXPECT_NEAR(got[k], want[k], 1e-6) << "channel " << k;
+}
+
+TEST(CanvasColor, RgbDefaultsAndRanges) {
+  Canvas c(4, 4);
+  expect_color(c.color(255, 0, 0), {1, 0, 0, 1});
+  expect_color(c.color(51, 102, 153, 127.5), {0.2, 0.4, 0.6, 0.5});
+  expect_color(c.color(127.5), {0.5, 0.5, 0.5, 1});
+  expect_color(c.color(300, -5, std::nan(""), 999), {1, 0, 0, 1});  // clamped, NaN as 0
+  c.color_mode(ColorMode::rgb, 1.0);
+  expect_color(c.color(0.2, 0.4, 0.6, 0.5), {0.2, 0.4, 0.6, 0.5});
+  expect_color(c.color(0.25, 0.5), {0.25, 0.25, 0.25, 0.5});
+  c.color_mode(ColorMode::rgb, 10, 20, 40);  // alpha keeps its range (1)
+  expect_color(c.color(5, 5, 10, 0.5), {0.5, 0.25, 0.25, 0.5});
+  EXPECT_THROW(c.color_mode(ColorMode::rgb, 0), InvalidInput);
+  EXPECT_THROW(c.color_mode(ColorMode::hsb, 360, 100, -1), InvalidInput);
+  EXPECT_THROW(c.color_mode(ColorMode::hsb, 360, 100, 100, std::numeric_limits<double>::infinity()), InvalidInput);
+}
+
+TEST(CanvasColor, HsbAsColorsys) {
+  Canvas c(4, 4);
+  c.color_mode(ColorMode::hsb, 360, 100, 100);
+  // colorsys.hsv_to_rgb(h / 360, s / 100, b / 100).
+  expect_color(c.color(200, 40, 80), {0.48, 0.6933333333333334, 0.8, 1});
+  expect_color(c.color(30, 100, 100), {1, 0.5, 0, 1});
+  expect_color(c.color(324, 25, 60, 127.5), {0.6, 0.45, 0.54, 0.5});  // alpha keeps 255
+  expect_color(c.color(0, 100, 100), {1, 0, 0, 1});
+  expect_color(c.color(360, 100, 100), {1, 0, 0, 1});  // the top of the hue range is red again
+  expect_color(c.color(120, 100, 100), {0, 1, 0, 1});
+  expect_color(c.color(240, 100, 50), {0, 0, 0.5, 1});
+  expect_color(c.color(77, 0, 30), {0.3, 0.3, 0.3, 1});
+  expect_color(c.color(180), {0.5, 0.5, 0.5, 1});  // a gray reads against the first range, as Processing's
+  // color_mode(mode) keeps the ranges; color_mode(mode, max) sets alpha's too.
+  Canvas d(4, 4);
+  d.color_mode(ColorMode::hsb);
+  expect_color(d.color(85, 255, 255), {0, 1, 0, 1});
+  d.color_mode(ColorMode::hsb, 100);
+  expect_color(d.color(50, 100, 100, 50), {0, 1, 1, 0.5});
+  // fill, stroke and background read their numbers the same way.
+  d.background(0, 0, 100);
+  expect_color(d.image()(0, 0), {1, 1, 1, 1});
+  d.background(25);
+  expect_color(d.image()(0, 0), {0.25, 0.25, 0.25, 1});
+  d.no_stroke();
+  d.fill(0, 100, 100);
+  d.rect(1, 1, 2, 2);
+  expect_color(d.image()(1, 1), {1, 0, 0, 1});
+  d.stroke(100.0 / 3, 100, 100);
+  d.no_smooth();
+  d.point(0.5, 0.5);
+  expect_color(d.image()(0, 0), {0, 1, 0, 1});
 }
 
 }  // namespace
