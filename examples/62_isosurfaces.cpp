@@ -23,7 +23,7 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
     ct = make_sphere(64, 0.8);
     for (float& v : ct.voxels()) v = v > 0.12f ? 600.0f : v > 0.0f ? 1300.0f : 0.0f;
   }
-  MeshViewOptions options;
+  examples::MeshViewOptions options;
   options.wireframe = false;
   options.camera = Camera{};
   const Vec3 lo = ct.origin(), hi = ct.to_world(Vec3(ct.dims() - 1)), mid = 0.5 * (lo + hi);
@@ -46,7 +46,7 @@ TESSERA_EXAMPLE(ex62_isosurfaces, "62_isosurfaces", "Marching cubes iso-surfaces
   options.color = {0.95f, 0.93f, 0.85f};
   gallery.add("62_ct_bone.png", render_mesh(marching_cubes(ct, {.iso = bone}), options),
               caption(fmt::format("{}, bone iso-surface (marching cubes at {:g}).", subject, bone)));
-  MeshViewOptions g;
+  examples::MeshViewOptions g;
   g.wireframe = false;
   gallery.add("62_gyroid.png", render_mesh(marching_cubes(make_gyroid(64), {}), g),
               "The gyroid sin x cos y + sin y cos z + sin z cos x = 0.");

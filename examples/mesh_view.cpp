@@ -1,24 +1,16 @@
-// The mesh view: the polygons become triangles with their own corners (so that a face keeps its color and, when
-// flat, its normal), drawn twice by raster3d — front faces, then back faces with flipped normals and darker colors
-// (OpenGL's two-sided lighting done with two culled passes) — then the polygon edges as lines pulled slightly toward
-// the eye, all at `samples` x `samples` resolution and box-filtered down.
+// The gallery's mesh pictures through the library's mesh view, and the shadow examples' scene.
 #include "mesh_view.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/mesh/primitives.hpp"
-#include "tessera/raster3d/context.hpp"
 
 namespace tessera::examples {
 namespace {
-
-constexpr float kBackShade = 0.55f;      // back faces are this much darker
-constexpr double kWireDepthBias = 1e-3;  // edges win over the surface they lie on (normalized device depth)
 
 /// A camera looking at the mesh's bounding sphere from direction (1, 0.8, 1.6), the sphere filling the view.
 Camera frame_mesh(const PolyMesh& mesh) {
@@ -29,55 +21,42 @@ Camera frame_mesh(const PolyMesh& mesh) {
   return frame_sphere(Camera{}, center, std::max(radius, 1e-9), Vec3(1, 0.8, 1.6), 1.08);
 }
 
-/// Front and back passes: every fan triangle with its own three corners.
-struct Surfaces {
-  raster3d::VertexArrays front, back;
-};
-
-Surfaces triangles(const PolyMesh& mesh, const MeshViewOptions& o) {
-  const bool flat = o.shading == raster3d::ShadingModel::flat;
-  const std::vector<Vec3> vertex_normals_ = flat || !mesh.corner_normals.empty() ? std::vector<Vec3>{}
-                                            : mesh.normals.empty()               ? vertex_normals(mesh)
-                                                                                 : mesh.normals;
-  Surfaces s;
-  for (size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
-    const Vec3f color = f < o.face_colors.size() ? o.face_colors[f] : o.color;
-    const Vec3 face_n = face_normal(mesh, f);
-    const auto normal = [&](size_t corner) {
-      if (flat) return Vec3f(face_n);
-      if (!mesh.corner_normals.empty()) return Vec3f(mesh.corner_normals[mesh.face_offsets[f] + corner]);
-      return Vec3f(vertex_normals_[face[corner]]);
-    };
-    for (size_t i = 1; i + 1 < face.size(); ++i)
-      for (const size_t corner : {size_t(0), i, i + 1}) {
-        const Vec3f p(mesh.positions[face[corner]]), n = normal(corner);
-        for (raster3d::VertexArrays* a : {&s.front, &s.back}) {
-          a->indices.push_back(uint32_t(a->positions.size()));
-          a->positions.push_back(p);
-        }
-        s.front.normals.push_back(n);
-        s.front.colors.push_back(color);
-        s.back.normals.push_back(-n);
-        s.back.colors.push_back(kBackShade * color);
-      }
+MeshShading mesh_shading(raster3d::ShadingModel model) {
+  switch (model) {
+    case raster3d::ShadingModel::flat:
+      return MeshShading::flat;
+    case raster3d::ShadingModel::gouraud:
+      return MeshShading::gouraud;
+    case raster3d::ShadingModel::phong:
+      return MeshShading::phong;
+    default:
+      return MeshShading::unlit;
   }
-  return s;
 }
 
 }  // namespace
 
-ImageRGB downsample(const ImageRGB& image, int s) {
-  if (s == 1) return image;
-  ImageRGB out(image.width() / s, image.height() / s);
-  for (int y = 0; y < out.height(); ++y)
-    for (int x = 0; x < out.width(); ++x) {
-      Vec3f sum(0.0f);
-      for (int dy = 0; dy < s; ++dy)
-        for (int dx = 0; dx < s; ++dx) sum += image(x * s + dx, y * s + dy);
-      out(x, y) = sum / float(s * s);
-    }
-  return out;
+ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& o) {
+  if (mesh.face_count() == 0) return ImageRGB(o.width, o.height, o.background);  // e.g. marching-cubes case 0
+  Camera camera = o.camera ? *o.camera : frame_mesh(mesh);
+  camera.aspect = double(o.width) / o.height;
+  tessera::MeshViewOptions v;
+  v.shading = mesh_shading(o.shading);
+  v.color = o.color;
+  v.face_colors = o.face_colors;
+  v.specular = 0.15f;
+  v.shininess = 24;
+  v.material = o.material;
+  v.specular_model = o.specular;
+  v.background = o.background;
+  v.light = {MeshLightKind::directional, o.light_dir, 0.8f};
+  v.wireframe = o.wireframe ? MeshWireframe::over : MeshWireframe::none;
+  v.wire_color = o.wire_color;
+  v.wire_depth_offset = 1e-3;  // edges win over the surface they lie on (normalized device depth)
+  v.two_sided = true;
+  v.supersample = std::max(1, o.samples);
+  v.turn_outward = false;  // the back faces show as such
+  return tessera::render_mesh(mesh, camera, o.width, o.height, v).color;
 }
 
 PolyMesh with_face_normals(PolyMesh mesh) {
@@ -94,56 +73,6 @@ raster3d::Lighting surface_lighting(const Vec3& to_light, const Mat4& view, floa
   l.model_ambient = Vec3f(ambient);
   l.lights[0].position = Vec4f(Vec3f(glm::normalize(Mat3(view) * to_light)), 0);
   return l;
-}
-
-ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& o) {
-  if (mesh.face_count() == 0) return ImageRGB(o.width, o.height, o.background);  // e.g. marching-cubes case 0
-  Camera camera = o.camera ? *o.camera : frame_mesh(mesh);
-  camera.aspect = double(o.width) / o.height;
-  const int s = std::max(1, o.samples), width = o.width * s, height = o.height * s;
-  const Surfaces surfaces = triangles(mesh, o);
-
-  raster3d::Context ctx(width, height);
-  ctx.clear(o.background);
-  ctx.matrix_mode(raster3d::MatrixMode::projection);
-  ctx.load_matrix(camera.projection());
-  ctx.matrix_mode(raster3d::MatrixMode::model_view);
-  ctx.load_matrix(camera.view());
-  ctx.light(0, {.position = Vec4f(Vec3f(glm::normalize(o.light_dir)), 0.0f), .diffuse = Vec3f(0.8f)});
-  ctx.shading(o.shading);
-  ctx.specular_model(o.specular);
-  // Without a material the per-face colors are the surface (GL_COLOR_MATERIAL); with one, its colors are.
-  raster3d::Material material = o.material.value_or(raster3d::Material::plastic(o.color, 24, 0.15f));
-  ctx.color_material(!o.material);
-  ctx.material(material);
-  ctx.cull(raster3d::CullMode::back);
-  ctx.draw(surfaces.front);
-  material.ambient *= kBackShade;
-  material.diffuse *= kBackShade;
-  ctx.material(material);
-  ctx.cull(raster3d::CullMode::front);
-  ctx.draw(surfaces.back);
-
-  if (o.wireframe) {
-    // Lines are 1 pixel wide at the supersampled size: drawn at s x s one-pixel offsets they come out 1 pixel wide.
-    ctx.cull(raster3d::CullMode::none);
-    ctx.shading(raster3d::ShadingModel::unlit);
-    ctx.color(o.wire_color);
-    ctx.matrix_mode(raster3d::MatrixMode::projection);
-    for (int dy = 0; dy < s; ++dy)
-      for (int dx = 0; dx < s; ++dx) {
-        ctx.load_matrix(translate(2.0 * dx / width, 2.0 * dy / height, -kWireDepthBias) * camera.projection());
-        ctx.begin(raster3d::Primitive::lines);
-        for (size_t f = 0; f < mesh.face_count(); ++f) {
-          const auto face = mesh.face(f);
-          for (size_t i = 0; i < face.size(); ++i)
-            for (const uint32_t v : {face[i], face[(i + 1) % face.size()]})
-              ctx.vertex(mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z);
-        }
-        ctx.end();
-      }
-  }
-  return downsample(ctx.framebuffer().color_rgb(), s);
 }
 
 std::vector<SceneObject> shadow_scene() {

@@ -1,8 +1,8 @@
 #pragma once
-// A lit picture of a polygon mesh through the 3D pipeline (raster3d), for the gallery's pictures of meshes,
-// subdivision surfaces, patches, terrains and shading models: a framed camera, one directional light, the shading
-// model of your choice, back faces shaded darker (two-sided lighting in two culled passes), and the polygon edges
-// drawn over the surface. Supersampled and box-filtered for smooth edges.
+// A lit picture of a polygon mesh, for the gallery's pictures of meshes, subdivision surfaces, patches, terrains and
+// shading models: the library's mesh view (scene's MeshView, mesh_view.hpp) with the gallery's defaults, a framed
+// camera, one directional light, the shading model of your choice, back faces shaded darker (two-sided lighting), and
+// the polygon edges drawn over the surface; supersampled and box-filtered for smooth edges.
 #include <optional>
 #include <vector>
 
@@ -16,6 +16,8 @@
 
 namespace tessera::examples {
 
+/// The gallery's mesh pictures: what the examples set (the rest of the library's MeshViewOptions as the wrapper fixes
+/// it: two-sided, a light of diffuse 0.8, a plastic of highlight 0.15 and shininess 24, edges pulled 1e-3 forward).
 struct MeshViewOptions {
   int width = 400, height = 400;
   std::optional<Camera> camera;      ///< default: frame the mesh's bounding sphere from direction (1, 0.8, 1.6)
@@ -32,16 +34,16 @@ struct MeshViewOptions {
   int samples = 2;  ///< supersampling per axis (1 = none)
 };
 
-/// Renders the mesh (polygons fan-triangulated) with raster3d's z-buffer: front faces lit, back faces lit with the
-/// flipped normal at 55 % brightness, edges 1 output pixel wide on top. The camera's aspect is set from
+/// Renders the mesh through tessera::render_mesh (polygons triangulated, the z-buffer): front faces lit, back faces
+/// lit with the flipped normal at 55 % brightness, edges 1 output pixel wide on top. The camera's aspect is set from
 /// width / height. A mesh without faces gives the background.
 ImageRGB render_mesh(const PolyMesh& mesh, const MeshViewOptions& options = {});
 
 /// The mesh with each face's normal on its corners (corner_normals): flat faces under per-pixel shading.
 PolyMesh with_face_normals(PolyMesh mesh);
 
-/// Box-filters s x s blocks of a supersampled picture (s = 1: the picture itself).
-ImageRGB downsample(const ImageRGB& image, int s);
+/// Box-filters s x s blocks of a supersampled picture (s = 1: the picture itself): the library's.
+using ::tessera::downsample;
 
 /// Lighting for raster3d's surface shaders: one white directional light toward `to_light` (world space; the light is
 /// set in the eye space of `view`), model ambient `ambient`, the surface color as C_r (color material) and a white

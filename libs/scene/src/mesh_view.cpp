@@ -163,25 +163,30 @@ raster3d::VertexArrays polygon_corners(const PolyMesh& mesh, bool facets, const 
 /// the nearest of their depths, and the pixels any sample covered.
 class SampleResolve {
  public:
-  SampleResolve(int width, int height) : sum_(width, height, Vec3f(0)), depth_(width, height, raster3d::kDepthMax) {}
+  SampleResolve(int width, int height) : width_(width), height_(height) {}
 
   /// Adds one sample's frame; `painter`: coverage from the stencil buffer (the painter's algorithm keeps no depth).
+  /// The first frame is kept as it is (0 + c is c).
   void add(const raster3d::Framebuffer& fb, bool painter) {
-    const ImageRGB color = fb.color_rgb();
-    for (size_t i = 0; i < color.pixels().size(); ++i) {
-      sum_.pixels()[i] += color.pixels()[i];
+    const bool first = count_++ == 0;
+    if (first) {
+      sum_ = fb.color_rgb();
+      depth_ = Image<uint32_t>(width_, height_, raster3d::kDepthMax);
+    } else {
+      const ImageRGB color = fb.color_rgb();
+      for (size_t i = 0; i < color.pixels().size(); ++i) sum_.pixels()[i] += color.pixels()[i];
+    }
+    for (size_t i = 0; i < depth_.pixels().size(); ++i)
       depth_.pixels()[i] =
           std::min(depth_.pixels()[i], painter && fb.stencil().pixels()[i] ? 0u : fb.depth().pixels()[i]);
-    }
-    ++count_;
   }
 
   /// The average color box-filtered down by s (supersampling), the nearest depth of each s x s block as window z in
-  /// [0, 1], and the output pixels some sample covered.
-  MeshPicture picture(int s) const {
-    ImageRGB color = sum_;
-    for (Vec3f& c : color.pixels()) c /= float(count_);
-    MeshPicture out{downsample(color, s), DepthImage(sum_.width() / s, sum_.height() / s, 1.0f), 0};
+  /// [0, 1], and the output pixels some sample covered. Takes the sums (called once).
+  MeshPicture take_picture(int s) {
+    if (count_ > 1)
+      for (Vec3f& c : sum_.pixels()) c /= float(count_);
+    MeshPicture out{s == 1 ? std::move(sum_) : downsample(sum_, s), DepthImage(width_ / s, height_ / s, 1.0f), 0};
     for (int y = 0; y < out.depth.height(); ++y)
       for (int x = 0; x < out.depth.width(); ++x) {
         uint32_t nearest = raster3d::kDepthMax;
@@ -194,6 +199,7 @@ class SampleResolve {
   }
 
  private:
+  int width_, height_;
   ImageRGB sum_;
   Image<uint32_t> depth_;
   int count_ = 0;
@@ -249,14 +255,15 @@ struct Frame {
   Progress* progress;
 };
 
-/// The mesh through the fixed-function pipeline (shading, wireframe, culling, two-sided lighting, painter, opacity),
-/// each jittered sample into `resolve`.
-void draw_fixed_function(const Frame& f, const Camera& camera, SampleResolve& resolve) {
+/// The mesh through the fixed-function pipeline (shading, wireframe, culling, two-sided lighting, painter, opacity) in
+/// `ctx` (of the frame's size; every state it reads is set here), each jittered sample into `resolve`.
+void draw_fixed_function(const Frame& f, const Camera& camera, raster3d::Context& ctx, SampleResolve& resolve) {
   const MeshViewOptions& o = f.o;
   const bool painter = o.hidden_surface == raster3d::HiddenSurface::painter;
   const bool colored = !o.face_colors.empty() || o.shading == MeshShading::normals;
-  raster3d::Context ctx(f.width, f.height);
+  const bool blended = o.opacity < 1;
   ctx.matrix_mode(raster3d::MatrixMode::model_view);
+  ctx.load_identity();
   // The light: over the viewer's shoulder in eye space, or a direction or a point in world space (set under the view
   // matrix, as glLight).
   const Vec3f diffuse(o.light.diffuse);
@@ -276,24 +283,24 @@ void draw_fixed_function(const Frame& f, const Camera& camera, SampleResolve& re
   ctx.shading(shading_model(o.shading));
   ctx.cull(o.two_sided ? raster3d::CullMode::back : o.cull);
   ctx.hidden_surface(o.hidden_surface);
+  ctx.stencil_test(painter);
+  ctx.blend(blended);
+  ctx.depth_func(blended ? raster3d::DepthFunc::lequal : raster3d::DepthFunc::less);
+  ctx.alpha(blended ? float(o.opacity) : 1.0f);
   if (painter) {
     // The painter's algorithm keeps no depth: the stencil buffer records which pixels the mesh covers.
-    ctx.stencil_test(true);
     const raster3d::StencilFace mark{.ref = 1, .zpass = raster3d::StencilOp::replace};
     ctx.stencil(mark, mark);
   }
   raster3d::VertexArrays sorted;
-  if (o.opacity < 1) {
+  if (blended) {
     // Transparency: "over" blending of the triangles sorted far to near, the z-buffer still on (for the depth and the
     // pixel count) and passing them in that order.
     sorted = f.arrays;
     raster3d::sort_back_to_front(sorted, look_at(camera.eye, camera.center, camera.up));
-    ctx.alpha(float(o.opacity));
-    ctx.blend(true);
     ctx.blend_function({raster3d::BlendFactor::src_alpha, raster3d::BlendFactor::one_minus_src_alpha});
-    ctx.depth_func(raster3d::DepthFunc::lequal);
   }
-  const raster3d::VertexArrays& front = o.opacity < 1 ? sorted : f.arrays;
+  const raster3d::VertexArrays& front = blended ? sorted : f.arrays;
   // Two-sided lighting: the back faces with flipped normals and darker colors, drawn with the front ones culled.
   raster3d::VertexArrays back;
   raster3d::Material back_material = material;
@@ -353,7 +360,7 @@ void draw_fixed_function(const Frame& f, const Camera& camera, SampleResolve& re
       ctx.shading(saved);
       ctx.cull(saved_cull);
       ctx.color(o.color);
-      ctx.alpha(float(o.opacity));
+      ctx.alpha(blended ? float(o.opacity) : 1.0f);
     }
     ctx.flush();
     if (f.progress) f.progress->advance();
@@ -535,11 +542,14 @@ MeshPicture MeshView::render(const Camera& camera, int width, int height, Progre
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
   SampleResolve resolve(width * s, height * s);
   const Frame frame{options_, mesh_, arrays_, edges_, bounds_, width * s, height * s, s, progress};
-  if (options_.maps())
+  if (options_.maps()) {
     draw_with_maps(frame, camera, resolve);
-  else
-    draw_fixed_function(frame, camera, resolve);
-  return resolve.picture(s);
+  } else {
+    if (!context_ || context_->framebuffer().width() != frame.width || context_->framebuffer().height() != frame.height)
+      context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);
+    draw_fixed_function(frame, camera, *context_, resolve);
+  }
+  return resolve.take_picture(s);
 }
 
 MeshPicture render_mesh(const PolyMesh& mesh, const Camera& camera, int width, int height,

@@ -156,7 +156,8 @@ struct MeshPicture {
 };
 
 /// One mesh prepared for drawing, then rendered for any number of cameras (the viewer's frame loop) without preparing
-/// again.
+/// again. Its fixed-function context is kept between renders of the same size, so one view renders on one thread at a
+/// time (views are movable, not copyable).
 class MeshView {
  public:
   /// Prepares `mesh`: normals where it has none (Mesh's vertex normals), turned outward when options.turn_outward
@@ -192,8 +193,9 @@ class MeshView {
   Bounds3 bounds_;
   size_t triangles_ = 0;
   bool turned_outward_ = false;
-  raster3d::VertexArrays arrays_;                     // the triangles as drawn (faceted for flat shading)
-  std::vector<std::pair<uint32_t, uint32_t>> edges_;  // the polygon edges, made while a wireframe is asked for
+  raster3d::VertexArrays arrays_;                       // the triangles as drawn (faceted for flat shading)
+  std::vector<std::pair<uint32_t, uint32_t>> edges_;    // the polygon edges, made while a wireframe is asked for
+  mutable std::unique_ptr<raster3d::Context> context_;  // kept between renders: no framebuffer allocated per frame
 };
 
 /// One picture of `mesh` through `camera` at width x height: MeshView(mesh, options).render(camera, width, height).
