@@ -116,7 +116,7 @@ std::optional<std::vector<Rgb8>> distinct_colors(std::span<const Rgb8> pixels, i
     const uint32_t v = pack(p);
     if (v == last) continue;
     last = v;
-    size_t i = (v * 2654435761u) & (slots - 1);
+    size_t i = size_t(uint32_t(v * 2654435761u)) & (slots - 1);  // Knuth's multiplicative hash
     while (table[i] != 0xFFFFFFFFu && table[i] != v) i = (i + 1) & (slots - 1);
     if (table[i] == v) continue;
     if (int(found.size()) == limit) return std::nullopt;
@@ -177,8 +177,8 @@ PaletteMapper::PaletteMapper(std::vector<Rgb8> palette)
 }
 
 uint8_t PaletteMapper::nearest(int r, int g, int b) {
-  constexpr int shift = 8 - kCellBits;
-  const int cell = (r >> shift) << (2 * kCellBits) | (g >> shift) << kCellBits | (b >> shift);
+  constexpr int kShift = 8 - kCellBits;
+  const int cell = (r >> kShift) << (2 * kCellBits) | (g >> kShift) << kCellBits | (b >> kShift);
   if (cell_start_[size_t(cell)] < 0) build_cell(cell);
   const Candidate* list = candidates_.data() + cell_start_[size_t(cell)];
   const Candidate* end = list + cell_count_[size_t(cell)];
@@ -194,15 +194,15 @@ uint8_t PaletteMapper::nearest(int r, int g, int b) {
 }
 
 void PaletteMapper::build_cell(int cell) {
-  // Candidates of the cell [lo, lo + size - 1]^3: entries no farther from the cell than the nearest farthest corner.
-  constexpr int size = 1 << (8 - kCellBits), mask = (1 << kCellBits) - 1;
-  const int lo[3] = {(cell >> (2 * kCellBits)) * size, ((cell >> kCellBits) & mask) * size, (cell & mask) * size};
+  // Candidates of the cell [lo, lo + kSize - 1]^3: entries no farther from the cell than the nearest farthest corner.
+  constexpr int kSize = 1 << (8 - kCellBits), kMask = (1 << kCellBits) - 1;
+  const int lo[3] = {(cell >> (2 * kCellBits)) * kSize, ((cell >> kCellBits) & kMask) * kSize, (cell & kMask) * kSize};
   std::array<int, 256> near;
   int threshold = INT32_MAX;
   for (size_t i = 0; i < palette_.size(); ++i) {
     int n = 0, f = 0;
     for (int a = 0; a < 3; ++a) {
-      const int c = palette_[i][a], l = lo[a], h = lo[a] + size - 1;
+      const int c = palette_[i][a], l = lo[a], h = lo[a] + kSize - 1;
       const int below = c < l ? l - c : (c > h ? c - h : 0);
       const int farthest = std::max(c - l, h - c);
       n += below * below;
@@ -257,9 +257,10 @@ void map_to_palette(std::span<const Rgb8> pixels, int width, int height, Palette
     std::fill(below.begin(), below.end(), glm::vec3(0));
     for (int k = 0; k < width; ++k) {
       const int x = forward ? k : width - 1 - k;
-      const size_t i = size_t(y) * size_t(width) + size_t(x), e = size_t(x + 1);
+      const size_t i = size_t(y) * size_t(width) + size_t(x), e = size_t(x) + 1;
       const glm::vec3 v = glm::clamp(glm::vec3(pixels[i]) + row[e], 0.f, 255.f);
-      const uint8_t index = mapper.nearest(int(v.x + 0.5f), int(v.y + 0.5f), int(v.z + 0.5f));
+      const glm::ivec3 q(v + 0.5f);  // v >= 0, so truncation rounds to nearest
+      const uint8_t index = mapper.nearest(q.x, q.y, q.z);
       out[i] = index;
       glm::vec3 error = v - glm::vec3(palette[index]);
       const float length2 = glm::dot(error, error);

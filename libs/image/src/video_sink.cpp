@@ -100,7 +100,10 @@ class VideoSink final : public Rgb8Sink {
     ffmpeg_ = *ffmpeg;
     file_ = std::make_unique<AtomicFile>(path);
   }
-  ~VideoSink() override { stop(true); }
+  ~VideoSink() override {
+    stop(true);
+    if (messages_ >= 0) ::close(messages_);
+  }
   VideoSink(const VideoSink&) = delete;
   VideoSink& operator=(const VideoSink&) = delete;
 
@@ -119,9 +122,9 @@ class VideoSink final : public Rgb8Sink {
     for (int y = 0; y < h; ++y) {
       const Rgb8* src = pixels.data() + size_t(std::min(y, height - 1)) * size_t(width);
       uint8_t* dst = frame_.data() + size_t(y) * size_t(w) * 3;
-      for (int x = 0; x < w; ++x) {
+      for (int x = 0; x < w; ++x, dst += 3) {
         const Rgb8 p = src[std::min(x, width - 1)];
-        dst[3 * x] = p.x, dst[3 * x + 1] = p.y, dst[3 * x + 2] = p.z;
+        dst[0] = p.x, dst[1] = p.y, dst[2] = p.z;
       }
     }
     if (write_to_pipe(input_, frame_.data(), frame_.size()) != 0) fail(stop(false));
@@ -148,6 +151,7 @@ class VideoSink final : public Rgb8Sink {
     args.insert(args.end(), encoder_.begin(), encoder_.end());
     args.insert(args.end(), {"-y", file_->temporary().string()});
     std::vector<char*> argv;
+    argv.reserve(args.size() + 1);
     for (std::string& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
 

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "tessera/core/atomic_file.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/image/metrics.hpp"
 
@@ -293,6 +294,29 @@ TEST_F(Animation, AbandonedGifLeavesNoFile) {
   } catch (const std::runtime_error&) {
   }
   EXPECT_TRUE(files().empty());
+}
+
+TEST_F(Animation, FrameBuffersOverTheMemoryBudgetAreRefused) {
+  struct Restore {
+    ~Restore() { MemoryBudget::set_limit(0); }
+  } restore;
+  // GIF: the 8-bit RGBA copy, packed RGB and the indices, 8 bytes a pixel: 64 x 48 x 8 = 24576 bytes.
+  MemoryBudget::set_limit(24575);
+  {
+    AnimationWriter writer(path("a.gif"));
+    try {
+      writer.add(squares(0));
+      FAIL() << "no throw";
+    } catch (const MemoryBudgetError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("64x48"));
+    }
+  }
+  EXPECT_TRUE(files().empty());
+  MemoryBudget::set_limit(24576);
+  AnimationWriter writer(path("a.gif"));
+  writer.add(squares(0));
+  writer.finish();
+  EXPECT_EQ(files(), std::vector<std::string>{"a.gif"});
 }
 
 TEST_F(Animation, MisuseIsInvalidInput) {
