@@ -134,12 +134,11 @@ Vec3 light_center(const Light& light) {
   return position;
 }
 
-/// The shadow map of a light for the casters in [lo, hi] (world space): orthographic for a directional light, else
-/// from the light's position (an area light's center): one perspective view, or six around a light among the casters.
+/// The shadow map of a light for the casters in [lo, hi] (world space), fitted as the mesh view fits its own
+/// (fitted_shadow_map): orthographic for a directional light, else from the light's position (an area light's center).
 raster3d::ShadowMap shadow_map(const Light& light, const Vec3& lo, const Vec3& hi, int size) {
-  if (light.type == LightType::directional)
-    return raster3d::ShadowMap(size, raster3d::ShadowMap::directional(-Vec3(light.direction), lo, hi));
-  return raster3d::ShadowMap::point(size, light_center(light), lo, hi);
+  const bool directional = light.type == LightType::directional;
+  return fitted_shadow_map(directional ? -Vec3(light.direction) : light_center(light), !directional, lo, hi, size);
 }
 
 /// What the fragment shader of one object reads besides the surface uniforms: its material, and for a shape its
