@@ -11,7 +11,6 @@
 // library's conversions (hsv_to_rgb, hls_to_rgb). Pixel values are written as they are (no gamma), except the
 // chromaticity diagram, whose colors are sRGB-encoded display values.
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -23,6 +22,7 @@
 #include "tessera/color/chromaticity.hpp"
 #include "tessera/color/color.hpp"
 #include "tessera/color/srgb.hpp"
+#include "tessera/raster2d/font.hpp"
 
 namespace {
 
@@ -35,7 +35,7 @@ using tessera::examples::side_by_side;
 const Vec3 kInk(0.08, 0.08, 0.1);          // lines and text
 const Vec3 kBackground(0.95, 0.95, 0.95);  // behind the 3D solids
 
-// ---- 2D drawing helpers: blend, antialiased lines and rings, a 5x7 bitmap font -------------------------------
+// ---- 2D drawing helpers: blend, antialiased lines and rings, labels in raster2d's bitmap font -------------------
 
 void blend(ImageRGB& image, int x, int y, const Vec3& color, double coverage) {
   if (!image.contains(x, y) || coverage <= 0) return;
@@ -65,43 +65,8 @@ void draw_ring(ImageRGB& image, Vec2 c, double r, const Vec3& color, double widt
       blend(image, x, y, color, width / 2 + 0.5 - std::abs(glm::length(Vec2(x + 0.5, y + 0.5) - c) - r));
 }
 
-// The characters the labels use, 5 columns x 7 rows each ('#' = ink).
-struct Glyph {
-  char c;
-  std::array<const char*, 7> rows;
-};
-const Glyph kFont[] = {
-    {'0', {" ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### "}},
-    {'1', {"  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### "}},
-    {'2', {" ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####"}},
-    {'3', {"#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### "}},
-    {'4', {"   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # "}},
-    {'5', {"#####", "#    ", "#### ", "    #", "    #", "#   #", " ### "}},
-    {'6', {"  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### "}},
-    {'7', {"#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   "}},
-    {'8', {" ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### "}},
-    {'9', {" ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  "}},
-    {'.', {"     ", "     ", "     ", "     ", "     ", " ##  ", " ##  "}},
-    {'x', {"     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #"}},
-    {'y', {"     ", "     ", "#   #", "#   #", " ####", "    #", " ### "}},
-    {'n', {"     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #"}},
-    {'m', {"     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #"}},
-    {'B', {"#### ", "#   #", "#   #", "#### ", "#   #", "#   #", "#### "}},
-    {'C', {" ### ", "#   #", "#    ", "#    ", "#    ", "#   #", " ### "}},
-    {'D', {"#### ", "#   #", "#   #", "#   #", "#   #", "#   #", "#### "}},
-    {'G', {" ### ", "#   #", "#    ", "# ###", "#   #", "#   #", " ####"}},
-    {'H', {"#   #", "#   #", "#   #", "#####", "#   #", "#   #", "#   #"}},
-    {'K', {"#   #", "#  # ", "# #  ", "##   ", "# #  ", "#  # ", "#   #"}},
-    {'L', {"#    ", "#    ", "#    ", "#    ", "#    ", "#    ", "#####"}},
-    {'M', {"#   #", "## ##", "# # #", "# # #", "#   #", "#   #", "#   #"}},
-    {'R', {"#### ", "#   #", "#   #", "#### ", "# #  ", "#  # ", "#   #"}},
-    {'S', {" ####", "#    ", "#    ", " ### ", "    #", "    #", "#### "}},
-    {'V', {"#   #", "#   #", "#   #", "#   #", "#   #", " # # ", "  #  "}},
-    {'W', {"#   #", "#   #", "#   #", "# # #", "# # #", "# # #", " # # "}},
-    {'Y', {"#   #", "#   #", " # # ", "  #  ", "  #  ", "  #  ", "  #  "}},
-};
-
-// Draws `text` with its center at `center`, each font pixel a scale x scale block. Unknown characters are blank.
+// Draws `text` (raster2d's font, font.hpp) with the middle of its capitals at `center`, each font pixel a scale x
+// scale block.
 void draw_text(ImageRGB& image, const std::string& text, Vec2 center, const Vec3& color, int scale = 2);
 
 // Draws `text` over a 1-pixel halo of `halo`, so that it stays readable on any color.
@@ -112,19 +77,13 @@ void draw_label(ImageRGB& image, const std::string& text, Vec2 center, const Vec
 }
 
 void draw_text(ImageRGB& image, const std::string& text, Vec2 center, const Vec3& color, int scale) {
-  const int advance = 6 * scale;
-  const int left = int(std::lround(center.x - (advance * double(text.size()) - scale) / 2));
-  const int top = int(std::lround(center.y - 3.5 * scale));
-  for (size_t i = 0; i < text.size(); ++i) {
-    const auto glyph = std::find_if(std::begin(kFont), std::end(kFont), [&](const Glyph& g) { return g.c == text[i]; });
-    if (glyph == std::end(kFont)) continue;
-    for (int row = 0; row < 7; ++row)
-      for (int col = 0; col < 5; ++col)
-        if (glyph->rows[size_t(row)][col] == '#')
-          for (int dy = 0; dy < scale; ++dy)
-            for (int dx = 0; dx < scale; ++dx)
-              blend(image, left + int(i) * advance + col * scale + dx, top + row * scale + dy, color, 1.0);
-  }
+  // Centered on the ink: the advance width less the gap column after the last character.
+  namespace font = tessera::font;
+  const int left = int(std::lround(center.x - (font::text_width(text) - 1) * scale / 2.0));
+  const int baseline = int(std::lround(center.y - 3.5 * scale)) + font::kAscent * scale;
+  for (const font::TextRun& run : font::text_runs(text))
+    for (int y = baseline + run.y * scale; y < baseline + (run.y + 1) * scale; ++y)
+      for (int x = left + run.x0 * scale; x < left + run.x1 * scale; ++x) blend(image, x, y, color, 1.0);
 }
 
 // ---- (a) the CIE 1931 chromaticity diagram --------------------------------------------------------------------

@@ -2,13 +2,13 @@
 // inside each triangle next to its vertex), and the swing of the center vertex's corners (red arrows):
 // c.swing = c.next.opposite.next turns counterclockwise around the vertex. The green arrow joins one corner to its
 // opposite corner across the shared edge. Everything is drawn straight into the pixels (edge functions for the
-// triangles, stamped disks for lines, a 3x5 bitmap font for the numbers).
-#include <array>
+// triangles, stamped disks for lines, raster2d's bitmap font for the numbers).
 #include <cmath>
 #include <string>
 
 #include "gallery.hpp"
 #include "tessera/mesh/corner_table.hpp"
+#include "tessera/raster2d/font.hpp"
 
 namespace tessera::examples {
 namespace {
@@ -69,26 +69,16 @@ void arc_arrow(ImageRGB& img, Vec2 center, double radius, double a0, double a1, 
   line(img, tip, tip - 12.0 * d - 6.0 * side, 3, color);
 }
 
-/// Draws a non-negative integer centered at `center` with a 3x5 bitmap font scaled `scale` times.
+/// Draws a non-negative integer with the middle of its ink at `center`, in raster2d's bitmap font (font.hpp) scaled
+/// `scale` times.
 void number(ImageRGB& img, Vec2 center, uint32_t value, int scale, const Vec3f& color) {
-  static constexpr std::array<uint16_t, 10> kGlyphs{
-      // 15 bits per digit, rows of 3 from the top, msb first
-      0b111101101101111, 0b010110010010111, 0b111001111100111, 0b111001111001111, 0b101101111001001,
-      0b111100111001111, 0b111100111101111, 0b111001001001001, 0b111101111101111, 0b111101111001111};
   const std::string digits = std::to_string(value);
-  const int w = int(digits.size()) * 4 * scale - scale, h = 5 * scale;
-  const int x0 = int(center.x) - w / 2, y0 = int(center.y) - h / 2;
-  for (size_t i = 0; i < digits.size(); ++i) {
-    const uint16_t glyph = kGlyphs[size_t(digits[i] - '0')];
-    for (int r = 0; r < 5; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (glyph >> (14 - (r * 3 + c)) & 1)
-          for (int dy = 0; dy < scale; ++dy)
-            for (int dx = 0; dx < scale; ++dx) {
-              const int x = x0 + (int(i) * 4 + c) * scale + dx, y = y0 + r * scale + dy;
-              if (img.contains(x, y)) img(x, y) = color;
-            }
-  }
+  const int w = (font::text_width(digits) - 1) * scale, h = font::kAscent * scale;  // the digits' ink
+  const int x0 = int(center.x) - w / 2, baseline = int(center.y) - h / 2 + h;
+  for (const font::TextRun& run : font::text_runs(digits))
+    for (int y = baseline + run.y * scale; y < baseline + (run.y + 1) * scale; ++y)
+      for (int x = x0 + run.x0 * scale; x < x0 + run.x1 * scale; ++x)
+        if (img.contains(x, y)) img(x, y) = color;
 }
 
 /// A hexagonal fan around vertex 0 plus three outer triangles, counterclockwise.
@@ -134,11 +124,11 @@ TESSERA_EXAMPLE(ex31_corner_table, "31_corner_table", "Corner table: corners, op
   const double radius = glm::distance(corner_point(t.corners_around(0).front()), center);
   for (uint32_t c : t.corners_around(0)) arc_arrow(img, center, radius, angle(c), angle(t.swing(c)), 0.3, red);
   arrow(img, corner_point(25), corner_point(t.opposite(25)), 16, green);
-  for (uint32_t c = 0; c < t.corner_count(); ++c) number(img, corner_point(c), c, 3, blue);
+  for (uint32_t c = 0; c < t.corner_count(); ++c) number(img, corner_point(c), c, 2, blue);
   for (uint32_t v = 0; v < t.vertex_count(); ++v) {
     disk(img, to_pixels(t.geometry()[v]), 15, Vec3f(0.1f));
     disk(img, to_pixels(t.geometry()[v]), 13, Vec3f(1.0f));
-    number(img, to_pixels(t.geometry()[v]), v, 3, Vec3f(0.0f));
+    number(img, to_pixels(t.geometry()[v]), v, 2, Vec3f(0.0f));
   }
   gallery.add("31_corner_table.png", img,
               "A corner table: vertices (black circles), corners 3t, 3t+1, 3t+2 of triangle t (blue), the swing "
