@@ -132,4 +132,27 @@ status=0
 wait $pid || status=$?
 [ $status -eq 0 ] || fail "the sketch exited $status after the close message: $(cat "$scratch/window.out")"
 [ $(( $(date +%s) - start )) -lt 50 ] || fail "the close message did not end the sketch (it ran to --seconds)"
+
+# 3D in a window: the rotating cube's double-buffered frames reach the screen (its corner is the clear color
+# (0.1, 0.1, 0.15) = (26, 26, 38), its center a face); Escape ends the run with status 0, as in Processing.
+"$tessera" sketch rotating_cube --window --seconds 60 >"$scratch/cube.out" 2>&1 &
+pid=$!
+wid=$(timeout 20 xdotool search --sync --name "tessera sketch rotating_cube" | head -1)
+[ -n "$wid" ] || fail "no 3D window appeared: $(cat "$scratch/cube.out")"
+start=$(date +%s)
+grab cube
+"$python" - "$scratch/cube-window.png" <<'PY' || fail "the 3D window does not show the cube"
+import sys
+import numpy as np
+from PIL import Image
+a = np.asarray(Image.open(sys.argv[1]).convert("RGB")).astype(int)
+print("cube window:", a.shape, "corner", a[0, 0], "center", a[200, 200])
+sys.exit(0 if a.shape == (400, 400, 3) and (a[0, 0] == (26, 26, 38)).all() and (a[200, 200] != a[0, 0]).any() else 1)
+PY
+xdotool windowfocus --sync "$wid"
+xdotool key Escape
+status=0
+wait $pid || status=$?
+[ $status -eq 0 ] || fail "the 3D sketch exited $status after Escape: $(cat "$scratch/cube.out")"
+[ $(( $(date +%s) - start )) -lt 50 ] || fail "Escape did not end the sketch"
 echo "sketch_window.sh: ok"

@@ -6,6 +6,7 @@
 
 #include "sketch_access.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/image/animation.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster3d/gt.hpp"
@@ -29,6 +30,8 @@ void Sketch::size(int w, int h, Renderer renderer) {
     if (context_ && gt::detail::current_context == context_.get()) gt::gtMakeCurrent(nullptr);
     context_.reset();
   } else {
+    // Back and front color (4 bytes each), depth (4) and stencil (1) a pixel; the Canvas checks its own size.
+    MemoryBudget::check(saturating_product({uint64_t(w), uint64_t(h), 13}), fmt::format("a {}x{} 3D sketch", w, h));
     canvas_.reset();
     context_ = std::make_unique<raster3d::Context>(w, h);
     gt::gtMakeCurrent(context_.get());

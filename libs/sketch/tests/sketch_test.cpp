@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster3d/gt.hpp"
 #include "tessera/sketch/runner.hpp"
@@ -308,6 +309,20 @@ TEST(Sketch, NoiseColorModeAndTextReachTheLibrary) {
   for (int y = 0; y < 20; ++y)
     for (int x = 0; x < 60; ++x) red += picture(x, y) == glm::u8vec4(255, 0, 0, 255);
   EXPECT_GT(red, 10);  // the letters' pixels
+}
+
+/// A 3D sketch of a size the budget refuses: the 13 bytes a pixel of its framebuffer, checked before allocating.
+struct Huge3d : Sketch {
+  void setup() override { size(1000, 1000, Renderer::p3d); }
+};
+
+TEST(Sketch, ThreeDimensionalSizesOverTheMemoryBudgetAreRefused) {
+  MemoryBudget::set_limit(13'000'000 - 1);
+  Huge3d s;
+  EXPECT_THROW(run_sketch(s, frames(1)), MemoryBudgetError);
+  MemoryBudget::set_limit(13'000'000);
+  EXPECT_NO_THROW(run_sketch(s, frames(1)));
+  MemoryBudget::set_limit(0);
 }
 
 TEST(Sketch, OptionsAreChecked) {
