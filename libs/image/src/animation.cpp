@@ -14,10 +14,10 @@ namespace fs = std::filesystem;
 
 namespace detail {
 
-void Rgb8Sink::write(const ImageRGB& frame, long long index) { write_rgba8(to_rgba8(frame, srgb_), index); }
-void Rgb8Sink::write(const ImageRGBA& frame, long long index) { write_rgba8(to_rgba8(frame, srgb_), index); }
+void Rgb8Sink::write(const ImageRGB& frame, long long index) { write(to_rgba8(frame, srgb_), index); }
+void Rgb8Sink::write(const ImageRGBA& frame, long long index) { write(to_rgba8(frame, srgb_), index); }
 
-void Rgb8Sink::write_rgba8(const ImageRGBA8& frame, long long index) {
+void Rgb8Sink::write(const ImageRGBA8& frame, long long index) {
   pixels_.resize(frame.pixels().size());
   std::transform(frame.pixels().begin(), frame.pixels().end(), pixels_.begin(),
                  [](const glm::u8vec4& p) { return Rgb8(p); });
@@ -40,6 +40,9 @@ class SequenceSink final : public AnimationSink {
     write_image(numbered_frame_path(pattern_, index), frame, WriteOptions{.srgb = srgb_});
   }
   void write(const ImageRGBA& frame, long long index) override {
+    write_image(numbered_frame_path(pattern_, index), frame, WriteOptions{.srgb = srgb_});
+  }
+  void write(const ImageRGBA8& frame, long long index) override {
     write_image(numbered_frame_path(pattern_, index), frame, WriteOptions{.srgb = srgb_});
   }
   void finish() override {}
@@ -197,6 +200,7 @@ AnimationWriter& AnimationWriter::operator=(AnimationWriter&&) noexcept = defaul
 
 void AnimationWriter::add(const ImageRGB& frame) { impl_->add(frame); }
 void AnimationWriter::add(const ImageRGBA& frame) { impl_->add(frame); }
+void AnimationWriter::add(const ImageRGBA8& frame) { impl_->add(frame); }
 void AnimationWriter::finish() { impl_->finish(); }
 long long AnimationWriter::frames() const { return impl_->frames_; }
 AnimationFormat AnimationWriter::format() const { return impl_->format_; }

@@ -19,24 +19,26 @@ class AnimationSink {
   /// Receives frame `index` (0, 1, ...); every frame has the first frame's size.
   virtual void write(const ImageRGB& frame, long long index) = 0;
   virtual void write(const ImageRGBA& frame, long long index) = 0;
+  virtual void write(const ImageRGBA8& frame, long long index) = 0;
   /// Completes the output (after at least one frame).
   virtual void finish() = 0;
 };
 
-/// A sink for formats that take 8-bit RGB: converts each frame as write_image does (to_rgba8) and packs it to RGB.
+/// A sink for formats that take 8-bit RGB: converts each float frame as write_image does (to_rgba8) and packs it to
+/// RGB.
 class Rgb8Sink : public AnimationSink {
  public:
   explicit Rgb8Sink(bool srgb) : srgb_(srgb) {}
   int bytes_per_pixel() const override { return 4 + 3; }
   void write(const ImageRGB& frame, long long index) override;
   void write(const ImageRGBA& frame, long long index) override;
+  void write(const ImageRGBA8& frame, long long index) override;
 
  protected:
   /// Receives the frame as packed 8-bit RGB, rows from the top.
   virtual void write_rgb8(const std::vector<Rgb8>& pixels, int width, int height, long long index) = 0;
 
  private:
-  void write_rgba8(const ImageRGBA8& frame, long long index);
   bool srgb_;
   std::vector<Rgb8> pixels_;
 };

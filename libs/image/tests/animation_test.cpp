@@ -285,6 +285,24 @@ TEST_F(Animation, SrgbEncodesAsWriteImageDoes) {
   EXPECT_EQ(to_rgba8(ref->frames[0])(3, 3), glm::u8vec4(188, 124, 0, 255));
 }
 
+TEST_F(Animation, EightBitFramesAreWrittenAsTheyAre) {
+  if (!have_pil()) GTEST_SKIP() << "python3 with PIL (Debian python3-pil) is not available";
+  AnimationWriter writer(path("e.gif"), AnimationOptions{.srgb = true});  // srgb applies to float frames only
+  const ImageRGBA8 frame = to_rgba8(squares(2));
+  writer.add(frame);
+  writer.add(squares(3));  // float and 8-bit frames mix
+  writer.finish();
+  const auto ref = read_with_pil(path("e.gif"), path("pil"));
+  ASSERT_TRUE(ref);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(ref->frames[0]), frame), 0);
+  EXPECT_EQ(count_differing_pixels(to_rgba8(ref->frames[1]), to_rgba8(squares(3), true)), 0);
+
+  AnimationWriter sequence(path("seq/f-#.png"));
+  sequence.add(frame);
+  sequence.finish();
+  EXPECT_EQ(count_differing_pixels(to_rgba8(read_image(path("seq/f-0.png"))), frame), 0);
+}
+
 TEST_F(Animation, AbandonedGifLeavesNoFile) {
   try {
     AnimationWriter writer(path("a.gif"));

@@ -3,7 +3,7 @@
 // to ffmpeg; the path picks which. docs/image.md, "Animation output", says how each is encoded.
 //
 //   AnimationWriter writer("spin.gif", AnimationOptions{.fps = 30});
-//   for (...) writer.add(frame);  // ImageRGB or ImageRGBA, all of the first frame's size
+//   for (...) writer.add(frame);  // ImageRGB, ImageRGBA or ImageRGBA8, all of the first frame's size
 //   writer.finish();              // the file appears here, complete
 //
 // Frames are float images converted to 8-bit exactly as write_image converts them: clamped to [0, 1], sRGB-encoded
@@ -55,7 +55,8 @@ AnimationFormat animation_format(const std::filesystem::path& path);
 /// '#' in the file name or a negative frame.
 std::filesystem::path numbered_frame_path(const std::filesystem::path& pattern, long long frame);
 
-/// Streams frames to the animation `path` asks for (animation_format). Not copyable; movable.
+/// Streams frames to the animation `path` asks for (animation_format). Not copyable; movable (a moved-from writer may
+/// only be destroyed or assigned to).
 class AnimationWriter {
  public:
   /// Checks the path and options and starts the output: a GIF's temporary file, ffmpeg for a video, the folder of a
@@ -73,6 +74,8 @@ class AnimationWriter {
   /// MemoryBudgetError when the first frame's work buffers exceed the memory budget.
   void add(const ImageRGB& frame);
   void add(const ImageRGBA& frame);
+  /// Appends an 8-bit frame (a sketch's canvas): its values are written as they are (`srgb` does not apply).
+  void add(const ImageRGBA8& frame);
 
   /// Completes the output: writes the GIF's trailer or waits for ffmpeg, then renames the file into place. Throws
   /// InvalidInput when no frame was added, IoError when the output cannot be completed (ffmpeg's message included).
