@@ -10,6 +10,7 @@
 #include <set>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/convert.hpp"
@@ -163,43 +164,64 @@ raster3d::VertexArrays polygon_corners(const PolyMesh& mesh, bool facets, const 
 /// the nearest of their depths, and the pixels any sample covered.
 class SampleResolve {
  public:
-  SampleResolve(int width, int height) : width_(width), height_(height) {}
+  /// For `samples` frames of width x height.
+  SampleResolve(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {}
 
   /// Adds one sample's frame; `painter`: coverage from the stencil buffer (the painter's algorithm keeps no depth).
-  /// The first frame is kept as it is (0 + c is c).
+  /// A lone sample's frame is read when the picture is taken (it must stay unchanged until then); the first of several
+  /// is kept as it is (0 + c is c).
   void add(const raster3d::Framebuffer& fb, bool painter) {
-    const bool first = count_++ == 0;
-    if (first) {
+    painter_ = painter;
+    if (samples_ == 1) {
+      only_ = &fb;
+      return;
+    }
+    if (count_++ == 0) {
       sum_ = fb.color_rgb();
       depth_ = Image<uint32_t>(width_, height_, raster3d::kDepthMax);
     } else {
       const ImageRGB color = fb.color_rgb();
       for (size_t i = 0; i < color.pixels().size(); ++i) sum_.pixels()[i] += color.pixels()[i];
     }
-    for (size_t i = 0; i < depth_.pixels().size(); ++i)
-      depth_.pixels()[i] =
-          std::min(depth_.pixels()[i], painter && fb.stencil().pixels()[i] ? 0u : fb.depth().pixels()[i]);
+    for (size_t i = 0; i < depth_.pixels().size(); ++i) depth_.pixels()[i] = std::min(depth_.pixels()[i], depth(fb, i));
   }
 
   /// The average color box-filtered down by s (supersampling), the nearest depth of each s x s block as window z in
   /// [0, 1], and the output pixels some sample covered. Takes the sums (called once).
   MeshPicture take_picture(int s) {
-    if (count_ > 1)
+    if (only_) {
+      sum_ = only_->color_rgb();
+    } else if (count_ > 1) {
       for (Vec3f& c : sum_.pixels()) c /= float(count_);
+    }
     MeshPicture out{s == 1 ? std::move(sum_) : downsample(sum_, s), DepthImage(width_ / s, height_ / s, 1.0f), 0};
-    for (int y = 0; y < out.depth.height(); ++y)
-      for (int x = 0; x < out.depth.width(); ++x) {
-        uint32_t nearest = raster3d::kDepthMax;
-        for (int dy = 0; dy < s; ++dy)
-          for (int dx = 0; dx < s; ++dx) nearest = std::min(nearest, depth_(x * s + dx, y * s + dy));
-        out.depth(x, y) = float(double(nearest) / raster3d::kDepthMax);
-        out.covered += nearest < raster3d::kDepthMax;
-      }
+    std::vector<size_t> covered(size_t(out.depth.height()), 0);
+    parallel_for(0, out.depth.height(), 16, [&](int64_t y0, int64_t y1) {
+      for (int y = int(y0); y < int(y1); ++y)
+        for (int x = 0; x < out.depth.width(); ++x) {
+          uint32_t nearest = raster3d::kDepthMax;
+          for (int dy = 0; dy < s; ++dy)
+            for (int dx = 0; dx < s; ++dx) {
+              const size_t i = size_t(y * s + dy) * size_t(width_) + size_t(x * s + dx);
+              nearest = std::min(nearest, only_ ? depth(*only_, i) : depth_.pixels()[i]);
+            }
+          out.depth(x, y) = float(double(nearest) / raster3d::kDepthMax);
+          covered[size_t(y)] += nearest < raster3d::kDepthMax;
+        }
+    });
+    for (const size_t n : covered) out.covered += n;
     return out;
   }
 
  private:
-  int width_, height_;
+  /// Pixel i's depth in `fb`, 0 where the painter's algorithm covered it.
+  uint32_t depth(const raster3d::Framebuffer& fb, size_t i) const {
+    return painter_ && fb.stencil().pixels()[i] ? 0u : fb.depth().pixels()[i];
+  }
+
+  int width_, height_, samples_;
+  bool painter_ = false;
+  const raster3d::Framebuffer* only_ = nullptr;
   ImageRGB sum_;
   Image<uint32_t> depth_;
   int count_ = 0;
@@ -368,9 +390,9 @@ void draw_fixed_function(const Frame& f, const Camera& camera, raster3d::Context
   }
 }
 
-/// The mesh drawn per pixel with the maps of the options (texture, bump, environment, shadows, floor), each jittered
-/// sample into `resolve`.
-void draw_with_maps(const Frame& f, Camera camera, SampleResolve& resolve) {
+/// The mesh drawn per pixel with the maps of the options (texture, bump, environment, shadows, floor) into `fb` (of
+/// the frame's size), each jittered sample into `resolve`.
+void draw_with_maps(const Frame& f, Camera camera, raster3d::Framebuffer& fb, SampleResolve& resolve) {
   const MeshViewOptions& o = f.o;
   const Bounds3& box = f.box;
   raster3d::VertexArrays floor;
@@ -445,7 +467,6 @@ void draw_with_maps(const Frame& f, Camera camera, SampleResolve& resolve) {
         raster3d::render_cube_map(center, 256, draw_surroundings, 1e-3 * glm::length(box.hi - box.lo), camera.far));
     u.maps.cube = &*cube;
   }
-  raster3d::Framebuffer fb(f.width, f.height);
   for (int sample = 0; sample < o.samples; ++sample) {
     const Mat4 jittered =
         jittered_projection(projection, pixel_sample(sample, o.samples, kSamplePattern), f.width, f.height);
@@ -540,10 +561,11 @@ MeshPicture MeshView::render(const Camera& camera, int width, int height, Progre
     throw InvalidInput(
         fmt::format("mesh view: bad image size {}x{} or sample count {}", width, height, options_.samples));
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
-  SampleResolve resolve(width * s, height * s);
+  SampleResolve resolve(width * s, height * s, options_.samples);
   const Frame frame{options_, mesh_, arrays_, edges_, bounds_, width * s, height * s, s, progress};
+  std::optional<raster3d::Framebuffer> maps_fb;  // the resolve may read it when the picture is taken
   if (options_.maps()) {
-    draw_with_maps(frame, camera, resolve);
+    draw_with_maps(frame, camera, maps_fb.emplace(frame.width, frame.height), resolve);
   } else {
     if (!context_ || context_->framebuffer().width() != frame.width || context_->framebuffer().height() != frame.height)
       context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);
