@@ -26,12 +26,13 @@ double in_range(double v, double max) { return v > 0 ? std::min(v, max) / max : 
 Vec4f texel(const Vec4f& t) { return t; }
 Vec4f texel(const glm::u8vec4& t) { return Vec4f(t) / 255.0f; }
 
+// Texel index v (a whole number) clamped to [0, n): NaN gives 0, so that no cast is undefined.
+int clamped_index(double v, int n) { return v >= 0 ? int(std::min(v, double(n - 1))) : 0; }
+
 // The texel nearest to image point uv (texel (i, j) covers [i, i+1) x [j, j+1)), clamped to the image.
 template <class Texel>
 Vec4f sample_nearest(const Image<Texel>& img, const Vec2& uv) {
-  const int i = int(std::clamp(std::floor(uv.x), 0.0, double(img.width() - 1)));
-  const int j = int(std::clamp(std::floor(uv.y), 0.0, double(img.height() - 1)));
-  return texel(img(i, j));
+  return texel(img(clamped_index(std::floor(uv.x), img.width()), clamped_index(std::floor(uv.y), img.height())));
 }
 
 // Bilinear between the four texel centers around uv, indices clamped to the image, interpolated premultiplied (so a
@@ -42,8 +43,7 @@ Vec4f sample_bilinear(const Image<Texel>& img, const Vec2& uv) {
   const double fu = std::floor(u), fv = std::floor(v);
   const float tu = float(u - fu), tv = float(v - fv);
   const auto at = [&](double i, double j) {
-    return texel(
-        img(int(std::clamp(i, 0.0, double(img.width() - 1))), int(std::clamp(j, 0.0, double(img.height() - 1)))));
+    return texel(img(clamped_index(i, img.width()), clamped_index(j, img.height())));
   };
   if (tu == 0 && tv == 0) return at(fu, fv);
   const auto premultiplied = [&](double i, double j) {
@@ -293,6 +293,8 @@ void Canvas::draw_image(const Image<Texel>& img, double x, double y, double w, d
   const double det = glm::determinant(placement);
   if (!std::isfinite(det) || det == 0) return;
   const Mat3 to_image = glm::inverse(placement);
+  for (int k = 0; k < 3; ++k)
+    if (!glm::all(glm::isfinite(to_image[k]))) return;  // nearly singular: no pixel could be mapped back
   const Path footprint{{{to_device(x, y), to_device(x + w, y), to_device(x + w, y + h), to_device(x, y + h)}}};
   scan_path(footprint, FillRule::non_zero, width(), height(), smooth_, [&](int py, int x0, int x1, const float* c) {
     for (int px = x0; px < x1; ++px) {
