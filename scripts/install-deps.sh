@@ -10,6 +10,8 @@ demo_packages=(
   cmake ninja-build g++ pkg-config
   # libraries
   libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev libgif-dev
+  # the window of tessera sketch and tessera view (without it they run headless only)
+  libsdl2-dev
 )
 test_packages=(
   # tests and benchmarks
@@ -18,6 +20,8 @@ test_packages=(
   libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
   # a virtual X server: Debian's VTK needs a display for its volume ray-cast mapper (bench_volume under xvfb-run)
   xvfb xauth
+  # the real-window tests of tessera sketch and tessera view: input sent by xdotool, the window grabbed by import
+  xdotool imagemagick
   # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang
   clang libclang-rt-14-dev
   # the format and lint checks of make test
