@@ -49,6 +49,7 @@ void setup_sketch(CLI::App& cmd, CommonOptions& common) {
   cmd.callback([opt, &common] {
     if (opt->list) {
       for (const SketchInfo& info : builtin_sketches()) fmt::print("{:<16} {}\n", info.name, info.description);
+      if (common.stats) print_stats({{"sketches", stat_value(double(builtin_sketches().size()))}});
       return;
     }
     if (opt->name.empty()) throw CLI::RequiredError("a sketch NAME (or --list)");
