@@ -86,18 +86,21 @@ headless key "1 mouse_move 150 120\n1 key_press s\n"
 compare key || fail "key: the window differs from the headless render"
 
 # Focus loss: another window takes the focus; the sketch keeps running and takes it back.
-xmessage -name other "another window" &
+"$tessera" sketch rotating_cube --window --seconds 30 --size 100x100 >/dev/null 2>&1 &
 other_pid=$!
-other=$(timeout 10 xdotool search --sync --name "^other$" | head -1 || true)
-[ -z "$other" ] || xdotool windowfocus --sync "$other"
+other=$(timeout 20 xdotool search --sync --pid $other_pid | head -1)
+[ -n "$other" ] || fail "the second window did not appear"
+xdotool windowfocus --sync "$other"
+[ "$(xdotool getwindowfocus)" = "$other" ] || fail "the focus did not move to the second window"
 sleep 0.5
 kill -0 $pid || fail "the sketch ended when it lost the focus"
 xdotool windowfocus --sync "$wid"
+kill $other_pid 2>/dev/null || true  # it covers part of the first window
+wait $other_pid 2>/dev/null || true
 xdotool mousemove --window "$wid" 200 220
 grab focus
 headless focus "1 mouse_move 200 220\n1 key_press s\n"
 compare focus || fail "after the focus came back: the window differs from the headless render"
-kill $other_pid 2>/dev/null || true
 
 # Resize to 800x600: the 400x400 sketch is drawn 1.5x (600x600) centered, black bars of 100 pixels left and right;
 # the pointer at window (475, 375) is sketch pixel (250, 250).
