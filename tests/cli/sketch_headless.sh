@@ -65,7 +65,15 @@ sys.exit(0 if im.n_frames == 10 and im.size == (400, 400) and delays[:6] == [30,
 PY
 fi
 
-# A no_loop-free sketch with no script runs its default length (the sketch's demo length) and stops there.
+# MP4 through ffmpeg: every frame at the sketch's rate (ffprobe counts them).
+if command -v ffmpeg >/dev/null && command -v ffprobe >/dev/null; then
+  "$tessera" sketch rotating_cube --headless --frames 12 --size 128x96 -o "$scratch/cube.mp4" --quiet
+  probe=$(ffprobe -v error -count_frames -select_streams v:0 \
+            -show_entries stream=nb_read_frames,width,height,r_frame_rate -of csv=p=0 "$scratch/cube.mp4")
+  [ "$probe" = "128,96,60/1,12" ] || fail "cube.mp4 is not 12 frames of 128x96 at 60 fps: $probe"
+fi
+
+# A sketch with no script runs its default length (the sketch's demo length) and stops there.
 "$tessera" sketch rotating_cube --headless -o "$scratch/cube/" --quiet --size 64x64
 [ "$(ls "$scratch/cube" | wc -l)" = 60 ] || fail "rotating_cube's default run is not 60 frames"
 
