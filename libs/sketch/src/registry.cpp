@@ -30,12 +30,12 @@ constexpr std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes 
 // Sorted by name (find_sketch searches it; --list prints it in this order).
 const std::array kSketches = {
     SketchInfo{"bezier", "The notes' cubic Bezier curve with draggable control points and de Casteljau's construction",
-               sketches::make_bezier, sketches::kBezierDemo, 180},
+               sketches::make_bezier, sketches::kBezierDemo, 120},
     SketchInfo{"body",
                "The notes' body hierarchy (torso, arms of extent + hand) waving, angles from frame_count",
                sketches::make_body,
                {},
-               120},
+               60},
     SketchInfo{"mandelbrot_zoom",
                "A smooth exponential zoom into the Mandelbrot set's seahorse valley (click recenters)",
                sketches::make_mandelbrot_zoom,
@@ -43,7 +43,7 @@ const std::array kSketches = {
                240},
     SketchInfo{"marching_squares",
                "The notes' marching squares: contours of a field, the iso value following the mouse's x",
-               sketches::make_marching_squares, sketches::kMarchingSquaresDemo, 180},
+               sketches::make_marching_squares, sketches::kMarchingSquaresDemo, 120},
     SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D; s: outline)",
                sketches::make_pink_square, kPinkSquareDemo, 60},
     SketchInfo{"rotating_cube",
@@ -55,7 +55,7 @@ const std::array kSketches = {
                "The notes' 2D transformations animated: translate, rotate about a pivot, scale, shear",
                sketches::make_transformations,
                {},
-               120},
+               90},
 };
 
 }  // namespace

@@ -6,6 +6,8 @@
 // (within 30 pixels), mouse_dragged moves it to the pointer, mouse_released lets it go.
 #include "tessera/curves/bezier.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 
 #include "sketches/sketches.hpp"
@@ -43,6 +45,9 @@ class BezierSketch : public Sketch {
     no_stroke();
     fill(rgb255(220, 40, 40));  // Q(t)
     ellipse(levels.back()[0].x, levels.back()[0].y, 10, 10);
+    fill(gray255(60));
+    canvas().text_size(16);
+    canvas().text(fmt::format("t = {:.2f}", t), 10, 390);
     for (int i = 0; i < 4; ++i) {  // the control points, the dragged one darker
       fill(i == dragged_ ? rgb255(200, 100, 0) : rgb255(250, 160, 40));
       ellipse(p(i).x, p(i).y, 14, 14);
@@ -79,43 +84,39 @@ class BezierSketch : public Sketch {
 // P2 dragged down and right, then P3 down and left, while the construction sweeps.
 const std::string_view kBezierDemo = R"(# bezier: drag P2, then P3
 1 mouse_move 110 80
-15 mouse_press left
-18 mouse_move 125 91
-22 mouse_move 139 101
-26 mouse_move 153 112
-30 mouse_move 166 122
-34 mouse_move 178 133
-38 mouse_move 188 144
-42 mouse_move 197 154
-46 mouse_move 205 165
-50 mouse_move 211 176
-54 mouse_move 216 186
-58 mouse_move 219 197
-62 mouse_move 221 208
-66 mouse_move 222 218
-70 mouse_move 222 229
-74 mouse_move 221 239
-78 mouse_move 220 250
-82 mouse_release left
-96 mouse_move 290 60
-100 mouse_press left
-104 mouse_move 279 65
-108 mouse_move 269 71
-112 mouse_move 258 77
-116 mouse_move 248 85
-120 mouse_move 237 94
-124 mouse_move 226 106
-128 mouse_move 216 119
-132 mouse_move 205 135
-136 mouse_move 194 153
-140 mouse_move 184 173
-144 mouse_move 173 196
-148 mouse_move 162 220
-152 mouse_move 152 246
-156 mouse_move 141 273
-160 mouse_move 131 301
-164 mouse_move 120 330
-168 mouse_release left
+8 mouse_press left
+10 mouse_move 127 92
+13 mouse_move 143 104
+16 mouse_move 159 116
+19 mouse_move 173 129
+22 mouse_move 185 141
+25 mouse_move 196 153
+28 mouse_move 205 165
+31 mouse_move 212 177
+34 mouse_move 217 189
+37 mouse_move 220 201
+40 mouse_move 221 214
+43 mouse_move 222 226
+46 mouse_move 221 238
+49 mouse_move 220 250
+54 mouse_release left
+62 mouse_move 290 60
+64 mouse_press left
+66 mouse_move 278 66
+69 mouse_move 266 73
+72 mouse_move 254 80
+75 mouse_move 241 90
+78 mouse_move 229 102
+81 mouse_move 217 117
+84 mouse_move 205 135
+87 mouse_move 193 156
+90 mouse_move 181 180
+93 mouse_move 169 206
+96 mouse_move 156 235
+99 mouse_move 144 265
+102 mouse_move 132 297
+105 mouse_move 120 330
+110 mouse_release left
 )";
 
 std::unique_ptr<Sketch> make_bezier() { return std::make_unique<BezierSketch>(); }

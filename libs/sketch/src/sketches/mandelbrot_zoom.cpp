@@ -1,7 +1,7 @@
 // The notes' Mandelbrot set ("Mandelbrot Set": fix z0 = (0, 0), test different c values for convergence) as a
 // zoom: each frame is libs/fractal's escape-time picture (mandelbrot(), colored by colorize()'s classic palette) of a
-// view whose width shrinks smoothly and exponentially, halving every half second of millis(),
-//   scale = 3 * 2^-depth,   depth = 2 millis() / 1000 (wrapping after 36 halvings, before doubles run out),
+// view whose width shrinks smoothly and exponentially, halving three times a second of millis(),
+//   scale = 3 * 2^-depth,   depth = 3 millis() / 1000 (wrapping after 36 halvings, before doubles run out),
 // toward a point of the seahorse valley, -0.743643887037151 + 0.131825904205330 i; the iteration cap grows with the
 // depth (200 + 50 depth). A mouse press recenters the zoom on the point under the pointer.
 #include <cmath>
@@ -21,7 +21,7 @@ class MandelbrotZoom : public Sketch {
   }
 
   void draw() override {
-    const double depth = std::fmod(2.0 * double(millis()) / 1000.0, kMaxDepth);
+    const double depth = std::fmod(3.0 * double(millis()) / 1000.0, kMaxDepth);
     view_ = ComplexView{center_, 3.0 * std::exp2(-depth), width, height};
     const EscapeImage escape = mandelbrot(view_, EscapeOptions{.max_iterations = 200 + int(50 * depth)});
     const ImageRGB colors = colorize(escape);

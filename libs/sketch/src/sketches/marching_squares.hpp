@@ -12,8 +12,11 @@ namespace tessera::sketches {
 /// The notes' 2D marching-squares example with a draggable iso value (marching_squares.cpp says what it draws).
 class MarchingSquaresSketch : public Sketch {
  public:
-  static constexpr int kSamples = 25;  ///< samples per side
-  static constexpr int kCell = 16;     ///< pixels between samples; sample (i, j) is at pixel (16 i + 8, 16 j + 8)
+  static constexpr int kSamples = 16;  ///< samples per side, one per cell of a kSamples^2 grid over the canvas
+
+  /// The pixel of sample coordinate (x, y): the center of cell (x, y) of the grid over the canvas (400 x 400 unless
+  /// the runner's --size says otherwise).
+  Vec2 to_pixel(const Vec2& p) const { return {(p.x + 0.5) * width / kSamples, (p.y + 0.5) * height / kSamples}; }
 
   void setup() override;
   void draw() override;

@@ -1,7 +1,7 @@
 // The notes' 2D transformations ("Transformations", "Homogenous Coordinates") animated: four panels, each a house
 // (the square [0, 2]^2 under the roof (0, 2), (2, 2), (1, 3)) drawn once in light gray where it stands and once,
-// filled, under one transformation whose parameter follows frame_count (theta = 2 pi frame_count / 120, a cycle every
-// two seconds at 60 frames per second). Coordinates are the notes' y-up units, 20 pixels each, origin at each panel's
+// filled, under one transformation whose parameter follows frame_count (theta = 2 pi frame_count / 90, a cycle every
+// 1.5 seconds at 60 frames per second). Coordinates are the notes' y-up units, 20 pixels each, origin at each panel's
 // marked point:
 //   top left      translate:  P' = P + T,           T = (1.5 cos theta, 1.5 sin theta)
 //   top right     rotate about the pivot (1, 1):   P''' = T2 R T1 P (the notes' "translate to origin, then rotate,
@@ -22,7 +22,7 @@ class Transformations : public Sketch {
 
   void draw() override {
     background(gray255(255));
-    const double theta = 2 * kPi * frame_count / 120.0;
+    const double theta = 2 * kPi * frame_count / 90.0;
     // Panel dividers.
     stroke(gray255(200));
     stroke_weight(1);
@@ -60,6 +60,9 @@ class Transformations : public Sketch {
       stroke(gray255(40));
       house();
       pop_matrix();
+      fill(gray255(60));  // the panel's name
+      canvas().text_size(16);
+      canvas().text(kNames[panel], 200 * (panel % 2) + 10, 200 * (panel / 2) + 22);
       if (panel == 1) {  // the pivot, over the house
         no_stroke();
         fill(rgb255(220, 40, 40));
@@ -70,6 +73,7 @@ class Transformations : public Sketch {
 
  private:
   static constexpr double kUnit = 20;  // pixels per unit
+  static constexpr const char* kNames[4] = {"translate", "rotate", "scale", "shear"};
   inline static const Vec4f kColors[4] = {rgb255(90, 150, 230), rgb255(240, 120, 90), rgb255(110, 190, 110),
                                           rgb255(190, 120, 210)};
 
