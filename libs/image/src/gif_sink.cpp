@@ -1,6 +1,7 @@
 // Animated GIF output through giflib's streaming encoder: the screen descriptor and the NETSCAPE2.0 loop extension
-// at the first frame, then per frame a graphic control extension (the delay), an image descriptor with a local color
-// table when the frame does not use the global one, and the LZW-coded indices. Bytes go straight to an AtomicFile.
+// at the first frame, then per frame a graphic control extension (the delay), an image descriptor of the rectangle
+// that changed since the previous frame, with a local color table when that rectangle does not use the global one,
+// and the LZW-coded indices. Bytes go straight to an AtomicFile.
 #include <gif_lib.h>
 
 #include <algorithm>
@@ -54,7 +55,8 @@ class GifSink final : public Rgb8Sink {
   GifSink(const GifSink&) = delete;
   GifSink& operator=(const GifSink&) = delete;
 
-  int bytes_per_pixel() const override { return Rgb8Sink::bytes_per_pixel() + 1; }  // + the palette indices
+  // + the palette indices, the previous frame and the changed rectangle
+  int bytes_per_pixel() const override { return Rgb8Sink::bytes_per_pixel() + 1 + 3 + 3; }
 
   void finish() override {
     int error = 0;
@@ -65,10 +67,14 @@ class GifSink final : public Rgb8Sink {
   }
 
  protected:
-  void write_rgb8(const std::vector<Rgb8>& pixels, int width, int height, long long index) override {
+  void write_rgb8(const std::vector<Rgb8>& frame, int width, int height, long long index) override {
     if (width > 65535 || height > 65535)
       throw InvalidInput(fmt::format("'{}': a GIF is at most 65535x65535 pixels, the frames are {}x{}",
                                      printable(path_.string()), width, height));
+    // Only the rectangle that changed since the previous frame is stored; the rest stays on screen (disposal 1).
+    const Rect rect = index == 0 ? Rect{0, 0, width, height} : changed(frame, width, height);
+    const std::vector<Rgb8>& pixels = crop(frame, width, rect);
+    previous_ = frame;
     indices_.resize(pixels.size());
     // A frame of at most 256 colors is exact with its own palette or a global one holding them all, and then
     // dithering has no error to spread: the frame is mapped directly.
@@ -85,17 +91,46 @@ class GifSink final : public Rgb8Sink {
       local = color_map(local_->palette());
       mapper = &*local_;
     }
-    map_to_palette(pixels, width, height, *mapper, options_.dither && !exact, indices_);
+    map_to_palette(pixels, rect.width, rect.height, *mapper, options_.dither && !exact, indices_);
 
     const int delay = AnimationWriter::gif_delay_cs(options_.fps, index);
     // Graphic control: disposal 1 (leave the frame in place), no transparency; the delay little-endian.
     GifByteType control[4] = {0x04, GifByteType(delay & 0xFF), GifByteType(delay >> 8), 0};
     check(EGifPutExtension(gif_, GRAPHICS_EXT_FUNC_CODE, 4, control));
-    check(EGifPutImageDesc(gif_, 0, 0, width, height, false, local.get()));
-    check(EGifPutLine(gif_, indices_.data(), width * height));
+    check(EGifPutImageDesc(gif_, rect.x, rect.y, rect.width, rect.height, false, local.get()));
+    check(EGifPutLine(gif_, indices_.data(), rect.width * rect.height));
   }
 
  private:
+  struct Rect {
+    int x, y, width, height;
+  };
+
+  /// The smallest rectangle holding every pixel that differs from the previous frame (a 1x1 one when none does).
+  Rect changed(const std::vector<Rgb8>& frame, int width, int height) const {
+    int x0 = width, y0 = height, x1 = -1, y1 = -1;
+    for (int y = 0; y < height; ++y) {
+      const size_t row = size_t(y) * size_t(width);
+      for (int x = 0; x < width; ++x)
+        if (frame[row + size_t(x)] != previous_[row + size_t(x)]) {
+          x0 = std::min(x0, x), x1 = std::max(x1, x);
+          y0 = std::min(y0, y), y1 = y;
+        }
+    }
+    return x1 < 0 ? Rect{0, 0, 1, 1} : Rect{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+  }
+
+  /// The pixels of `rect` (the frame itself when it covers it all).
+  const std::vector<Rgb8>& crop(const std::vector<Rgb8>& frame, int width, const Rect& rect) {
+    if (rect.width == width && size_t(rect.width) * size_t(rect.height) == frame.size()) return frame;
+    cropped_.clear();
+    for (int y = rect.y; y < rect.y + rect.height; ++y) {
+      const auto row = frame.begin() + ptrdiff_t(y) * width + rect.x;
+      cropped_.insert(cropped_.end(), row, row + rect.width);
+    }
+    return cropped_;
+  }
+
   /// The first frame: its palette becomes the global table; the screen descriptor and loop extension go out.
   void start(std::vector<Rgb8> palette, int width, int height) {
     global_.emplace(std::move(palette));
@@ -148,6 +183,7 @@ class GifSink final : public Rgb8Sink {
   std::optional<PaletteMapper> global_, local_;
   std::vector<uint32_t> global_colors_;  // the global table as sorted 0xRRGGBB, for the automatic test
   std::vector<uint8_t> indices_;
+  std::vector<Rgb8> previous_, cropped_;  // the previous frame, and the changed rectangle of this one
 };
 
 }  // namespace

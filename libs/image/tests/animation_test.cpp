@@ -190,7 +190,7 @@ TEST_F(Animation, GifOfFlatFramesIsExactAndSharesOnePalette) {
   AnimationWriter writer(path("squares.gif"), AnimationOptions{.fps = 30});
   std::vector<ImageRGB> frames;
   for (int t = 0; t < 12; ++t) {
-    frames.push_back(squares(t));
+    frames.push_back(squares(t == 11 ? 10 : t));  // the last frame repeats the one before
     writer.add(frames.back());
   }
   EXPECT_EQ(writer.frames(), 12);
@@ -210,6 +210,21 @@ TEST_F(Animation, GifOfFlatFramesIsExactAndSharesOnePalette) {
   for (size_t i = 1; i < tables.size(); ++i) EXPECT_EQ(tables[i], 0) << "frame " << i - 1 << " has a local table";
   for (size_t i = 0; i < frames.size(); ++i)
     EXPECT_EQ(count_differing_pixels(to_rgba8(ref->frames[i]), to_rgba8(frames[i])), 0) << "frame " << i;
+  // Each later frame stores only the bounding box of what changed (a 1x1 rectangle when nothing did).
+  const std::vector<long> rects = ref->numbers("rects");
+  ASSERT_EQ(rects.size(), 4 * frames.size());
+  EXPECT_EQ(std::vector<long>(rects.begin(), rects.begin() + 4), (std::vector<long>{0, 0, 64, 48}));
+  for (size_t i = 1; i < frames.size(); ++i) {
+    long x0 = 64, y0 = 48, x1 = -1, y1 = -1;
+    for (int y = 0; y < 48; ++y)
+      for (int x = 0; x < 64; ++x)
+        if (frames[i](x, y) != frames[i - 1](x, y))
+          x0 = std::min<long>(x0, x), y0 = std::min<long>(y0, y), x1 = std::max<long>(x1, x), y1 = y;
+    const std::vector<long> expected =
+        x1 < 0 ? std::vector<long>{0, 0, 1, 1} : std::vector<long>{x0, y0, x1 - x0 + 1, y1 - y0 + 1};
+    EXPECT_EQ(std::vector<long>(rects.begin() + ptrdiff_t(4 * i), rects.begin() + ptrdiff_t(4 * i + 4)), expected)
+        << "frame " << i;
+  }
 }
 
 TEST_F(Animation, GifOfAGradientIsCloseWithAndWithoutDithering) {
@@ -318,8 +333,9 @@ TEST_F(Animation, FrameBuffersOverTheMemoryBudgetAreRefused) {
   struct Restore {
     ~Restore() { MemoryBudget::set_limit(0); }
   } restore;
-  // GIF: the 8-bit RGBA copy, packed RGB and the indices, 8 bytes a pixel: 64 x 48 x 8 = 24576 bytes.
-  MemoryBudget::set_limit(24575);
+  // GIF: the 8-bit RGBA copy, packed RGB, the indices, the previous frame and the changed rectangle, 14 bytes a
+  // pixel: 64 x 48 x 14 = 43008 bytes.
+  MemoryBudget::set_limit(43007);
   {
     AnimationWriter writer(path("a.gif"));
     try {
@@ -330,7 +346,7 @@ TEST_F(Animation, FrameBuffersOverTheMemoryBudgetAreRefused) {
     }
   }
   EXPECT_TRUE(files().empty());
-  MemoryBudget::set_limit(24576);
+  MemoryBudget::set_limit(43008);
   AnimationWriter writer(path("a.gif"));
   writer.add(squares(0));
   writer.finish();

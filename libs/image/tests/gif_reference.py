@@ -11,6 +11,7 @@ prints, one item per line:
   durations D...    (milliseconds per frame, as PIL reads them)
   colors C...       (distinct colors of each decoded frame)
   tables G L...     (the global color table's size, then each frame's local table size, 0 for none)
+  rects X Y W H...  (each frame's image rectangle on the screen)
 and writes each decoded frame, composited as a viewer shows it, to OUTDIR/frame-N.ppm.
 """
 import struct
@@ -20,11 +21,11 @@ from PIL import Image
 
 
 def color_tables(data):
-    """Global table size and each image's local table size, from the blocks (GIF89a, sections 18-26)."""
+    """Global table size, each image's local table size and rectangle, from the blocks (GIF89a, sections 18-26)."""
     assert data[:6] in (b"GIF87a", b"GIF89a"), "not a GIF"
     flags = data[10]
     global_size = 2 << (flags & 7) if flags & 0x80 else 0
-    pos, local = 13 + 3 * global_size, []
+    pos, local, rects = 13 + 3 * global_size, [], []
     while pos < len(data):
         kind = data[pos]
         if kind == 0x3B:  # trailer
@@ -35,18 +36,19 @@ def color_tables(data):
             packed = data[pos + 9]
             size = 2 << (packed & 7) if packed & 0x80 else 0
             local.append(size)
+            rects.extend(struct.unpack("<4H", data[pos + 1:pos + 9]))
             pos += 10 + 3 * size + 1
         else:
             raise ValueError("unexpected block 0x%02x at byte %d" % (kind, pos))
         while data[pos] != 0:
             pos += 1 + data[pos]
         pos += 1
-    return global_size, local
+    return global_size, local, rects
 
 
 def main():
     path, outdir = sys.argv[1], sys.argv[2]
-    global_size, local = color_tables(open(path, "rb").read())
+    global_size, local, rects = color_tables(open(path, "rb").read())
     im = Image.open(path)
     loop = im.info.get("loop")
     durations, colors = [], []
@@ -64,6 +66,7 @@ def main():
     print("durations", *durations)
     print("colors", *colors)
     print("tables", global_size, *local)
+    print("rects", *rects)
 
 
 if __name__ == "__main__":
