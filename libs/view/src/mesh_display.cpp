@@ -30,7 +30,7 @@ void to_frame(const ImageRGB& picture, ImageRGBA8& out) {
       // Channel by channel on the raw arrays, which the compiler vectorizes.
       const float* in = &picture.row(y)->x;
       uint8_t* o = &out.row(y)->x;
-      for (int x = 0; x < picture.width(); ++x) {
+      for (size_t x = 0; x < size_t(picture.width()); ++x) {
         o[4 * x] = raster3d::to_unorm8(in[3 * x]);
         o[4 * x + 1] = raster3d::to_unorm8(in[3 * x + 1]);
         o[4 * x + 2] = raster3d::to_unorm8(in[3 * x + 2]);
