@@ -100,7 +100,10 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
   std::optional<int> budget = options.frames;
   if (!budget && !windowed) budget = int(std::clamp(std::llround(options.seconds.value_or(1.0) * fps), 1LL, 1LL << 30));
   std::unique_ptr<detail::Window> window;
-  if (windowed) window = detail::open_window(options.title, sketch.width, sketch.height);
+  if (windowed) {
+    window = detail::open_window(options.title, sketch.width, sketch.height);
+    SketchAccess::set_window_size(sketch, window->drawable_size());
+  }
   Output output(options.output, fps);
   std::optional<Progress> progress;
   if (!windowed) progress.emplace("sketch frames", *budget);

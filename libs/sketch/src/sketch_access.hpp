@@ -1,5 +1,8 @@
 #pragma once
 // The runner's side of a Sketch: what happens around the user's callbacks (private to the sketch module).
+#include <tuple>
+#include <utility>
+
 #include "tessera/sketch/sketch.hpp"
 
 namespace tessera::detail {
@@ -25,6 +28,8 @@ struct SketchAccess {
   /// Whether exit() was called.
   static bool exiting(const Sketch& s) { return s.exit_; }
   static void set_frame_rate(Sketch& s, double fps) { s.fps_ = fps; }
+  /// The window's drawable size when it opens (later sizes come as window_resize events).
+  static void set_window_size(Sketch& s, std::pair<int, int> size) { std::tie(s.window_width, s.window_height) = size; }
   /// Releases the gt current context if it is this sketch's.
   static void end(Sketch& s);
 };

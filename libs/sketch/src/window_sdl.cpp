@@ -164,6 +164,12 @@ class SdlWindow final : public Window {
     return open;
   }
 
+  std::pair<int, int> drawable_size() const override {
+    int w = 0, h = 0;
+    SDL_GetRendererOutputSize(renderer_, &w, &h);
+    return {w, h};
+  }
+
   void present(const ImageRGBA8& frame) override {
     if (frame.width() != width_ || frame.height() != height_) throw InternalError("the sketch changed size mid-run");
     SDL_UpdateTexture(texture_, nullptr, frame.row(0), width_ * 4);
