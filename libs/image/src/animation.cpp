@@ -120,6 +120,11 @@ class AnimationWriter::Impl {
   Impl(const fs::path& path, const AnimationOptions& options) : path_(path), format_(animation_format(path)) {
     if (!std::isfinite(options.fps) || options.fps <= 0)
       throw InvalidInput(fmt::format("animation frame rate {} must be a positive number", options.fps));
+    if (format_ == AnimationFormat::gif && options.fps < 100.0 / 65535)
+      throw InvalidInput(
+          fmt::format("'{}': a GIF frame lasts at most 655.35 seconds (a 16-bit count of centiseconds), "
+                      "so at least {:.6f} frames per second, not {}",
+                      printable(path.string()), 100.0 / 65535, options.fps));
     if (format_ == AnimationFormat::gif && options.fps > 50)
       throw InvalidInput(
           fmt::format("'{}': a GIF plays at most 50 frames per second (its delays are whole "

@@ -373,6 +373,7 @@ TEST_F(Animation, MisuseIsInvalidInput) {
 
   EXPECT_THROW(AnimationWriter(path("b.gif"), AnimationOptions{.fps = 60}), InvalidInput);
   EXPECT_THROW(AnimationWriter(path("b.gif"), AnimationOptions{.fps = 0}), InvalidInput);
+  EXPECT_THROW(AnimationWriter(path("b.gif"), AnimationOptions{.fps = 0.001}), InvalidInput);  // 1000 s a frame
   EXPECT_THROW(AnimationWriter(path("b.gif"), AnimationOptions{.fps = NAN}), InvalidInput);
   EXPECT_THROW(AnimationWriter(path("b.gif"), AnimationOptions{.loop = -2}), InvalidInput);
   EXPECT_THROW(AnimationWriter(path("b.avi")), InvalidInput);
