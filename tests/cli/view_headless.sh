@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # tessera view, headless: turntable GIFs of each kind of viewable (frame count and size read back by PIL), --stats,
 # scripted input (a drag turns the picture, a key changes the shading, r restores the home view byte for byte), and
-# clean failures: an unknown or unreadable file exits 1 with a message and no output, and a window without a display
+# --srgb against the sRGB formula, and clean failures: an unknown or unreadable file exits 1 with a message and no output, and a window without a display
 # exits 1 suggesting --headless. The bunny's turntable (frames per second) runs when the shared data is present.
 # $1 = the tessera binary, $2 = a scratch folder.
 set -euo pipefail
@@ -64,6 +64,19 @@ cmp -s drag.png drag2.png || fail "the same script gave different pictures"
 cmp -s home.png drag.png && fail "the drag did not turn the cube"
 cmp -s home.png reset.png || fail "r did not restore the home view"
 cmp -s home.png wire.png && fail "key 5 (wireframe) did not change the picture"
+
+# --srgb: every byte of the encoded frame is the sRGB curve (IEC 61966-2-1) of the linear frame's byte.
+"$tessera" view cube.obj --headless --size 96x64 --srgb -o home_srgb.png
+$py - <<'PY'
+from PIL import Image
+def srgb(v):
+    return 12.92 * v if v <= 0.0031308 else 1.055 * v ** (1 / 2.4) - 0.055
+lin = Image.open("home.png").convert("RGB").tobytes()
+enc = Image.open("home_srgb.png").convert("RGB").tobytes()
+bad = [(a, b) for a, b in zip(lin, enc) if abs(int(srgb(a / 255) * 255 + 0.5) - b) > 1]
+assert not bad, f"--srgb: {len(bad)} bytes off the sRGB curve, e.g. {bad[:3]}"
+assert lin != enc, "--srgb changed nothing"
+PY
 
 # Errors: exit 1 with a message naming the problem, no output file.
 expect_error() {  # PATTERN ARGS...
