@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # tessera view, headless: turntable GIFs of each kind of viewable (frame count and size read back by PIL), --stats,
-# scripted input (a drag turns the picture, a key changes the shading, r restores the home view byte for byte), and
-# --srgb against the sRGB formula, and clean failures: an unknown or unreadable file exits 1 with a message and no output, and a window without a display
-# exits 1 suggesting --headless. The bunny's turntable (frames per second) runs when the shared data is present.
+# scripted input (a drag turns the picture, a key changes the shading, r restores the home view byte for byte), --srgb
+# against the sRGB formula, and clean failures: an unknown or unreadable file exits 1 with a message and no output,
+# and a window without a display exits 1 suggesting --headless. The bunny's turntable (frames per second) runs when
+# the shared data is present.
 # $1 = the tessera binary, $2 = a scratch folder.
 set -euo pipefail
 tessera="$1"
