@@ -398,7 +398,7 @@ void draw_fixed_function(const Frame& f, const Camera& camera, raster3d::Context
 
 /// The mesh drawn per pixel with the maps of the options (texture, bump, environment, shadows, floor) into `fb` (of
 /// the frame's size), each jittered sample into `resolve`.
-void draw_with_maps(const Frame& f, Camera camera, raster3d::Framebuffer& fb, SampleResolve& resolve) {
+void draw_with_maps(const Frame& f, const Camera& camera, raster3d::Framebuffer& fb, SampleResolve& resolve) {
   const MeshViewOptions& o = f.o;
   const Bounds3& box = f.box;
   raster3d::VertexArrays floor;
