@@ -40,7 +40,7 @@ enum class GifPalette {
 struct AnimationOptions {
   double fps = 30;     ///< frames per second, > 0 (GIF: at most 50, its delays are whole centiseconds)
   bool srgb = false;   ///< encode 8-bit values with the sRGB curve (as WriteOptions::srgb)
-  bool dither = true;  ///< GIF: Floyd-Steinberg error diffusion where a frame has more than 256 colors
+  bool dither = true;  ///< GIF: Floyd-Steinberg error diffusion where a frame's colors are not all in its palette
   int loop = 0;        ///< GIF: 0 loops forever; n > 0 plays n more times after the first; -1 plays once
   GifPalette palette = GifPalette::automatic;  ///< GIF: how frames get their palettes
   int crf = -1;  ///< video: the encoder's constant-rate factor (lower is better); -1 = 20 for H.264, 32 for VP9
@@ -62,7 +62,7 @@ class AnimationWriter {
   /// Checks the path and options and starts the output: a GIF's temporary file, ffmpeg for a video, the folder of a
   /// sequence (created when missing). Throws InvalidInput (unknown format, bad options) or IoError (cannot create
   /// the output; for a video, ffmpeg not on PATH).
-  AnimationWriter(const std::filesystem::path& path, const AnimationOptions& options = {});
+  explicit AnimationWriter(const std::filesystem::path& path, const AnimationOptions& options = {});
   /// Without finish(), removes the temporary file and stops ffmpeg: no GIF or video appears (sequence frames
   /// already written stay, each a complete file).
   ~AnimationWriter();
