@@ -89,7 +89,7 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
   const Clock::time_point setup_start = Clock::now();
   SketchAccess::begin(sketch, options.seed, options.size, windowed);
   SketchAccess::setup(sketch);
-  if (options.fps) SketchAccess::set_frame_rate(sketch, *options.fps);
+  if (options.fps) SketchAccess::fix_frame_rate(sketch, *options.fps);
   result.draw_seconds += seconds_since(setup_start);
   result.width = sketch.width;
   result.height = sketch.height;

@@ -40,7 +40,7 @@ void Sketch::size(int w, int h, Renderer renderer) {
 
 void Sketch::frame_rate(double fps) {
   if (!(fps > 0 && fps <= 1000)) throw InvalidInput(fmt::format("frame_rate({}): expected 0 < fps <= 1000", fps));
-  fps_ = fps;
+  if (!fps_fixed_) fps_ = fps;
 }
 
 int64_t Sketch::millis() const {
@@ -81,6 +81,8 @@ void SketchAccess::begin(Sketch& s, uint64_t seed, std::optional<std::pair<int, 
   s.frame_count = 0;
   s.looping_ = s.redraw_ = true;
   s.exit_ = false;
+  s.fps_ = 60;
+  s.fps_fixed_ = false;
   s.size(100, 100);
 }
 

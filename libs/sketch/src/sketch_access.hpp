@@ -27,7 +27,11 @@ struct SketchAccess {
   static ImageRGBA8 shown(Sketch& s, bool srgb);
   /// Whether exit() was called.
   static bool exiting(const Sketch& s) { return s.exit_; }
-  static void set_frame_rate(Sketch& s, double fps) { s.fps_ = fps; }
+  /// --fps: the frame rate from now on, whatever the sketch's frame_rate() calls say.
+  static void fix_frame_rate(Sketch& s, double fps) {
+    s.fps_ = fps;
+    s.fps_fixed_ = true;
+  }
   /// The window's drawable size when it opens (later sizes come as window_resize events).
   static void set_window_size(Sketch& s, std::pair<int, int> size) { std::tie(s.window_width, s.window_height) = size; }
   /// Releases the gt current context if it is this sketch's.

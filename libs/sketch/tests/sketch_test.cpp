@@ -88,6 +88,28 @@ TEST(Sketch, HeadlessMillisIsTheFramesTime) {
   EXPECT_EQ(t.draws[2].millis, 40);
 }
 
+/// Changes its frame rate in frame 2 (from then on 10 fps, 100 ms a frame).
+struct Slows : Recorder {
+  void draw() override {
+    Recorder::draw();
+    if (frame_count == 2) frame_rate(10);
+  }
+};
+
+TEST(Sketch, FrameRateChangesTimeUnlessTheRunnerFixesIt) {
+  Slows s;
+  s.fps = 50;
+  run_sketch(s, frames(4));
+  EXPECT_EQ(s.draws[1].millis, 20);
+  EXPECT_EQ(s.draws[2].millis, 120);  // frame 2 lasts 100 ms at the new rate
+  EXPECT_EQ(s.draws[3].millis, 220);
+  Slows t;
+  RunOptions o = frames(4);
+  o.fps = 50;
+  run_sketch(t, o);
+  EXPECT_EQ(t.draws[3].millis, 60);  // --fps 50 holds
+}
+
 TEST(Sketch, SecondsGiveRoundSecondsTimesFpsFrames) {
   Recorder s;
   s.fps = 30;

@@ -99,8 +99,8 @@ class Sketch {
   void size(int w, int h, Renderer renderer = Renderer::p2d);
   /// The renderer size() chose.
   Renderer renderer() const { return renderer_; }
-  /// The target frame rate (Processing's default 60); the runner's --fps overrides it. Throws InvalidInput unless
-  /// 0 < fps <= 1000.
+  /// The target frame rate (Processing's default 60). The runner's --fps replaces it: then the sketch's calls are
+  /// checked but change nothing. Throws InvalidInput unless 0 < fps <= 1000.
   void frame_rate(double fps);
   /// The target frame rate in frames per second.
   double frame_rate() const { return fps_; }
@@ -206,6 +206,7 @@ class Sketch {
   std::unique_ptr<raster3d::Context> context_;
   std::optional<std::pair<int, int>> size_override_;  // the runner's --size
   double fps_ = 60;
+  bool fps_fixed_ = false;  // the runner's --fps is in force
   bool looping_ = true, redraw_ = true, exit_ = false;
   // Time: headless, the frames' time summed at their frame rates; in a window, the clock since setup() began.
   bool wall_clock_ = false;
