@@ -12,6 +12,7 @@
 
 #include "sketches/marching_squares.hpp"
 #include "tessera/fractal/coloring.hpp"
+#include "tessera/math/noise.hpp"
 #include "tessera/sketch/runner.hpp"
 
 namespace tessera {
@@ -229,6 +230,26 @@ TEST(MandelbrotZoomSketch, APressRecentersOnThePointUnderThePointer) {
   const double pixel = 3 * std::exp2(-1.44) / 320;
   const std::complex<double> picked = target + std::complex<double>((80.5 - 160) * pixel, -(60.5 - 120) * pixel);
   expect_mandelbrot(f, picked, 1.5, "after the press");
+}
+
+// ---- noise_hills ---------------------------------------------------------------------------------------------------
+
+TEST(NoiseHillsSketch, TheFrontRidgeIsTheNoiseFormula) {
+  // Processing's noise() of the run's seed (0): the front ridge (k = 2) at column x after n frames at speed 1 is
+  // y = 300 (0.45 + 0.34) + 300 (0.3 - 0.1) (0.5 - noise((x + 2.5 n) 0.006 * 2, 14.6)).
+  const ProcessingNoise noise(0);
+  const u8vec4 front(40, 60, 80, 255);
+  for (int n : {1, 30, 77}) {
+    const ImageRGBA8 f = last_frame("noise_hills", n);
+    ASSERT_EQ(f.width(), 400);
+    ASSERT_EQ(f.height(), 300);
+    for (int x = 8; x < 400; x += 24) {
+      const double u = (x + 2.5 * n) * 0.006 * 2;
+      const double y = 300 * (0.45 + 0.17 * 2) + 300 * (0.3 - 0.05 * 2) * (0.5 - noise.noise(float(u), float(7.3 * 2)));
+      EXPECT_LE(distance(at(f, x + 0.5, y + 3), front), 1) << "frame " << n << " x " << x << " ridge " << y;
+      EXPECT_GT(distance(at(f, x + 0.5, y - 3), front), 10) << "frame " << n << " x " << x << " ridge " << y;
+    }
+  }
 }
 
 // ---- marching_squares ----------------------------------------------------------------------------------------------

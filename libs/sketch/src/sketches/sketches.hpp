@@ -15,6 +15,8 @@ std::unique_ptr<Sketch> make_body();
 std::unique_ptr<Sketch> make_mandelbrot_zoom();
 std::unique_ptr<Sketch> make_marching_squares();
 extern const std::string_view kMarchingSquaresDemo;  // marching_squares' demo input
+std::unique_ptr<Sketch> make_noise_hills();
+extern const std::string_view kNoiseHillsDemo;  // noise_hills' demo input
 std::unique_ptr<Sketch> make_transformations();
 
 }  // namespace tessera::sketches

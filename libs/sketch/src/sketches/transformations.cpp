@@ -30,7 +30,8 @@ class Transformations : public Sketch {
     line(0, 200, 400, 200);
     for (int panel = 0; panel < 4; ++panel) {
       push_matrix();
-      translate(200 * (panel % 2) + 80, 200 * (panel / 2) + 130);  // the panel's origin
+      const int column = panel % 2, row = panel / 2;
+      translate(200 * column + 80, 200 * row + 130);  // the panel's origin
       scale(kUnit, -kUnit);
       stroke_weight(1.0 / kUnit);
       // The untransformed house, and the origin.
@@ -62,7 +63,7 @@ class Transformations : public Sketch {
       pop_matrix();
       fill(gray255(60));  // the panel's name
       canvas().text_size(16);
-      canvas().text(kNames[panel], 200 * (panel % 2) + 10, 200 * (panel / 2) + 22);
+      canvas().text(kNames[panel], 200 * column + 10, 200 * row + 22);
       if (panel == 1) {  // the pivot, over the house
         no_stroke();
         fill(rgb255(220, 40, 40));
