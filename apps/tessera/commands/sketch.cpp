@@ -44,7 +44,7 @@ void setup_sketch(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--input", opt->input, "An input script: one event per line, 'FRAME EVENT ARGS' (docs/sketch.md)")
       ->check(CLI::ExistingFile);
   cmd.add_flag("--demo", opt->demo, "Play the sketch's demo input (the mouse and keys of its gallery animation)");
-  cmd.add_option("--seed", opt->seed, "Seed of the sketch's random()")->capture_default_str();
+  cmd.add_option("--seed", opt->seed, "Seed of the sketch's random() and noise()")->capture_default_str();
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
     if (opt->list) {

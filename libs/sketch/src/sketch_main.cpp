@@ -33,7 +33,7 @@ int sketch_main(int argc, char** argv, const SketchFactory& factory) {
       ->excludes(w);
   app.add_option("--input", input, "An input script: one event per line, 'FRAME EVENT ARGS'")->check(CLI::ExistingFile);
   app.add_option("--threads", options.threads, "Worker threads (0 = all cores)")->check(CLI::NonNegativeNumber);
-  app.add_option("--seed", options.seed, "Seed of random()");
+  app.add_option("--seed", options.seed, "Seed of random() and noise()");
   app.add_flag("--srgb", options.srgb, "Encode 8-bit frames with the sRGB curve");
   app.add_flag("--stats", stats, "Print width, height, pixels, frames, draws and timings as key=value lines");
   try {
