@@ -502,17 +502,28 @@ void draw_with_maps(const Frame& f, const Camera& camera, raster3d::Framebuffer&
 
 }  // namespace
 
+namespace {
+
+/// Throws InvalidInput when `options` put a texture or bump map on a mesh without uvs.
+void check_uvs(const PolyMesh& mesh, const MeshViewOptions& options) {
+  if ((options.texture || options.bump) && mesh.uvs.empty() && mesh.corner_uvs.empty())
+    throw InvalidInput("mesh view: a texture or bump map needs texture coordinates, and the mesh has none");
+}
+
+}  // namespace
+
 MeshView::MeshView(PolyMesh mesh, MeshViewOptions options) : source_(std::move(mesh)), options_(std::move(options)) {
+  check_uvs(source_, options_);
   prepare();
 }
 
 void MeshView::set_options(MeshViewOptions options) {
+  check_uvs(source_, options);  // before anything changes
   const MeshViewOptions& old = options_;
   const auto faceted = [](const MeshViewOptions& o) { return o.shading == MeshShading::flat; };
   const auto false_colors = [](const MeshViewOptions& o) { return o.shading == MeshShading::normals; };
   const bool again = faceted(old) != faceted(options) || false_colors(old) != false_colors(options) ||
-                     old.face_colors != options.face_colors || old.turn_outward != options.turn_outward ||
-                     ((options.texture || options.bump) && arrays_.uvs.empty());
+                     old.face_colors != options.face_colors || old.turn_outward != options.turn_outward;
   const bool edges = options.wireframe != MeshWireframe::none && edges_.empty();
   options_ = std::move(options);
   if (again)
@@ -546,8 +557,6 @@ void MeshView::prepare() {
       arrays_.colors[i] = 0.5f * (glm::normalize(arrays_.normals[i]) + 1.0f);
   }
   triangles_ = arrays_.indices.size() / 3;
-  if ((o.texture || o.bump) && arrays_.uvs.empty())
-    throw InvalidInput("mesh view: a texture or bump map needs texture coordinates, and the mesh has none");
   edges_ = o.wireframe != MeshWireframe::none ? polygon_edges(mesh_) : std::vector<std::pair<uint32_t, uint32_t>>{};
 }
 

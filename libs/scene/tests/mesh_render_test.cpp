@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "tessera/core/error.hpp"
 #include "tessera/math/transform.hpp"
 #include "tessera/mesh/normals.hpp"
 #include "tessera/mesh/primitives.hpp"
@@ -168,6 +169,40 @@ TEST(MeshRender, InsideOutMeshIsTurnedOutward) {
   MeshViewOptions keep;
   keep.turn_outward = false;
   EXPECT_FALSE(MeshView(box, keep).turned_outward());
+}
+
+TEST(MeshRender, FloorReceivesTheShadowWhereTheLightIsBlocked) {
+  // The box [-1, 1]^3 over the floor y = -1, lit from (0, 1, -1): its shadow falls on the floor at z in [1, 3] behind
+  // it as seen from the light. There the floor (color 0.85) gets only the ambient term 0.85 * 0.2; beside it, at
+  // x = 2.5, also the diffuse 0.85 * cos 45 degrees (no highlight).
+  Camera camera;
+  camera.eye = {0, 4, 9};
+  camera.center = {0, -1, 1};
+  camera.far = 40;
+  MeshViewOptions options;
+  options.shading = MeshShading::phong;
+  options.specular = 0;
+  options.light = {MeshLightKind::directional, Vec3(0, 1, -1)};
+  options.floor = true;
+  options.shadows = true;
+  const MeshPicture picture = render_mesh(make_box(), camera, kSize, kSize, options);
+  const Vec3 shadowed = to_window(camera, {0, -1, 2}), lit = to_window(camera, {2.5, -1, 2});
+  EXPECT_NEAR(picture.color(int(shadowed.x), int(shadowed.y)).y, 0.85 * 0.2, 2 * kLevel);
+  EXPECT_NEAR(picture.color(int(lit.x), int(lit.y)).y, 0.85 * (0.2 + std::sqrt(0.5)), 2 * kLevel);
+}
+
+TEST(MeshRender, RefusedOptionsLeaveTheViewAsItWas) {
+  const PolyMesh box = make_box();  // no uvs
+  Camera camera;
+  MeshView view(box);
+  const ImageRGB before = view.render(camera, 64, 64).color;
+  MeshViewOptions textured;
+  textured.shading = MeshShading::flat;
+  textured.texture = std::make_shared<const Texture2D>(ImageRGBA8(4, 4, glm::u8vec4(255)), Sampler{});
+  EXPECT_THROW(view.set_options(textured), InvalidInput);
+  EXPECT_THROW(MeshView(box, textured), InvalidInput);
+  EXPECT_EQ(view.options().shading, MeshShading::gouraud);
+  EXPECT_TRUE(same(view.render(camera, 64, 64).color, before));
 }
 
 TEST(MeshRender, EmptyMeshGivesTheBackground) {
