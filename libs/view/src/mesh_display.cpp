@@ -25,12 +25,12 @@ std::shared_ptr<const Texture2D> checkerboard() {
 }  // namespace
 
 void to_frame(const ImageRGB& picture, ImageRGBA8& out) {
-  parallel_for(0, picture.height(), 16, [&](int64_t y0, int64_t y1) {
+  parallel_for(0, picture.height(), 16, [&picture, &out](int64_t y0, int64_t y1) {
+    const auto width = size_t(picture.width());  // a local: byte stores cannot alias it
     for (int y = int(y0); y < int(y1); ++y) {
-      // Channel by channel on the raw arrays, which the compiler vectorizes.
-      const float* in = &picture.row(y)->x;
-      uint8_t* o = &out.row(y)->x;
-      for (size_t x = 0; x < size_t(picture.width()); ++x) {
+      const auto* in = reinterpret_cast<const float*>(picture.row(y));
+      auto* o = reinterpret_cast<uint8_t*>(out.row(y));
+      for (size_t x = 0; x < width; ++x) {
         o[4 * x] = raster3d::to_unorm8(in[3 * x]);
         o[4 * x + 1] = raster3d::to_unorm8(in[3 * x + 1]);
         o[4 * x + 2] = raster3d::to_unorm8(in[3 * x + 2]);
