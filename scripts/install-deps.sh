@@ -15,7 +15,7 @@ demo_packages=(
 )
 test_packages=(
   # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev python3 librsvg2-bin python3-pil ffmpeg
+  libgtest-dev libgmock-dev libbenchmark-dev python3 python3-numpy librsvg2-bin python3-pil ffmpeg
   # reference peers (tests and benchmarks only, never the implementation)
   libosd-dev libtinyobjloader-dev python3-skimage python3-vtk9 libosmesa6-dev libembree-dev povray
   # a virtual X server: Debian's VTK needs a display for its volume ray-cast mapper (bench_volume under xvfb-run)
