@@ -56,6 +56,40 @@ bool near(const ImageRGBA8& image, double x, double y, u8vec4 color, int toleran
   return false;
 }
 
+// ---- bouncing_balls ------------------------------------------------------------------------------------------------
+
+TEST(BouncingBallsSketch, APressDropsABallThatFallsAsGravitySays) {
+  // The same run with and without a press at (200, 40) before frame 2: the pixels that differ are the dropped ball,
+  // drawn last. Dropped from rest, after m = n - 1 steps of v += g, y += v its center is at y = 40 + g m (m + 1) / 2.
+  for (int n : {2, 15, 25}) {
+    const ImageRGBA8 without = last_frame("bouncing_balls", n, "1 mouse_move 200 40\n");
+    const ImageRGBA8 with = last_frame("bouncing_balls", n, "1 mouse_move 200 40\n2 mouse_press left\n");
+    ASSERT_EQ(with.width(), 400);
+    int x0 = 400, x1 = -1, y0 = 300, y1 = -1;
+    for (int y = 0; y < 300; ++y)
+      for (int x = 0; x < 400; ++x)
+        if (with(x, y) != without(x, y))
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    ASSERT_GE(x1, 0) << "frame " << n << ": no ball dropped";
+    const double m = n - 1, expected_y = 40 + 0.5 * m * (m + 1) / 2;
+    EXPECT_NEAR((x0 + x1 + 1) / 2.0, 200, 1.0) << "frame " << n;
+    EXPECT_NEAR((y0 + y1 + 1) / 2.0, expected_y, 1.0) << "frame " << n;
+    EXPECT_GE(x1 - x0 + 1, 16) << "frame " << n;  // the radius is random(8, 22)
+    EXPECT_LE(x1 - x0 + 1, 46) << "frame " << n;
+  }
+}
+
+TEST(BouncingBallsSketch, BallsStayBetweenTheWallsAndAboveTheFloor) {
+  // After 300 frames of bounces nothing but the paper is on the left and right edge columns (at most the faint
+  // antialiased rim of a ball touching a wall): each ball's center stays at least its radius from the walls.
+  const ImageRGBA8 f = last_frame("bouncing_balls", 300);
+  const u8vec4 paper = at(f, 200, 0);
+  for (int y = 0; y < 300; ++y) {
+    EXPECT_LE(distance(f(0, y), paper), 30) << y;
+    EXPECT_LE(distance(f(399, y), paper), 30) << y;
+  }
+}
+
 // ---- body ----------------------------------------------------------------------------------------------------------
 
 struct Point {

@@ -18,5 +18,7 @@ extern const std::string_view kMarchingSquaresDemo;  // marching_squares' demo i
 std::unique_ptr<Sketch> make_noise_hills();
 extern const std::string_view kNoiseHillsDemo;  // noise_hills' demo input
 std::unique_ptr<Sketch> make_transformations();
+std::unique_ptr<Sketch> make_bouncing_balls();
+extern const std::string_view kBouncingBallsDemo;  // bouncing_balls' demo input
 
 }  // namespace tessera::sketches
