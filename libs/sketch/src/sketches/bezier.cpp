@@ -46,8 +46,8 @@ class BezierSketch : public Sketch {
     fill(rgb255(220, 40, 40));  // Q(t)
     ellipse(levels.back()[0].x, levels.back()[0].y, 10, 10);
     fill(gray255(60));
-    canvas().text_size(16);
-    canvas().text(fmt::format("t = {:.2f}", t), 10, 390);
+    text_size(16);
+    text(fmt::format("t = {:.2f}", t), 10, 390);
     for (int i = 0; i < 4; ++i) {  // the control points, the dragged one darker
       fill(i == dragged_ ? rgb255(200, 100, 0) : rgb255(250, 160, 40));
       ellipse(p(i).x, p(i).y, 14, 14);

@@ -65,8 +65,8 @@ void MarchingSquaresSketch::draw() {
   fill(gray255(255));
   rect(4, 4, 136, 24);
   fill(gray255(30));
-  canvas().text_size(16);
-  canvas().text(fmt::format("iso = {:.2f}", iso_), 10, 22);
+  text_size(16);
+  text(fmt::format("iso = {:.2f}", iso_), 10, 22);
 }
 
 // The pointer sweeps from x = 150 right to 250, left to 50 and back (iso 3.75, 6.25, 1.25, 3.75 at the default

@@ -62,8 +62,8 @@ class Transformations : public Sketch {
       house();
       pop_matrix();
       fill(gray255(60));  // the panel's name
-      canvas().text_size(16);
-      canvas().text(kNames[panel], 200 * column + 10, 200 * row + 22);
+      text_size(16);
+      text(kNames[panel], 200 * column + 10, 200 * row + 22);
       if (panel == 1) {  // the pivot, over the house
         no_stroke();
         fill(rgb255(220, 40, 40));
