@@ -78,6 +78,9 @@ endfunction()
 # `unit_tests` builds every module's test program (the sanitizer run builds and runs only these).
 if(TESSERA_BUILD_TESTS AND NOT TARGET unit_tests)
   add_custom_target(unit_tests)
+  # Fixtures several modules' tests share (tests/support/tessera_test/: a scratch folder per test), by DEPS.
+  add_library(tessera_test_support INTERFACE)
+  target_include_directories(tessera_test_support INTERFACE ${PROJECT_SOURCE_DIR}/tests/support)
 endif()
 
 # ../shared/data beside the checkout holds the optional real data sets; tests skip cleanly without it.

@@ -10,23 +10,13 @@
 #include <fstream>
 
 #include "tessera/core/error.hpp"
+#include "tessera_test/scratch_dir.hpp"
 
 namespace tessera {
 namespace {
 namespace fs = std::filesystem;
 
-class AtomicFileTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tessera_atomic_" + std::to_string(::getpid()) +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  size_t file_count() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
-  fs::path dir_;
-};
+using AtomicFileTest = testing::ScratchDirTest;
 
 TEST_F(AtomicFileTest, WritesAndRenames) {
   write_file_atomic(dir_ / "a.txt", "hello");

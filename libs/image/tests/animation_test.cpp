@@ -17,6 +17,7 @@
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/image/metrics.hpp"
+#include "tessera_test/scratch_dir.hpp"
 
 namespace tessera {
 namespace {
@@ -24,24 +25,14 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-// Every test writes into its own fresh folder, removed afterwards.
-class Animation : public ::testing::Test {
+class Animation : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("tessera-animation-{}-{}", ::getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path path(const std::string& name) const { return dir_ / name; }
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
   }
-  fs::path dir_;
 };
 
 // Runs a shell command; its stdout, or nullopt when it fails.

@@ -18,6 +18,7 @@
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/image/metrics.hpp"
+#include "tessera_test/scratch_dir.hpp"
 
 namespace tessera {
 namespace {
@@ -26,22 +27,9 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-// Every test writes into its own fresh folder, removed afterwards.
-class ImageIo : public ::testing::Test {
+class ImageIo : public testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("tessera-image-{}-{}", ::getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  fs::path path(const std::string& name) const { return dir_ / name; }
   void write_bytes(const std::string& name, const std::string& bytes) const { write_file_atomic(path(name), bytes); }
-  size_t files_in_dir() const { return size_t(std::distance(fs::directory_iterator(dir_), fs::directory_iterator())); }
-
-  fs::path dir_;
 };
 
 ImageRGBA8 random_rgba8(int width, int height, unsigned seed) {
@@ -528,7 +516,7 @@ TEST_F(ImageIo, FailedWritesLeaveNoFile) {
   fs::create_directory(path("taken.pfm"));  // renaming over a folder fails after the data was written
   EXPECT_THROW(write_image(path("taken.pfm"), image), IoError);
   EXPECT_TRUE(fs::is_directory(path("taken.pfm")));
-  EXPECT_EQ(files_in_dir(), 1u);  // no temporary left behind
+  EXPECT_EQ(file_count(), 1u);  // no temporary left behind
 }
 
 TEST_F(ImageIo, WritingReplacesAnExistingFileWhole) {
@@ -537,7 +525,7 @@ TEST_F(ImageIo, WritingReplacesAnExistingFileWhole) {
   const ImageRGBA back = read_image(path("a.png"));
   EXPECT_EQ(back.width(), 2);
   EXPECT_EQ(back(1, 0), glm::vec4(1.f));
-  EXPECT_EQ(files_in_dir(), 1u);
+  EXPECT_EQ(file_count(), 1u);
 }
 
 // read_image_native: 8-bit files give their bytes (a PNG from an independent encoder, and Tessera's PNG, TGA, BMP,

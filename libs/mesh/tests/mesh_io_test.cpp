@@ -10,25 +10,14 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/mesh/primitives.hpp"
+#include "tessera_test/scratch_dir.hpp"
 
 namespace tessera {
 namespace {
 
 namespace fs = std::filesystem;
 
-class MeshFiles : public ::testing::Test {
- protected:
-  void SetUp() override {
-    // One folder per process and test: ctest runs this fixture's tests at once, and a shared folder let one test's
-    // TearDown delete the other's files.
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / fmt::format("tessera-mesh-io-{}-{}", ::getpid(), info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+using MeshFiles = testing::ScratchDirTest;
 
 TEST_F(MeshFiles, EveryFormatRoundTripsThroughFiles) {
   const PolyMesh cube = make_cube();
