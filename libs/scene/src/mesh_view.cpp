@@ -164,14 +164,27 @@ raster3d::VertexArrays polygon_corners(const PolyMesh& mesh, bool facets, const 
 /// the nearest of their depths, and the pixels any sample covered.
 class SampleResolve {
  public:
-  /// For `samples` frames of width x height.
-  SampleResolve(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {}
+  /// For `samples` frames of width x height; with `direct` (one sample, no supersampling), the frame's 8-bit colors
+  /// go straight into *direct (of that size) and no picture is taken.
+  SampleResolve(int width, int height, int samples, ImageRGBA8* direct = nullptr)
+      : width_(width), height_(height), samples_(samples), direct_(direct) {}
 
   /// Adds one sample's frame; `painter`: coverage from the stencil buffer (the painter's algorithm keeps no depth).
   /// A lone sample's frame is read when the picture is taken (it must stay unchanged until then); the first of several
   /// is kept as it is (0 + c is c).
   void add(const raster3d::Framebuffer& fb, bool painter) {
     painter_ = painter;
+    if (direct_) {
+      // Alpha 255 as raster3d::to_color8 gives it (blending leaves the frame's alpha below 1).
+      parallel_for(0, height_, 16, [&](int64_t y0, int64_t y1) {
+        for (int y = int(y0); y < int(y1); ++y) {
+          const glm::u8vec4* in = fb.color().row(y);
+          glm::u8vec4* o = direct_->row(y);
+          for (int x = 0; x < width_; ++x) o[x] = {in[x].x, in[x].y, in[x].z, 255};
+        }
+      });
+      return;
+    }
     if (samples_ == 1) {
       only_ = &fb;
       return;
@@ -226,6 +239,7 @@ class SampleResolve {
   }
 
   int width_, height_, samples_;
+  ImageRGBA8* direct_;
   bool painter_ = false;
   const raster3d::Framebuffer* only_ = nullptr;
   ImageRGB sum_;
@@ -571,12 +585,27 @@ Bounds3 MeshView::scene_bounds() const {
 }
 
 MeshPicture MeshView::render(const Camera& camera, int width, int height, Progress* progress) const {
+  return render_impl(camera, width, height, progress, nullptr);
+}
+
+void MeshView::render_into(const Camera& camera, ImageRGBA8& out, Progress* progress) const {
+  if (options_.samples == 1 && options_.supersample <= 1 && triangles_ > 0) {
+    render_impl(camera, out.width(), out.height(), progress, &out);
+    return;
+  }
+  const ImageRGB color = render(camera, out.width(), out.height(), progress).color;
+  std::transform(color.pixels().begin(), color.pixels().end(), out.pixels().begin(),
+                 [](const Vec3f& c) { return raster3d::to_color8(c); });
+}
+
+MeshPicture MeshView::render_impl(const Camera& camera, int width, int height, Progress* progress,
+                                  ImageRGBA8* direct) const {
   const int s = std::max(1, options_.supersample);
   if (width <= 0 || height <= 0 || options_.samples < 1)
     throw InvalidInput(
         fmt::format("mesh view: bad image size {}x{} or sample count {}", width, height, options_.samples));
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
-  SampleResolve resolve(width * s, height * s, options_.samples);
+  SampleResolve resolve(width * s, height * s, options_.samples, direct);
   const Frame frame{options_, mesh_, arrays_, edges_, bounds_, width * s, height * s, s, progress};
   std::optional<raster3d::Framebuffer> maps_fb;  // the resolve may read it when the picture is taken
   if (options_.maps()) {
@@ -586,7 +615,7 @@ MeshPicture MeshView::render(const Camera& camera, int width, int height, Progre
       context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);
     draw_fixed_function(frame, camera, *context_, resolve);
   }
-  return resolve.take_picture(s);
+  return direct ? MeshPicture{} : resolve.take_picture(s);
 }
 
 MeshPicture render_mesh(const PolyMesh& mesh, const Camera& camera, int width, int height,

@@ -1,6 +1,7 @@
 // The library's mesh renderer (MeshView, render_mesh) against independent references: a sphere's covered pixels and
 // front depth against its analytic projection, a cube's flat facets against the Lambert formula, the normals' false
-// colors against (n + 1) / 2, and one prepared view rendered for several cameras and options against fresh ones.
+// colors against (n + 1) / 2, one prepared view rendered for several cameras and options against fresh ones, and
+// render_into's 8-bit frame against the float picture rounded.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -211,6 +212,56 @@ TEST(MeshRender, EmptyMeshGivesTheBackground) {
   const MeshPicture picture = render_mesh(PolyMesh{}, Camera{}, 8, 4, options);
   EXPECT_EQ(picture.covered, 0u);
   EXPECT_EQ(picture.color(7, 3), options.background);
+}
+
+TEST(MeshRender, RenderIntoWritesRendersColorsAsBytes) {
+  // render_into's bytes against render()'s float picture rounded to 8 bits, 255 c to the nearest (halves to even, as
+  // the supersampled averages may fall), alpha 255: the direct copy
+  // of one sample (shadings, edges, blending, the painter's algorithm, the maps' path) and the converted fallback
+  // (jittered samples, supersampling, a mesh without faces).
+  Camera camera;
+  camera.eye = {1.5, 1.2, 2.5};
+  camera.aspect = 160.0 / 120;
+  const auto check = [&](const char* what, const PolyMesh& mesh, const MeshViewOptions& options) {
+    const MeshView view(mesh, options);
+    const ImageRGB picture = view.render(camera, 160, 120).color;
+    ImageRGBA8 out(160, 120, glm::u8vec4(7));
+    view.render_into(camera, out);
+    long long differing = 0;
+    for (size_t i = 0; i < out.pixels().size(); ++i) {
+      const Vec3f c = picture.pixels()[i] * 255.0f;
+      const glm::u8vec4 expected(std::nearbyint(c.x), std::nearbyint(c.y), std::nearbyint(c.z), 255);
+      differing += out.pixels()[i] != expected;
+    }
+    EXPECT_EQ(differing, 0) << what << " " << int(options.shading);
+  };
+  const PolyMesh sphere = make_uv_sphere(32, 16);
+  for (const MeshShading shading :
+       {MeshShading::unlit, MeshShading::flat, MeshShading::gouraud, MeshShading::phong, MeshShading::normals}) {
+    MeshViewOptions options;
+    options.shading = shading;
+    options.background = {0.1f, 0.1f, 0.12f};
+    check("shading", sphere, options);
+  }
+  MeshViewOptions edges;
+  edges.wireframe = MeshWireframe::over;
+  check("edges", sphere, edges);
+  MeshViewOptions blended;
+  blended.opacity = 0.5;
+  check("blended", sphere, blended);
+  MeshViewOptions painter;
+  painter.hidden_surface = raster3d::HiddenSurface::painter;
+  check("painter", sphere, painter);
+  MeshViewOptions shadows;
+  shadows.shadows = shadows.floor = true;
+  check("shadows", sphere, shadows);
+  MeshViewOptions jittered;
+  jittered.samples = 3;
+  check("jittered", sphere, jittered);
+  MeshViewOptions supersampled;
+  supersampled.supersample = 2;
+  check("supersampled", sphere, supersampled);
+  check("empty", PolyMesh{}, MeshViewOptions{});
 }
 
 }  // namespace

@@ -84,9 +84,7 @@ MeshViewOptions MeshDisplay::options() const {
   return o;
 }
 
-void MeshDisplay::render(const Camera& camera, ImageRGBA8& out) const {
-  to_frame(view_->render(camera, out.width(), out.height()).color, out);
-}
+void MeshDisplay::render(const Camera& camera, ImageRGBA8& out) const { view_->render_into(camera, out); }
 
 bool MeshDisplay::key(int key) {
   note_.clear();

@@ -184,8 +184,17 @@ class MeshView {
   /// volumes under an orthographic camera, or env_cube with nothing to reflect (no floor or environment).
   MeshPicture render(const Camera& camera, int width, int height, Progress* progress = nullptr) const;
 
+  /// Renders the mesh through `camera` into `out` at out's size, each pixel render(...).color as 8-bit RGBA
+  /// (raster3d::to_color8: alpha 255), the same bytes. When one sample is drawn (samples and supersample 1, the
+  /// viewer's frame loop), the rasterizer's 8-bit colors are copied straight into `out`, rows in parallel: no float
+  /// picture, no depth image, no coverage count. Otherwise (and for a mesh without faces) render() is converted.
+  /// Throws as render().
+  void render_into(const Camera& camera, ImageRGBA8& out, Progress* progress = nullptr) const;
+
  private:
   void prepare();
+  /// render(), or with `direct` (one sample drawn) the frame's colors copied into *direct and an empty picture.
+  MeshPicture render_impl(const Camera& camera, int width, int height, Progress* progress, ImageRGBA8* direct) const;
 
   PolyMesh source_;  // as given
   PolyMesh mesh_;    // with normals, turned outward where asked
