@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <set>
 
@@ -175,12 +176,14 @@ class SampleResolve {
   void add(const raster3d::Framebuffer& fb, bool painter) {
     painter_ = painter;
     if (direct_) {
-      // Alpha 255 as raster3d::to_color8 gives it (blending leaves the frame's alpha below 1).
+      // Alpha 255 as raster3d::to_color8 gives it (blending leaves the frame's alpha below 1), or-ed into whole pixels
+      // as 32-bit words (a loop GCC vectorizes, where per-channel stores it does not).
+      const auto alpha = std::bit_cast<uint32_t>(glm::u8vec4(0, 0, 0, 255));
       parallel_for(0, height_, 16, [&](int64_t y0, int64_t y1) {
         for (int y = int(y0); y < int(y1); ++y) {
           const glm::u8vec4* in = fb.color().row(y);
           glm::u8vec4* o = direct_->row(y);
-          for (int x = 0; x < width_; ++x) o[x] = {in[x].x, in[x].y, in[x].z, 255};
+          for (int x = 0; x < width_; ++x) o[x] = std::bit_cast<glm::u8vec4>(std::bit_cast<uint32_t>(in[x]) | alpha);
         }
       });
       return;
