@@ -293,8 +293,8 @@ void Canvas::draw_image(const Image<Texel>& img, double x, double y, double w, d
   const double det = glm::determinant(placement);
   if (!std::isfinite(det) || det == 0) return;
   const Mat3 to_image = glm::inverse(placement);
-  for (int k = 0; k < 3; ++k)
-    if (!glm::all(glm::isfinite(to_image[k]))) return;  // nearly singular: no pixel could be mapped back
+  for (int k = 0; k < 3; ++k)  // nearly singular: no pixel could be mapped back
+    if (!std::isfinite(to_image[k].x) || !std::isfinite(to_image[k].y) || !std::isfinite(to_image[k].z)) return;
   const Path footprint{{{to_device(x, y), to_device(x + w, y), to_device(x + w, y + h), to_device(x, y + h)}}};
   scan_path(footprint, FillRule::non_zero, width(), height(), smooth_, [&](int py, int x0, int x1, const float* c) {
     for (int px = x0; px < x1; ++px) {
