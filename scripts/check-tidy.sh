@@ -10,13 +10,22 @@ build=${1:?usage: check-tidy.sh BUILD_DIR [--update]}
 tidy=$(command -v clang-tidy-14 || command -v clang-tidy || true)
 [ -n "$tidy" ] || { echo "check-tidy: clang-tidy not found (scripts/install-deps.sh installs it)" >&2; exit 2; }
 [ -f "$build/compile_commands.json" ] || { echo "check-tidy: no $build/compile_commands.json (configure it first)" >&2; exit 2; }
-found=$(mktemp)
-trap 'rm -f "$found"' EXIT
-# One file per clang-tidy run, as many at once as there are cores; findings in Tessera's own headers count once.
-git ls-files 'libs/*/src/*.cpp' 'apps/*.cpp' |
-  xargs -P "$(nproc)" -n 1 "$tidy" -p "$build" --quiet --header-filter="^$PWD/(libs|apps)/" 2>/dev/null |
-  sed -n "s|^$PWD/\([^:]*\):\([0-9]*:[0-9]*\): warning: .* \[\([a-z0-9.,-]*\)\]$|\1 \3 \2|p" | sort -u |
-  awk '{ n[$1 " " $2]++ } END { for (k in n) print k, n[k] }' | sort >"$found" || true
+found=$(mktemp) out=$(mktemp)
+trap 'rm -f "$found" "$out"' EXIT
+# The sources this build compiles (a source of a disabled option, such as the window without SDL2, has no command).
+mapfile -t files < <(git ls-files 'libs/*/src/*.cpp' 'apps/*.cpp' |
+  while read -r f; do grep -qF "\"file\": \"$PWD/$f\"" "$build/compile_commands.json" && echo "$f"; done)
+# One file per clang-tidy run, as many at once as there are cores. A file clang cannot compile fails the check rather
+# than passing it unread.
+if ! printf '%s\n' "${files[@]}" |
+  xargs -P "$(nproc)" -n 1 "$tidy" -p "$build" --quiet --header-filter="^$PWD/(libs|apps)/" >"$out" 2>/dev/null; then
+  echo "check-tidy: clang-tidy could not check every file:" >&2
+  grep -m 20 ': error: ' "$out" >&2 || true
+  exit 2
+fi
+# Findings in Tessera's own headers count once, however many sources include them.
+sed -n "s|^$PWD/\([^:]*\):\([0-9]*:[0-9]*\): warning: .* \[\([a-z0-9.,-]*\)\]$|\1 \3 \2|p" "$out" | sort -u |
+  awk '{ n[$1 " " $2]++ } END { for (k in n) print k, n[k] }' | sort >"$found"
 if [ "${2:-}" = "--update" ]; then
   cp "$found" .clang-tidy-baseline
   echo "check-tidy: baseline rewritten ($(awk '{ s += $3 } END { print s + 0 }' .clang-tidy-baseline) findings)"
