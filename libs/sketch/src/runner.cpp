@@ -110,6 +110,7 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
 
   const Clock::time_point start = Clock::now();
   std::vector<InputEvent> window_events;
+  ImageRGBA8 converted;  // the 8-bit frame when shown() must convert (2D, or 3D with --srgb)
   size_t next_event = 0;
   for (int frame = 1; !budget || frame <= *budget; ++frame) {
     const Clock::time_point frame_start = Clock::now();
@@ -131,7 +132,7 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
       SketchAccess::draw(sketch);
       ++result.draws;
     }
-    const ImageRGBA8 picture = SketchAccess::shown(sketch, options.srgb);
+    const ImageRGBA8& picture = SketchAccess::shown(sketch, options.srgb, converted);
     result.draw_seconds += seconds_since(frame_start);
 
     const Clock::time_point write_start = Clock::now();

@@ -166,12 +166,15 @@ void SketchAccess::deliver(Sketch& s, const InputEvent& e) {
   s.event_mouse_y_ = s.mouse_y;
 }
 
-ImageRGBA8 SketchAccess::shown(Sketch& s, bool srgb) {
+const ImageRGBA8& SketchAccess::shown(Sketch& s, bool srgb, ImageRGBA8& scratch) {
   if (s.context_) {
     const ImageRGBA8& front = s.context_->framebuffer().front();
-    return srgb ? to_rgba8(to_float(front), true) : front;
+    if (!srgb) return front;
+    scratch = to_rgba8(to_float(front), true);
+  } else {
+    scratch = to_rgba8(s.canvas().image(), srgb);
   }
-  return to_rgba8(s.canvas().image(), srgb);
+  return scratch;
 }
 
 void SketchAccess::end(Sketch& s) {

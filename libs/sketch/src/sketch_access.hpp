@@ -22,9 +22,9 @@ struct SketchAccess {
   /// Delivers one input event: the variables first, then the callback, as Processing's handleMouseEvent and
   /// handleKeyEvent.
   static void deliver(Sketch& s, const InputEvent& event);
-  /// The frame on screen, 8-bit (2D: the canvas converted with `srgb`; 3D: the front buffer, sRGB-encoded when
-  /// `srgb`).
-  static ImageRGBA8 shown(Sketch& s, bool srgb);
+  /// The frame on screen, 8-bit: 3D without `srgb`, the front buffer itself (no copy); else the canvas converted
+  /// with `srgb` (2D) or the front buffer sRGB-encoded (3D), written into `scratch`. Valid until the next draw().
+  static const ImageRGBA8& shown(Sketch& s, bool srgb, ImageRGBA8& scratch);
   /// Whether exit() was called.
   static bool exiting(const Sketch& s) { return s.exit_; }
   /// --fps: the frame rate from now on, whatever the sketch's frame_rate() calls say.
