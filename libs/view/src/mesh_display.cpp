@@ -2,10 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "tessera/core/parallel.hpp"
-#include "tessera/raster3d/framebuffer.hpp"
-#include "view_mode.hpp"
-
 namespace tessera::detail {
 namespace {
 
@@ -23,22 +19,6 @@ std::shared_ptr<const Texture2D> checkerboard() {
 }
 
 }  // namespace
-
-void to_frame(const ImageRGB& picture, ImageRGBA8& out) {
-  parallel_for(0, picture.height(), 16, [&picture, &out](int64_t y0, int64_t y1) {
-    const auto width = size_t(picture.width());  // a local: byte stores cannot alias it
-    for (int y = int(y0); y < int(y1); ++y) {
-      const auto* in = reinterpret_cast<const float*>(picture.row(y));
-      auto* o = reinterpret_cast<uint8_t*>(out.row(y));
-      for (size_t x = 0; x < width; ++x) {
-        o[4 * x] = raster3d::to_unorm8(in[3 * x]);
-        o[4 * x + 1] = raster3d::to_unorm8(in[3 * x + 1]);
-        o[4 * x + 2] = raster3d::to_unorm8(in[3 * x + 2]);
-        o[4 * x + 3] = 255;
-      }
-    }
-  });
-}
 
 MeshDisplay::MeshDisplay(ViewShading shading, const std::string& texture, int up_axis)
     : shading_(shading), texture_path_(texture), up_axis_(up_axis) {}

@@ -15,22 +15,21 @@ namespace {
 class SceneMode final : public ViewMode {
  public:
   SceneMode(const Viewable& v, const ViewerOptions& o)
-      : scene_(*v.scene), samples_(o.trace_samples), max_passes_(o.trace_max_passes) {}
+      : scene_(*v.scene), home_(scene_.camera), samples_(o.trace_samples), max_passes_(o.trace_max_passes) {}
   OrbitControl home(double aspect) const override {
     // Near and far as the rasterizer's; the sphere orbited is the one about the look-at point reaching halfway to
     // the eye (it sets how far the zoom and pan go).
-    const Camera camera = scene_.camera.camera(aspect, 0.05, 4000);
+    const Camera camera = home_.camera(aspect, 0.05, 4000);
     return OrbitControl(camera, camera.center, 0.5 * glm::length(camera.eye - camera.center));
   }
   void render(const Camera& camera, bool moved, ImageRGBA8& out) override {
     const int w = out.width(), h = out.height();
     if (!tracing_) {
-      Scene s = scene_;
-      s.camera.eye = camera.eye;
-      s.camera.center = camera.center;
-      s.camera.up = camera.up;
-      s.camera.ortho_height = camera.ortho_height;
-      to_frame(rasterize_scene(s, w, h, RasterShadows::map, kShadowMapSize), out);
+      scene_.camera.eye = camera.eye;  // the rest of the scene's camera (its lens) stays as loaded
+      scene_.camera.center = camera.center;
+      scene_.camera.up = camera.up;
+      scene_.camera.ortho_height = camera.ortho_height;
+      to_frame(rasterize_scene(scene_, w, h, RasterShadows::map, kShadowMapSize), out);
       return;
     }
     if (!ray_scene_) ray_scene_.emplace(to_ray_scene(scene_));
@@ -47,12 +46,8 @@ class SceneMode final : public ViewMode {
     settings.progress = false;
     const ImageRGB pass = tessera::render(*ray_scene_, settings);
     ++passes_;
-    ImageRGB mean(w, h);
-    for (size_t i = 0; i < mean.pixels().size(); ++i) {
-      sum_.pixels()[i] += pass.pixels()[i];
-      mean.pixels()[i] = sum_.pixels()[i] / float(passes_);
-    }
-    to_frame(mean, out);
+    for (size_t i = 0; i < sum_.pixels().size(); ++i) sum_.pixels()[i] += pass.pixels()[i];
+    to_frame(sum_, out, float(passes_));  // the passes' mean
   }
   bool key(int key, int) override {
     if (key != Key::tab) return false;
@@ -67,8 +62,9 @@ class SceneMode final : public ViewMode {
 
  private:
   static constexpr int kShadowMapSize = 1024;  // half the still pictures' (each frame draws the maps again)
-  Scene scene_;
-  std::optional<RayScene> ray_scene_;  // built when first asked for
+  Scene scene_;                                // its camera follows the view (the rasterizer's)
+  const SceneCamera home_;                     // the scene's own camera
+  std::optional<RayScene> ray_scene_;          // built when first asked for
   ImageRGB sum_;
   int samples_, max_passes_, passes_ = 0;
   bool tracing_ = false;

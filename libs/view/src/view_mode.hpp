@@ -44,7 +44,8 @@ std::unique_ptr<ViewMode> make_scene_mode(const Viewable& v, const ViewerOptions
 /// (subdivision, marching cubes, texture reading).
 std::unique_ptr<ViewMode> make_view_mode(const Viewable& viewable, ViewerOptions options);
 
-/// Converts a linear RGB picture to the 8-bit frame (clamped and rounded as the framebuffer, no gamma).
-void to_frame(const ImageRGB& picture, ImageRGBA8& out);
+/// Converts a linear RGB picture, each color divided by `divisor` (a sum of that many pictures: their mean), to the
+/// 8-bit frame (clamped and rounded as the framebuffer, no gamma).
+void to_frame(const ImageRGB& picture, ImageRGBA8& out, float divisor = 1.0f);
 
 }  // namespace tessera::detail

@@ -6,8 +6,10 @@
 #include <chrono>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/image/animation.hpp"
 #include "tessera/raster2d/font.hpp"
+#include "tessera/raster3d/framebuffer.hpp"
 #include "view_mode.hpp"
 
 namespace tessera {
@@ -26,6 +28,22 @@ std::unique_ptr<ViewMode> make_view_mode(const Viewable& v, ViewerOptions o) {
       return make_patch_mode(v, o);
   }
   throw InternalError("make_view_mode: unknown kind");
+}
+
+void to_frame(const ImageRGB& picture, ImageRGBA8& out, float divisor) {
+  parallel_for(0, picture.height(), 16, [&picture, &out, divisor](int64_t y0, int64_t y1) {
+    const auto width = size_t(picture.width());  // a local: byte stores cannot alias it
+    for (int y = int(y0); y < int(y1); ++y) {
+      const auto* in = reinterpret_cast<const float*>(picture.row(y));
+      auto* o = reinterpret_cast<uint8_t*>(out.row(y));
+      for (size_t x = 0; x < width; ++x) {
+        o[4 * x] = raster3d::to_unorm8(in[3 * x] / divisor);
+        o[4 * x + 1] = raster3d::to_unorm8(in[3 * x + 1] / divisor);
+        o[4 * x + 2] = raster3d::to_unorm8(in[3 * x + 2] / divisor);
+        o[4 * x + 3] = 255;
+      }
+    }
+  });
 }
 
 }  // namespace detail
