@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "tessera/core/parallel.hpp"
 #include "tessera/raster3d/pipeline.hpp"
 
 namespace tessera::raster3d {
@@ -61,9 +62,12 @@ void Framebuffer::swap() {
 }
 
 ImageRGB Framebuffer::color_rgb() const {
+  // Rows in parallel: every rendered picture goes through here (the viewer's frame time).
   ImageRGB out(color_.width(), color_.height());
-  for (int y = 0; y < out.height(); ++y)
-    for (int x = 0; x < out.width(); ++x) out(x, y) = Vec3f(color_(x, y)) / 255.0f;
+  parallel_for(0, out.height(), 16, [&](int64_t y0, int64_t y1) {
+    for (int y = int(y0); y < int(y1); ++y)
+      for (int x = 0; x < out.width(); ++x) out(x, y) = Vec3f(color_(x, y)) / 255.0f;
+  });
   return out;
 }
 

@@ -206,13 +206,7 @@ class SampleResolve {
   /// [0, 1], and the output pixels some sample covered. Takes the sums (called once).
   MeshPicture take_picture(int s) {
     if (only_) {
-      // The frame's 8-bit colors as Framebuffer::color_rgb converts them (c / 255), rows in parallel: the viewer's
-      // frame time.
-      sum_ = ImageRGB(width_, height_);
-      parallel_for(0, height_, 16, [&](int64_t y0, int64_t y1) {
-        for (int y = int(y0); y < int(y1); ++y)
-          for (int x = 0; x < width_; ++x) sum_(x, y) = Vec3f(only_->color()(x, y)) / 255.0f;
-      });
+      sum_ = only_->color_rgb();
     } else if (count_ > 1) {
       for (Vec3f& c : sum_.pixels()) c /= float(count_);
     }
