@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <set>
 
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -47,15 +46,12 @@ TriMesh split_faceted(const TriMesh& mesh) {
 }
 
 std::vector<std::pair<uint32_t, uint32_t>> polygon_edges(const PolyMesh& mesh) {
-  std::set<std::pair<uint32_t, uint32_t>> edges;
-  for (size_t f = 0; f < mesh.face_count(); ++f) {
-    const auto face = mesh.face(f);
-    for (size_t i = 0; i < face.size(); ++i) {
-      const uint32_t a = face[i], b = face[(i + 1) % face.size()];
-      edges.insert({std::min(a, b), std::max(a, b)});
-    }
-  }
-  return {edges.begin(), edges.end()};
+  // The edge table's undirected edges: (lower, higher) vertex, sorted by that key.
+  const EdgeTable table = build_edge_table(mesh);
+  std::vector<std::pair<uint32_t, uint32_t>> edges;
+  edges.reserve(table.size());
+  for (const auto& [a, b] : table.vertices) edges.emplace_back(a, b);
+  return edges;
 }
 
 double sphere_fit_distance(double radius, double half_angle, double margin) {
