@@ -600,14 +600,13 @@ MeshPicture MeshView::render_impl(const Camera& camera, int width, int height, P
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
   SampleResolve resolve(width * s, height * s, options_.samples, direct);
   const Frame frame{options_, mesh_, arrays_, edges_, bounds_, width * s, height * s, s, progress};
-  std::optional<raster3d::Framebuffer> maps_fb;  // the resolve may read it when the picture is taken
-  if (options_.maps()) {
-    draw_with_maps(frame, camera, maps_fb.emplace(frame.width, frame.height), resolve);
-  } else {
-    if (!context_ || context_->framebuffer().width() != frame.width || context_->framebuffer().height() != frame.height)
-      context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);
+  // Both paths draw into the kept context's framebuffer (the resolve may read it when the picture is taken).
+  if (!context_ || context_->framebuffer().width() != frame.width || context_->framebuffer().height() != frame.height)
+    context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);
+  if (options_.maps())
+    draw_with_maps(frame, camera, context_->framebuffer(), resolve);
+  else
     draw_fixed_function(frame, camera, *context_, resolve);
-  }
   return direct ? MeshPicture{} : resolve.take_picture(s);
 }
 
