@@ -43,32 +43,30 @@ class Output {
     writer_.emplace(path, AnimationOptions{.fps = fps / keep_every_});
   }
   void add(int frame, const ImageRGBA8& picture) {
-    if (writer_) {
-      if ((frame - 1) % keep_every_ == 0) writer_->add(to_float(picture));
-    } else if (!path_.empty()) {
-      last_ = picture;
-    }
+    if (writer_ && (frame - 1) % keep_every_ == 0) writer_->add(picture);
   }
-  void finish() {
+  /// Completes the animation, or writes `last` (the last frame presented; null when none was) as the one picture.
+  void finish(const ImageRGBA8* last) {
     if (writer_)
       writer_->finish();
-    else if (!path_.empty() && !last_.empty())
-      write_image(path_, last_);
+    else if (!path_.empty() && last)
+      write_image(path_, *last);
   }
 
  private:
-  // A GIF or video, a name with a run of '#', or a folder: every frame; anything else is one picture.
+  // What AnimationWriter takes (a GIF or video, a name with a run of '#', a folder) gets every frame; anything else
+  // is one picture.
   static bool is_animation(const std::filesystem::path& path) {
-    const std::string text = path.string(), name = path.filename().string();
-    std::string ext = path.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return text.ends_with('/') || std::filesystem::is_directory(path) || name.find('#') != std::string::npos ||
-           ext == ".gif" || ext == ".mp4" || ext == ".webm" || ext == ".mov" || ext == ".mkv";
+    try {
+      animation_format(path);
+      return true;
+    } catch (const InvalidInput&) {
+      return false;
+    }
   }
   std::filesystem::path path_;
   std::optional<AnimationWriter> writer_;
   int keep_every_ = 1;
-  ImageRGBA8 last_;
 };
 
 }  // namespace
@@ -110,7 +108,8 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
 
   const Clock::time_point start = Clock::now();
   std::vector<InputEvent> window_events;
-  ImageRGBA8 converted;  // the 8-bit frame when shown() must convert (2D, or 3D with --srgb)
+  ImageRGBA8 converted;               // the 8-bit frame when shown() must convert (2D, or 3D with --srgb)
+  const ImageRGBA8* shown = nullptr;  // the last frame presented
   size_t next_event = 0;
   for (int frame = 1; !budget || frame <= *budget; ++frame) {
     const Clock::time_point frame_start = Clock::now();
@@ -132,7 +131,8 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
       SketchAccess::draw(sketch);
       ++result.draws;
     }
-    const ImageRGBA8& picture = SketchAccess::shown(sketch, options.srgb, converted);
+    shown = &SketchAccess::shown(sketch, options.srgb, converted);
+    const ImageRGBA8& picture = *shown;
     result.draw_seconds += seconds_since(frame_start);
 
     const Clock::time_point write_start = Clock::now();
@@ -157,7 +157,7 @@ RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallb
   }
   if (progress) progress->done();
   const Clock::time_point write_start = Clock::now();
-  output.finish();
+  output.finish(shown);
   result.write_seconds += seconds_since(write_start);
   return result;
 }
