@@ -9,19 +9,11 @@ set -euo pipefail
 tessera=$1 scratch=$2
 python=/usr/bin/python3
 fail() { echo "sketch_window.sh: $*"; exit 1; }
+. "$(dirname "$0")/window_lib.sh"
 
 if [ "${3:-}" != --inside ]; then
-  for tool in xvfb-run xdotool import; do
-    command -v $tool >/dev/null || { echo "sketch_window.sh: skipped, no $tool"; exit 77; }
-  done
-  "$python" -c 'import PIL, numpy' 2>/dev/null || { echo "sketch_window.sh: skipped, no PIL/numpy"; exit 77; }
-  rm -rf "$scratch" && mkdir -p "$scratch"
-  if env -u DISPLAY -u WAYLAND_DISPLAY "$tessera" sketch pink_square --window --frames 1 2>&1 |
-      grep -q "built without SDL2"; then
-    echo "sketch_window.sh: skipped, tessera was built without SDL2"
-    exit 77
-  fi
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$tessera" "$scratch" --inside
+  window_prepare "$scratch"
+  window_enter_x "$tessera" "$scratch" sketch pink_square --window --frames 1
 fi
 
 # ---- inside the X server ------------------------------------------------------------------------------------------
@@ -31,31 +23,7 @@ headless() {  # NAME SCRIPT
   "$tessera" sketch pink_square --headless --frames 1 --input "$scratch/$1.txt" -o "$scratch/$1-headless.png"
 }
 grab() { sleep 0.6; import -window "$wid" "$scratch/$1-window.png"; }
-# Compares the grab with the headless render; with a scale, the window shows the sketch scaled by that factor at
-# offset (ox, oy) and the grab is sampled at the centers of the sketch's pixels (and the bars must be black).
-compare() {  # NAME [SCALE OX OY]
-  "$python" - "$scratch/$1-window.png" "$scratch/$1-headless.png" "${2:-1}" "${3:-0}" "${4:-0}" <<'PY'
-import sys
-import numpy as np
-from PIL import Image
-grab = np.asarray(Image.open(sys.argv[1]).convert("RGB")).astype(int)
-want = np.asarray(Image.open(sys.argv[2]).convert("RGB")).astype(int)
-scale, ox, oy = float(sys.argv[3]), int(sys.argv[4]), int(sys.argv[5])
-h, w = want.shape[:2]
-if scale != 1:
-    ys = oy + np.floor((np.arange(h) + 0.5) * scale).astype(int)
-    xs = ox + np.floor((np.arange(w) + 0.5) * scale).astype(int)
-    bars = np.concatenate([grab[:, :ox].reshape(-1, 3), grab[:, ox + int(w * scale):].reshape(-1, 3)])
-    if bars.size and bars.max() > 1:
-        sys.exit(f"{sys.argv[1]}: the letterbox bars are not black (max {bars.max()})")
-    grab = grab[ys][:, xs]
-if grab.shape != want.shape:
-    sys.exit(f"{sys.argv[1]}: grab {grab.shape} vs headless {want.shape}")
-close = (np.abs(grab - want).max(axis=2) <= 1).mean()
-print(f"{sys.argv[1]}: {100 * close:.3f}% of pixels within 1/255")
-sys.exit(0 if close >= 0.99 else 1)
-PY
-}
+compare() { compare_grab "$scratch/$1-window.png" "$scratch/$1-headless.png" "${@:2}"; }  # NAME [SCALE OX OY]
 
 "$tessera" sketch pink_square --window --seconds 60 >"$scratch/window.out" 2>&1 &
 pid=$!
