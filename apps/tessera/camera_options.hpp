@@ -6,7 +6,6 @@
 
 #include "tessera/core/parse.hpp"
 #include "tessera/math/camera.hpp"
-#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
 
@@ -57,7 +56,5 @@ struct CameraOptions {
 
 /// Adds `--samples N` (anti-aliasing: N samples per pixel, 1 to 1024) to a command.
 void add_samples_option(CLI::App& command, int& samples);
-
-// The --samples pattern and jitter (pixel_sample, jittered_projection) are the mesh view's, in scene's mesh_view.hpp.
 
 }  // namespace tessera::cli

@@ -18,6 +18,7 @@
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/raytrace/sampling.hpp"
+#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
 namespace {
