@@ -145,9 +145,7 @@ Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi) const {
   const Vec3 mid = 0.5 * (lo + hi);
   const double extent = 0.5 * glm::length(hi - lo);
   const auto vec = [](const std::string& text, const char* what, const Vec3& fallback) {
-    if (text.empty()) return fallback;
-    const auto d = parse_doubles(text, 3, what);
-    return Vec3(d[0], d[1], d[2]);
+    return text.empty() ? fallback : parse_vec3(text, what);
   };
   if (!(fovy > 0 && fovy < 180)) throw InvalidInput(fmt::format("--fovy: expected degrees in (0, 180), got {}", fovy));
   const Size2 s = image_size();
@@ -184,6 +182,11 @@ void add_samples_option(CLI::App& command, int& samples) {
                   "pixel centers")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
+}
+
+Vec3 parse_vec3(const std::string& text, const char* what) {
+  const auto v = parse_doubles(text, 3, what);
+  return {v[0], v[1], v[2]};
 }
 
 }  // namespace tessera::cli

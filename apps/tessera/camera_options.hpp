@@ -57,4 +57,7 @@ struct CameraOptions {
 /// Adds `--samples N` (anti-aliasing: N samples per pixel, 1 to 1024) to a command.
 void add_samples_option(CLI::App& command, int& samples);
 
+/// The vector x,y,z an option gives (`what` names it in the error). Throws InvalidInput unless three numbers.
+Vec3 parse_vec3(const std::string& text, const char* what);
+
 }  // namespace tessera::cli

@@ -56,11 +56,6 @@ const std::string& name_of(const Names<T>& names, T value) {
   return std::find_if(names.begin(), names.end(), [&](const auto& n) { return n.second == value; })->first;
 }
 
-Vec3 parse_vec3(const std::string& text, const char* what) {
-  const auto v = parse_doubles(text, 3, what);
-  return {v[0], v[1], v[2]};
-}
-
 /// The model's up axis as a coordinate index.
 int up_index(UpAxis axis) { return axis == UpAxis::x ? 0 : axis == UpAxis::y ? 1 : 2; }
 
