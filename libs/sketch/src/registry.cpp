@@ -8,25 +8,6 @@
 namespace tessera {
 namespace {
 
-// The pointer circles the canvas once in 60 frames, then presses and drags.
-constexpr std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes round, then drags
-1 mouse_move 200 120
-6 mouse_move 257 143
-11 mouse_move 280 200
-16 mouse_move 257 257
-21 mouse_move 200 280
-26 mouse_move 143 257
-31 mouse_move 120 200
-36 mouse_move 143 143
-41 mouse_move 200 120
-46 mouse_press left
-46 mouse_move 240 160
-51 mouse_move 280 200
-56 mouse_release left
-58 key_press s
-59 key_release s
-)";
-
 // Sorted by name (find_sketch searches it; --list prints it in this order).
 const std::array kSketches = {
     SketchInfo{"bezier", "The notes' cubic Bezier curve with draggable control points and de Casteljau's construction",
@@ -51,7 +32,7 @@ const std::array kSketches = {
                "Processing's noise(): three ridges of Perlin-noise hills scrolling with parallax (mouse x: speed)",
                sketches::make_noise_hills, sketches::kNoiseHillsDemo, 120},
     SketchInfo{"pink_square", "The notes' pink (255, 150, 150) square following the mouse (2D; s: outline)",
-               sketches::make_pink_square, kPinkSquareDemo, 60},
+               sketches::make_pink_square, sketches::kPinkSquareDemo, 60},
     SketchInfo{"rotating_cube",
                "A cube with colored faces turning in 3D, double buffered (space pauses)",
                sketches::make_rotating_cube,

@@ -32,6 +32,25 @@ class PinkSquare : public Sketch {
 
 }  // namespace
 
+// The pointer circles the canvas once in 60 frames, then presses and drags.
+const std::string_view kPinkSquareDemo = R"(# pink_square: the pointer goes round, then drags
+1 mouse_move 200 120
+6 mouse_move 257 143
+11 mouse_move 280 200
+16 mouse_move 257 257
+21 mouse_move 200 280
+26 mouse_move 143 257
+31 mouse_move 120 200
+36 mouse_move 143 143
+41 mouse_move 200 120
+46 mouse_press left
+46 mouse_move 240 160
+51 mouse_move 280 200
+56 mouse_release left
+58 key_press s
+59 key_release s
+)";
+
 std::unique_ptr<Sketch> make_pink_square() { return std::make_unique<PinkSquare>(); }
 
 }  // namespace tessera::sketches

@@ -8,6 +8,7 @@
 namespace tessera::sketches {
 
 std::unique_ptr<Sketch> make_pink_square();
+extern const std::string_view kPinkSquareDemo;  // pink_square's demo input
 std::unique_ptr<Sketch> make_rotating_cube();
 std::unique_ptr<Sketch> make_bezier();
 extern const std::string_view kBezierDemo;  // bezier's demo input
