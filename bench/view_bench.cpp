@@ -8,7 +8,6 @@
 //
 // The same figure from the command line: tessera view bun_zipper.ply --headless --orbit 60 --stats --threads 2.
 #include <benchmark/benchmark.h>
-#include <malloc.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -23,14 +22,6 @@ namespace {
 using namespace tessera;
 
 constexpr int kFrames = 30;
-
-/// As `tessera view` does: freed frame-sized pictures stay in the heap instead of being unmapped and faulted back in
-/// every frame (apps/tessera/commands/view.cpp).
-const bool kHeapKept = [] {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 512 << 20);
-  return true;
-}();
 
 const Viewable* bunny() {
   static const std::optional<Viewable> v = []() -> std::optional<Viewable> {

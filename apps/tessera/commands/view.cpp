@@ -2,7 +2,6 @@
 // [--frames N] [--fps F] [--shading NAME] [--texture IMG] [--samples N] [--no-status]: the interactive viewer
 // (libs/view, docs/view.md), a 3D sketch run by the sketch runner in a window or headless.
 #include <fmt/format.h>
-#include <malloc.h>
 
 #include <memory>
 #include <string>
@@ -61,11 +60,6 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
   cmd.add_flag("--no-status", opt->no_status, "No status line at the bottom of the picture");
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
-    // Every frame allocates frame-sized pictures (the mesh view's color and depth, 15 MB at 1280x720). glibc would
-    // map each with mmap and unmap it on free, so every frame page-faulted them back in, zeroed (a third of the
-    // frame time on the bunny); kept in the heap, they are reused.
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 512 << 20);
     PhaseTimer timer;
     Viewable viewable = timer.time("read_s", [&] { return read_viewable(opt->file); });
     RunOptions run;
@@ -95,7 +89,7 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
     run.srgb = common.srgb;
     run.title = fmt::format("tessera view {}", opt->file);
     Viewer viewer(std::move(viewable), options);
-    const RunResult r = timer.time("compute_s", [&] { return run_sketch(viewer, run); });
+    const RunResult r = run_sketch(viewer, run);  // compute_s below is the runner's draw time
     if (!common.stats) return;
     const ViewerStats& s = viewer.stats();
     StatRows rows = {{"width", stat_value(r.width)},
