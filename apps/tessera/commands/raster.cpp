@@ -156,6 +156,12 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     throw InvalidInput("--hidden-surface painter: --wireframe needs the z-buffer to hide the edges behind the surface");
   if (painter && !a.depth_out.empty())
     throw InvalidInput("--hidden-surface painter keeps no depth buffer to write with --depth-out");
+  if (a.env_cube && a.env.empty() && !a.floor)
+    throw InvalidInput("--env-cube: nothing around the mesh to reflect; add --env or --floor");
+  if (a.shadows && a.shadow_method == ShadowMethod::zfail && a.camera.ortho)
+    throw InvalidInput(
+        "--shadow-method zfail needs a perspective camera (its far plane at infinity); with --ortho "
+        "use zpass or map");
 
   PhaseTimer timer;
   PolyMesh poly = timer.time("read_s", [&] { return read_mesh_with_progress(a.mesh); });
@@ -168,8 +174,6 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   timer.time("compute_s", [&] {
     // Everything is read and prepared before drawing.
     MeshViewOptions options = view_options(a, color, background);
-    if (a.env_cube && a.env.empty() && !a.floor)
-      throw InvalidInput("--env-cube: nothing around the mesh to reflect; add --env or --floor");
     const MeshView view(std::move(poly), std::move(options));
     if (view.turned_outward() && !common.quiet)
       fmt::print(stderr, "tessera: note: {}: the faces wind inward (a negative volume); drawn turned outward\n",
@@ -181,10 +185,6 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
       const Bounds3 scene = view.scene_bounds();
       camera.far = std::max(camera.far, 2 * glm::length(scene.hi - scene.lo) + glm::length(camera.eye - camera.center));
     }
-    if (a.shadows && a.shadow_method == ShadowMethod::zfail && camera.orthographic)
-      throw InvalidInput(
-          "--shadow-method zfail needs a perspective camera (its far plane at infinity); with --ortho "
-          "use zpass or map");
     Progress progress("raster", int64_t(a.repeat) * a.samples);
     const auto start = std::chrono::steady_clock::now();
     for (int frame = 0; frame < a.repeat; ++frame) picture = view.render(camera, width, height, &progress);
