@@ -2,11 +2,10 @@
 
 #include <fmt/format.h>
 
+#include "view_mode.hpp"
+
 namespace tessera::detail {
 namespace {
-
-/// The viewer's background: a dark gray, so that black (unlit back faces, shadows) stays visible.
-const Vec3f kBackground{0.1f, 0.1f, 0.12f};
 
 /// A checkerboard of 8 x 8 cells over the unit square of uvs (what `t` shows without a texture image).
 std::shared_ptr<const Texture2D> checkerboard() {

@@ -1,7 +1,6 @@
 // The viewer's surfaces: a mesh with its subdivision levels, and Bezier patches at a tessellation density.
 #include <fmt/format.h>
 
-#include <filesystem>
 #include <vector>
 
 #include "mesh_display.hpp"
@@ -29,8 +28,6 @@ OrbitControl frame_box(const Vec3& lo, const Vec3& hi, double aspect, int up_axi
 }
 
 namespace {
-
-std::string file_name(const std::string& name) { return std::filesystem::path(name).filename().string(); }
 
 /// A mesh and its subdivision levels: Catmull-Clark, or Loop for a triangle mesh, creases kept (subdivide carries
 /// them), each level made from the one below when first asked for.

@@ -1,6 +1,7 @@
 #pragma once
 // How the viewer draws one kind of viewable (private to the view module): a mode renders a picture for a camera,
 // handles the keys of its kind and says what it shows.
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -29,6 +30,13 @@ class ViewMode {
   /// The triangles of the surface drawn (0 when none is).
   virtual size_t triangles() const { return 0; }
 };
+
+/// The background of the viewer's surfaces and volume renderings: a dark gray, so that black (unlit back faces,
+/// shadows) stays visible.
+inline const Vec3f kBackground{0.1f, 0.1f, 0.12f};
+
+/// The last component of a viewable's path, as the status line names it.
+inline std::string file_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
 
 /// The orbit control framing the box [lo, hi]: its bounding sphere seen from 30 degrees right of and 20 above the
 /// front, filling 1/1.1 of the view; `up_axis` 1 (y up, the front +z) or 2 (z up, the front -y).

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <optional>
 
 #include "mesh_display.hpp"
@@ -21,7 +20,7 @@ class VolumeMode final : public ViewMode {
   VolumeMode(const Viewable& v, const ViewerOptions& o)
       : display_(o.shading, o.texture, o.up_axis),
         up_axis_(o.up_axis),
-        name_(std::filesystem::path(v.name).filename().string()),
+        name_(file_name(v.name)),
         volume_(v.volume),
         profile_(profile_values(*v.volume)) {
     // The iso value starts at Otsu's threshold (object from background), the window on the object's values.
@@ -46,7 +45,7 @@ class VolumeMode final : public ViewMode {
     options.width = out.width();
     options.height = out.height();
     options.transfer = window();
-    options.background = Vec3f(0.1f, 0.1f, 0.12f);
+    options.background = kBackground;
     to_frame(renderer_->render(options), out);
   }
   bool key(int key, int key_code) override {
