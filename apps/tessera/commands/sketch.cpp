@@ -55,7 +55,7 @@ void setup_sketch(CLI::App& cmd, CommonOptions& common) {
     if (opt->name.empty()) throw CLI::RequiredError("a sketch NAME (or --list)");
     const SketchInfo& info = *find_sketch(opt->name);
     RunOptions options;
-    options.mode = opt->window || (!opt->headless && opt->output.empty()) ? RunMode::window : RunMode::headless;
+    options.mode = run_mode(opt->window, opt->headless, opt->output);
     if (opt->frames > 0) options.frames = opt->frames;
     if (opt->seconds > 0) options.seconds = opt->seconds;
     if (!options.frames && !options.seconds && options.mode == RunMode::headless) options.frames = info.demo_frames;

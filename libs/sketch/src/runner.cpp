@@ -71,6 +71,10 @@ class Output {
 
 }  // namespace
 
+RunMode run_mode(bool window, bool headless, const std::filesystem::path& output) {
+  return window || (!headless && output.empty()) ? RunMode::window : RunMode::headless;
+}
+
 RunResult run_sketch(Sketch& sketch, const RunOptions& options, const FrameCallback& on_frame) {
   check_options(options);
   const ThreadLimit limit(options.threads);

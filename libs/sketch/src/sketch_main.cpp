@@ -53,7 +53,7 @@ int sketch_main(int argc, char** argv, const SketchFactory& factory) {
     }
     options.output = output;
     options.input = input;
-    options.mode = window || (!headless && output.empty()) ? RunMode::window : RunMode::headless;
+    options.mode = run_mode(window, headless, options.output);
     const std::unique_ptr<Sketch> sketch = factory();
     const RunResult r = run_sketch(*sketch, options);
     // The keys of `tessera sketch --stats` (docs/cli.md's vocabulary).

@@ -27,6 +27,14 @@ bool same_bytes(const ImageRGBA8& a, const ImageRGBA8& b) {
          std::memcmp(a.row(0), b.row(0), size_t(a.width()) * size_t(a.height()) * 4) == 0;
 }
 
+TEST(Runner, ModeIsAWindowUnlessHeadlessOrAnOutputIsAsked) {
+  // docs/sketch.md: --window opens one; without it, a window unless --headless or -o, as Processing's Run.
+  EXPECT_EQ(run_mode(false, false, ""), RunMode::window);
+  EXPECT_EQ(run_mode(false, true, ""), RunMode::headless);
+  EXPECT_EQ(run_mode(false, false, "out.gif"), RunMode::headless);
+  EXPECT_EQ(run_mode(true, false, "out.gif"), RunMode::window);
+}
+
 TEST(Registry, SortedFindableAndDescribed) {
   const auto all = builtin_sketches();
   ASSERT_GE(all.size(), 2u);

@@ -32,6 +32,10 @@ enum class RunMode {
   window,    ///< a real window (SDL2)
 };
 
+/// The face the runner's flags ask for, as Processing's Run: a window with --window, or when neither --headless nor
+/// an output (-o) is given; headless otherwise.
+RunMode run_mode(bool window, bool headless, const std::filesystem::path& output);
+
 /// What run_sketch does; every field has a default (the runner's command-line flags in brackets).
 struct RunOptions {
   std::optional<int> frames;                ///< [--frames N] stop after N frames
@@ -75,7 +79,7 @@ bool window_supported();
 /// A program's main for one sketch: parses the runner's flags (--frames N, --seconds S, --fps F, -o PATH,
 /// --size WxH, --window/--headless, --input FILE, --threads N, --seed N, --srgb, --stats), runs a sketch made by
 /// `factory`, and returns the exit status: 0, 2 for a usage error, 1 for a runtime error (printed as "NAME: error:
-/// ..."). Without --headless, -o, --frames or --seconds it opens a window, as Processing's Run.
+/// ..."). It opens a window as run_mode() says.
 int sketch_main(int argc, char** argv, const SketchFactory& factory);
 
 }  // namespace tessera
