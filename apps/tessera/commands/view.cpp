@@ -41,14 +41,10 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--frames", opt->frames, "Stop after N frames (headless default: the turntable's, else until idle)")
       ->check(CLI::Range(1, 1 << 30));
   cmd.add_option("--fps", opt->fps, "Frame rate (default 60; a turntable's GIF 30)")->check(CLI::Range(1e-6, 1000.0));
-  add_choice(cmd, "--shading", opt->shading,
-             {{"unlit", ViewShading::unlit},
-              {"flat", ViewShading::flat},
-              {"gouraud", ViewShading::gouraud},
-              {"phong", ViewShading::phong},
-              {"wireframe", ViewShading::wireframe},
-              {"normals", ViewShading::normals}},
-             "The first shading of a surface (keys 1-6 change it)");
+  std::vector<std::pair<std::string, ViewShading>> shadings;  // named as the status line names them
+  for (int k = 0; k <= int(ViewShading::normals); ++k)
+    shadings.emplace_back(shading_name(ViewShading(k)), ViewShading(k));
+  add_choice(cmd, "--shading", opt->shading, shadings, "The first shading of a surface (keys 1-6 change it)");
   add_choice(cmd, "--up-axis", opt->up_axis, {{"y", 1}, {"z", 2}},
              "The model's up axis: the home view's vertical and the turntable's axis (default: z for .bpt patches, "
              "y otherwise)");
