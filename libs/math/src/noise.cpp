@@ -65,6 +65,16 @@ double grad(int hash, double x, double y, double z) {
   return ((h & 1) == 0 ? u : -u) + ((h & 2) == 0 ? v : -v);
 }
 
+// One coordinate at the next octave: the lattice cell i and the position f in it, at twice the frequency.
+void double_frequency(uint32_t& i, float& f) {
+  i <<= 1;
+  f *= 2;
+  if (f >= 1.0f) {
+    ++i;
+    --f;
+  }
+}
+
 }  // namespace
 
 void JavaRandom::set_seed(int64_t seed) { state_ = (uint64_t(seed) ^ kJavaMultiplier) & kJavaMask; }
@@ -98,42 +108,25 @@ float ProcessingNoise::noise(float x, float y, float z) const {
   const auto at = [&](uint32_t i) { return table_[i & kTableMask]; };
   float sum = 0, amplitude = 0.5f;
   for (int octave = 0; octave < octaves_; ++octave) {
-    uint32_t of = xi + (yi << 4) + (zi << 8);
+    const uint32_t of = xi + (yi << 4) + (zi << 8);
     const float rxf = ease(xf), ryf = ease(yf);
-    // Bilinear (with the eased weights) on the z plane of the cell, then on the next, then between them.
-    float n1 = at(of);
-    n1 += rxf * (at(of + 1) - n1);
-    float n2 = at(of + kYStride);
-    n2 += rxf * (at(of + kYStride + 1) - n2);
-    n1 += ryf * (n2 - n1);
-    of += kZStride;
-    n2 = at(of);
-    n2 += rxf * (at(of + 1) - n2);
-    float n3 = at(of + kYStride);
-    n3 += rxf * (at(of + kYStride + 1) - n3);
-    n2 += ryf * (n3 - n2);
+    // Bilinear (with the eased weights) on the z plane of the cell that starts at table entry p.
+    const auto plane = [&](uint32_t p) {
+      float n1 = at(p);
+      n1 += rxf * (at(p + 1) - n1);
+      float n2 = at(p + kYStride);
+      n2 += rxf * (at(p + kYStride + 1) - n2);
+      return n1 + ryf * (n2 - n1);
+    };
+    // The cell's plane, then the next, then between them.
+    float n1 = plane(of);
+    const float n2 = plane(of + kZStride);
     n1 += ease(zf) * (n2 - n1);
     sum += n1 * amplitude;
     amplitude *= falloff_;
-    // The next octave: twice the frequency.
-    xi <<= 1;
-    xf *= 2;
-    yi <<= 1;
-    yf *= 2;
-    zi <<= 1;
-    zf *= 2;
-    if (xf >= 1.0f) {
-      ++xi;
-      --xf;
-    }
-    if (yf >= 1.0f) {
-      ++yi;
-      --yf;
-    }
-    if (zf >= 1.0f) {
-      ++zi;
-      --zf;
-    }
+    double_frequency(xi, xf);
+    double_frequency(yi, yf);
+    double_frequency(zi, zf);
   }
   return sum;
 }
