@@ -146,6 +146,22 @@ void for_each_line(std::string_view text, F&& line) {
 
 int line_width(std::string_view line) { return kAdvance * int(line.size() - size_t(std::ranges::count(line, '\r'))); }
 
+// Appends the ink of `g` as runs of set bits, row by row from the top, left to right: its cell's left edge at x and
+// its top row at y = top.
+void append_runs(const Glyph& g, int x, int top, std::vector<TextRun>& runs) {
+  for (int r = 0; r < kGlyphHeight; ++r) {
+    const auto ink = [row = g[size_t(r)]](int col) {
+      return col < kGlyphWidth && (row >> (kGlyphWidth - 1 - col) & 1);
+    };
+    for (int col = 0; col < kGlyphWidth; ++col) {
+      if (!ink(col)) continue;
+      const int start = col;
+      while (ink(col)) ++col;
+      runs.push_back({x + start, x + col, top + r});
+    }
+  }
+}
+
 }  // namespace
 
 const Glyph& glyph(char c) {
@@ -161,19 +177,7 @@ std::vector<TextRun> text_runs(std::string_view text, TextAlignX align) {
     const int baseline = index * kLineHeight;
     for (const char c : line) {
       if (c == '\r') continue;
-      const Glyph& g = glyph(c);
-      for (int r = 0; r < kGlyphHeight; ++r) {
-        // Runs of set bits, left to right.
-        for (int col = 0; col < kGlyphWidth;) {
-          if (!(g[size_t(r)] >> (kGlyphWidth - 1 - col) & 1)) {
-            ++col;
-            continue;
-          }
-          const int start = col;
-          while (col < kGlyphWidth && (g[size_t(r)] >> (kGlyphWidth - 1 - col) & 1)) ++col;
-          runs.push_back({x + start, x + col, baseline - kAscent + r});
-        }
-      }
+      append_runs(glyph(c), x, baseline - kAscent, runs);
       x += kAdvance;
     }
   });
