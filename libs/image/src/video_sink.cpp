@@ -115,19 +115,21 @@ class VideoSink final : public Rgb8Sink {
 
  protected:
   void write_rgb8(const std::vector<Rgb8>& pixels, int width, int height, long long index) override {
-    // yuv420p needs even sizes: an odd last column or row is repeated.
+    // yuv420p needs even sizes: an odd last column or row is repeated. Even frames go to the pipe as they are.
     const int w = width + (width & 1), h = height + (height & 1);
     if (index == 0) start(w, h);
-    frame_.resize(size_t(w) * size_t(h) * 3);
-    for (int y = 0; y < h; ++y) {
-      const Rgb8* src = pixels.data() + size_t(std::min(y, height - 1)) * size_t(width);
-      uint8_t* dst = frame_.data() + size_t(y) * size_t(w) * 3;
-      for (int x = 0; x < w; ++x, dst += 3) {
-        const Rgb8 p = src[std::min(x, width - 1)];
-        dst[0] = p.x, dst[1] = p.y, dst[2] = p.z;
+    static_assert(sizeof(Rgb8) == 3, "packed Rgb8 pixels are rgb24 bytes");
+    std::span<const Rgb8> frame = pixels;
+    if (w != width || h != height) {
+      padded_.resize(size_t(w) * size_t(h));
+      for (int y = 0; y < h; ++y) {
+        const Rgb8* src = pixels.data() + size_t(std::min(y, height - 1)) * size_t(width);
+        Rgb8* dst = padded_.data() + size_t(y) * size_t(w);
+        for (int x = 0; x < w; ++x) dst[x] = src[std::min(x, width - 1)];
       }
+      frame = padded_;
     }
-    if (write_to_pipe(input_, frame_.data(), frame_.size()) != 0) fail(stop(false));
+    if (write_to_pipe(input_, &frame.data()->x, frame.size_bytes()) != 0) fail(stop(false));
   }
 
  private:
@@ -217,7 +219,7 @@ class VideoSink final : public Rgb8Sink {
   std::vector<std::string> encoder_;
   std::string fps_;
   std::unique_ptr<AtomicFile> file_;
-  std::vector<uint8_t> frame_;
+  std::vector<Rgb8> padded_;  // an odd-sized frame with its last column and row repeated
   pid_t pid_ = -1;
   int input_ = -1, messages_ = -1;
 };
