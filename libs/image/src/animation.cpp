@@ -24,6 +24,12 @@ void Rgb8Sink::write(const ImageRGBA8& frame, long long index) {
   write_rgb8(pixels_, frame.width(), frame.height(), index);
 }
 
+std::string lower_extension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
 namespace {
 
 /// Numbered image files: write_image per frame, each file atomic on its own.
@@ -51,13 +57,6 @@ class SequenceSink final : public AnimationSink {
   fs::path pattern_;
   bool srgb_;
 };
-
-/// The lowercase extension of a path ("" when none).
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return ext;
-}
 
 /// The first run of '#' in `name` as [begin, end), and whether a second run follows.
 struct HashRun {

@@ -3,6 +3,7 @@
 // already checked for size; AnimationWriter (animation.cpp) does the checks shared by all formats.
 #include <filesystem>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "color_quantize.hpp"
@@ -42,6 +43,9 @@ class Rgb8Sink : public AnimationSink {
   bool srgb_;
   std::vector<Rgb8> pixels_;
 };
+
+/// The lowercase extension of a path, dot included ("" when none).
+std::string lower_extension(const std::filesystem::path& path);
 
 /// Animated GIF through giflib (gif_sink.cpp).
 std::unique_ptr<AnimationSink> make_gif_sink(const std::filesystem::path& path, const AnimationOptions& options);

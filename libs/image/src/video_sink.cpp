@@ -87,9 +87,7 @@ int write_to_pipe(int fd, const uint8_t* data, size_t size) {
 class VideoSink final : public Rgb8Sink {
  public:
   VideoSink(const fs::path& path, const AnimationOptions& options) : Rgb8Sink(options.srgb), path_(path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    encoder_ = encoder_arguments(ext, options.crf);
+    encoder_ = encoder_arguments(lower_extension(path), options.crf);
     fps_ = fmt::format("{}", options.fps);
     const auto ffmpeg = find_on_path("ffmpeg");
     if (!ffmpeg)
