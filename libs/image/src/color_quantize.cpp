@@ -9,7 +9,6 @@
 namespace tessera::detail {
 namespace {
 
-uint32_t pack(Rgb8 c) { return uint32_t(c.x) << 16 | uint32_t(c.y) << 8 | c.z; }
 Rgb8 unpack(uint32_t v) { return Rgb8(uint8_t(v >> 16), uint8_t(v >> 8), uint8_t(v)); }
 
 /// Dithering passes on a pixel's error shortened to at most sqrt(kDitherLimit * m) (and at least kDitherFloor) levels,
@@ -98,6 +97,10 @@ size_t split(std::vector<Bin>& bins, const Box& box) {
   return best;
 }
 
+void check_palette_size(long long colors) {
+  if (colors < 1 || colors > 256) throw InvalidInput(fmt::format("a palette holds 1 to 256 colors, not {}", colors));
+}
+
 Rgb8 mean_color(const Moments& m) {
   return Rgb8(uint8_t(std::lround(m.sum[0] / m.count)), uint8_t(std::lround(m.sum[1] / m.count)),
               uint8_t(std::lround(m.sum[2] / m.count)));
@@ -113,7 +116,7 @@ std::optional<std::vector<Rgb8>> distinct_colors(std::span<const Rgb8> pixels, i
   std::vector<uint32_t> found;
   uint32_t last = 0xFFFFFFFFu;
   for (const Rgb8& p : pixels) {
-    const uint32_t v = pack(p);
+    const uint32_t v = pack_rgb(p);
     if (v == last) continue;
     last = v;
     size_t i = size_t(uint32_t(v * 2654435761u)) & (slots - 1);  // Knuth's multiplicative hash
@@ -131,10 +134,13 @@ std::optional<std::vector<Rgb8>> distinct_colors(std::span<const Rgb8> pixels, i
 }
 
 std::vector<Rgb8> quantize_palette(std::span<const Rgb8> pixels, int max_colors) {
-  if (max_colors < 1 || max_colors > 256)
-    throw InvalidInput(fmt::format("a palette holds 1 to 256 colors, not {}", max_colors));
+  check_palette_size(max_colors);
   if (auto exact = distinct_colors(pixels, max_colors)) return *exact;
+  return median_cut_palette(pixels, max_colors);
+}
 
+std::vector<Rgb8> median_cut_palette(std::span<const Rgb8> pixels, int max_colors) {
+  check_palette_size(max_colors);
   std::vector<Bin> histogram(size_t(1) << 15);
   for (const Rgb8& p : pixels) {
     Bin& b = histogram[size_t(bin_of(p.x, p.y, p.z))];
@@ -172,8 +178,7 @@ PaletteMapper::PaletteMapper(std::vector<Rgb8> palette)
     : palette_(std::move(palette)),
       cell_start_(size_t(1) << (3 * kCellBits), -1),
       cell_count_(size_t(1) << (3 * kCellBits), 0) {
-  if (palette_.empty() || palette_.size() > 256)
-    throw InvalidInput(fmt::format("a palette holds 1 to 256 colors, not {}", palette_.size()));
+  check_palette_size(ptrdiff_t(palette_.size()));
 }
 
 uint8_t PaletteMapper::nearest(int r, int g, int b) {
@@ -241,7 +246,7 @@ void map_to_palette(std::span<const Rgb8> pixels, int width, int height, Palette
     uint32_t last = 0xFFFFFFFFu;
     uint8_t last_index = 0;
     for (size_t i = 0; i < pixels.size(); ++i) {
-      const uint32_t v = pack(pixels[i]);
+      const uint32_t v = pack_rgb(pixels[i]);
       if (v != last) last = v, last_index = mapper.nearest(pixels[i].x, pixels[i].y, pixels[i].z);
       out[i] = last_index;
     }

@@ -12,6 +12,9 @@ namespace tessera::detail {
 
 using Rgb8 = glm::u8vec3;
 
+/// A color as 0xRRGGBB (the order distinct_colors sorts by).
+inline uint32_t pack_rgb(Rgb8 c) { return uint32_t(c.x) << 16 | uint32_t(c.y) << 8 | c.z; }
+
 /// The distinct colors of `pixels` in increasing order of 0xRRGGBB when there are at most `limit` of them, else
 /// nullopt (stops reading at the first color over the limit).
 std::optional<std::vector<Rgb8>> distinct_colors(std::span<const Rgb8> pixels, int limit = 256);
@@ -21,6 +24,10 @@ std::optional<std::vector<Rgb8>> distinct_colors(std::span<const Rgb8> pixels, i
 /// splitting the box with the largest squared error along its axis of largest variance at the cut that minimizes the
 /// two halves' squared error (Wan, Wong and Prusinkiewicz 1988); each color is the mean of its box's pixels.
 std::vector<Rgb8> quantize_palette(std::span<const Rgb8> pixels, int max_colors = 256);
+
+/// quantize_palette's median cut alone, for a caller that already knows `pixels` hold more than `max_colors` colors
+/// (1..256).
+std::vector<Rgb8> median_cut_palette(std::span<const Rgb8> pixels, int max_colors = 256);
 
 /// Nearest palette color (squared RGB distance, ties to the lower index), exact and fast: the RGB cube is cut into
 /// 16^3 cells and each cell lazily keeps the candidates that can be nearest to a point inside it (entries whose

@@ -38,8 +38,6 @@ ColorMap color_map(const std::vector<Rgb8>& palette) {
   return map;
 }
 
-uint32_t pack(Rgb8 c) { return uint32_t(c.x) << 16 | uint32_t(c.y) << 8 | c.z; }
-
 class GifSink final : public Rgb8Sink {
  public:
   GifSink(const fs::path& path, const AnimationOptions& options)
@@ -83,11 +81,11 @@ class GifSink final : public Rgb8Sink {
     PaletteMapper* mapper = &*global_;
     ColorMap local;
     if (index == 0) {
-      start(colors ? *colors : quantize_palette(pixels), width, height);
+      start(colors ? *colors : median_cut_palette(pixels), width, height);
     } else if (uses_global(colors)) {
       exact = exact && in_global(*colors);
     } else {
-      local_.emplace(colors ? *colors : quantize_palette(pixels));
+      local_.emplace(colors ? *colors : median_cut_palette(pixels));
       local = color_map(local_->palette());
       mapper = &*local_;
     }
@@ -134,7 +132,7 @@ class GifSink final : public Rgb8Sink {
   /// The first frame: its palette becomes the global table; the screen descriptor and loop extension go out.
   void start(std::vector<Rgb8> palette, int width, int height) {
     global_.emplace(std::move(palette));
-    for (const Rgb8& c : global_->palette()) global_colors_.push_back(pack(c));
+    for (const Rgb8& c : global_->palette()) global_colors_.push_back(pack_rgb(c));
     std::sort(global_colors_.begin(), global_colors_.end());
     const ColorMap map = color_map(global_->palette());
     check(EGifPutScreenDesc(gif_, width, height, 8, 0, map.get()));
@@ -165,7 +163,7 @@ class GifSink final : public Rgb8Sink {
   /// Whether the global table holds every one of `colors`.
   bool in_global(const std::vector<Rgb8>& colors) const {
     return std::all_of(colors.begin(), colors.end(), [&](Rgb8 c) {
-      return std::binary_search(global_colors_.begin(), global_colors_.end(), pack(c));
+      return std::binary_search(global_colors_.begin(), global_colors_.end(), pack_rgb(c));
     });
   }
 
