@@ -78,18 +78,17 @@ class GifSink final : public Rgb8Sink {
     // dithering has no error to spread: the frame is mapped directly.
     const auto colors = distinct_colors(pixels);
     bool exact = colors.has_value();
-    PaletteMapper* mapper = &*global_;
     ColorMap local;
     if (index == 0) {
       start(colors ? *colors : median_cut_palette(pixels), width, height);
-    } else if (uses_global(colors)) {
-      exact = exact && in_global(*colors);
+    } else if (const bool fits_global = colors && in_global(*colors); uses_global(fits_global)) {
+      exact = fits_global;
     } else {
       local_.emplace(colors ? *colors : median_cut_palette(pixels));
       local = color_map(local_->palette());
-      mapper = &*local_;
     }
-    map_to_palette(pixels, rect.width, rect.height, *mapper, options_.dither && !exact, indices_);
+    PaletteMapper& mapper = local ? *local_ : *global_;
+    map_to_palette(pixels, rect.width, rect.height, mapper, options_.dither && !exact, indices_);
 
     const int delay = AnimationWriter::gif_delay_cs(options_.fps, index);
     // Graphic control: disposal 1 (leave the frame in place), no transparency; the delay little-endian.
@@ -147,8 +146,8 @@ class GifSink final : public Rgb8Sink {
   }
 
   /// Whether a later frame takes the global table: always (shared), never (per frame), or when the table holds
-  /// every color of the frame (automatic).
-  bool uses_global(const std::optional<std::vector<Rgb8>>& colors) const {
+  /// every color of the frame (automatic: `fits_global`).
+  bool uses_global(bool fits_global) const {
     switch (options_.palette) {
       case GifPalette::shared:
         return true;
@@ -157,7 +156,7 @@ class GifSink final : public Rgb8Sink {
       case GifPalette::automatic:
         break;
     }
-    return colors && in_global(*colors);
+    return fits_global;
   }
 
   /// Whether the global table holds every one of `colors`.
