@@ -8,23 +8,14 @@
 # (its frame time is the window's own). Skips (77) without xvfb-run, xdotool, import, PIL/numpy or an SDL2 build.
 set -euo pipefail
 tessera=$1 scratch=$2
-python=/usr/bin/python3
 data="$(cd "$(dirname "$0")/../data" && pwd)"
 fail() { echo "view_window.sh: $*"; exit 1; }
+. "$(dirname "$0")/window_lib.sh"
 
 if [ "${3:-}" != --inside ]; then
-  for tool in xvfb-run xdotool import; do
-    command -v $tool >/dev/null || { echo "view_window.sh: skipped, no $tool"; exit 77; }
-  done
-  "$python" -c 'import PIL, numpy' 2>/dev/null || { echo "view_window.sh: skipped, no PIL/numpy"; exit 77; }
-  rm -rf "$scratch" && mkdir -p "$scratch"
+  window_prepare "$scratch"
   cp "$data/cube.obj" "$scratch/cube.obj"
-  if env -u DISPLAY -u WAYLAND_DISPLAY "$tessera" view "$scratch/cube.obj" --window --frames 1 2>&1 |
-      grep -q "built without SDL2"; then
-    echo "view_window.sh: skipped, tessera was built without SDL2"
-    exit 77
-  fi
-  exec xvfb-run -a -s "-screen 0 1280x1024x24" bash "$0" "$tessera" "$scratch" --inside
+  window_enter_x "$tessera" "$scratch" view "$scratch/cube.obj" --window --frames 1
 fi
 
 # ---- inside the X server ------------------------------------------------------------------------------------------
@@ -36,20 +27,7 @@ headless() {  # NAME
   "$tessera" view cube.obj --headless --size 400x300 --no-status --input "$1.txt" -o "$1-headless.png"
 }
 grab() { sleep 1; import -window "$wid" "$1-window.png"; }
-compare() {  # NAME
-  "$python" - "$1-window.png" "$1-headless.png" <<'PY'
-import sys
-import numpy as np
-from PIL import Image
-grab = np.asarray(Image.open(sys.argv[1]).convert("RGB")).astype(int)
-want = np.asarray(Image.open(sys.argv[2]).convert("RGB")).astype(int)
-if grab.shape != want.shape:
-    sys.exit(f"{sys.argv[1]}: grab {grab.shape} vs headless {want.shape}")
-close = (np.abs(grab - want).max(axis=2) <= 1).mean()
-print(f"{sys.argv[1]}: {100 * close:.3f}% of pixels within 1/255")
-sys.exit(0 if close >= 0.99 else 1)
-PY
-}
+compare() { compare_grab "$1-window.png" "$1-headless.png"; }  # NAME
 step() {  # NAME: grab the window, render the script headless, compare
   grab "$1"
   headless "$1"

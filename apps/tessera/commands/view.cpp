@@ -59,7 +59,7 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
     PhaseTimer timer;
     Viewable viewable = timer.time("read_s", [&] { return read_viewable(opt->file); });
     RunOptions run;
-    run.mode = opt->window || (!opt->headless && opt->output.empty()) ? RunMode::window : RunMode::headless;
+    run.mode = run_mode(opt->window, opt->headless, opt->output);
     const Size2 size = parse_size(opt->size, "--size");
     ViewerOptions options;
     options.width = size.width;

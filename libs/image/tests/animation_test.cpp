@@ -13,6 +13,7 @@
 #include <optional>
 #include <sstream>
 
+#include "run_command.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/image/image_io.hpp"
@@ -35,17 +36,7 @@ class Animation : public testing::ScratchDirTest {
   }
 };
 
-// Runs a shell command; its stdout, or nullopt when it fails.
-std::optional<std::string> run(const std::string& command) {
-  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
-  if (!pipe) return std::nullopt;
-  std::string out;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-  if (::pclose(pipe) != 0) return std::nullopt;
-  return out;
-}
+using image_test::run;
 
 // The system Python (version-manager shims start slowly), with PIL.
 std::string python() { return fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3"; }

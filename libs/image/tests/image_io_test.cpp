@@ -13,6 +13,7 @@
 #include <random>
 #include <sstream>
 
+#include "run_command.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/memory_budget.hpp"
@@ -52,17 +53,7 @@ ImageRGBA8 opaque(ImageRGBA8 image) {
   return image;
 }
 
-// Runs a command and returns its stdout, or nullopt when it cannot run (no python3).
-std::optional<std::string> run(const std::string& command) {
-  FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r");
-  if (!pipe) return std::nullopt;
-  std::string out;
-  char buffer[4096];
-  size_t n;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) out.append(buffer, n);
-  if (::pclose(pipe) != 0) return std::nullopt;
-  return out;
-}
+using image_test::run;
 
 // The reference script run by the system Python when there is one (version-manager shims start slowly).
 const std::string kPngReference = (fs::exists("/usr/bin/python3") ? "/usr/bin/python3 " : "python3 ") +
