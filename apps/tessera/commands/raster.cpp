@@ -118,8 +118,10 @@ void print_raster_stats(const RasterArgs& a, const MeshPicture& picture, size_t 
 }
 
 void run_raster(const RasterArgs& a, const CommonOptions& common) {
-  // Every option is checked before the mesh is read or anything is drawn.
-  const auto [width, height] = a.camera.image_size();
+  // Every option is checked before the mesh is read or anything is drawn. (Plain ints, not a structured binding: the
+  // lambdas below capture them, which clang-tidy's clang 14 cannot parse.)
+  const Size2 size = a.camera.image_size();
+  const int width = size.width, height = size.height;
   // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured). A
   // shadow map: 4 bytes a texel, 1.5 times size^2 texels for a point light among the casters (six faces of size/2).
   const bool shadow_map = a.shadows && a.shadow_method == ShadowMethod::map;

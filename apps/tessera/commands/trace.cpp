@@ -45,7 +45,9 @@ Vec3f shade_ray(const TraceArgs& a, const MeshAccel& accel, const TriMesh& mesh,
 }
 
 void run_trace(const TraceArgs& a, const CommonOptions& common) {
-  const auto [width, height] = a.camera.image_size();
+  // Plain ints, not a structured binding: the lambdas below capture them, which clang-tidy's clang 14 cannot parse.
+  const Size2 size = a.camera.image_size();
+  const int width = size.width, height = size.height;
   // Per pixel: the float image, the depth image and the 8-bit copy (22 bytes measured).
   MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 24}),
                       fmt::format("tracing {}x{} pixels", width, height));
