@@ -33,13 +33,13 @@ test: build
 	scripts/check-format.sh
 	ctest --preset release
 	@$(MAKE) --no-print-directory asan
-	scripts/check-tidy.sh build/asan
+	scripts/check-tidy.py build/asan
 
 # The tree formatted as .clang-format says, and no clang-tidy finding that .clang-tidy-baseline does not list.
 lint: deps
 	scripts/check-format.sh
 	@$(CMAKE) --preset asan >/dev/null
-	scripts/check-tidy.sh build/asan
+	scripts/check-tidy.py build/asan
 
 bench: deps
 	@$(CMAKE) --preset bench >/dev/null
@@ -47,7 +47,7 @@ bench: deps
 	scripts/run-benchmarks.sh build/bench
 
 # clang's AddressSanitizer + UBSan: builds and runs every module's unit tests, and each libFuzzer target for
-# TESSERA_FUZZ_SECONDS (60) from its seeds (fuzz/CMakeLists.txt).
+# TESSERA_FUZZ_SECONDS (10) from its seeds (fuzz/CMakeLists.txt); scripts/fuzz-campaign.sh runs long campaigns.
 asan: deps
 	@$(CMAKE) --preset asan >/dev/null
 	@$(CMAKE) --build --preset asan -j $(JOBS) --target unit_tests
