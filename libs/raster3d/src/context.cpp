@@ -415,8 +415,12 @@ void Context::draw(const VertexArrays& arrays) {
   draw_triangle_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), arrays.indices);
 }
 
-void Context::draw_wireframe(const TriMesh& mesh) {
+void Context::draw_lines(const VertexArrays& arrays, std::span<const uint32_t> lines) {
   submit_batch();
+  draw_line_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), lines);
+}
+
+void Context::draw_wireframe(const TriMesh& mesh) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   edges.reserve(mesh.indices.size());
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
@@ -429,8 +433,7 @@ void Context::draw_wireframe(const TriMesh& mesh) {
   std::vector<uint32_t> lines;
   lines.reserve(2 * edges.size());
   for (const auto& [a, b] : edges) lines.insert(lines.end(), {a, b});
-  const VertexArrays arrays = VertexArrays::from_mesh(mesh);
-  draw_line_arrays(arrays.attributes(), uint32_t(arrays.positions.size()), lines);
+  draw_lines(VertexArrays::from_mesh(mesh), lines);
 }
 
 FixedFunctionUniforms Context::uniforms() const {
@@ -494,8 +497,8 @@ void Context::draw_line_arrays(const VertexAttributes& attributes, uint32_t vert
   if (indices.empty()) return;
   const FixedFunctionUniforms u = uniforms();
   const Translucent<ColorFragmentShader> color{{}, alpha_};
-  add_stats(stats_, draw_lines(framebuffer_, raster_state(), vertex_count, indices,
-                               FixedFunctionVertexShader{attributes, &u}, color));
+  add_stats(stats_, raster3d::draw_lines(framebuffer_, raster_state(), vertex_count, indices,
+                                         FixedFunctionVertexShader{attributes, &u}, color));
 }
 
 void Context::draw_point_arrays(const VertexAttributes& attributes, uint32_t vertex_count,

@@ -4,11 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <optional>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "tessera/core/parallel.hpp"
 #include "tessera/math/transform.hpp"
@@ -224,6 +226,36 @@ TEST(Context, WireframeDrawsTheEdgesNotTheFaces) {
   EXPECT_LE(lit, 4 * 41 + 41);
   // Inside the triangles nothing is filled: the pixel at (20, 40) (above the diagonal, off every edge) stays black.
   EXPECT_EQ(ctx.framebuffer().color().pixels()[size_t(40 * 64 + 20)].x, 0);
+}
+
+TEST(Context, IndexedLinesDrawAsImmediateModeLines) {
+  // A star of segments (steep, shallow, diagonal, crossing, one leaving the window) in the current color: the indexed
+  // draw gives the bytes of the same segments given vertex by vertex between begin(lines) and end().
+  const std::vector<Vec3f> points = {{-0.9f, -0.8f, 0.1f}, {0.7f, 0.9f, -0.2f}, {0.95f, -0.3f, 0},
+                                     {-0.4f, 0.6f, 0.3f},  {1.6f, 0.2f, 0},     {0.05f, -0.95f, -0.5f}};
+  const std::vector<uint32_t> lines = {0, 1, 2, 3, 1, 4, 5, 3, 0, 2};
+  const auto render = [&](auto&& submit) {
+    Context ctx(48, 40);
+    ctx.shading(ShadingModel::unlit);
+    ctx.color({0.9f, 0.5f, 0.2f});
+    submit(ctx);
+    ctx.flush();
+    const auto pixels = ctx.framebuffer().color().pixels();
+    return std::vector<glm::u8vec4>(pixels.begin(), pixels.end());
+  };
+  VertexArrays arrays;
+  arrays.positions = points;
+  const auto indexed = render([&](Context& c) { c.draw_lines(arrays, lines); });
+  const auto immediate = render([&](Context& c) {
+    c.begin(Primitive::lines);
+    for (uint32_t i : lines) c.vertex(points[i].x, points[i].y, points[i].z);
+    c.end();
+  });
+  EXPECT_EQ(indexed, immediate);
+  EXPECT_GT(std::count_if(indexed.begin(), indexed.end(), [](auto c) { return c.x > 0; }), 100);
+  Context ctx(8, 8);
+  EXPECT_THROW(ctx.draw_lines(arrays, std::vector<uint32_t>{0, 1, 2}), InvalidInput);  // an odd count
+  EXPECT_THROW(ctx.draw_lines(arrays, std::vector<uint32_t>{0, 6}), InvalidInput);     // out of range
 }
 
 TEST(Context, PrimitiveAssemblyCoversLikeExplicitTriangles) {

@@ -282,9 +282,9 @@ raster3d::VertexArrays floor_under(const Bounds3& box, int k) {
 /// What one render reads: the prepared mesh and the picture's size (supersampled).
 struct Frame {
   const MeshViewOptions& o;
-  const PolyMesh& mesh;
   const raster3d::VertexArrays& arrays;
-  const std::vector<std::pair<uint32_t, uint32_t>>& edges;
+  const raster3d::VertexArrays& edge_vertices;
+  const std::vector<uint32_t>& edge_lines;
   const Bounds3& box;
   int width, height, supersample;
   Progress* progress;
@@ -383,12 +383,7 @@ void draw_fixed_function(const Frame& f, const Camera& camera, raster3d::Context
       for (int dy = 0; dy < s; ++dy)
         for (int dx = 0; dx < s; ++dx) {
           ctx.load_matrix(translate(2.0 * dx / f.width, 2.0 * dy / f.height, -o.wire_depth_offset) * projection);
-          ctx.begin(raster3d::Primitive::lines);
-          for (const auto& [u, v] : f.edges) {
-            ctx.vertex(f.mesh.positions[u].x, f.mesh.positions[u].y, f.mesh.positions[u].z);
-            ctx.vertex(f.mesh.positions[v].x, f.mesh.positions[v].y, f.mesh.positions[v].z);
-          }
-          ctx.end();
+          ctx.draw_lines(f.edge_vertices, f.edge_lines);
         }
       ctx.pop_matrix();
       ctx.matrix_mode(raster3d::MatrixMode::model_view);
@@ -531,12 +526,12 @@ void MeshView::set_options(MeshViewOptions options) {
   const auto false_colors = [](const MeshViewOptions& o) { return o.shading == MeshShading::normals; };
   const bool again = faceted(old) != faceted(options) || false_colors(old) != false_colors(options) ||
                      old.face_colors != options.face_colors || old.turn_outward != options.turn_outward;
-  const bool edges = options.wireframe != MeshWireframe::none && edges_.empty();
+  const bool edges = options.wireframe != MeshWireframe::none && edge_lines_.empty();
   options_ = std::move(options);
   if (again)
     prepare();
   else if (edges)
-    edges_ = polygon_edges(mesh_);
+    prepare_edges();
 }
 
 void MeshView::prepare() {
@@ -564,7 +559,15 @@ void MeshView::prepare() {
       arrays_.colors[i] = 0.5f * (glm::normalize(arrays_.normals[i]) + 1.0f);
   }
   triangles_ = arrays_.indices.size() / 3;
-  edges_ = o.wireframe != MeshWireframe::none ? polygon_edges(mesh_) : std::vector<std::pair<uint32_t, uint32_t>>{};
+  prepare_edges();
+}
+
+void MeshView::prepare_edges() {
+  edge_vertices_ = {};
+  edge_lines_.clear();
+  if (options_.wireframe == MeshWireframe::none) return;
+  edge_vertices_.positions.assign(mesh_.positions.begin(), mesh_.positions.end());
+  for (const auto& [a, b] : polygon_edges(mesh_)) edge_lines_.insert(edge_lines_.end(), {a, b});
 }
 
 Bounds3 MeshView::scene_bounds() const {
@@ -599,7 +602,7 @@ MeshPicture MeshView::render_impl(const Camera& camera, int width, int height, P
         fmt::format("mesh view: bad image size {}x{} or sample count {}", width, height, options_.samples));
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
   SampleResolve resolve(width * s, height * s, options_.samples, direct);
-  const Frame frame{options_, mesh_, arrays_, edges_, bounds_, width * s, height * s, s, progress};
+  const Frame frame{options_, arrays_, edge_vertices_, edge_lines_, bounds_, width * s, height * s, s, progress};
   // Both paths draw into the kept context's framebuffer (the resolve may read it when the picture is taken).
   if (!context_ || context_->framebuffer().width() != frame.width || context_->framebuffer().height() != frame.height)
     context_ = std::make_unique<raster3d::Context>(frame.width, frame.height);

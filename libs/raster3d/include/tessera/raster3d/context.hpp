@@ -179,6 +179,10 @@ class Context {
   void draw(const TriMesh& mesh);
   /// The same from float arrays prepared once.
   void draw(const VertexArrays& arrays);
+  /// Draws line segments between vertices of `arrays`, two indices into them a segment (glDrawElements with
+  /// GL_LINES; `arrays.indices` is not read), in the current state. Throws InvalidInput for an odd count or an index
+  /// out of range.
+  void draw_lines(const VertexArrays& arrays, std::span<const uint32_t> lines);
   /// Draws the edges of the mesh's triangles as lines (each shared edge once).
   void draw_wireframe(const TriMesh& mesh);
 

@@ -193,6 +193,8 @@ class MeshView {
 
  private:
   void prepare();
+  /// edge_vertices_ and edge_lines_ from mesh_ when options_ ask for a wireframe, else empty.
+  void prepare_edges();
   /// render(), or with `direct` (one sample drawn) the frame's colors copied into *direct and an empty picture.
   MeshPicture render_impl(const Camera& camera, int width, int height, Progress* progress, ImageRGBA8* direct) const;
 
@@ -202,8 +204,10 @@ class MeshView {
   Bounds3 bounds_;
   size_t triangles_ = 0;
   bool turned_outward_ = false;
-  raster3d::VertexArrays arrays_;                       // the triangles as drawn (faceted for flat shading)
-  std::vector<std::pair<uint32_t, uint32_t>> edges_;    // the polygon edges, made while a wireframe is asked for
+  raster3d::VertexArrays arrays_;  // the triangles as drawn (faceted for flat shading)
+  // The polygon edges, made while a wireframe is asked for: mesh_'s positions in float, two of them a line.
+  raster3d::VertexArrays edge_vertices_;
+  std::vector<uint32_t> edge_lines_;
   mutable std::unique_ptr<raster3d::Context> context_;  // kept between renders: no framebuffer allocated per frame
 };
 
