@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A fuzzing campaign beyond CI's one minute per target: runs every libFuzzer target of the clang build (make asan)
+# A fuzzing campaign beyond CI's 10 seconds per target: runs every libFuzzer target of the clang build (make asan)
 # for SECONDS each, JOBS at a time, from the seeds in fuzz/corpus/<name>/ plus what earlier runs found (kept in
 # build/asan/fuzz/fuzz-corpus/<name>/), and prints one line per target: CPU seconds, executions, coverage, findings.
 #
