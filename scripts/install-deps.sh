@@ -12,6 +12,8 @@ demo_packages=(
   libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev libgif-dev
   # the window of tessera sketch and tessera view (without it they run headless only)
   libsdl2-dev
+  # GLSL programs: glslang, the Khronos reference compiler, parses and type-checks them (without it they are left out)
+  glslang-dev
 )
 test_packages=(
   # tests and benchmarks
@@ -22,6 +24,8 @@ test_packages=(
   xvfb xauth
   # the real-window tests of tessera sketch and tessera view: input sent by xdotool, the window grabbed by import
   xdotool imagemagick
+  # glslangValidator, the reference compiler's command line: the GLSL tests check the shipped shaders with it
+  glslang-tools
   # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang
   clang libclang-rt-14-dev
   # the format and lint checks of make test

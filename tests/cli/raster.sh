@@ -454,7 +454,7 @@ expect_error 2 "elevation" cube.obj -o bad.png --elevation 100
 expect_error 2 "samples" cube.obj -o bad.png --samples 0
 expect_error 2 "fovy" cube.obj -o bad.png --fovy 200
 # Options that would change nothing are refused, not ignored.
-expect_error 2 "texture" cube.obj -o bad.png --filter nearest
+expect_error 2 "no texture to filter" cube.obj -o bad.png --filter nearest
 expect_error 2 "bump" cube.obj -o bad.png --bump-scale 0.1
 expect_error 2 "shadows" cube.obj -o bad.png --shadow-size 512
 expect_error 1 "nothing to reflect" cube.obj -o bad.png --reflect 0.5

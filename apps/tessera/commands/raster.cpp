@@ -12,7 +12,9 @@
 #include "command.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
+#include "tessera/core/parse.hpp"
 #include "tessera/core/progress.hpp"
+#include "tessera/glsl/program.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/mesh_io.hpp"
 #include "tessera/raster3d/shadow_map.hpp"
@@ -36,6 +38,14 @@ struct RasterArgs {
   double bump_scale = 0.01, reflect = 0.6, opacity = 1;
   bool shadows = false, floor = false, env_cube = false, shading_given = false;
   int shadow_size = 2048;
+  // A GLSL program (libs/glsl) instead of the shading, its uniforms ("name=v1,v2,...") and textures ("N=IMG").
+  std::string vertex_shader, fragment_shader, texture0, texture1;
+  std::vector<std::string> uniforms, texture_units, cube_maps;
+
+  bool program() const { return !vertex_shader.empty() || !fragment_shader.empty(); }
+  bool program_inputs() const {
+    return !uniforms.empty() || !texture_units.empty() || !cube_maps.empty() || !texture0.empty() || !texture1.empty();
+  }
 
   bool maps() const { return !texture.empty() || !bump.empty() || !env.empty() || shadows || floor || env_cube; }
 };
@@ -58,6 +68,50 @@ const std::string& name_of(const Names<T>& names, T value) {
 
 /// The model's up axis as a coordinate index.
 int up_index(UpAxis axis) { return axis == UpAxis::x ? 0 : axis == UpAxis::y ? 1 : 2; }
+
+/// Splits "key=value" (the --uniform, --texture-unit and --cube-map forms). Throws InvalidInput naming the option.
+std::pair<std::string, std::string> key_value(const std::string& text, const char* option, const char* form) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
+    throw InvalidInput(fmt::format("{}: expected {}, got '{}'", option, form, printable(text)));
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+/// A texture unit number of --texture-unit or --cube-map.
+int unit_number(const std::string& text, const char* option) {
+  const long long unit = parse_int(text, option);
+  if (unit < 0 || unit >= 16) throw InvalidInput(fmt::format("{}: texture unit {} is not in [0, 16)", option, unit));
+  return int(unit);
+}
+
+/// The GLSL program of --vertex-shader and --fragment-shader, with its uniforms and textures bound.
+std::shared_ptr<glsl::Program> load_program(const RasterArgs& a) {
+  auto program = std::make_shared<glsl::Program>(
+      glsl::Program::compile(glsl::read_shader(a.vertex_shader), glsl::read_shader(a.fragment_shader)));
+  for (const std::string& u : a.uniforms) {
+    const auto [name, values] = key_value(u, "--uniform", "name=v1,v2,...");
+    program->set_uniform_text(name, values);
+  }
+  std::vector<std::pair<int, std::string>> textures;
+  if (!a.texture0.empty()) textures.emplace_back(0, a.texture0);
+  if (!a.texture1.empty()) textures.emplace_back(1, a.texture1);
+  for (const std::string& t : a.texture_units) {
+    const auto [unit, path] = key_value(t, "--texture-unit", "N=IMAGE");
+    textures.emplace_back(unit_number(unit, "--texture-unit"), path);
+  }
+  for (const auto& [unit, path] : textures)
+    program->bind_texture(unit, std::make_shared<Texture2D>(load_texture(path, Sampler{.filter = a.filter})));
+  for (const std::string& c : a.cube_maps) {
+    const auto [unit, path] = key_value(c, "--cube-map", "N=IMAGE");
+    const EnvironmentMap env = load_environment_map(path);
+    // The lat-long image resampled onto six faces of half its height (at most 1024).
+    const int size = std::clamp(env.texture().height() / 2, 1, 1024);
+    program->bind_cube_map(unit_number(unit, "--cube-map"),
+                           std::make_shared<CubeMap>(CubeMap::from_function(
+                               size, [&](const glm::vec3& d) { return env.lookup(d); }, Filter::bilinear)));
+  }
+  return program;
+}
 
 /// The library's options from the command's (the maps read from their files here: the library takes them loaded).
 MeshViewOptions view_options(const RasterArgs& a, const Rgb& color, const Rgb& background) {
@@ -83,6 +137,7 @@ MeshViewOptions view_options(const RasterArgs& a, const Rgb& color, const Rgb& b
   o.shadow_size = a.shadow_size;
   o.floor = a.floor;
   o.up_axis = up_index(a.camera.up_axis);
+  if (a.program()) o.program = load_program(a);
   return o;
 }
 
@@ -149,6 +204,11 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
     throw InvalidInput("--wireframe does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
   if (a.maps() && a.opacity < 1)
     throw InvalidInput("--opacity does not combine with --texture, --bump, --env, --env-cube, --shadows or --floor");
+  if (a.program() && a.maps())
+    throw InvalidInput(
+        "--vertex-shader/--fragment-shader: the program draws the surface; --texture, --bump, --env, --env-cube, "
+        "--shadows and --floor do not combine with it (bind textures with --texture0)");
+  if (a.program() && a.shading_given) throw InvalidInput("--shading: the program does the shading");
   const bool painter = a.hidden_surface == raster3d::HiddenSurface::painter;
   if (painter && a.maps())
     throw InvalidInput(
@@ -223,12 +283,10 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--repeat", a->repeat, "Render N frames (for timing with --stats)")
       ->check(positive())
       ->capture_default_str();
-  CLI::Option* texture =
-      cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
+  cmd.add_option("--texture", a->texture, "Texture image colouring the surface (needs the mesh's uvs)");
   add_choice(cmd, "--filter", a->filter,
              {{"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}},
-             "Texture filter: nearest | bilinear | trilinear (MIPmaps)")
-      ->needs(texture);
+             "Texture filter of --texture and of a program's textures: nearest | bilinear | trilinear (MIPmaps)");
   CLI::Option* bump =
       cmd.add_option("--bump", a->bump, "Bump map: height image (red channel), Blinn's bump mapping (needs uvs)");
   cmd.add_option("--bump-scale", a->bump_scale, "Height of a white bump texel, as a fraction of the mesh's size")
@@ -260,10 +318,32 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
              {{"zbuffer", raster3d::HiddenSurface::zbuffer}, {"painter", raster3d::HiddenSurface::painter}},
              "Hidden-surface removal: the z-buffer, or the painter's algorithm (triangles sorted by average depth, "
              "drawn far to near; wrong where triangles intersect or overlap cyclically)");
+  cmd.add_option("--vertex-shader", a->vertex_shader,
+                 "GLSL vertex shader file (the notes' GLSL 1.10 with gl_Vertex, ftransform(), ... or GLSL 3.30+): "
+                 "with --fragment-shader, the program draws the surface (docs/shaders.md)");
+  cmd.add_option("--fragment-shader", a->fragment_shader, "GLSL fragment shader file (with --vertex-shader)");
+  cmd.add_option("--uniform", a->uniforms,
+                 "A program's uniform: name=v1,v2,... (floats, ints for int, bool and sampler uniforms: a sampler's "
+                 "texture unit); repeat for more");
+  cmd.add_option("--texture0", a->texture0, "Image bound to texture unit 0 of the program (samplers read unit 0 "
+                                            "unless --uniform sets them)");
+  cmd.add_option("--texture1", a->texture1, "Image bound to texture unit 1 of the program");
+  cmd.add_option("--texture-unit", a->texture_units, "Image bound to a texture unit of the program: N=IMAGE");
+  cmd.add_option("--cube-map", a->cube_maps,
+                 "A lat-long (equirectangular) image bound to texture unit N as a cube map (samplerCube): N=IMAGE");
   add_samples_option(cmd, a->samples);
   add_srgb_option(cmd, common);
   cmd.callback([a, &common, &cmd] {
     a->shading_given = cmd.count("--shading") > 0;
+    // Usage errors (exit 2), as CLI11's own.
+    if (cmd.count("--filter") > 0 && a->texture.empty() && a->texture0.empty() && a->texture1.empty() &&
+        a->texture_units.empty())
+      throw CLI::ValidationError("--filter", "no texture to filter; add --texture (or a program's --texture0)");
+    if (a->program() && (a->vertex_shader.empty() || a->fragment_shader.empty()))
+      throw CLI::ValidationError("--vertex-shader and --fragment-shader", "a program needs both");
+    if (a->program_inputs() && !a->program())
+      throw CLI::ValidationError("--uniform, --texture0, --texture1, --texture-unit, --cube-map",
+                                 "they set a program's inputs; add --vertex-shader and --fragment-shader");
     // Options that would change nothing are refused rather than ignored.
     if (cmd.count("--reflect") > 0 && a->env.empty() && !a->env_cube)
       throw InvalidInput("--reflect: nothing to reflect; add --env or --env-cube");

@@ -79,6 +79,7 @@ void Context::initialize(int width, int height) {
   state_ = RasterState();
   shading_ = ShadingModel::unlit;
   alpha_ = 1;
+  program_ = nullptr;
   hidden_surface_ = HiddenSurface::zbuffer;
   lighting_ = Lighting();
   // OpenGL's defaults: GL_LIGHT0 is white, the other lights are black; all point down -z from the viewer.
@@ -464,9 +465,28 @@ static void add_stats(DrawStats& total, const DrawStats& d) {
   total.rasterized += d.rasterized;
 }
 
+void Context::use_program(std::shared_ptr<ContextProgram> program) {
+  submit_batch();  // the shapes before the switch are drawn as they were specified
+  program_ = std::move(program);
+}
+
 void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t vertex_count,
                                    std::span<const uint32_t> indices) {
   if (indices.empty()) return;
+  if (program_) {
+    ProgramState p;
+    p.model_view = Mat4f(model_view());
+    p.projection = Mat4f(projection());
+    p.lighting = lighting_;
+    p.lighting.lights = lights_;
+    p.light_on = light_on_;
+    p.color = current_color_;
+    p.normal = current_normal_;
+    p.uv = current_uv_;
+    p.alpha = alpha_;
+    add_stats(stats_, program_->draw_arrays(framebuffer_, raster_state(), p, attributes, vertex_count, indices));
+    return;
+  }
   // The vertex stage reads `attributes` before the call returns; the rasterization of the last pass goes on on the
   // framebuffer's raster thread with the shaders kept alive in `shaders`.
   const auto shaders = std::make_shared<DrawShaders>();

@@ -322,6 +322,7 @@ void draw_fixed_function(const Frame& f, const Camera& camera, raster3d::Context
   ctx.blend(blended);
   ctx.depth_func(blended ? raster3d::DepthFunc::lequal : raster3d::DepthFunc::less);
   ctx.alpha(blended ? float(o.opacity) : 1.0f);
+  ctx.use_program(o.program);
   if (painter) {
     // The painter's algorithm keeps no depth: the stencil buffer records which pixels the mesh covers.
     const raster3d::StencilFace mark{.ref = 1, .zpass = raster3d::StencilOp::replace};
@@ -506,10 +507,13 @@ void draw_with_maps(const Frame& f, const Camera& camera, raster3d::Framebuffer&
 
 namespace {
 
-/// Throws InvalidInput when `options` put a texture or bump map on a mesh without uvs.
+/// Throws InvalidInput when `options` put a texture or bump map on a mesh without uvs, or combine a program with the
+/// maps.
 void check_uvs(const PolyMesh& mesh, const MeshViewOptions& options) {
   if ((options.texture || options.bump) && mesh.uvs.empty() && mesh.corner_uvs.empty())
     throw InvalidInput("mesh view: a texture or bump map needs texture coordinates, and the mesh has none");
+  if (options.program && options.maps())
+    throw InvalidInput("mesh view: a program draws the surface itself; the maps, shadows and floor do not combine with it");
 }
 
 }  // namespace

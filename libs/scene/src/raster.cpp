@@ -353,6 +353,22 @@ ImageRGB rasterize_scene(const Scene& described, int width, int height, RasterSh
     l.material.emission = ambient ? m.emission : Vec3f(0);
     l.specular_model =
         m.model == SpecularModel::blinn ? raster3d::SpecularModel::blinn : raster3d::SpecularModel::phong;
+    if (const auto shader = scene.shaders.find(o.material); shader != scene.shaders.end()) {
+      // The material's GLSL program shades the whole surface once, in the pass with the ambient terms.
+      if (!ambient) return;
+      raster3d::ProgramState p;
+      p.model_view = Mat4f(eye_view * o.transform);
+      p.projection = Mat4f(projection_k);
+      p.lighting = l;
+      p.lighting.material.ambient = m.ambient;
+      p.lighting.material.diffuse = m.diffuse;
+      p.lighting.model_ambient = scene.ambient;
+      for (int i = 0; i < l.light_count; ++i) p.light_on[size_t(i)] = true;
+      p.color = m.diffuse;
+      shader->second->draw_arrays(target, state, p, arrays[k].attributes(), uint32_t(arrays[k].positions.size()),
+                                  arrays[k].indices);
+      return;
+    }
     raster3d::SurfaceUniforms u;
     u.set_camera(projection_k, eye_view, o.transform);
     u.lighting = raster3d::PreparedLighting(l);

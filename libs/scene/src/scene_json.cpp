@@ -1,11 +1,13 @@
 // The JSON scene loader (docs/scene-format.md): every value is checked where it is read, and errors name the JSON
 // path of the bad value.
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <set>
 
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parse.hpp"
+#include "tessera/glsl/program.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/image/texture.hpp"
 #include "tessera/math/transform.hpp"
@@ -266,9 +268,58 @@ float read_ior(const Node& n) {
   return float(n.positive());
 }
 
+/// A material's "shader": a GLSL program from the files "vertex" and "fragment" (relative to the scene), its
+/// "uniforms" ({"name": number or [numbers]}) and "textures" ({"unit": "image"}).
+std::shared_ptr<raster3d::ContextProgram> read_shader(const Node& n, const std::filesystem::path& base_dir) {
+  n.only({"vertex", "fragment", "uniforms", "textures"});
+  const auto source = [&](const char* key) {
+    try {
+      return glsl::read_shader((base_dir / n[key].string()).string());
+    } catch (const IoError& e) {
+      n[key].fail(e.what());
+    }
+  };
+  std::shared_ptr<glsl::Program> program;
+  try {
+    program = std::make_shared<glsl::Program>(glsl::Program::compile(source("vertex"), source("fragment")));
+  } catch (const glsl::CompileError& e) {
+    n.fail(e.what());
+  }
+  if (n.has("uniforms")) {
+    const Node uniforms = n["uniforms"];
+    uniforms.expect_object();
+    for (const auto& [name, value] : uniforms.json().items()) {
+      const Node u = uniforms[name.c_str()];
+      std::string text;
+      if (u.json().is_array()) {
+        u.expect_array(1);
+        for (size_t i = 0; i < u.size(); ++i) text += (i ? "," : "") + fmt::format("{}", u.item(i).number());
+      } else {
+        text = fmt::format("{}", u.number());
+      }
+      try {
+        program->set_uniform_text(name, text);
+      } catch (const InvalidInput& e) {
+        u.fail(e.what());
+      }
+    }
+  }
+  if (n.has("textures")) {
+    const Node textures = n["textures"];
+    textures.expect_object();
+    for (const auto& [unit, value] : textures.json().items()) {
+      const Node t = textures[unit.c_str()];
+      if (unit.empty() || unit.size() > 2 || !std::all_of(unit.begin(), unit.end(), ::isdigit) || std::stoi(unit) > 15)
+        t.fail("expected a texture unit 0 to 15 as the key");
+      program->bind_texture(std::stoi(unit), std::make_shared<Texture2D>(load_texture(base_dir / t.string())));
+    }
+  }
+  return program;
+}
+
 Material read_material(const Node& n, const std::filesystem::path& base_dir) {
   n.only({"diffuse", "ambient", "specular", "shininess", "model", "reflection", "transmission", "ior", "fresnel",
-          "glossiness", "emission", "checker", "texture"});
+          "glossiness", "emission", "checker", "texture", "shader"});
   Material m;
   if (n.has("diffuse")) m.diffuse = n["diffuse"].color();
   if (n.has("ambient")) m.ambient = n["ambient"].color();
@@ -505,8 +556,11 @@ Scene parse_scene(std::string_view text, const std::string& name, const std::fil
   if (root.has("materials")) {
     const Node materials = root["materials"];
     if (!materials.json().is_object()) materials.fail("expected an object of named materials");
-    for (const auto& [key, value] : materials.json().items())
-      scene.materials[key] = read_material(materials[key.c_str()], base_dir);
+    for (const auto& [key, value] : materials.json().items()) {
+      const Node material = materials[key.c_str()];
+      scene.materials[key] = read_material(material, base_dir);
+      if (material.has("shader")) scene.shaders[key] = read_shader(material["shader"], base_dir);
+    }
   }
   const Node objects = root["objects"];
   objects.expect_array(1);

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -54,6 +55,30 @@ struct VertexArrays {
 /// ties keep their order), so that blending each over what was drawn before gives order-dependent transparency.
 /// Exact where the triangles' depth ranges do not interleave, as for the painter's algorithm.
 void sort_back_to_front(VertexArrays& arrays, const Mat4& model_view);
+
+/// What a program reads of a context's state: OpenGL binds the compatibility built-ins (gl_ModelViewMatrix,
+/// gl_LightSource[i], gl_FrontMaterial, gl_LightModel) and the current attributes from it.
+struct ProgramState {
+  Mat4f model_view{1.0f}, projection{1.0f};
+  Lighting lighting;                         ///< the material, the light model and all lights (eye space)
+  std::array<bool, kMaxLights> light_on{};  ///< which lights are on (GL_LIGHTi)
+  Vec3f color{1, 1, 1}, normal{0, 0, 1};     ///< the current color and normal
+  Vec2f uv{0, 0};                            ///< the current texture coordinates
+  float alpha = 1;                           ///< the current color's alpha
+};
+
+/// A program a context draws its triangles through instead of its fixed-function shaders (glUseProgram):
+/// glsl::Program is one (libs/glsl). raster3d knows only this interface, so that it does not depend on the GLSL
+/// compiler.
+class ContextProgram {
+ public:
+  virtual ~ContextProgram() = default;
+  /// Draws the triangles `indices` of `attributes` (vertex_count vertices) into `framebuffer` with `state`, the
+  /// built-ins bound from `program_state`; done when it returns.
+  virtual DrawStats draw_arrays(Framebuffer& framebuffer, const RasterState& state, const ProgramState& program_state,
+                                const VertexAttributes& attributes, uint32_t vertex_count,
+                                std::span<const uint32_t> indices) = 0;
+};
 
 /// An OpenGL 1.x-style rendering context with its own framebuffer.
 class Context {
@@ -146,6 +171,9 @@ class Context {
   ShadingModel shading() const { return shading_; }
   /// The z-buffer or the painter's algorithm.
   void hidden_surface(HiddenSurface method);
+  /// Draws the triangles that follow (meshes and immediate mode) through `program`, or again through the
+  /// fixed-function shaders when it is null (glUseProgram). Lines and points keep the fixed-function shaders.
+  void use_program(std::shared_ptr<ContextProgram> program);
   /// glMaterial (front and back), the specular term, GL_LIGHT_MODEL_AMBIENT, GL_COLOR_MATERIAL.
   void material(const Material& m);
   void specular_model(SpecularModel model);
@@ -254,6 +282,7 @@ class Context {
   RasterState state_;
   ShadingModel shading_ = ShadingModel::unlit;
   float alpha_ = 1;
+  std::shared_ptr<ContextProgram> program_;  // use_program's, or null
   HiddenSurface hidden_surface_ = HiddenSurface::zbuffer;
   Lighting lighting_;
   std::array<Light, kMaxLights> lights_{};

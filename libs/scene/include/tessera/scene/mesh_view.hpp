@@ -139,6 +139,11 @@ struct MeshViewOptions {
   /// its own outward before drawing (prepared).
   bool turn_outward = true;
 
+  /// A program the surface is drawn through instead of `shading` (a glsl::Program, libs/glsl; Context::use_program):
+  /// its built-ins read the view's state (gl_LightSource[0] the light, gl_FrontMaterial the color's plastic, the
+  /// camera's matrices). Not with the maps; the wireframe's lines stay fixed-function.
+  std::shared_ptr<raster3d::ContextProgram> program;
+
   /// Whether the per-pixel surface shaders draw (a map, shadows, a floor or env_cube).
   bool maps() const { return texture || bump || environment || shadows || floor || env_cube; }
 };

@@ -13,6 +13,7 @@
 #include "tessera/accel/shapes.hpp"
 #include "tessera/math/camera.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/raster3d/context.hpp"
 #include "tessera/raytrace/light.hpp"
 #include "tessera/raytrace/material.hpp"
 #include "tessera/raytrace/world.hpp"
@@ -62,6 +63,10 @@ struct Scene {
   Vec3f ambient{0.1f};
   std::vector<Light> lights;
   std::map<std::string, Material> materials;
+  /// GLSL programs of materials that name one ("shader": {"vertex", "fragment", "uniforms", "textures"}), by material
+  /// name: the rasterizer draws those materials' objects through them (their built-ins bound from the material and
+  /// the lights); the ray tracer shades the material's own terms.
+  std::map<std::string, std::shared_ptr<raster3d::ContextProgram>> shaders;
   std::vector<SceneObject> objects;
 };
 

@@ -549,6 +549,45 @@ DrawStats draw_points(Framebuffer& framebuffer, const RasterState& state, uint32
 
 namespace detail {
 
+/// The part of a triangle draw after its vertex stage, whose output (per vertex the clip position, then n varyings)
+/// is in the current draw input's vertices: setup parameters, prepared vertices, the painter's order, then each pass
+/// of kPassChunks chunks set up, binned and submitted to the raster thread, whose job runs
+/// `raster(pass, params, fragment, tile_begin, tile_end)` over the tiles in parallel (pipeline_for). Returns how many
+/// triangles were set up on this thread (collect_raster counts the raster jobs'). `raster` is copied into each job.
+template <class Raster>
+uint64_t submit_triangle_passes(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count, int n,
+                                std::span<const uint32_t> indices, const Raster& raster) {
+  RasterScratch& scratch = framebuffer.scratch();
+  RasterScratch::DrawInput& input = scratch.inputs[size_t(scratch.input)];
+  const float* vertices = input.vertices.data();
+  SetupParams params = setup_params(framebuffer, state, vertices, n);
+  prepare_vertices(scratch, params, vertex_count);
+  if (state.painter) indices = painter_order(scratch, vertices, 4 + n, indices);
+  input.indices.assign(indices.begin(), indices.end());  // the caller's array may change once this returns
+  indices = input.indices;
+  const FragmentState fragment = fragment_state(state);
+  const size_t triangles = indices.size() / 3;
+  const size_t per_pass = size_t(kChunkTriangles) * kPassChunks;
+  const int tiles = params.tiles_x * params.tiles_y;
+  uint64_t rasterized = 0;
+  for (size_t first = 0; first < triangles; first += per_pass) {
+    // The other pass's job, if any, is the only one that may be running (submit_raster): this one is free.
+    SetupPass& pass = scratch.passes[size_t(scratch.next_pass)];
+    scratch.next_pass ^= 1;
+    const size_t count = std::min(per_pass, triangles - first);
+    const auto chunks = int64_t((count + kChunkTriangles - 1) / kChunkTriangles);
+    reset_pass(pass, params);
+    int64_t split = 0;
+    rasterized += setup_chunks_while_raster_busy(scratch, pass, params, indices, first, count, chunks, split);
+    submit_raster(scratch, [&scratch, &pass, params, indices, first, count, split, chunks, fragment, tiles, raster] {
+      scratch.job_rasterized += setup_chunks(scratch, pass, params, indices, first, count, split, chunks);
+      pipeline_for(scratch, PipelineSide::raster, 0, tiles, 1,
+                   [&](int64_t begin, int64_t end) { raster(pass, params, fragment, begin, end); });
+    });
+  }
+  return rasterized;
+}
+
 /// draw_triangles, except that it returns before the tile rasterization of its last pass is done (the raster thread
 /// goes on with it; finish_raster waits): the caller may collect and set up the next draw meanwhile. `fs`, and what
 /// it refers to, must live until then: the raster jobs hold `keep_alive` until they are done.
@@ -566,37 +605,15 @@ DrawStats draw_triangles_async(Framebuffer& framebuffer, const RasterState& stat
   // The previous draw's last job may still read its input set: this draw fills the other one (the draw before that
   // is done: this draw's first submit_raster waits for the previous draw's last job, which waited for its own).
   scratch.input ^= 1;
-  RasterScratch::DrawInput& input = scratch.inputs[size_t(scratch.input)];
-  const float* vertices = run_vertex_stage(scratch, vertex_count, vs);
-  SetupParams params = setup_params(framebuffer, state, vertices, n);
-  prepare_vertices(scratch, params, vertex_count);
-  if (state.painter) indices = painter_order(scratch, vertices, 4 + n, indices);
-  input.indices.assign(indices.begin(), indices.end());  // the caller's array may change once this returns
-  indices = input.indices;
-  const FragmentState fragment = fragment_state(state);
-  const size_t triangles = indices.size() / 3;
-  const size_t per_pass = size_t(kChunkTriangles) * kPassChunks;
-  const int tiles = params.tiles_x * params.tiles_y;
-  for (size_t first = 0; first < triangles; first += per_pass) {
-    // The other pass's job, if any, is the only one that may be running (submit_raster): this one is free.
-    SetupPass& pass = scratch.passes[size_t(scratch.next_pass)];
-    scratch.next_pass ^= 1;
-    const size_t count = std::min(per_pass, triangles - first);
-    const auto chunks = int64_t((count + kChunkTriangles - 1) / kChunkTriangles);
-    reset_pass(pass, params);
-    int64_t split = 0;
-    stats.rasterized += setup_chunks_while_raster_busy(scratch, pass, params, indices, first, count, chunks, split);
-    submit_raster(scratch, [&framebuffer, &scratch, &pass, params, indices, first, count, split, chunks, fragment, &fs,
-                            tiles, keep_alive] {
-      scratch.job_rasterized += setup_chunks(scratch, pass, params, indices, first, count, split, chunks);
-      dispatch_depth_func(fragment.func, [&](auto f) {
-        pipeline_for(scratch, PipelineSide::raster, 0, tiles, 1, [&](int64_t begin, int64_t end) {
-          for (int64_t t = begin; t < end; ++t)
-            raster_tile<n, V, FS, decltype(f)::value>(framebuffer, pass, params, fragment.depth_write, int(t), fs);
-        });
-      });
+  run_vertex_stage(scratch, vertex_count, vs);
+  const auto raster = [&framebuffer, &fs, keep_alive](const SetupPass& pass, const SetupParams& params,
+                                                      const FragmentState& fragment, int64_t begin, int64_t end) {
+    dispatch_depth_func(fragment.func, [&](auto f) {
+      for (int64_t t = begin; t < end; ++t)
+        raster_tile<n, V, FS, decltype(f)::value>(framebuffer, pass, params, fragment.depth_write, int(t), fs);
     });
-  }
+  };
+  stats.rasterized += submit_triangle_passes(framebuffer, state, vertex_count, n, indices, raster);
   return stats;
 }
 

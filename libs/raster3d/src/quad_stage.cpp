@@ -1,0 +1,190 @@
+// The quad fragment stage (quad_stage.hpp): the pipeline's setup and binning, then per tile the covered 2 x 2 quads
+// gathered into FragmentBatch and shaded a batch at a time.
+#include "tessera/raster3d/quad_stage.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <string>
+
+#include "span_kernels.hpp"
+#include "tessera/core/error.hpp"
+
+namespace tessera::raster3d {
+namespace detail {
+namespace {
+
+constexpr int kBatchQuads = FragmentBatch::kLanes / 4;
+
+/// One thread's working state for the tiles it rasterizes: the batch being filled, the shader's scratch, and what
+/// the writes at the flush need.
+struct QuadTile {
+  FragmentBatch batch;
+  std::unique_ptr<QuadShaderScratch> scratch;
+  int quad_i[kBatchQuads], quad_j[kBatchQuads];  // GL pixel of each quad's lane 0
+  uint32_t depth[FragmentBatch::kLanes];         // the 24-bit depth of each lane
+  uint64_t waiting[kTileSize];                   // per tile row: the pixels a waiting lane covers (bit x - tile x)
+  int origin_x = 0, origin_y = 0;                // the tile's first GL pixel
+};
+
+/// Shades the waiting quads and writes the lanes that are covered and kept (color and depth), then empties the batch.
+void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_write, const QuadFragmentShader& fs) {
+  FragmentBatch& b = t.batch;
+  if (b.quads == 0) return;
+  std::fill(std::begin(b.kept), std::end(b.kept), ~0u);
+  fs.shade(b, *t.scratch);
+  const int height = fb.height();
+  for (int q = 0; q < b.quads; ++q)
+    for (int k = 0; k < 4; ++k) {
+      const int lane = 4 * q + k;
+      if (!(b.covered[lane] & b.kept[lane])) continue;
+      const int i = t.quad_i[q] + (k & 1), row = height - 1 - (t.quad_j[q] + (k >> 1));
+      if (params.color_write) {
+        const Vec4f c(b.color[0][lane], b.color[1][lane], b.color[2][lane], b.color[3][lane]);
+        write_color(params, c, fb.color()(i, row));
+      }
+      if (depth_write) fb.depth()(i, row) = t.depth[lane];
+    }
+  b.quads = 0;
+  std::memset(t.waiting, 0, sizeof t.waiting);
+}
+
+/// Fills quad `q` of the batch: lanes 4q..4q+3 at GL pixel (i, j) and its neighbours, varyings interpolated as
+/// interpolated_fragment does (the same operations, so the C++ shaders' pixels do not change on this stage).
+void fill_quad(FragmentBatch& b, int q, const TriangleRecord& r, const float* data, int n, int i, int j, int height) {
+  for (int k = 0; k < 4; ++k) {
+    const int lane = 4 * q + k;
+    const int pi = i + (k & 1), pj = j + (k >> 1);
+    const float dx = float(pi) + 0.5f - r.rx;
+    b.frag_coord[0][lane] = float(pi) + 0.5f;
+    b.frag_coord[1][lane] = float(pj) + 0.5f;
+    b.frag_coord[2][lane] = fragment_depth(r.za, r.zdx, r.zdy, float(pi), float(height - 1 - pj));
+    b.front_facing[lane] = r.front ? ~0u : 0u;
+    if (r.constant) {
+      b.frag_coord[3][lane] = 1.0f;
+      for (int v = 0; v < n; ++v) b.varyings[v][lane] = data[v];
+      continue;
+    }
+    const float* pc = data;
+    const float* px = data + (n + 1);
+    const float* py = data + 2 * (n + 1);
+    const float dy = float(pj) + 0.5f - r.ry;
+    const float inv_w = (pc[0] + py[0] * dy) + px[0] * dx;
+    const float w = 1.0f / inv_w;
+    b.frag_coord[3][lane] = inv_w;
+    for (int v = 0; v < n; ++v) b.varyings[v][lane] = ((pc[v + 1] + py[v + 1] * dy) + px[v + 1] * dx) * w;
+  }
+}
+
+/// Gathers the quads of record r over GL pixels [x0, x1) x [y0, y1) (inside the tile) into the batch, flushing it
+/// when it is full or before a quad that covers a pixel a waiting lane covers.
+template <DepthFunc F>
+void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_write,
+                   const QuadFragmentShader& fs, const TriangleRecord& r, const float* data, int x0, int x1, int y0,
+                   int y1) {
+  const int height = fb.height();
+  const int n = params.varying_count;
+  for (int j = y0 & ~1; j < y1; j += 2) {
+    int lo[2], hi[2];
+    for (int k = 0; k < 2; ++k) {
+      lo[k] = x0, hi[k] = x1;
+      if (j + k < y0 || j + k >= y1)
+        hi[k] = lo[k];
+      else
+        edge_span(r, j + k, lo[k], hi[k]);
+    }
+    const bool row_empty[2] = {lo[0] >= hi[0], lo[1] >= hi[1]};
+    if (row_empty[0] && row_empty[1]) continue;
+    const int first = row_empty[0] ? lo[1] : row_empty[1] ? lo[0] : std::min(lo[0], lo[1]);
+    const int last = row_empty[0] ? hi[1] : row_empty[1] ? hi[0] : std::max(hi[0], hi[1]);
+    for (int i = first & ~1; i < last; i += 2) {
+      uint32_t inside = 0;  // bit k: lane k's pixel center is in the triangle (and the tile)
+      for (int k = 0; k < 4; ++k) {
+        const int pi = i + (k & 1);
+        if (pi >= lo[k >> 1] && pi < hi[k >> 1]) inside |= 1u << k;
+      }
+      if (!inside) continue;
+      const int bx = i - t.origin_x, by = j - t.origin_y;
+      const uint64_t row_bits[2] = {uint64_t(inside & 3) << bx, uint64_t((inside >> 2) & 3) << bx};
+      if ((t.waiting[by] & row_bits[0]) || (by + 1 < kTileSize && (t.waiting[by + 1] & row_bits[1])))
+        flush(t, fb, params, depth_write, fs);
+      // The depth test, against depths that every earlier lane over these pixels has written (flushed above).
+      uint32_t depth[4], covered = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int pi = i + (k & 1), row = height - 1 - (j + (k >> 1));
+        depth[k] = depth24(fragment_depth(r.za, r.zdx, r.zdy, float(pi), float(row)));
+        if ((inside >> k & 1) && depth_passes<F>(depth[k], fb.depth()(pi, row))) covered |= 1u << k;
+      }
+      if (!covered) continue;
+      if (t.batch.quads == kBatchQuads) flush(t, fb, params, depth_write, fs);
+      const int q = t.batch.quads++;
+      fill_quad(t.batch, q, r, data, n, i, j, height);
+      for (int k = 0; k < 4; ++k) {
+        t.batch.covered[4 * q + k] = (covered >> k & 1) ? ~0u : 0u;
+        t.depth[4 * q + k] = depth[k];
+      }
+      t.quad_i[q] = i, t.quad_j[q] = j;
+      t.waiting[by] |= uint64_t(covered & 3) << bx;
+      if (by + 1 < kTileSize) t.waiting[by + 1] |= uint64_t((covered >> 2) & 3) << bx;
+    }
+  }
+}
+
+/// The quads of every record binned to `tile`, in submission order.
+template <DepthFunc F>
+void raster_tile_quads(QuadTile& t, Framebuffer& fb, const SetupPass& binned, const SetupParams& params,
+                       bool depth_write, int tile, const QuadFragmentShader& fs) {
+  const int tx = tile % params.tiles_x, ty = tile / params.tiles_x;
+  const Scissor sc = scissor(params);
+  const int tile_x0 = std::max(sc.x0, tx * kTileSize), tile_x1 = std::min(sc.x1, tx * kTileSize + kTileSize);
+  const int tile_y0 = std::max(sc.y0, ty * kTileSize), tile_y1 = std::min(sc.y1, ty * kTileSize + kTileSize);
+  t.origin_x = tx * kTileSize, t.origin_y = ty * kTileSize;
+  t.batch.varying_count = params.varying_count;
+  std::memset(t.waiting, 0, sizeof t.waiting);
+  for (const SetupChunk& chunk : binned)
+    for (const uint32_t index : chunk.bins[tile]) {
+      const TriangleRecord& r = chunk.records[index];
+      const int x0 = std::max(tile_x0, r.x0), x1 = std::min(tile_x1, r.x1);
+      const int y0 = std::max(tile_y0, r.y0), y1 = std::min(tile_y1, r.y1);
+      if (x0 >= x1 || y0 >= y1) continue;
+      gather_record<F>(t, fb, params, depth_write, fs, r, chunk.varyings.data() + r.varyings, x0, x1, y0, y1);
+    }
+  flush(t, fb, params, depth_write, fs);
+}
+
+}  // namespace
+}  // namespace detail
+
+DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& state, std::span<const float> vertices,
+                               int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs) {
+  if (varying_count < 0 || varying_count > FragmentBatch::kMaxVaryings)
+    throw InvalidInput("the quad stage takes 0 to " + std::to_string(FragmentBatch::kMaxVaryings) +
+                       " varyings, not " + std::to_string(varying_count));
+  const size_t stride = 4 + size_t(varying_count);
+  if (vertices.size() % stride != 0)
+    throw InvalidInput("quad stage: " + std::to_string(vertices.size()) + " vertex floats are not a multiple of " +
+                       std::to_string(stride) + " (4 + varyings)");
+  if (state.stencil_test) throw InvalidInput("the quad stage does not support the stencil test yet");
+  const auto vertex_count = uint32_t(vertices.size() / stride);
+  detail::check_draw(framebuffer, state, indices, vertex_count, 3, "triangle");
+  DrawStats stats;
+  stats.primitives = indices.size() / 3;
+  if (indices.empty()) return stats;
+  detail::RasterScratch& scratch = framebuffer.scratch();
+  scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
+  scratch.inputs[size_t(scratch.input)].vertices.assign(vertices.begin(), vertices.end());
+  const auto raster = [&framebuffer, &fs](const detail::SetupPass& pass, const detail::SetupParams& params,
+                                          const detail::FragmentState& fragment, int64_t begin, int64_t end) {
+    const auto t = std::make_unique<detail::QuadTile>();
+    t->scratch = fs.begin();
+    detail::dispatch_depth_func(fragment.func, [&](auto f) {
+      for (int64_t tile = begin; tile < end; ++tile)
+        detail::raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile),
+                                                      fs);
+    });
+  };
+  stats.rasterized += detail::submit_triangle_passes(framebuffer, state, vertex_count, varying_count, indices, raster);
+  stats.rasterized += detail::collect_raster(scratch);
+  return stats;
+}
+
+}  // namespace tessera::raster3d
