@@ -466,6 +466,18 @@ std::vector<uint8_t> GlslRenderer::render() {
   return image;
 }
 
+std::vector<float> GlslRenderer::depth() {
+  Impl& s = *impl_;
+  s.make_current();
+  const size_t w = size_t(s.width), h = size_t(s.height);
+  std::vector<float> gl_rows(w * h), out(w * h);
+  glReadPixels(0, 0, s.width, s.height, GL_DEPTH_COMPONENT, GL_FLOAT, gl_rows.data());
+  check_gl("reading the depth buffer");
+  for (size_t row = 0; row < h; ++row)  // GL row 0 is the bottom
+    std::copy_n(gl_rows.begin() + std::ptrdiff_t((h - 1 - row) * w), w, out.begin() + std::ptrdiff_t(row * w));
+  return out;
+}
+
 double GlslRenderer::time_draws(int repeat) {
   Impl& s = *impl_;
   s.make_current();

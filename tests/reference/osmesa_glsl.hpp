@@ -138,6 +138,9 @@ class GlslRenderer {
   /// Clears (color to draw.clear_color, depth to 1), draws, glFinish, and reads the color buffer: RGBA8,
   /// width * height * 4 bytes, top row first. Throws tessera::Error on an OpenGL error.
   std::vector<uint8_t> render();
+  /// The depth buffer of the last render(), top row first: 1.0 where nothing was drawn (coverage that does not
+  /// depend on the program's alpha).
+  std::vector<float> depth();
   /// Milliseconds (steady clock) of `repeat` frames of clear + draw + glFinish, after one untimed warm-up frame.
   double time_draws(int repeat);
 

@@ -166,7 +166,7 @@ class StageCompiler {
       if (a && a->getOp() == glslang::EOpFunction)
         functions_[std::string(a->getName().c_str())] = a;
       else if (a && a->getOp() == glslang::EOpLinkerObjects)
-        continue;
+        record_declared_uniforms(a);
       else
         globals.push_back(node);
     }
@@ -180,6 +180,15 @@ class StageCompiler {
   uint32_t kept_input = 0;
 
  private:
+  /// The user uniforms the stage declares, used or not (setting one the program does not use does nothing, as in
+  /// OpenGL, where its location is -1).
+  void record_declared_uniforms(TIntermAggregate* linker_objects) {
+    for (TIntermNode* node : linker_objects->getSequence())
+      if (const TIntermSymbol* symbol = node->getAsSymbolNode();
+          symbol && symbol->getQualifier().storage == glslang::EvqUniform && symbol->getName().compare(0, 3, "gl_") != 0)
+        module_.declared_uniforms.insert(symbol->getName().c_str());
+  }
+
   [[noreturn]] void fail(const TIntermNode* node, const std::string& message) {
     throw CompileFailure(node ? node->getLoc().line : 0, message);
   }

@@ -2,6 +2,7 @@
 // What Program holds: the two compiled stages and the tables that connect them to uniforms, attributes and textures.
 #include <array>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -43,6 +44,7 @@ struct ProgramModule {
   std::vector<uint32_t> uniform_words;
   std::vector<UniformSlot> uniforms;  // every uniform scalarized to basic types, built-ins included
   std::vector<UniformInfo> user_uniforms;
+  std::set<std::string> declared_uniforms;  // the user uniforms the sources declare, active or not
   std::vector<SamplerSlot> samplers;  // indexed by ir::Instr::unit
   std::vector<AttributeSlot> attributes;
   int varying_count = 0;  // floats passed from the vertex to the fragment stage

@@ -30,7 +30,12 @@ std::pair<std::string, int> array_element(const std::string& name) {
 void write_uniform(ProgramModule& m, std::string_view name, std::span<const uint32_t> values, bool floats,
                    bool builtin) {
   UniformSlot* slot = find_uniform(m, name, builtin);
-  if (!slot) throw InvalidInput("the program has no active uniform '" + printable(name) + "'");
+  if (!slot) {
+    // A declared uniform the program does not read ("light.color", "w[2]": the declaration is "light", "w") takes
+    // any value and keeps none, as in OpenGL.
+    if (m.declared_uniforms.count(std::string(name.substr(0, name.find_first_of(".[")))) > 0) return;
+    throw InvalidInput("the program declares no uniform '" + printable(name) + "'");
+  }
   if (slot->is_float != floats)
     throw InvalidInput("uniform '" + slot->name + "' takes " + (slot->is_float ? "floats" : "integers") +
                        ", not " + (floats ? "floats" : "integers"));
@@ -186,10 +191,9 @@ void Program::set_uniform(std::string_view name, std::span<const int> values) {
 
 void Program::set_uniform_text(std::string_view name, std::string_view values) {
   const UniformSlot* slot = find_uniform(*module_, name, false);
-  if (!slot) throw InvalidInput("the program has no active uniform '" + printable(name) + "'");
   const std::string what = "uniform " + std::string(name);
   const std::vector<double> numbers = parse_doubles(values, 0, what);
-  if (slot->is_float) {
+  if (!slot || slot->is_float) {
     std::vector<float> floats(numbers.begin(), numbers.end());
     set_uniform(name, floats);
     return;

@@ -115,7 +115,8 @@ class Program : public raster3d::ContextProgram {
   bool has_uniform(std::string_view name) const;
 
   /// Sets a float uniform (float, vecN, matN column-major, or an array of them: `values` fills it from the named
-  /// element on). Throws InvalidInput for an unknown name, a type mismatch or too many values.
+  /// element on). A uniform the sources declare but the program does not use takes any value and keeps none (OpenGL's
+  /// location -1). Throws InvalidInput for a name the sources do not declare, a type mismatch or too many values.
   void set_uniform(std::string_view name, std::span<const float> values);
   /// Sets an int, bool (0 or 1) or sampler (texture unit) uniform.
   void set_uniform(std::string_view name, std::span<const int> values);
