@@ -7,6 +7,7 @@ set -euo pipefail
 tessera="$1"
 scratch="$2"
 data="$(cd "$(dirname "$0")/../data" && pwd)"
+shaders="$(cd "$(dirname "$0")/../../examples/shaders" && pwd)"
 rm -rf "$scratch" && mkdir -p "$scratch"
 cd "$scratch"
 py=/usr/bin/python3
@@ -424,6 +425,36 @@ for cull in none back; do
 done
 
 # Errors: the exit status, a clear message, and no output file (neither the image nor the depth file).
+# GLSL programs (docs/shaders.md): a uniform color fills exactly the pixels the fixed function covers; the texture
+# program shows the texture's halves (red left, blue right, nearest texels); the notes' diffuse program is pure red.
+cat > flat.vert <<'GLSL'
+void main() { gl_Position = ftransform(); }
+GLSL
+cat > flat.frag <<'GLSL'
+uniform vec3 paint;
+void main() { gl_FragColor = vec4(paint, 1.0); }
+GLSL
+"$tessera" raster cube.obj -o glsl_flat.png --size 48x48 --vertex-shader flat.vert --fragment-shader flat.frag \
+  --uniform paint=0.2,0.4,0.6
+"$tessera" raster cube.obj -o glsl_fixed.png --size 48x48 --shading unlit --color 0.2,0.4,0.6
+"$tessera" raster tquad.obj -o glsl_texture.png --size 64x64 --eye 0,0,4 --center 0,0,0 --fovy 40 --vertex-shader "$shaders/notes_texture.vert" \
+  --fragment-shader "$shaders/notes_texture.frag" --texture0 halves.png --filter nearest
+"$tessera" raster cube.obj -o glsl_diffuse.png --size 48x48 --vertex-shader "$shaders/notes_diffuse.vert" \
+  --fragment-shader "$shaders/notes_diffuse.frag" --light-pos 2,3,4
+$py -c "
+from PIL import Image
+a, b = Image.open('glsl_flat.png').convert('RGB'), Image.open('glsl_fixed.png').convert('RGB')
+assert list(a.getdata()) == list(b.getdata()), 'the uniform color differs from the fixed-function unlit picture'
+assert (51, 102, 153) in set(a.getdata())
+t = Image.open('glsl_texture.png').convert('RGB')
+assert t.getpixel((22, 32)) == (255, 0, 0) and t.getpixel((42, 32)) == (0, 0, 255), (t.getpixel((22, 32)), t.getpixel((42, 32)))
+d = Image.open('glsl_diffuse.png').convert('RGB')
+reds = [p for p in d.getdata() if p != (0, 0, 0)]
+assert len(reds) > 200 and all(g == 0 and b == 0 for _, g, b in reds), 'the diffuse program is red times N.L'
+assert len(set(r for r, _, _ in reds)) > 5, 'N.L varies over the cube faces'
+"
+printf 'void main() {\n  gl_FragColor = vec4(1.0)\n}\n' > broken.frag
+
 expect_error() {
   local status="$1" pattern="$2"
   shift 2
@@ -486,4 +517,19 @@ expect_error 2 "filter" tquad.obj -o bad.png --texture halves.png --filter cubic
 expect_error 1 "opacity" cube.obj -o bad.png --opacity 0.5 --floor
 expect_error 2 "opacity" cube.obj -o bad.png --opacity 1.5
 expect_error 2 "reflect" tquad.obj -o bad.png --env green.png --reflect 2
+expect_error 2 "needs both" cube.obj -o bad.png --vertex-shader flat.vert
+expect_error 2 "add --vertex-shader" cube.obj -o bad.png --uniform paint=1,0,0
+expect_error 1 "broken.frag:3:" cube.obj -o bad.png --vertex-shader flat.vert --fragment-shader broken.frag
+expect_error 1 "missing.frag" cube.obj -o bad.png --vertex-shader flat.vert --fragment-shader missing.frag
+expect_error 1 "declares no uniform 'colour'" cube.obj -o bad.png --vertex-shader flat.vert \
+  --fragment-shader flat.frag --uniform colour=1,0,0
+expect_error 1 "takes 3 values" cube.obj -o bad.png --vertex-shader flat.vert --fragment-shader flat.frag \
+  --uniform paint=1,0
+expect_error 1 "name=v1,v2" cube.obj -o bad.png --vertex-shader flat.vert --fragment-shader flat.frag --uniform paint
+expect_error 1 "texture unit 16" tquad.obj -o bad.png --vertex-shader flat.vert --fragment-shader flat.frag \
+  --texture-unit 16=halves.png
+expect_error 1 "does the shading" cube.obj -o bad.png --vertex-shader flat.vert --fragment-shader flat.frag \
+  --shading phong
+expect_error 1 "do not combine" tquad.obj -o bad.png --vertex-shader flat.vert --fragment-shader flat.frag \
+  --texture halves.png
 echo "raster CLI ok"
