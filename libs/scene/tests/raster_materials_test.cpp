@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 
 #include "tessera/core/error.hpp"
@@ -351,6 +353,65 @@ TEST(SceneMaterials, WhittedGlassIsNotBlack) {
     EXPECT_GT(a, 0.6f);
     EXPECT_NEAR(a, b, 0.2f * b);
   }
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+/// Writes the files of a material shader into the test's folder: a uniform color over ftransform().
+std::filesystem::path shader_folder() {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "scene_shader";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "flat.vert") << "void main() { gl_Position = ftransform(); }\n";
+  std::ofstream(dir / "flat.frag") << "uniform vec3 paint;\nvoid main() { gl_FragColor = vec4(paint, 1.0); }\n";
+  std::ofstream(dir / "broken.frag") << "void main() {\n  gl_FragColor = 1.0;\n}\n";
+  return dir;
+}
+
+Scene shader_scene(const std::string& shader) {
+  return parse_scene(R"({"image": {"size": [48, 48]}, "ambient": 1,
+      "camera": {"eye": [0, 0, 10], "projection": "orthographic", "ortho_height": 4},
+      "materials": {"m": {"diffuse": 1, "shader": )" +
+                         shader + R"(}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})",
+                     "test.json", shader_folder());
+}
+
+TEST(SceneShaders, MaterialProgramPaintsItsObjectInTheRasterizer) {
+  const Scene scene =
+      shader_scene(R"({"vertex": "flat.vert", "fragment": "flat.frag", "uniforms": {"paint": [1, 0.5, 0]}})");
+  const ImageRGB raster = rasterized(scene);
+  // The ray tracer shades the material's own terms (white): the same silhouette, another color.
+  const ImageRGB trace = traced(scene);
+  const auto [painted, mean] = mean_over(raster, [&](int x, int y) { return raster(x, y).x > 0.5f; });
+  EXPECT_NEAR(mean.x, 1.0f, 0.01f);
+  EXPECT_NEAR(mean.y, 0.5f, 0.01f);
+  EXPECT_NEAR(mean.z, 0.0f, 0.01f);
+  const int silhouette = count_lit(trace);
+  EXPECT_NEAR(painted, silhouette, 0.03 * silhouette);
+  EXPECT_NEAR(painted, 3.14159 * 144, 0.05 * 3.14159 * 144);  // radius 12 pixels
+}
+
+TEST(SceneShaders, BadShadersNameTheirPlace) {
+  const auto message = [](const std::string& shader) {
+    try {
+      shader_scene(shader);
+    } catch (const InvalidInput& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "broken.frag"})").find("broken.frag:2:"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "missing.frag"})").find("materials.m.shader.fragment"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "flat.frag", "uniforms": {"paint": [1, 0]}})")
+                .find("materials.m.shader.uniforms.paint"),
+            std::string::npos);
+  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "flat.frag", "colour": 1})").find("unknown key"),
+            std::string::npos);
 }
 
 }  // namespace
