@@ -9,19 +9,19 @@ namespace tessera::glsl {
 Registers::Registers(const ir::Stage& stage, std::span<const uint32_t> uniform_words,
                      std::span<const BoundSampler> samplers, bool fragment)
     : stage_(stage), samplers_(samplers.begin(), samplers.end()), fragment_(fragment),
-      file_(size_t(stage.register_count) * ir::kLanes, 0.0f) {
+      file_(std::make_unique_for_overwrite<float[]>(size_t(stage.register_count) * ir::kLanes)) {
   for (const auto& [r, bits] : stage.constants) std::fill_n(ulanes(r), ir::kLanes, bits);
   for (const auto& [r, word] : stage.uniforms) std::fill_n(ulanes(r), ir::kLanes, uniform_words[word]);
-  baseline::run_code(stage.prologue, file_.data(), ir::kLanes, fragment_, samplers_.data());
+  baseline::run_code(stage.prologue, file_.get(), ir::kLanes, fragment_, samplers_.data());
 }
 
 void Registers::run(int lanes_in_use) {
   if (stage_.discards) std::fill_n(ulanes(stage_.kept), ir::kLanes, ~0u);
   static const bool avx2 = simd_level() >= SimdLevel::avx2;
   if (avx2)
-    avx2::run_code(stage_.code, file_.data(), lanes_in_use, fragment_, samplers_.data());
+    avx2::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());
   else
-    baseline::run_code(stage_.code, file_.data(), lanes_in_use, fragment_, samplers_.data());
+    baseline::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());
 }
 
 }  // namespace tessera::glsl

@@ -37,7 +37,7 @@ class Registers {
             bool fragment);
 
   /// Register r's kLanes lanes.
-  float* lanes(uint32_t r) { return file_.data() + size_t(r) * ir::kLanes; }
+  float* lanes(uint32_t r) { return file_.get() + size_t(r) * ir::kLanes; }
   uint32_t* ulanes(uint32_t r) { return reinterpret_cast<uint32_t*>(lanes(r)); }
 
   /// Runs the stage's code over lanes [0, lanes_in_use) (the others compute garbage). Throws InvalidInput when a
@@ -48,7 +48,7 @@ class Registers {
   const ir::Stage& stage_;
   std::vector<BoundSampler> samplers_;
   bool fragment_;
-  std::vector<float> file_;
+  std::unique_ptr<float[]> file_;  // not zeroed: a register is written before it is read
 };
 
 }  // namespace tessera::glsl

@@ -33,7 +33,10 @@ class RasterThread {
 
   void submit(std::function<void()> job) {
     std::unique_lock lock(mutex_);
+    // Blocked here the caller's core is free, as in wait(): the running job's next loops may take it.
+    caller_waiting_.store(true, std::memory_order_relaxed);
     done_.wait(lock, [&] { return !job_; });
+    caller_waiting_.store(false, std::memory_order_relaxed);
     job_ = std::move(job);
     busy_.store(true, std::memory_order_relaxed);
     lock.unlock();

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <string>
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include "span_kernels.hpp"
 #include "tessera/core/error.hpp"
 
@@ -44,34 +46,49 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
       }
       if (depth_write) fb.depth()(i, row) = t.depth[lane];
     }
+  for (int q = 0; q < b.quads; ++q) {
+    const int by = t.quad_j[q] - t.origin_y;
+    t.waiting[by] = 0;
+    if (by + 1 < kTileSize) t.waiting[by + 1] = 0;
+  }
   b.quads = 0;
-  std::memset(t.waiting, 0, sizeof t.waiting);
 }
 
 /// Fills quad `q` of the batch: lanes 4q..4q+3 at GL pixel (i, j) and its neighbours, varyings interpolated as
-/// interpolated_fragment does (the same operations, so the C++ shaders' pixels do not change on this stage).
+/// interpolated_fragment does (the same operations, so the C++ shaders' pixels do not change on this stage). Each
+/// loop runs over the quad's four lanes, which are contiguous in every array.
 void fill_quad(FragmentBatch& b, int q, const TriangleRecord& r, const float* data, int n, int i, int j, int height) {
+  const int l0 = 4 * q;
+  float px_center[4], py_center[4];
   for (int k = 0; k < 4; ++k) {
-    const int lane = 4 * q + k;
-    const int pi = i + (k & 1), pj = j + (k >> 1);
-    const float dx = float(pi) + 0.5f - r.rx;
-    b.frag_coord[0][lane] = float(pi) + 0.5f;
-    b.frag_coord[1][lane] = float(pj) + 0.5f;
-    b.frag_coord[2][lane] = fragment_depth(r.za, r.zdx, r.zdy, float(pi), float(height - 1 - pj));
-    b.front_facing[lane] = r.front ? ~0u : 0u;
-    if (r.constant) {
-      b.frag_coord[3][lane] = 1.0f;
-      for (int v = 0; v < n; ++v) b.varyings[v][lane] = data[v];
-      continue;
-    }
-    const float* pc = data;
-    const float* px = data + (n + 1);
-    const float* py = data + 2 * (n + 1);
-    const float dy = float(pj) + 0.5f - r.ry;
-    const float inv_w = (pc[0] + py[0] * dy) + px[0] * dx;
-    const float w = 1.0f / inv_w;
-    b.frag_coord[3][lane] = inv_w;
-    for (int v = 0; v < n; ++v) b.varyings[v][lane] = ((pc[v + 1] + py[v + 1] * dy) + px[v + 1] * dx) * w;
+    px_center[k] = float(i + (k & 1)) + 0.5f;
+    py_center[k] = float(j + (k >> 1)) + 0.5f;
+    b.frag_coord[0][l0 + k] = px_center[k];
+    b.frag_coord[1][l0 + k] = py_center[k];
+    // gl_FragCoord.z without the stored depth's fused multiply-adds (a library call on the baseline x86-64).
+    b.frag_coord[2][l0 + k] = r.za + r.zdx * float(i + (k & 1)) + r.zdy * float(height - 1 - (j + (k >> 1)));
+    b.front_facing[l0 + k] = r.front ? ~0u : 0u;
+  }
+  if (r.constant) {
+    for (int k = 0; k < 4; ++k) b.frag_coord[3][l0 + k] = 1.0f;
+    for (int v = 0; v < n; ++v)
+      for (int k = 0; k < 4; ++k) b.varyings[v][l0 + k] = data[v];
+    return;
+  }
+  const float* pc = data;
+  const float* px = data + (n + 1);
+  const float* py = data + 2 * (n + 1);
+  float dx[4], dy[4], w[4];
+  for (int k = 0; k < 4; ++k) {
+    dx[k] = px_center[k] - r.rx;
+    dy[k] = py_center[k] - r.ry;
+    const float inv_w = (pc[0] + py[0] * dy[k]) + px[0] * dx[k];
+    b.frag_coord[3][l0 + k] = inv_w;
+    w[k] = 1.0f / inv_w;
+  }
+  for (int v = 1; v <= n; ++v) {
+    float* out = b.varyings[v - 1] + l0;
+    for (int k = 0; k < 4; ++k) out[k] = ((pc[v] + py[v] * dy[k]) + px[v] * dx[k]) * w[k];
   }
 }
 
@@ -83,6 +100,7 @@ void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool
                    int y1) {
   const int height = fb.height();
   const int n = params.varying_count;
+  TestSpan* const test_span = span_kernels().test[int(F)];
   for (int j = y0 & ~1; j < y1; j += 2) {
     int lo[2], hi[2];
     for (int k = 0; k < 2; ++k) {
@@ -94,9 +112,19 @@ void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool
     }
     const bool row_empty[2] = {lo[0] >= hi[0], lo[1] >= hi[1]};
     if (row_empty[0] && row_empty[1]) continue;
-    const int first = row_empty[0] ? lo[1] : row_empty[1] ? lo[0] : std::min(lo[0], lo[1]);
+    const int first = (row_empty[0] ? lo[1] : row_empty[1] ? lo[0] : std::min(lo[0], lo[1])) & ~1;
     const int last = row_empty[0] ? hi[1] : row_empty[1] ? hi[0] : std::max(hi[0], hi[1]);
-    for (int i = first & ~1; i < last; i += 2) {
+    // The 24-bit depths of each row's covered pixels (depth[k][i - lo[k]]), by the span kernel of the CPU's
+    // instruction set: the depths draw_triangles stores. (Its outcomes are not used: a waiting quad may still change
+    // the stored depths; the test below runs after the flush.)
+    uint32_t depth[2][kTileSize];
+    bool unused[kTileSize];
+    for (int k = 0; k < 2; ++k)
+      if (!row_empty[k]) {
+        const int row = height - 1 - (j + k);
+        test_span(fb.depth().row(row), lo[k], hi[k], r.za, r.zdx, r.zdy, float(row), depth[k], unused);
+      }
+    for (int i = first; i < last; i += 2) {
       uint32_t inside = 0;  // bit k: lane k's pixel center is in the triangle (and the tile)
       for (int k = 0; k < 4; ++k) {
         const int pi = i + (k & 1);
@@ -108,11 +136,11 @@ void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool
       if ((t.waiting[by] & row_bits[0]) || (by + 1 < kTileSize && (t.waiting[by + 1] & row_bits[1])))
         flush(t, fb, params, depth_write, fs);
       // The depth test, against depths that every earlier lane over these pixels has written (flushed above).
-      uint32_t depth[4], covered = 0;
+      uint32_t covered = 0;
       for (int k = 0; k < 4; ++k) {
         const int pi = i + (k & 1), row = height - 1 - (j + (k >> 1));
-        depth[k] = depth24(fragment_depth(r.za, r.zdx, r.zdy, float(pi), float(row)));
-        if ((inside >> k & 1) && depth_passes<F>(depth[k], fb.depth()(pi, row))) covered |= 1u << k;
+        if ((inside >> k & 1) && depth_passes<F>(depth[k >> 1][pi - lo[k >> 1]], fb.depth()(pi, row)))
+          covered |= 1u << k;
       }
       if (!covered) continue;
       if (t.batch.quads == kBatchQuads) flush(t, fb, params, depth_write, fs);
@@ -120,7 +148,7 @@ void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool
       fill_quad(t.batch, q, r, data, n, i, j, height);
       for (int k = 0; k < 4; ++k) {
         t.batch.covered[4 * q + k] = (covered >> k & 1) ? ~0u : 0u;
-        t.depth[4 * q + k] = depth[k];
+        t.depth[4 * q + k] = (covered >> k & 1) ? depth[k >> 1][i + (k & 1) - lo[k >> 1]] : 0;
       }
       t.quad_i[q] = i, t.quad_j[q] = j;
       t.waiting[by] |= uint64_t(covered & 3) << bx;
@@ -172,10 +200,16 @@ DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& stat
   detail::RasterScratch& scratch = framebuffer.scratch();
   scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
   scratch.inputs[size_t(scratch.input)].vertices.assign(vertices.begin(), vertices.end());
-  const auto raster = [&framebuffer, &fs](const detail::SetupPass& pass, const detail::SetupParams& params,
-                                          const detail::FragmentState& fragment, int64_t begin, int64_t end) {
-    const auto t = std::make_unique<detail::QuadTile>();
-    t->scratch = fs.begin();
+  // Each thread's batch and shader scratch, made once per draw (not per range of tiles) and not zeroed: every field
+  // is set before use.
+  tbb::enumerable_thread_specific<std::unique_ptr<detail::QuadTile>> tiles;
+  const auto raster = [&framebuffer, &fs, &tiles](const detail::SetupPass& pass, const detail::SetupParams& params,
+                                                  const detail::FragmentState& fragment, int64_t begin, int64_t end) {
+    std::unique_ptr<detail::QuadTile>& t = tiles.local();
+    if (!t) {
+      t = std::make_unique_for_overwrite<detail::QuadTile>();
+      t->scratch = fs.begin();
+    }
     detail::dispatch_depth_func(fragment.func, [&](auto f) {
       for (int64_t tile = begin; tile < end; ++tile)
         detail::raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile),
