@@ -24,7 +24,7 @@ namespace {
 
 using namespace tessera;
 
-constexpr int kWidth = 1280, kHeight = 720, kFrames = 6;
+constexpr int kWidth = 1280, kHeight = 720, kFrames = 16;
 enum class Case { texture, phong };
 const char* case_name(Case c) { return c == Case::texture ? "notes_texture" : "phong"; }
 

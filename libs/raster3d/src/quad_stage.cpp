@@ -34,15 +34,23 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
   if (b.quads == 0) return;
   std::fill(std::begin(b.kept), std::end(b.kept), ~0u);
   fs.shade(b, *t.scratch);
+  const int lanes = 4 * b.quads;
+  // The 8-bit colors of all lanes at once (a vectorized loop), unless blending needs the float colors.
+  uint8_t color8[4][FragmentBatch::kLanes];
+  if (!params.blend)
+    for (int c = 0; c < 4; ++c)
+      for (int lane = 0; lane < lanes; ++lane) color8[c][lane] = to_unorm8(b.color[c][lane]);
   const int height = fb.height();
   for (int q = 0; q < b.quads; ++q)
     for (int k = 0; k < 4; ++k) {
       const int lane = 4 * q + k;
       if (!(b.covered[lane] & b.kept[lane])) continue;
       const int i = t.quad_i[q] + (k & 1), row = height - 1 - (t.quad_j[q] + (k >> 1));
-      if (params.color_write) {
+      if (params.color_write && params.blend) {
         const Vec4f c(b.color[0][lane], b.color[1][lane], b.color[2][lane], b.color[3][lane]);
         write_color(params, c, fb.color()(i, row));
+      } else if (params.color_write) {
+        fb.color()(i, row) = glm::u8vec4(color8[0][lane], color8[1][lane], color8[2][lane], color8[3][lane]);
       }
       if (depth_write) fb.depth()(i, row) = t.depth[lane];
     }
