@@ -15,10 +15,15 @@ Registers::Registers(const ir::Stage& stage, std::span<const uint32_t> uniform_w
   baseline::run_code(stage.prologue, file_.get(), ir::kLanes, fragment_, samplers_.data());
 }
 
+int& executor_isa_cap() {
+  static int cap = -1;
+  return cap;
+}
+
 void Registers::run(int lanes_in_use) {
   if (stage_.discards) std::fill_n(ulanes(stage_.kept), ir::kLanes, ~0u);
-  static const bool avx2 = simd_level() >= SimdLevel::avx2;
-  if (avx2)
+  static const bool cpu_avx2 = simd_level() >= SimdLevel::avx2;
+  if (cpu_avx2 && executor_isa_cap() != 0)
     avx2::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());
   else
     baseline::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());

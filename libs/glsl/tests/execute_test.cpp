@@ -4,7 +4,9 @@
 
 #include <cmath>
 
+#include "execute.hpp"
 #include "glsl_test_util.hpp"
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/math/transform.hpp"
 
@@ -188,6 +190,40 @@ TEST(GlslExecute, EndlessLoopIsAnError) {
   const float zero[1] = {0.0f};
   p.set_uniform("step_size", zero);
   EXPECT_THROW(full_screen(p, 8), InvalidInput);
+}
+
+}  // namespace
+}  // namespace tessera::glsl
+
+namespace tessera::glsl {
+namespace {
+
+TEST(GlslExecute, InstructionSetsAgree) {
+  // The AVX2 executor against the baseline one on arithmetic, transcendentals, branches and a trilinear texture
+  // (its AVX2 sampler works in float where Texture2D::sample's coordinates are double: within one 8-bit step).
+  if (simd_level() < SimdLevel::avx2) GTEST_SKIP() << "this CPU has no AVX2";
+  Program p = compile(R"(
+    uniform sampler2D tex;
+    void main() {
+      vec2 uv = gl_TexCoord[0].st;
+      vec4 t = texture2D(tex, uv * 7.0 + vec2(0.3, 0.1));
+      float s = pow(uv.x + 0.1, 3.3) + sin(uv.y * 9.0) * 0.2;
+      if (uv.x > uv.y) s = sqrt(s * s + 0.01); else s = exp(-s);
+      gl_FragColor = vec4(t.rg, fract(s), t.a);
+    })");
+  ImageRGBA8 image(64, 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) image(x, y) = glm::u8vec4(x * 4, (x ^ y) * 4, y * 3, 255);
+  p.bind_texture(0, std::make_shared<Texture2D>(image, Sampler{.filter = Filter::trilinear}));
+  const raster3d::Framebuffer wide = full_screen(p, 96);
+  executor_isa_cap() = 0;
+  const raster3d::Framebuffer base = full_screen(p, 96);
+  executor_isa_cap() = -1;
+  int worst = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 96; ++x)
+      for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(int(wide.color()(x, y)[c]) - int(base.color()(x, y)[c])));
+  EXPECT_LE(worst, 1);
 }
 
 }  // namespace
