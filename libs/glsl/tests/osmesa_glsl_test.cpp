@@ -9,6 +9,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <memory>
 
+#include "glsl_notes_scenes.hpp"
 #include "osmesa_glsl.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/glsl/program.hpp"
@@ -307,6 +308,68 @@ TEST(GlslMesa, MinifiedMipmappedTexture) {
 TEST(GlslMesa, Derivatives) {
   expect_matches({"dfdx", {f("frequency", {12}), f("stripe_color", {0.1f, 0.2f, 0.6f}),
                            f("background_color", {0.95f, 0.9f, 0.8f})}});
+}
+
+}  // namespace
+}  // namespace tessera::glsl
+
+namespace tessera::glsl {
+namespace {
+
+TEST(GlslMesa, GalleryScenesOfTheNotesPrograms) {
+  // Example 29's four scenes (examples/glsl_notes_scenes.hpp) through Mesa and Tessera. Mesa's picture is written
+  // beside the test's other files: docs/gallery/29_glsl_programs_mesa.png is a copy.
+  std::vector<ImageRGB> mesa_panels;
+  for (const examples::NotesScene& s : examples::notes_scenes()) {
+    GlslDraw d;
+    d.vertex_source = source(s.program + ".vert");
+    d.fragment_source = source(s.program + ".frag");
+    d.positions = s.positions;
+    d.normals = s.normals;
+    d.colors = s.colors;
+    d.uvs = s.uvs;
+    d.indices = s.indices;
+    d.model_view = s.model_view;
+    d.projection = s.projection;
+    d.lights.push_back({s.light_position});
+    for (const auto& [name, values] : s.float_uniforms) d.uniforms.push_back(f(name, values));
+    for (const auto& [name, values] : s.int_uniforms) d.uniforms.push_back(i(name, values));
+    d.clear_color = Vec4f(0.05f, 0.05f, 0.08f, 1);
+    if (!s.texture.empty()) {
+      reference::GlslTexture t;
+      t.width = s.texture.width(), t.height = s.texture.height();
+      for (int y = t.height - 1; y >= 0; --y)  // GL rows bottom first
+        for (int x = 0; x < t.width; ++x)
+          t.rgba.insert(t.rgba.end(), &s.texture(x, y)[0], &s.texture(x, y)[0] + 4);
+      t.filter = s.filter == Filter::trilinear ? reference::GlslFilter::linear_mipmap_linear
+                                               : reference::GlslFilter::linear;
+      t.wrap = s.wrap == Wrap::clamp ? reference::GlslWrap::clamp_to_edge : reference::GlslWrap::repeat;
+      d.textures.emplace_back(0, t);
+    }
+    const int size = examples::kNotesSceneSize;
+    const std::vector<uint8_t> mesa = reference::render_glsl(d, size, size);
+    const ImageRGBA8 tessera = examples::draw_with_tessera(s, d.vertex_source, d.fragment_source);
+    ImageRGBA8 mesa_image(size, size);
+    std::memcpy(&mesa_image(0, 0), mesa.data(), mesa.size());
+    mesa_panels.push_back(to_rgb(to_float(mesa_image)));
+    int over = 0, worst = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const int difference = std::abs(int(mesa_image(x, y)[c]) - int(tessera(x, y)[c]));
+          worst = std::max(worst, difference);
+          over += difference > 2;
+        }
+    std::printf("%-20s %d channel values over 2/255, largest difference %d/255\n", s.program.c_str(), over, worst);
+    EXPECT_LE(over, size * size * 3 / 200) << s.program;  // 0.5 % of the channel values (the trilinear texture)
+    EXPECT_LE(worst, 6) << s.program;
+  }
+  ImageRGB sheet(examples::kNotesSceneSize * 4, examples::kNotesSceneSize);
+  for (int p = 0; p < 4; ++p)
+    for (int y = 0; y < sheet.height(); ++y)
+      for (int x = 0; x < examples::kNotesSceneSize; ++x)
+        sheet(p * examples::kNotesSceneSize + x, y) = mesa_panels[size_t(p)](x, y);
+  write_image(::testing::TempDir() + "29_glsl_programs_mesa.png", sheet);
 }
 
 }  // namespace
