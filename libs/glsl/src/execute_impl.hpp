@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "execute.hpp"
+#include "glsl_math.hpp"
 #include "tessera/core/error.hpp"
 
 namespace tessera::glsl::TESSERA_GLSL_ISA {
@@ -230,7 +231,12 @@ void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bo
       case Op::fdiv: TESSERA_LANES(d[l] = a[l] / b[l]);
       case Op::fmin: TESSERA_LANES(d[l] = glsl_min(a[l], b[l]));
       case Op::fmax: TESSERA_LANES(d[l] = glsl_max(a[l], b[l]));
-      case Op::fpow: TESSERA_LANES(d[l] = std::pow(a[l], b[l]));
+      case Op::fpow:
+        for (int l = 0; l < n; ++l) d[l] = glsl_pow(a[l], b[l]);
+        // The rare lanes the fast form does not cover (x <= 0 or subnormal, infinite or NaN operands) again, exactly.
+        for (int l = 0; l < n; ++l)
+          if (!glsl_pow_covers(a[l], b[l])) d[l] = std::pow(a[l], b[l]);
+        break;
       case Op::fatan2: TESSERA_LANES(d[l] = std::atan2(a[l], b[l]));
       case Op::fmod: TESSERA_LANES(d[l] = a[l] - b[l] * std::floor(a[l] / b[l]));
       case Op::fstep: TESSERA_LANES(d[l] = b[l] < a[l] ? 0.0f : 1.0f);

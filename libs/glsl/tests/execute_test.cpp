@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "execute.hpp"
+#include "glsl_math.hpp"
 #include "glsl_test_util.hpp"
 #include "tessera/core/cpu.hpp"
 #include "tessera/core/parallel.hpp"
@@ -224,6 +225,28 @@ TEST(GlslExecute, InstructionSetsAgree) {
     for (int x = 0; x < 96; ++x)
       for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(int(wide.color()(x, y)[c]) - int(base.color()(x, y)[c])));
   EXPECT_LE(worst, 1);
+}
+
+}  // namespace
+}  // namespace tessera::glsl
+
+namespace tessera::glsl {
+namespace {
+
+TEST(GlslExecute, FastPowAgreesWithTheLibrary) {
+  // The executor's pow against std::pow in double, over the bases and exponents of lighting and beyond.
+  double worst = 0;
+  for (float x = 1e-3f; x < 20.0f; x *= 1.0137f)
+    for (float y = -8.0f; y <= 128.0f; y += 0.37f) {
+      ASSERT_TRUE(glsl_pow_covers(x, y));
+      const double exact = std::pow(double(x), double(y));
+      if (exact < 1e-30 || exact > 1e30) continue;
+      worst = std::max(worst, std::abs(double(glsl_pow(x, y)) - exact) / exact);
+    }
+  EXPECT_LT(worst, 2e-5);
+  EXPECT_FALSE(glsl_pow_covers(0.0f, 2.0f));
+  EXPECT_FALSE(glsl_pow_covers(-1.0f, 2.0f));
+  EXPECT_FALSE(glsl_pow_covers(1e-40f, 2.0f));  // subnormal
 }
 
 }  // namespace
