@@ -44,7 +44,8 @@ reference::GlslDraw scene(Case c) {
     t.width = t.height = 512;
     for (int y = 0; y < 512; ++y)
       for (int x = 0; x < 512; ++x)
-        t.rgba.insert(t.rgba.end(), {uint8_t(x ^ y), uint8_t((x * 3) & 255), uint8_t(((x / 32 + y / 32) & 1) * 200), 255});
+        t.rgba.insert(t.rgba.end(),
+                      {uint8_t(x ^ y), uint8_t((x * 3) & 255), uint8_t(((x / 32 + y / 32) & 1) * 200), 255});
     t.filter = reference::GlslFilter::linear_mipmap_linear;
     d.textures.emplace_back(0, t);
     d.uniforms.push_back({"myTexture", {}, {0}});
@@ -157,8 +158,8 @@ int main(int argc, char** argv) {
     if (std::strncmp(argv[i], "--llvmpipe-child=", 17) == 0) return llvmpipe_child(Case(std::atoi(argv[i] + 17)));
   for (const Case c : {Case::texture, Case::phong})
     for (const int threads : {1, 2}) {
-      benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe,
-                                   c, threads)
+      benchmark::RegisterBenchmark(fmt::format("{}/llvmpipe/threads:{}", case_name(c), threads).c_str(), BM_Llvmpipe, c,
+                                   threads)
           ->UseManualTime()
           ->Iterations(1)
           ->Unit(benchmark::kMillisecond);

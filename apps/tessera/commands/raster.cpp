@@ -325,8 +325,9 @@ void setup_raster(CLI::App& cmd, CommonOptions& common) {
   cmd.add_option("--uniform", a->uniforms,
                  "A program's uniform: name=v1,v2,... (floats, ints for int, bool and sampler uniforms: a sampler's "
                  "texture unit); repeat for more");
-  cmd.add_option("--texture0", a->texture0, "Image bound to texture unit 0 of the program (samplers read unit 0 "
-                                            "unless --uniform sets them)");
+  cmd.add_option("--texture0", a->texture0,
+                 "Image bound to texture unit 0 of the program (samplers read unit 0 "
+                 "unless --uniform sets them)");
   cmd.add_option("--texture1", a->texture1, "Image bound to texture unit 1 of the program");
   cmd.add_option("--texture-unit", a->texture_units, "Image bound to a texture unit of the program: N=IMAGE");
   cmd.add_option("--cube-map", a->cube_maps,

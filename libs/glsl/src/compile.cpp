@@ -69,7 +69,8 @@ Scalar scalar_of(const TType& type) {
 /// The number of scalar registers of a value of `type`.
 int slot_count(const TType& type) {
   int elements = 1;
-  if (type.isArray()) elements = std::max(1, type.isSizedArray() ? type.getCumulativeArraySize() : type.getImplicitArraySize());
+  if (type.isArray())
+    elements = std::max(1, type.isSizedArray() ? type.getCumulativeArraySize() : type.getImplicitArraySize());
   int per = 0;
   if (type.isStruct()) {
     for (const glslang::TTypeLoc& member : *type.getStruct()) per += slot_count(*member.type);
@@ -135,9 +136,7 @@ int operand_count(Op op) {
 
 /// Whether an instruction is a pure function of its operands, the same in every lane when they are (so that it can
 /// run in the prologue).
-bool hoistable(Op op) {
-  return !(op == Op::dfdx || op == Op::dfdy || op >= Op::tex2d);
-}
+bool hoistable(Op op) { return !(op == Op::dfdx || op == Op::dfdy || op >= Op::tex2d); }
 
 class CompileFailure : public std::exception {
  public:
@@ -149,7 +148,8 @@ class CompileFailure : public std::exception {
 /// Compiles one stage's syntax tree.
 class StageCompiler {
  public:
-  StageCompiler(ProgramModule& module, ir::Stage& stage, bool fragment) : module_(module), stage_(stage), fragment_(fragment) {}
+  StageCompiler(ProgramModule& module, ir::Stage& stage, bool fragment)
+      : module_(module), stage_(stage), fragment_(fragment) {}
 
   /// What a stage leaves for linking: the final registers of each output variable by name (vertex), the input
   /// registers of each varying by name (fragment).
@@ -185,7 +185,8 @@ class StageCompiler {
   void record_declared_uniforms(TIntermAggregate* linker_objects) {
     for (TIntermNode* node : linker_objects->getSequence())
       if (const TIntermSymbol* symbol = node->getAsSymbolNode();
-          symbol && symbol->getQualifier().storage == glslang::EvqUniform && symbol->getName().compare(0, 3, "gl_") != 0)
+          symbol && symbol->getQualifier().storage == glslang::EvqUniform &&
+          symbol->getName().compare(0, 3, "gl_") != 0)
         module_.declared_uniforms.insert(symbol->getName().c_str());
   }
 
@@ -258,7 +259,9 @@ class StageCompiler {
     return emit(Op::band, a, b);
   }
   uint32_t bnot(uint32_t a) { return emit(Op::bnot, a); }
-  uint32_t masked(uint32_t value, uint32_t old) { return mask_ == kNoMask ? value : emit(Op::select, mask_, value, old); }
+  uint32_t masked(uint32_t value, uint32_t old) {
+    return mask_ == kNoMask ? value : emit(Op::select, mask_, value, old);
+  }
 
   // ---- values
 
@@ -266,7 +269,8 @@ class StageCompiler {
     std::vector<Scalar> layout;
     scalar_layout(type, layout);
     Regs out;
-    for (Scalar s : layout) out.push_back(s == Scalar::f ? constant(0.0f) : s == Scalar::i ? constant_int(0) : constant_bool(false));
+    for (Scalar s : layout)
+      out.push_back(s == Scalar::f ? constant(0.0f) : s == Scalar::i ? constant_int(0) : constant_bool(false));
     return out;
   }
 
@@ -318,8 +322,12 @@ class StageCompiler {
     if (existing != module_.uniforms.end()) {
       word = existing->word;
     } else {
-      UniformSlot slot{name, basic_type(type), slot_count(type), uint32_t(module_.uniform_words.size()),
-                       scalar_of(type) == Scalar::f, builtin};
+      UniformSlot slot{name,
+                       basic_type(type),
+                       slot_count(type),
+                       uint32_t(module_.uniform_words.size()),
+                       scalar_of(type) == Scalar::f,
+                       builtin};
       module_.uniform_words.resize(module_.uniform_words.size() + size_t(slot.components), 0);
       if (slot.type == BasicType::sampler_2d || slot.type == BasicType::sampler_cube)
         module_.samplers.push_back({slot.word, slot.type == BasicType::sampler_cube});
@@ -438,8 +446,9 @@ class StageCompiler {
       const glslang::TConstUnionArray& array = node->getConstArray();
       for (int k = 0; k < array.size(); ++k) {
         const glslang::TConstUnion& u = array[k];
-        out.push_back(u.getType() == glslang::EbtFloat || u.getType() == glslang::EbtDouble ? constant(float(u.getDConst()))
-                      : u.getType() == glslang::EbtBool                                    ? constant_bool(u.getBConst())
+        out.push_back(u.getType() == glslang::EbtFloat || u.getType() == glslang::EbtDouble
+                          ? constant(float(u.getDConst()))
+                      : u.getType() == glslang::EbtBool ? constant_bool(u.getBConst())
                       : u.getType() == glslang::EbtUint ? constant_int(int32_t(u.getUConst()))
                                                         : constant_int(u.getIConst()));
       }
@@ -471,8 +480,8 @@ class StageCompiler {
       }
       return attribute(name, source, type);
     }
-    if (fragment_ && (q.storage == glslang::EvqVaryingIn || q.storage == glslang::EvqIn || q.storage == glslang::EvqFragCoord ||
-                      q.storage == glslang::EvqFace))
+    if (fragment_ && (q.storage == glslang::EvqVaryingIn || q.storage == glslang::EvqIn ||
+                      q.storage == glslang::EvqFragCoord || q.storage == glslang::EvqFace))
       return fragment_input(varying_name(node), type, q.builtIn);
     // A variable read before it is written: zero (GLSL leaves it undefined).
     Regs value = zeros(type);
@@ -777,7 +786,8 @@ class StageCompiler {
         return compare(op, scalar_of(node->getLeft()->getType()), value(node->getLeft()), value(node->getRight()));
       case glslang::EOpEqual:
       case glslang::EOpNotEqual: {
-        const Regs c = compare(op, scalar_of(node->getLeft()->getType()), value(node->getLeft()), value(node->getRight()));
+        const Regs c =
+            compare(op, scalar_of(node->getLeft()->getType()), value(node->getLeft()), value(node->getRight()));
         return {op == glslang::EOpEqual ? all_of(c) : any_of(c)};
       }
       default:
@@ -787,8 +797,9 @@ class StageCompiler {
     const Regs a = value(node->getLeft());
     const Regs b = value(node->getRight());
     Regs result;
-    if (op == glslang::EOpMatrixTimesVector || op == glslang::EOpVectorTimesMatrix || op == glslang::EOpMatrixTimesMatrix ||
-        op == glslang::EOpVectorTimesMatrixAssign || op == glslang::EOpMatrixTimesMatrixAssign) {
+    if (op == glslang::EOpMatrixTimesVector || op == glslang::EOpVectorTimesMatrix ||
+        op == glslang::EOpMatrixTimesMatrix || op == glslang::EOpVectorTimesMatrixAssign ||
+        op == glslang::EOpMatrixTimesMatrixAssign) {
       result = multiply(node, a, b);
     } else if ((op == glslang::EOpMul || op == glslang::EOpMulAssign) && node->getLeft()->getType().isMatrix() &&
                node->getRight()->getType().isMatrix()) {
@@ -876,7 +887,8 @@ class StageCompiler {
         const Regs old = value(node->getOperand());
         const bool inc = op == glslang::EOpPreIncrement || op == glslang::EOpPostIncrement;
         const Regs one{s == Scalar::f ? constant(1.0f) : constant_int(1)};
-        const Regs updated = componentwise(s == Scalar::f ? (inc ? Op::fadd : Op::fsub) : (inc ? Op::iadd : Op::isub), old, one);
+        const Regs updated =
+            componentwise(s == Scalar::f ? (inc ? Op::fadd : Op::fsub) : (inc ? Op::iadd : Op::isub), old, one);
         store(node->getOperand(), updated);
         return op == glslang::EOpPreIncrement || op == glslang::EOpPreDecrement ? updated : old;
       }
@@ -978,7 +990,8 @@ class StageCompiler {
       case glslang::EOpFwidthFine:
       case glslang::EOpFwidthCoarse: {
         Regs out;
-        for (uint32_t r : v) out.push_back(emit(Op::fadd, emit(Op::fabs, emit(Op::dfdx, r)), emit(Op::fabs, emit(Op::dfdy, r))));
+        for (uint32_t r : v)
+          out.push_back(emit(Op::fadd, emit(Op::fabs, emit(Op::dfdx, r)), emit(Op::fabs, emit(Op::dfdy, r))));
         return out;
       }
       case glslang::EOpAny:
@@ -1031,7 +1044,8 @@ class StageCompiler {
         const int src_cols = types[0]->getMatrixCols(), src_rows = types[0]->getMatrixRows();
         for (int c = 0; c < cols; ++c)
           for (int r = 0; r < rows; ++r)
-            out[size_t(c * rows + r)] = c < src_cols && r < src_rows ? args[0][size_t(c * src_rows + r)] : (c == r ? one : zero);
+            out[size_t(c * rows + r)] =
+                c < src_cols && r < src_rows ? args[0][size_t(c * src_rows + r)] : (c == r ? one : zero);
         return out;
       }
     }
@@ -1158,9 +1172,11 @@ class StageCompiler {
         const uint32_t eta = a[2][0];
         const uint32_t ni = dot(a[1], a[0]);
         const uint32_t one = constant(1.0f);
-        const uint32_t k = emit(Op::fsub, one, emit(Op::fmul, emit(Op::fmul, eta, eta), emit(Op::fsub, one, emit(Op::fmul, ni, ni))));
+        const uint32_t k =
+            emit(Op::fsub, one, emit(Op::fmul, emit(Op::fmul, eta, eta), emit(Op::fsub, one, emit(Op::fmul, ni, ni))));
         const uint32_t total = emit(Op::flt, k, constant(0.0f));
-        const uint32_t factor = emit(Op::fadd, emit(Op::fmul, eta, ni), emit(Op::fsqrt, emit(Op::fmax, k, constant(0.0f))));
+        const uint32_t factor =
+            emit(Op::fadd, emit(Op::fmul, eta, ni), emit(Op::fsqrt, emit(Op::fmax, k, constant(0.0f))));
         return per([&](size_t c) {
           const uint32_t r = emit(Op::fsub, emit(Op::fmul, eta, a[0][c]), emit(Op::fmul, factor, a[1][c]));
           return emit(Op::select, total, constant(0.0f), r);
@@ -1230,7 +1246,7 @@ class StageCompiler {
   }
 
   struct Loop {
-    long long lm_key;           // the loop mask's pseudo-variable
+    long long lm_key;              // the loop mask's pseudo-variable
     uint32_t continued = kNoMask;  // lanes that took `continue` this iteration
   };
 
@@ -1445,7 +1461,8 @@ std::string format_log(const std::string& log, const std::string& name) {
       if (line.rfind(prefix, 0) == 0) line = line.substr(std::strlen(prefix));
     }
     if (line.rfind("0:", 0) == 0) line = name + ":" + line.substr(2);
-    if (line.find("compilation terminated") != std::string::npos || line.find("compilation errors") != std::string::npos)
+    if (line.find("compilation terminated") != std::string::npos ||
+        line.find("compilation errors") != std::string::npos)
       continue;
     out += line + "\n";
   }
@@ -1470,7 +1487,9 @@ std::unique_ptr<ProgramModule> compile_module(const ShaderSource& vertex, const 
   glslang::TProgram program;
   program.addShader(&vs);
   program.addShader(&fs);
-  if (!program.link(messages)) throw CompileError("linking " + vertex.name + " and " + fragment.name + ": " + format_log(program.getInfoLog(), "program"));
+  if (!program.link(messages))
+    throw CompileError("linking " + vertex.name + " and " + fragment.name + ": " +
+                       format_log(program.getInfoLog(), "program"));
 
   auto module = std::make_unique<ProgramModule>();
   StageCompiler vc(*module, module->vertex, false), fc(*module, module->fragment, true);
@@ -1503,10 +1522,12 @@ std::unique_ptr<ProgramModule> compile_module(const ShaderSource& vertex, const 
   }
   if (module->varying_count > raster3d::FragmentBatch::kMaxVaryings)
     throw CompileError(fragment.name + ": the shaders pass " + std::to_string(module->varying_count) +
-                       " floats of varyings; Tessera's limit is " + std::to_string(raster3d::FragmentBatch::kMaxVaryings));
+                       " floats of varyings; Tessera's limit is " +
+                       std::to_string(raster3d::FragmentBatch::kMaxVaryings));
   const auto color = fc.outputs.find("gl_FragColor");
   if (color != fc.outputs.end())
-    for (uint32_t k = 0; k < 4 && k < color->second.size(); ++k) module->fragment.outputs.emplace_back(color->second[k], k);
+    for (uint32_t k = 0; k < 4 && k < color->second.size(); ++k)
+      module->fragment.outputs.emplace_back(color->second[k], k);
   return module;
 }
 

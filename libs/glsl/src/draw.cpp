@@ -41,16 +41,22 @@ AttributeSource attribute_source(const ProgramModule& m, const AttributeSlot& a,
       s = {&in.positions.data()->x, 3, 3, {}};
       break;
     case AttributeSlot::Source::normal:
-      if (in.normals.empty()) s.current = Vec4f(m.fixed.normal, 1);
-      else s = {&in.normals.data()->x, 3, 3, {}};
+      if (in.normals.empty())
+        s.current = Vec4f(m.fixed.normal, 1);
+      else
+        s = {&in.normals.data()->x, 3, 3, {}};
       break;
     case AttributeSlot::Source::color:
-      if (in.colors.empty()) s.current = m.fixed.color;
-      else s = {&in.colors.data()->x, 3, 3, {}};
+      if (in.colors.empty())
+        s.current = m.fixed.color;
+      else
+        s = {&in.colors.data()->x, 3, 3, {}};
       break;
     case AttributeSlot::Source::tex_coord0:
-      if (in.uvs.empty()) s.current = m.fixed.tex_coord;
-      else s = {&in.uvs.data()->x, 2, 2, {}};
+      if (in.uvs.empty())
+        s.current = m.fixed.tex_coord;
+      else
+        s = {&in.uvs.data()->x, 2, 2, {}};
       break;
     case AttributeSlot::Source::user: {
       const auto found = in.attributes.find(a.name);
@@ -60,11 +66,16 @@ AttributeSource attribute_source(const ProgramModule& m, const AttributeSlot& a,
       }
       // A modern shader's usual names read the mesh's arrays (ProgramInputs).
       const std::string& n = a.name;
-      if ((n == "position" || n == "vertex") && !in.positions.empty()) s = {&in.positions.data()->x, 3, 3, {}};
-      else if (n == "normal" && !in.normals.empty()) s = {&in.normals.data()->x, 3, 3, {}};
-      else if (n == "color" && !in.colors.empty()) s = {&in.colors.data()->x, 3, 3, {}};
-      else if ((n == "uv" || n == "texcoord" || n == "tex_coord") && !in.uvs.empty()) s = {&in.uvs.data()->x, 2, 2, {}};
-      else throw InvalidInput("the vertex shader reads attribute '" + a.name + "', which the draw does not give");
+      if ((n == "position" || n == "vertex") && !in.positions.empty())
+        s = {&in.positions.data()->x, 3, 3, {}};
+      else if (n == "normal" && !in.normals.empty())
+        s = {&in.normals.data()->x, 3, 3, {}};
+      else if (n == "color" && !in.colors.empty())
+        s = {&in.colors.data()->x, 3, 3, {}};
+      else if ((n == "uv" || n == "texcoord" || n == "tex_coord") && !in.uvs.empty())
+        s = {&in.uvs.data()->x, 2, 2, {}};
+      else
+        throw InvalidInput("the vertex shader reads attribute '" + a.name + "', which the draw does not give");
       break;
     }
   }

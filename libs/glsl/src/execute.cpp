@@ -1,14 +1,15 @@
 // The baseline executor (x86-64) and the register file it runs on; the choice of an instruction set.
 #define TESSERA_GLSL_ISA baseline
 #include "execute_impl.hpp"
-
 #include "tessera/core/cpu.hpp"
 
 namespace tessera::glsl {
 
 Registers::Registers(const ir::Stage& stage, std::span<const uint32_t> uniform_words,
                      std::span<const BoundSampler> samplers, bool fragment)
-    : stage_(stage), samplers_(samplers.begin(), samplers.end()), fragment_(fragment),
+    : stage_(stage),
+      samplers_(samplers.begin(), samplers.end()),
+      fragment_(fragment),
       file_(std::make_unique_for_overwrite<float[]>(size_t(stage.register_count) * ir::kLanes)) {
   for (const auto& [r, bits] : stage.constants) std::fill_n(ulanes(r), ir::kLanes, bits);
   for (const auto& [r, word] : stage.uniforms) std::fill_n(ulanes(r), ir::kLanes, uniform_words[word]);

@@ -120,8 +120,7 @@ void sample_rgba8(const Texture2D& t, const float* u, const float* v, const floa
         bilinear8(t.level_rgba8(lower[k]), sampler, lu, lv, near);
         const bool blends = lower[k] < last;
         if (blends) bilinear8(t.level_rgba8(lower[k] + 1), sampler, lu, lv, far);
-        const __m256 mine =
-            _mm256_castsi256_ps(_mm256_cmpeq_epi32(lanes_level, _mm256_set1_epi32(lower[k])));
+        const __m256 mine = _mm256_castsi256_ps(_mm256_cmpeq_epi32(lanes_level, _mm256_set1_epi32(lower[k])));
         for (int c = 0; c < 4; ++c) {
           const __m256 value = blends ? mix8(near[c], far[c], weights) : near[c];
           result[c] = k == 0 ? value : _mm256_blendv_ps(result[c], value, mine);
@@ -165,8 +164,7 @@ void sample(const ir::Instr& in, float* file, int n, bool fragment, const BoundS
 #endif
   for (int q = 0; q < n; q += 4) {
     float lod = 0.0f;
-    if (!explicit_lod && fragment)
-      lod = cube ? quad_cube_lod(*s.cube_map, a, b, c, q) : quad_lod(*s.texture, a, b, q);
+    if (!explicit_lod && fragment) lod = cube ? quad_cube_lod(*s.cube_map, a, b, c, q) : quad_lod(*s.texture, a, b, q);
     for (int l = q; l < q + 4; ++l) {
       const float level = explicit_lod ? d[l] : bias ? lod + d[l] : lod;
       const glm::vec4 t = cube ? s.cube_map->lookup(glm::vec3(a[l], b[l], c[l]), level)
@@ -197,91 +195,158 @@ void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bo
     const U32* cu = reinterpret_cast<const U32*>(c);
     const I32* ai = reinterpret_cast<const I32*>(a);
     const I32* bi = reinterpret_cast<const I32*>(b);
-#define TESSERA_LANES(expr) \
+// One case: `expr` for every lane in use, then break (no case falls through).
+#define TESSERA_LANES(expr)         \
   for (int l = 0; l < n; ++l) expr; \
   break
     switch (in.op) {
-      case Op::mov: TESSERA_LANES(du[l] = au[l]);
-      case Op::fneg: TESSERA_LANES(d[l] = -a[l]);
-      case Op::fabs: TESSERA_LANES(d[l] = std::fabs(a[l]));
-      case Op::fsign: TESSERA_LANES(d[l] = a[l] > 0.0f ? 1.0f : a[l] < 0.0f ? -1.0f : 0.0f);
-      case Op::ffloor: TESSERA_LANES(d[l] = std::floor(a[l]));
-      case Op::fceil: TESSERA_LANES(d[l] = std::ceil(a[l]));
-      case Op::ffract: TESSERA_LANES(d[l] = a[l] - std::floor(a[l]));
-      case Op::ftrunc: TESSERA_LANES(d[l] = std::trunc(a[l]));
-      case Op::fround: TESSERA_LANES(d[l] = __builtin_rintf(a[l]));
-      case Op::fsqrt: TESSERA_LANES(d[l] = std::sqrt(a[l]));
-      case Op::frsqrt: TESSERA_LANES(d[l] = 1.0f / std::sqrt(a[l]));
-      case Op::fexp: TESSERA_LANES(d[l] = std::exp(a[l]));
-      case Op::fexp2: TESSERA_LANES(d[l] = std::exp2(a[l]));
-      case Op::flog: TESSERA_LANES(d[l] = std::log(a[l]));
-      case Op::flog2: TESSERA_LANES(d[l] = std::log2(a[l]));
-      case Op::fsin: TESSERA_LANES(d[l] = std::sin(a[l]));
-      case Op::fcos: TESSERA_LANES(d[l] = std::cos(a[l]));
-      case Op::ftan: TESSERA_LANES(d[l] = std::tan(a[l]));
-      case Op::fasin: TESSERA_LANES(d[l] = std::asin(a[l]));
-      case Op::facos: TESSERA_LANES(d[l] = std::acos(a[l]));
-      case Op::fatan: TESSERA_LANES(d[l] = std::atan(a[l]));
-      case Op::fsinh: TESSERA_LANES(d[l] = std::sinh(a[l]));
-      case Op::fcosh: TESSERA_LANES(d[l] = std::cosh(a[l]));
-      case Op::ftanh: TESSERA_LANES(d[l] = std::tanh(a[l]));
-      case Op::fadd: TESSERA_LANES(d[l] = a[l] + b[l]);
-      case Op::fsub: TESSERA_LANES(d[l] = a[l] - b[l]);
-      case Op::fmul: TESSERA_LANES(d[l] = a[l] * b[l]);
-      case Op::fdiv: TESSERA_LANES(d[l] = a[l] / b[l]);
-      case Op::fmin: TESSERA_LANES(d[l] = glsl_min(a[l], b[l]));
-      case Op::fmax: TESSERA_LANES(d[l] = glsl_max(a[l], b[l]));
+      case Op::mov:
+        TESSERA_LANES(du[l] = au[l]);
+      case Op::fneg:
+        TESSERA_LANES(d[l] = -a[l]);
+      case Op::fabs:
+        TESSERA_LANES(d[l] = std::fabs(a[l]));
+      case Op::fsign:
+        TESSERA_LANES(d[l] = a[l] > 0.0f ? 1.0f : a[l] < 0.0f ? -1.0f : 0.0f);
+      case Op::ffloor:
+        TESSERA_LANES(d[l] = std::floor(a[l]));
+      case Op::fceil:
+        TESSERA_LANES(d[l] = std::ceil(a[l]));
+      case Op::ffract:
+        TESSERA_LANES(d[l] = a[l] - std::floor(a[l]));
+      case Op::ftrunc:
+        TESSERA_LANES(d[l] = std::trunc(a[l]));
+      case Op::fround:
+        TESSERA_LANES(d[l] = __builtin_rintf(a[l]));
+      case Op::fsqrt:
+        TESSERA_LANES(d[l] = std::sqrt(a[l]));
+      case Op::frsqrt:
+        TESSERA_LANES(d[l] = 1.0f / std::sqrt(a[l]));
+      case Op::fexp:
+        TESSERA_LANES(d[l] = std::exp(a[l]));
+      case Op::fexp2:
+        TESSERA_LANES(d[l] = std::exp2(a[l]));
+      case Op::flog:
+        TESSERA_LANES(d[l] = std::log(a[l]));
+      case Op::flog2:
+        TESSERA_LANES(d[l] = std::log2(a[l]));
+      case Op::fsin:
+        TESSERA_LANES(d[l] = std::sin(a[l]));
+      case Op::fcos:
+        TESSERA_LANES(d[l] = std::cos(a[l]));
+      case Op::ftan:
+        TESSERA_LANES(d[l] = std::tan(a[l]));
+      case Op::fasin:
+        TESSERA_LANES(d[l] = std::asin(a[l]));
+      case Op::facos:
+        TESSERA_LANES(d[l] = std::acos(a[l]));
+      case Op::fatan:
+        TESSERA_LANES(d[l] = std::atan(a[l]));
+      case Op::fsinh:
+        TESSERA_LANES(d[l] = std::sinh(a[l]));
+      case Op::fcosh:
+        TESSERA_LANES(d[l] = std::cosh(a[l]));
+      case Op::ftanh:
+        TESSERA_LANES(d[l] = std::tanh(a[l]));
+      case Op::fadd:
+        TESSERA_LANES(d[l] = a[l] + b[l]);
+      case Op::fsub:
+        TESSERA_LANES(d[l] = a[l] - b[l]);
+      case Op::fmul:
+        TESSERA_LANES(d[l] = a[l] * b[l]);
+      case Op::fdiv:
+        TESSERA_LANES(d[l] = a[l] / b[l]);
+      case Op::fmin:
+        TESSERA_LANES(d[l] = glsl_min(a[l], b[l]));
+      case Op::fmax:
+        TESSERA_LANES(d[l] = glsl_max(a[l], b[l]));
       case Op::fpow:
         for (int l = 0; l < n; ++l) d[l] = glsl_pow(a[l], b[l]);
         // The rare lanes the fast form does not cover (x <= 0 or subnormal, infinite or NaN operands) again, exactly.
         for (int l = 0; l < n; ++l)
           if (!glsl_pow_covers(a[l], b[l])) d[l] = std::pow(a[l], b[l]);
         break;
-      case Op::fatan2: TESSERA_LANES(d[l] = std::atan2(a[l], b[l]));
-      case Op::fmod: TESSERA_LANES(d[l] = a[l] - b[l] * std::floor(a[l] / b[l]));
-      case Op::fstep: TESSERA_LANES(d[l] = b[l] < a[l] ? 0.0f : 1.0f);
-      case Op::fclamp: TESSERA_LANES(d[l] = glsl_min(glsl_max(a[l], b[l]), c[l]));
-      case Op::fmix: TESSERA_LANES(d[l] = a[l] * (1.0f - c[l]) + b[l] * c[l]);
+      case Op::fatan2:
+        TESSERA_LANES(d[l] = std::atan2(a[l], b[l]));
+      case Op::fmod:
+        TESSERA_LANES(d[l] = a[l] - b[l] * std::floor(a[l] / b[l]));
+      case Op::fstep:
+        TESSERA_LANES(d[l] = b[l] < a[l] ? 0.0f : 1.0f);
+      case Op::fclamp:
+        TESSERA_LANES(d[l] = glsl_min(glsl_max(a[l], b[l]), c[l]));
+      case Op::fmix:
+        TESSERA_LANES(d[l] = a[l] * (1.0f - c[l]) + b[l] * c[l]);
       case Op::fsmoothstep:
         for (int l = 0; l < n; ++l) {
           const float t = glsl_min(glsl_max((c[l] - a[l]) / (b[l] - a[l]), 0.0f), 1.0f);
           d[l] = t * t * (3.0f - 2.0f * t);
         }
         break;
-      case Op::flt: TESSERA_LANES(du[l] = a[l] < b[l] ? ~0u : 0u);
-      case Op::fle: TESSERA_LANES(du[l] = a[l] <= b[l] ? ~0u : 0u);
-      case Op::fgt: TESSERA_LANES(du[l] = a[l] > b[l] ? ~0u : 0u);
-      case Op::fge: TESSERA_LANES(du[l] = a[l] >= b[l] ? ~0u : 0u);
-      case Op::feq: TESSERA_LANES(du[l] = a[l] == b[l] ? ~0u : 0u);
-      case Op::fne: TESSERA_LANES(du[l] = a[l] != b[l] ? ~0u : 0u);
+      case Op::flt:
+        TESSERA_LANES(du[l] = a[l] < b[l] ? ~0u : 0u);
+      case Op::fle:
+        TESSERA_LANES(du[l] = a[l] <= b[l] ? ~0u : 0u);
+      case Op::fgt:
+        TESSERA_LANES(du[l] = a[l] > b[l] ? ~0u : 0u);
+      case Op::fge:
+        TESSERA_LANES(du[l] = a[l] >= b[l] ? ~0u : 0u);
+      case Op::feq:
+        TESSERA_LANES(du[l] = a[l] == b[l] ? ~0u : 0u);
+      case Op::fne:
+        TESSERA_LANES(du[l] = a[l] != b[l] ? ~0u : 0u);
       // Ints wrap: the arithmetic is on uint32_t.
-      case Op::iadd: TESSERA_LANES(du[l] = au[l] + bu[l]);
-      case Op::isub: TESSERA_LANES(du[l] = au[l] - bu[l]);
-      case Op::imul: TESSERA_LANES(du[l] = au[l] * bu[l]);
+      case Op::iadd:
+        TESSERA_LANES(du[l] = au[l] + bu[l]);
+      case Op::isub:
+        TESSERA_LANES(du[l] = au[l] - bu[l]);
+      case Op::imul:
+        TESSERA_LANES(du[l] = au[l] * bu[l]);
       case Op::idiv:
         TESSERA_LANES(di[l] = bi[l] == 0 ? 0 : (bi[l] == -1 ? int32_t(0u - au[l]) : ai[l] / bi[l]));
-      case Op::imod: TESSERA_LANES(di[l] = bi[l] == 0 || bi[l] == -1 ? 0 : ai[l] % bi[l]);
-      case Op::ineg: TESSERA_LANES(du[l] = 0u - au[l]);
-      case Op::iabs: TESSERA_LANES(du[l] = ai[l] < 0 ? 0u - au[l] : au[l]);
-      case Op::imin: TESSERA_LANES(di[l] = std::min<int32_t>(ai[l], bi[l]));
-      case Op::imax: TESSERA_LANES(di[l] = std::max<int32_t>(ai[l], bi[l]));
-      case Op::ilt: TESSERA_LANES(du[l] = ai[l] < bi[l] ? ~0u : 0u);
-      case Op::ile: TESSERA_LANES(du[l] = ai[l] <= bi[l] ? ~0u : 0u);
-      case Op::igt: TESSERA_LANES(du[l] = ai[l] > bi[l] ? ~0u : 0u);
-      case Op::ige: TESSERA_LANES(du[l] = ai[l] >= bi[l] ? ~0u : 0u);
-      case Op::ieq: TESSERA_LANES(du[l] = au[l] == bu[l] ? ~0u : 0u);
-      case Op::ine: TESSERA_LANES(du[l] = au[l] != bu[l] ? ~0u : 0u);
-      case Op::ishl: TESSERA_LANES(du[l] = au[l] << (bu[l] & 31u));
-      case Op::ishr: TESSERA_LANES(di[l] = ai[l] >> (bu[l] & 31u));
-      case Op::itof: TESSERA_LANES(d[l] = float(ai[l]));
-      case Op::ftoi: TESSERA_LANES(di[l] = to_int(a[l]));
-      case Op::btof: TESSERA_LANES(d[l] = au[l] ? 1.0f : 0.0f);
-      case Op::btoi: TESSERA_LANES(du[l] = au[l] ? 1u : 0u);
-      case Op::band: TESSERA_LANES(du[l] = au[l] & bu[l]);
-      case Op::bor: TESSERA_LANES(du[l] = au[l] | bu[l]);
-      case Op::bxor: TESSERA_LANES(du[l] = au[l] ^ bu[l]);
-      case Op::bnot: TESSERA_LANES(du[l] = ~au[l]);
-      case Op::select: TESSERA_LANES(du[l] = au[l] ? bu[l] : cu[l]);
+      case Op::imod:
+        TESSERA_LANES(di[l] = bi[l] == 0 || bi[l] == -1 ? 0 : ai[l] % bi[l]);
+      case Op::ineg:
+        TESSERA_LANES(du[l] = 0u - au[l]);
+      case Op::iabs:
+        TESSERA_LANES(du[l] = ai[l] < 0 ? 0u - au[l] : au[l]);
+      case Op::imin:
+        TESSERA_LANES(di[l] = std::min<int32_t>(ai[l], bi[l]));
+      case Op::imax:
+        TESSERA_LANES(di[l] = std::max<int32_t>(ai[l], bi[l]));
+      case Op::ilt:
+        TESSERA_LANES(du[l] = ai[l] < bi[l] ? ~0u : 0u);
+      case Op::ile:
+        TESSERA_LANES(du[l] = ai[l] <= bi[l] ? ~0u : 0u);
+      case Op::igt:
+        TESSERA_LANES(du[l] = ai[l] > bi[l] ? ~0u : 0u);
+      case Op::ige:
+        TESSERA_LANES(du[l] = ai[l] >= bi[l] ? ~0u : 0u);
+      case Op::ieq:
+        TESSERA_LANES(du[l] = au[l] == bu[l] ? ~0u : 0u);
+      case Op::ine:
+        TESSERA_LANES(du[l] = au[l] != bu[l] ? ~0u : 0u);
+      case Op::ishl:
+        TESSERA_LANES(du[l] = au[l] << (bu[l] & 31u));
+      case Op::ishr:
+        TESSERA_LANES(di[l] = ai[l] >> (bu[l] & 31u));
+      case Op::itof:
+        TESSERA_LANES(d[l] = float(ai[l]));
+      case Op::ftoi:
+        TESSERA_LANES(di[l] = to_int(a[l]));
+      case Op::btof:
+        TESSERA_LANES(d[l] = au[l] ? 1.0f : 0.0f);
+      case Op::btoi:
+        TESSERA_LANES(du[l] = au[l] ? 1u : 0u);
+      case Op::band:
+        TESSERA_LANES(du[l] = au[l] & bu[l]);
+      case Op::bor:
+        TESSERA_LANES(du[l] = au[l] | bu[l]);
+      case Op::bxor:
+        TESSERA_LANES(du[l] = au[l] ^ bu[l]);
+      case Op::bnot:
+        TESSERA_LANES(du[l] = ~au[l]);
+      case Op::select:
+        TESSERA_LANES(du[l] = au[l] ? bu[l] : cu[l]);
       case Op::dfdx:
         // Fine derivatives: each row of a quad its own difference (FragmentBatch's lane layout).
         for (int l = 0; l < n; ++l) {

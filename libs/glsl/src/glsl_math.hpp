@@ -27,7 +27,9 @@ inline float glsl_pow(float x, float y) {
   float z = y * log2x;
   z = std::min(std::max(z, -126.0f), 127.0f);
   const float n = __builtin_rintf(z), f = (z - n) * 0.693147181f;  // ln 2
-  const float e = 1.0f + f * (1.0f + f * (0.5f + f * (1.0f / 6 + f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720 + f * (1.0f / 5040)))))));
+  const float e =
+      1.0f + f * (1.0f + f * (0.5f + f * (1.0f / 6 +
+                                          f * (1.0f / 24 + f * (1.0f / 120 + f * (1.0f / 720 + f * (1.0f / 5040)))))));
   const uint32_t scale_bits = uint32_t(int32_t(n) + 127) << 23;
   float scale;
   std::memcpy(&scale, &scale_bits, sizeof scale);

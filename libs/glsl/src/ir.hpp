@@ -152,8 +152,8 @@ struct Stage {
 };
 
 /// Fragment input slots past the varyings.
-inline constexpr uint32_t kFragCoord = 1000;     // + 0..3: gl_FragCoord x, y, z, w
-inline constexpr uint32_t kFrontFacing = 1004;   // gl_FrontFacing (bool)
+inline constexpr uint32_t kFragCoord = 1000;    // + 0..3: gl_FragCoord x, y, z, w
+inline constexpr uint32_t kFrontFacing = 1004;  // gl_FrontFacing (bool)
 
 /// A loop guard: the executor throws once a batch has taken more backward jumps than this.
 inline constexpr int64_t kMaxIterations = int64_t(1) << 24;

@@ -45,7 +45,7 @@ struct ProgramModule {
   std::vector<UniformSlot> uniforms;  // every uniform scalarized to basic types, built-ins included
   std::vector<UniformInfo> user_uniforms;
   std::set<std::string> declared_uniforms;  // the user uniforms the sources declare, active or not
-  std::vector<SamplerSlot> samplers;  // indexed by ir::Instr::unit
+  std::vector<SamplerSlot> samplers;        // indexed by ir::Instr::unit
   std::vector<AttributeSlot> attributes;
   int varying_count = 0;  // floats passed from the vertex to the fragment stage
   std::array<std::shared_ptr<const Texture2D>, 16> textures;

@@ -2,9 +2,9 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "module.hpp"
-#include "tessera/raster3d/lighting.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/core/parse.hpp"
+#include "tessera/raster3d/lighting.hpp"
 
 namespace tessera::glsl {
 namespace {
@@ -12,8 +12,8 @@ namespace {
 /// The slot of uniform `name`, or of element 0 when `name` is an array's name; null when there is none.
 UniformSlot* find_uniform(ProgramModule& m, std::string_view name, bool builtin) {
   for (UniformSlot& s : m.uniforms)
-    if (s.builtin == builtin && (s.name == name || (s.name.size() == name.size() + 3 && s.name.starts_with(name) &&
-                                                    s.name.ends_with("[0]"))))
+    if (s.builtin == builtin &&
+        (s.name == name || (s.name.size() == name.size() + 3 && s.name.starts_with(name) && s.name.ends_with("[0]"))))
       return &s;
   return nullptr;
 }
@@ -37,8 +37,8 @@ void write_uniform(ProgramModule& m, std::string_view name, std::span<const uint
     throw InvalidInput("the program declares no uniform '" + printable(name) + "'");
   }
   if (slot->is_float != floats)
-    throw InvalidInput("uniform '" + slot->name + "' takes " + (slot->is_float ? "floats" : "integers") +
-                       ", not " + (floats ? "floats" : "integers"));
+    throw InvalidInput("uniform '" + slot->name + "' takes " + (slot->is_float ? "floats" : "integers") + ", not " +
+                       (floats ? "floats" : "integers"));
   const auto [array, first] = array_element(slot->name);
   size_t used = 0;
   for (int e = first; used < values.size(); ++e) {
@@ -183,8 +183,7 @@ void Program::set_uniform(std::string_view name, std::span<const int> values) {
   if (slot && (slot->type == BasicType::sampler_2d || slot->type == BasicType::sampler_cube))
     for (const int unit : values)
       if (unit < 0 || unit >= 16)
-        throw InvalidInput("sampler '" + slot->name + "': texture unit " + std::to_string(unit) +
-                           " is not in [0, 16)");
+        throw InvalidInput("sampler '" + slot->name + "': texture unit " + std::to_string(unit) + " is not in [0, 16)");
   std::vector<uint32_t> words(values.begin(), values.end());
   write_uniform(*module_, name, words, false, false);
 }

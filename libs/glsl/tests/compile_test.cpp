@@ -57,10 +57,10 @@ TEST(GlslCompile, UniformSettingErrors) {
   const float three[3] = {1, 2, 3}, four[4] = {1, 2, 3, 4};
   const int one[1] = {1};
   EXPECT_NO_THROW(p.set_uniform("c", three));
-  EXPECT_THROW(p.set_uniform("c", four), InvalidInput);      // too many values
+  EXPECT_THROW(p.set_uniform("c", four), InvalidInput);  // too many values
   EXPECT_THROW(p.set_uniform("nothing", three), InvalidInput);
-  EXPECT_THROW(p.set_uniform("c", one), InvalidInput);       // ints to a float uniform
-  EXPECT_THROW(p.set_uniform("n", three), InvalidInput);     // floats to an int uniform
+  EXPECT_THROW(p.set_uniform("c", one), InvalidInput);    // ints to a float uniform
+  EXPECT_THROW(p.set_uniform("n", three), InvalidInput);  // floats to an int uniform
   EXPECT_NO_THROW(p.set_uniform_text("n", "4"));
   EXPECT_THROW(p.set_uniform_text("n", "4.5"), InvalidInput);
   EXPECT_THROW(p.set_uniform_text("c", "1,x,3"), InvalidInput);

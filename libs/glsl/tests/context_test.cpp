@@ -1,13 +1,14 @@
 // A Context drawing through a GLSL program (use_program): the built-ins come from its state, and a program that does
 // what the fixed function does gives its pixels exactly (ftransform() is invariant with it, the quad stage
 // interpolates as the pipeline does).
+#include "tessera/raster3d/context.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <memory>
 
 #include "glsl_test_util.hpp"
-#include "tessera/raster3d/context.hpp"
 
 namespace tessera::glsl {
 namespace {
@@ -45,9 +46,9 @@ TEST(GlslContext, ColorProgramMatchesTheFixedFunctionExactly) {
     set_camera(*ctx);
     ctx->shading(raster3d::ShadingModel::unlit);
   }
-  programmable.use_program(std::make_shared<Program>(testing::compile(
-      "void main() { gl_FragColor = gl_Color; }",
-      "void main() { gl_FrontColor = gl_Color; gl_Position = ftransform(); }")));
+  programmable.use_program(std::make_shared<Program>(
+      testing::compile("void main() { gl_FragColor = gl_Color; }",
+                       "void main() { gl_FrontColor = gl_Color; gl_Position = ftransform(); }")));
   fixed.draw(sphere);
   programmable.draw(sphere);
   const raster3d::Framebuffer& a = fixed.framebuffer();

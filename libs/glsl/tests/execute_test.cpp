@@ -1,10 +1,11 @@
 // Running programs: each result checked against the same expression evaluated in C++ at the pixel center, or an
 // analytic value (derivatives, texels, control flow).
+#include "execute.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "execute.hpp"
 #include "glsl_math.hpp"
 #include "glsl_test_util.hpp"
 #include "tessera/core/cpu.hpp"
@@ -223,7 +224,8 @@ TEST(GlslExecute, InstructionSetsAgree) {
   int worst = 0;
   for (int y = 0; y < 96; ++y)
     for (int x = 0; x < 96; ++x)
-      for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(int(wide.color()(x, y)[c]) - int(base.color()(x, y)[c])));
+      for (int c = 0; c < 4; ++c)
+        worst = std::max(worst, std::abs(int(wide.color()(x, y)[c]) - int(base.color()(x, y)[c])));
   EXPECT_LE(worst, 1);
 }
 

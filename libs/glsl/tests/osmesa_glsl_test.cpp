@@ -2,6 +2,8 @@
 // examples (examples/shaders: the notes' four programs, Phong, Blinn, toon, bricks with discard, normal mapping with
 // a cube map, loops and branches on uniforms, GLSL 3.30, derivatives, a minified MIPmapped texture). Coverage must be
 // identical and the color within 2/255 on at least 99.9% of the covered pixels.
+#include "osmesa_glsl.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include <memory>
 
 #include "glsl_notes_scenes.hpp"
-#include "osmesa_glsl.hpp"
 #include "tessera/core/atomic_file.hpp"
 #include "tessera/glsl/program.hpp"
 #include "tessera/image/image_io.hpp"
@@ -102,7 +103,8 @@ std::array<std::vector<uint8_t>, 6> environment_faces(int size) {
         const Vec3f d = glm::normalize(cube_direction({CubeFace(f), st}));
         const float wave = 0.8f + 0.2f * std::sin(6 * d.x) * std::cos(5 * d.z);
         const Vec3f c = wave * Vec3f(0.5f + 0.4f * d.x, 0.55f + 0.4f * d.y, 0.6f - 0.35f * d.z);
-        for (int k = 0; k < 3; ++k) faces[size_t(f)].push_back(uint8_t(std::lround(255 * std::clamp(c[k], 0.0f, 1.0f))));
+        for (int k = 0; k < 3; ++k)
+          faces[size_t(f)].push_back(uint8_t(std::lround(255 * std::clamp(c[k], 0.0f, 1.0f))));
         faces[size_t(f)].push_back(255);
       }
   return faces;
@@ -122,12 +124,12 @@ ImageRGBA8 from_gl_rows(const std::vector<uint8_t>& rgba, int width, int height,
 struct Case {
   std::string name;
   std::vector<GlslUniform> uniforms;
-  bool floor = false;           // the receding floor instead of the sphere
-  bool texture = false;         // a checker texture on unit 0 (normal_map: the bump map)
-  bool mipmapped = false;       // trilinear MIPmaps (else bilinear)
-  bool clamp = false;           // clamp to edge (else repeat)
-  bool cube = false;            // the environment on unit 1
-  std::string fragment;         // the fragment shader's text instead of the file's
+  bool floor = false;      // the receding floor instead of the sphere
+  bool texture = false;    // a checker texture on unit 0 (normal_map: the bump map)
+  bool mipmapped = false;  // trilinear MIPmaps (else bilinear)
+  bool clamp = false;      // clamp to edge (else repeat)
+  bool cube = false;       // the environment on unit 1
+  std::string fragment;    // the fragment shader's text instead of the file's
 };
 
 std::string source(const std::string& file) {
@@ -142,8 +144,7 @@ struct Result {
 Result compare(const Case& c) {
   const Mesh mesh = c.floor ? floor_plane() : sphere(32, 64);
   const Mat4f projection = Mat4f(perspective(glm::radians(40.0), 1.0, 0.5, 40.0));
-  const Mat4f model_view = Mat4f(look_at(Vec3(0.4, 0.5, 3.4), Vec3(0, 0, 0), Vec3(0, 1, 0))) *
-                           Mat4f(rotate_y(0.3));
+  const Mat4f model_view = Mat4f(look_at(Vec3(0.4, 0.5, 3.4), Vec3(0, 0, 0), Vec3(0, 1, 0))) * Mat4f(rotate_y(0.3));
   GlslDraw d;
   d.vertex_source = source(c.name + ".vert");
   d.fragment_source = c.fragment.empty() ? source(c.name + ".frag") : c.fragment;
@@ -161,8 +162,8 @@ Result compare(const Case& c) {
   d.model_view = model_view;
   d.projection = projection;
   d.lights.push_back({Vec4f(2, 3, 4, 1), Vec4f(0.1f, 0.1f, 0.1f, 1), Vec4f(0.9f, 0.85f, 0.8f, 1), Vec4f(1)});
-  d.material = {Vec4f(0.2f, 0.2f, 0.25f, 1), Vec4f(0.8f, 0.5f, 0.3f, 1), Vec4f(0.6f, 0.6f, 0.6f, 1),
-                Vec4f(0, 0, 0, 1), 40};
+  d.material = {Vec4f(0.2f, 0.2f, 0.25f, 1), Vec4f(0.8f, 0.5f, 0.3f, 1), Vec4f(0.6f, 0.6f, 0.6f, 1), Vec4f(0, 0, 0, 1),
+                40};
   d.uniforms = c.uniforms;
   const int texture_size = 64;
   if (c.texture) {
@@ -200,8 +201,8 @@ Result compare(const Case& c) {
     Sampler sampler;
     sampler.filter = c.mipmapped ? Filter::trilinear : Filter::bilinear;
     sampler.wrap_u = sampler.wrap_v = c.clamp ? Wrap::clamp : Wrap::repeat;
-    p.bind_texture(0, std::make_shared<Texture2D>(
-                          from_gl_rows(d.textures[0].second.rgba, texture_size, texture_size), sampler));
+    p.bind_texture(
+        0, std::make_shared<Texture2D>(from_gl_rows(d.textures[0].second.rgba, texture_size, texture_size), sampler));
   }
   if (c.cube) {
     std::array<ImageRGBA, 6> faces;
@@ -227,7 +228,8 @@ Result compare(const Case& c) {
     for (int x = 0; x < kSize; ++x) {
       const uint8_t* m = &mesa[(size_t(y) * kSize + size_t(x)) * 4];
       const glm::u8vec4 t = fb.color()(x, y);
-      const bool mesa_covered = mesa_depth[size_t(y) * kSize + size_t(x)] < 1.0f, tessera_covered = fb.depth()(x, y) != raster3d::kDepthMax;
+      const bool mesa_covered = mesa_depth[size_t(y) * kSize + size_t(x)] < 1.0f,
+                 tessera_covered = fb.depth()(x, y) != raster3d::kDepthMax;
       r.coverage_differences += mesa_covered != tessera_covered;
       if (!mesa_covered || !tessera_covered) continue;
       ++r.covered;
@@ -275,8 +277,13 @@ TEST(GlslMesa, BrickWithDiscard) {
                    f("brick_size", {0.3f, 0.15f}), f("brick_pct", {0.85f, 0.8f})}});
 }
 TEST(GlslMesa, NormalMapWithCubeMap) {
-  expect_matches({"normal_map", {i("normal_map", {0}), i("environment", {1}), f("reflectivity", {0.4f})}, false,
-                  true, false, false, true});
+  expect_matches({"normal_map",
+                  {i("normal_map", {0}), i("environment", {1}), f("reflectivity", {0.4f})},
+                  false,
+                  true,
+                  false,
+                  false,
+                  true});
 }
 TEST(GlslMesa, LoopsAndBranchesOnUniforms) {
   for (const int wrap : {0, 1})
@@ -290,12 +297,12 @@ TEST(GlslMesa, Phong330) {
   const Mat4f projection = Mat4f(perspective(glm::radians(40.0), 1.0, 0.5, 40.0));
   const Mat3f normal_matrix = glm::inverseTranspose(Mat3f(model_view));
   const auto floats = [](const auto& m) { return std::vector<float>(&m[0][0], &m[0][0] + sizeof(m) / 4); };
-  expect_matches({"phong330",
-                  {f("model_view", floats(model_view)), f("projection", floats(projection)),
-                   f("normal_matrix", floats(normal_matrix)), f("light_position", {2, 3, 4, 1}),
-                   f("light_color", {1, 0.95f, 0.9f}), f("ambient_color", {0.05f, 0.05f, 0.08f}),
-                   f("diffuse_color", {0.3f, 0.5f, 0.8f}), f("specular_color", {0.5f, 0.5f, 0.5f}),
-                   f("shininess", {25})}});
+  expect_matches(
+      {"phong330",
+       {f("model_view", floats(model_view)), f("projection", floats(projection)),
+        f("normal_matrix", floats(normal_matrix)), f("light_position", {2, 3, 4, 1}),
+        f("light_color", {1, 0.95f, 0.9f}), f("ambient_color", {0.05f, 0.05f, 0.08f}),
+        f("diffuse_color", {0.3f, 0.5f, 0.8f}), f("specular_color", {0.5f, 0.5f, 0.5f}), f("shininess", {25})}});
 }
 TEST(GlslMesa, MinifiedMipmappedTexture) {
   // Measured: 99.06 % of the pixels within 2/255, all within 5/255. llvmpipe filters 8-bit textures in lower
@@ -306,8 +313,9 @@ TEST(GlslMesa, MinifiedMipmappedTexture) {
   EXPECT_LE(r.max_difference, 6);
 }
 TEST(GlslMesa, Derivatives) {
-  expect_matches({"dfdx", {f("frequency", {12}), f("stripe_color", {0.1f, 0.2f, 0.6f}),
-                           f("background_color", {0.95f, 0.9f, 0.8f})}});
+  expect_matches(
+      {"dfdx",
+       {f("frequency", {12}), f("stripe_color", {0.1f, 0.2f, 0.6f}), f("background_color", {0.95f, 0.9f, 0.8f})}});
 }
 
 }  // namespace
@@ -339,10 +347,9 @@ TEST(GlslMesa, GalleryScenesOfTheNotesPrograms) {
       reference::GlslTexture t;
       t.width = s.texture.width(), t.height = s.texture.height();
       for (int y = t.height - 1; y >= 0; --y)  // GL rows bottom first
-        for (int x = 0; x < t.width; ++x)
-          t.rgba.insert(t.rgba.end(), &s.texture(x, y)[0], &s.texture(x, y)[0] + 4);
-      t.filter = s.filter == Filter::trilinear ? reference::GlslFilter::linear_mipmap_linear
-                                               : reference::GlslFilter::linear;
+        for (int x = 0; x < t.width; ++x) t.rgba.insert(t.rgba.end(), &s.texture(x, y)[0], &s.texture(x, y)[0] + 4);
+      t.filter =
+          s.filter == Filter::trilinear ? reference::GlslFilter::linear_mipmap_linear : reference::GlslFilter::linear;
       t.wrap = s.wrap == Wrap::clamp ? reference::GlslWrap::clamp_to_edge : reference::GlslWrap::repeat;
       d.textures.emplace_back(0, t);
     }

@@ -2,11 +2,11 @@
 // gathered into FragmentBatch and shaded a batch at a time.
 #include "tessera/raster3d/quad_stage.hpp"
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <cstring>
 #include <string>
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include "span_kernels.hpp"
 #include "tessera/core/error.hpp"
@@ -193,8 +193,8 @@ void raster_tile_quads(QuadTile& t, Framebuffer& fb, const SetupPass& binned, co
 DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& state, std::span<const float> vertices,
                                int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs) {
   if (varying_count < 0 || varying_count > FragmentBatch::kMaxVaryings)
-    throw InvalidInput("the quad stage takes 0 to " + std::to_string(FragmentBatch::kMaxVaryings) +
-                       " varyings, not " + std::to_string(varying_count));
+    throw InvalidInput("the quad stage takes 0 to " + std::to_string(FragmentBatch::kMaxVaryings) + " varyings, not " +
+                       std::to_string(varying_count));
   const size_t stride = 4 + size_t(varying_count);
   if (vertices.size() % stride != 0)
     throw InvalidInput("quad stage: " + std::to_string(vertices.size()) + " vertex floats are not a multiple of " +

@@ -25,9 +25,9 @@ Soup random_soup(int triangles, uint64_t seed) {
   Soup s;
   for (int t = 0; t < 3 * triangles; ++t) {
     const float w = 0.5f + 2.0f * rng.uniform();
-    s.vertices.insert(s.vertices.end(), {(2.4f * rng.uniform() - 1.2f) * w, (2.4f * rng.uniform() - 1.2f) * w,
-                                         (2.2f * rng.uniform() - 1.1f) * w, w, rng.uniform(), rng.uniform(),
-                                         rng.uniform()});
+    s.vertices.insert(s.vertices.end(),
+                      {(2.4f * rng.uniform() - 1.2f) * w, (2.4f * rng.uniform() - 1.2f) * w,
+                       (2.2f * rng.uniform() - 1.1f) * w, w, rng.uniform(), rng.uniform(), rng.uniform()});
     s.indices.push_back(uint32_t(t));
   }
   return s;

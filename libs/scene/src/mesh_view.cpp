@@ -513,7 +513,8 @@ void check_uvs(const PolyMesh& mesh, const MeshViewOptions& options) {
   if ((options.texture || options.bump) && mesh.uvs.empty() && mesh.corner_uvs.empty())
     throw InvalidInput("mesh view: a texture or bump map needs texture coordinates, and the mesh has none");
   if (options.program && options.maps())
-    throw InvalidInput("mesh view: a program draws the surface itself; the maps, shadows and floor do not combine with it");
+    throw InvalidInput(
+        "mesh view: a program draws the surface itself; the maps, shadows and floor do not combine with it");
 }
 
 }  // namespace

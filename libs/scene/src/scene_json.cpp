@@ -1,7 +1,7 @@
 // The JSON scene loader (docs/scene-format.md): every value is checked where it is read, and errors name the JSON
 // path of the bad value.
-#include <nlohmann/json.hpp>
 #include <algorithm>
+#include <nlohmann/json.hpp>
 #include <set>
 
 #include "tessera/core/atomic_file.hpp"

@@ -403,8 +403,7 @@ TEST(SceneShaders, BadShadersNameTheirPlace) {
     }
     return std::string();
   };
-  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "broken.frag"})").find("broken.frag:2:"),
-            std::string::npos);
+  EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "broken.frag"})").find("broken.frag:2:"), std::string::npos);
   EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "missing.frag"})").find("materials.m.shader.fragment"),
             std::string::npos);
   EXPECT_NE(message(R"({"vertex": "flat.vert", "fragment": "flat.frag", "uniforms": {"paint": [1, 0]}})")

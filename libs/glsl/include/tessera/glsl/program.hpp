@@ -39,8 +39,25 @@ class CompileError : public InvalidInput {
 };
 
 /// The basic types a uniform, attribute or varying may have (after arrays and structs are flattened to members).
-enum class BasicType { float_, vec2, vec3, vec4, int_, ivec2, ivec3, ivec4, bool_, bvec2, bvec3, bvec4, mat2, mat3, mat4,
-  sampler_2d, sampler_cube };
+enum class BasicType {
+  float_,
+  vec2,
+  vec3,
+  vec4,
+  int_,
+  ivec2,
+  ivec3,
+  ivec4,
+  bool_,
+  bvec2,
+  bvec3,
+  bvec4,
+  mat2,
+  mat3,
+  mat4,
+  sampler_2d,
+  sampler_cube
+};
 
 /// One active uniform: its full name as GLSL spells it ("light.color", "weights[2]", "gl_LightSource[0].position"),
 /// its type and where its value lives.
@@ -71,9 +88,9 @@ struct FixedFunctionState {
   };
   Material front_material, back_material;
   Vec4f light_model_ambient{0.2f, 0.2f, 0.2f, 1};
-  Vec4f color{1, 1, 1, 1};           ///< gl_Color where no colors array is given
-  Vec3f normal{0, 0, 1};             ///< gl_Normal where no normals array is given
-  Vec4f tex_coord{0, 0, 0, 1};       ///< gl_MultiTexCoord0 where no texture coordinates are given
+  Vec4f color{1, 1, 1, 1};      ///< gl_Color where no colors array is given
+  Vec3f normal{0, 0, 1};        ///< gl_Normal where no normals array is given
+  Vec4f tex_coord{0, 0, 0, 1};  ///< gl_MultiTexCoord0 where no texture coordinates are given
 
   FixedFunctionState();
 };

@@ -60,11 +60,11 @@ void sort_back_to_front(VertexArrays& arrays, const Mat4& model_view);
 /// gl_LightSource[i], gl_FrontMaterial, gl_LightModel) and the current attributes from it.
 struct ProgramState {
   Mat4f model_view{1.0f}, projection{1.0f};
-  Lighting lighting;                         ///< the material, the light model and all lights (eye space)
+  Lighting lighting;                        ///< the material, the light model and all lights (eye space)
   std::array<bool, kMaxLights> light_on{};  ///< which lights are on (GL_LIGHTi)
-  Vec3f color{1, 1, 1}, normal{0, 0, 1};     ///< the current color and normal
-  Vec2f uv{0, 0};                            ///< the current texture coordinates
-  float alpha = 1;                           ///< the current color's alpha
+  Vec3f color{1, 1, 1}, normal{0, 0, 1};    ///< the current color and normal
+  Vec2f uv{0, 0};                           ///< the current texture coordinates
+  float alpha = 1;                          ///< the current color's alpha
 };
 
 /// A program a context draws its triangles through instead of its fixed-function shaders (glUseProgram):
