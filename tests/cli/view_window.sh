@@ -70,4 +70,31 @@ for _ in $(seq 50); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
 kill -0 $pid 2>/dev/null && fail "Escape did not close the viewer"
 wait $pid || fail "the viewer exited with an error: $(cat window.out)"
 trap - EXIT
-echo "view_window.sh: the window matched the headless renders"
+
+# Live shader editing: the window draws the cube through a GLSL program and compiles it again when the file changes
+# on disk; a broken edit keeps the last good program.
+printf 'void main() { gl_Position = ftransform(); }\n' > paint.vert
+printf 'void main() { gl_FragColor = vec4(1.0, 0.0, 0.0, 1.0); }\n' > paint.frag
+"$tessera" view cube.obj --window --size 400x300 --no-status --vertex-shader paint.vert --fragment-shader paint.frag \
+  >shader.out 2>&1 &
+pid=$!
+trap 'kill $pid 2>/dev/null || true' EXIT
+wid=$(timeout 20 xdotool search --sync --name "tessera view cube.obj" | head -1)
+[ -n "$wid" ] || fail "no shader window appeared: $(cat shader.out)"
+center() {  # GRAB: the color at the window's center
+  /usr/bin/python3 -c "import sys; from PIL import Image; print('%d,%d,%d' % Image.open(sys.argv[1]).convert('RGB').getpixel((200, 150)))" "$1"
+}
+grab red
+[ "$(center red-window.png)" = "255,0,0" ] || fail "the program's red is not drawn: $(center red-window.png)"
+printf 'void main() { gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0); }\n' > paint.frag
+grab green
+[ "$(center green-window.png)" = "0,255,0" ] || fail "the edited shader was not reloaded: $(center green-window.png)"
+printf 'void main() { gl_FragColor = 1.0; }\n' > paint.frag
+grab broken
+[ "$(center broken-window.png)" = "0,255,0" ] || fail "a broken edit changed the picture: $(center broken-window.png)"
+xdotool windowfocus --sync "$wid"
+xdotool key Escape
+for _ in $(seq 50); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
+wait $pid || fail "the shader viewer exited with an error: $(cat shader.out)"
+trap - EXIT
+echo "view_window.sh: the window matched the headless renders; shader edits were reloaded"

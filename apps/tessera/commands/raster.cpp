@@ -69,7 +69,7 @@ const std::string& name_of(const Names<T>& names, T value) {
 /// The model's up axis as a coordinate index.
 int up_index(UpAxis axis) { return axis == UpAxis::x ? 0 : axis == UpAxis::y ? 1 : 2; }
 
-/// Splits "key=value" (the --uniform, --texture-unit and --cube-map forms). Throws InvalidInput naming the option.
+/// Splits "key=value" (the --texture-unit and --cube-map forms). Throws InvalidInput naming the option.
 std::pair<std::string, std::string> key_value(const std::string& text, const char* option, const char* form) {
   const size_t eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == text.size())
@@ -88,10 +88,7 @@ int unit_number(const std::string& text, const char* option) {
 std::shared_ptr<glsl::Program> load_program(const RasterArgs& a) {
   auto program = std::make_shared<glsl::Program>(
       glsl::Program::compile(glsl::read_shader(a.vertex_shader), glsl::read_shader(a.fragment_shader)));
-  for (const std::string& u : a.uniforms) {
-    const auto [name, values] = key_value(u, "--uniform", "name=v1,v2,...");
-    program->set_uniform_text(name, values);
-  }
+  for (const std::string& u : a.uniforms) program->set_uniform_assignment(u);
   std::vector<std::pair<int, std::string>> textures;
   if (!a.texture0.empty()) textures.emplace_back(0, a.texture0);
   if (!a.texture1.empty()) textures.emplace_back(1, a.texture1);

@@ -1,5 +1,6 @@
 // tessera view FILE [--headless] [--orbit N] [-o turntable.gif|picture.png] [--size WxH] [--input script.txt]
-// [--frames N] [--fps F] [--shading NAME] [--texture IMG] [--samples N] [--no-status]: the interactive viewer
+// [--frames N] [--fps F] [--shading NAME] [--texture IMG] [--vertex-shader F --fragment-shader F [--uniform N=V]]
+// [--samples N] [--no-status]: the interactive viewer
 // (libs/view, docs/view.md), a 3D sketch run by the sketch runner in a window or headless.
 #include <fmt/format.h>
 
@@ -16,7 +17,8 @@ namespace tessera::cli {
 
 void setup_view(CLI::App& cmd, CommonOptions& common) {
   struct Options {
-    std::string file, output, size = "1280x720", input, texture;
+    std::string file, output, size = "1280x720", input, texture, vertex_shader, fragment_shader;
+    std::vector<std::string> uniforms;
     bool window = false, headless = false, no_status = false;
     int orbit = 0, frames = 0, samples = 2, up_axis = -1;
     double fps = 0;
@@ -50,12 +52,23 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
              "y otherwise)");
   cmd.add_option("--texture", opt->texture, "The image key t maps on surfaces with uvs (default: a checkerboard)")
       ->check(CLI::ExistingFile);
+  cmd.add_option("--vertex-shader", opt->vertex_shader,
+                 "GLSL vertex shader drawing the surface (with --fragment-shader; in a window both files are compiled "
+                 "again when they change on disk)")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--fragment-shader", opt->fragment_shader, "GLSL fragment shader (with --vertex-shader)")
+      ->check(CLI::ExistingFile);
+  cmd.add_option("--uniform", opt->uniforms, "A uniform of the program: name=v1,v2,...; repeat for more");
   cmd.add_option("--samples", opt->samples, "The progressive ray tracer's samples per pixel per frame")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   cmd.add_flag("--no-status", opt->no_status, "No status line at the bottom of the picture");
   add_srgb_option(cmd, common);
   cmd.callback([opt, &common] {
+    if (opt->vertex_shader.empty() != opt->fragment_shader.empty())
+      throw CLI::ValidationError("--vertex-shader and --fragment-shader", "a program needs both");
+    if (!opt->uniforms.empty() && opt->vertex_shader.empty())
+      throw CLI::ValidationError("--uniform", "sets a program's uniform; add --vertex-shader and --fragment-shader");
     PhaseTimer timer;
     Viewable viewable = timer.time("read_s", [&] { return read_viewable(opt->file); });
     RunOptions run;
@@ -68,6 +81,10 @@ void setup_view(CLI::App& cmd, CommonOptions& common) {
     options.shading = opt->shading;
     options.up_axis = opt->up_axis;
     options.texture = opt->texture;
+    options.vertex_shader = opt->vertex_shader;
+    options.fragment_shader = opt->fragment_shader;
+    options.uniforms = opt->uniforms;
+    options.watch_shaders = run.mode == RunMode::window && !opt->vertex_shader.empty();
     options.status_line = !opt->no_status;
     options.frame_time = run.mode == RunMode::window;
     options.trace_samples = opt->samples;

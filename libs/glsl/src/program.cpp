@@ -206,6 +206,13 @@ void Program::set_uniform_text(std::string_view name, std::string_view values) {
   set_uniform(name, ints);
 }
 
+void Program::set_uniform_assignment(std::string_view assignment) {
+  const size_t eq = assignment.find('=');
+  if (eq == std::string_view::npos || eq == 0 || eq + 1 == assignment.size())
+    throw InvalidInput("uniform: expected name=v1,v2,..., got '" + printable(assignment) + "'");
+  set_uniform_text(assignment.substr(0, eq), assignment.substr(eq + 1));
+}
+
 void Program::bind_texture(int unit, std::shared_ptr<const Texture2D> texture) {
   if (unit < 0 || unit >= 16) throw InvalidInput("texture unit " + std::to_string(unit) + " is not in [0, 16)");
   module_->textures[size_t(unit)] = std::move(texture);

@@ -19,8 +19,19 @@ std::shared_ptr<const Texture2D> checkerboard() {
 
 }  // namespace
 
-MeshDisplay::MeshDisplay(ViewShading shading, const std::string& texture, int up_axis)
-    : shading_(shading), texture_path_(texture), up_axis_(up_axis) {}
+MeshDisplay::MeshDisplay(const ViewerOptions& o)
+    : shading_(o.shading), texture_path_(o.texture), up_axis_(o.up_axis), watch_(o.watch_shaders) {
+  if (o.vertex_shader.empty() != o.fragment_shader.empty())
+    throw InvalidInput("a GLSL program needs a vertex and a fragment shader");
+  if (o.vertex_shader.empty()) return;
+  const std::vector<std::string> uniforms = o.uniforms;
+  const std::string texture = o.texture;
+  program_ = std::make_unique<glsl::ProgramFiles>(o.vertex_shader, o.fragment_shader, [uniforms, texture](glsl::Program& p) {
+    for (const std::string& u : uniforms) p.set_uniform_assignment(u);
+    if (!texture.empty())
+      p.bind_texture(0, std::make_shared<const Texture2D>(load_texture(texture, Sampler{.filter = Filter::trilinear})));
+  });
+}
 
 void MeshDisplay::set_mesh(PolyMesh mesh) {
   has_uvs_ = !mesh.uvs.empty() || !mesh.corner_uvs.empty();
@@ -52,8 +63,12 @@ MeshViewOptions MeshDisplay::options() const {
   o.wireframe = shading_ == ViewShading::wireframe ? MeshWireframe::alone
                 : edges_                           ? MeshWireframe::over
                                                    : MeshWireframe::none;
-  o.shadows = o.floor = shadows_;
   o.up_axis = up_axis_;
+  if (program_) {  // the program shades: no maps
+    o.program = program_->program();
+    return o;
+  }
+  o.shadows = o.floor = shadows_;
   if (textured_) {
     if (!texture_)
       texture_ =
@@ -71,6 +86,9 @@ bool MeshDisplay::key(int key) {
     shading_ = ViewShading(key - '1');
   } else if (key == 'w') {
     edges_ = !edges_;
+  } else if ((key == 'd' || key == 't') && program_) {
+    note_ = "the program shades the surface";
+    return true;
   } else if (key == 'd') {
     shadows_ = !shadows_;
   } else if (key == 't') {
@@ -86,7 +104,25 @@ bool MeshDisplay::key(int key) {
   return true;
 }
 
+bool MeshDisplay::poll() {
+  if (!program_ || !watch_ || !program_->reload()) return false;
+  if (program_->error().empty()) {
+    view_->set_options(options());
+    note_ = "reloaded";
+  }
+  return true;
+}
+
 std::string MeshDisplay::describe() const {
+  if (program_) {
+    std::string s = "program " + program_->name();
+    if (edges_) s += ", edges";
+    // The compile error's first line: the rest of the message is the same error's context.
+    const std::string& error = program_->error();
+    if (!error.empty()) s += fmt::format(" [{}]", error.substr(0, error.find('\n')));
+    if (!note_.empty()) s += fmt::format(" [{}]", note_);
+    return s;
+  }
   std::string s(shading_name(shading_));
   if (const MeshViewOptions o = view_->options(); o.maps() && shading_ != ViewShading::phong)
     s += " (per pixel with maps)";

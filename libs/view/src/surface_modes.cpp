@@ -34,7 +34,7 @@ namespace {
 class MeshMode final : public ViewMode {
  public:
   MeshMode(const Viewable& v, const ViewerOptions& o)
-      : display_(o.shading, o.texture, o.up_axis), name_(file_name(v.name)), up_axis_(o.up_axis) {
+      : display_(o), name_(file_name(v.name)), up_axis_(o.up_axis) {
     levels_.push_back(v.mesh);
     box_ = bounding_box(v.mesh);
     scheme_ = v.mesh.is_triangle_mesh() ? SubdivisionScheme::loop : SubdivisionScheme::catmull_clark;
@@ -55,6 +55,7 @@ class MeshMode final : public ViewMode {
                        note_.empty() ? "" : fmt::format(" [{}]", note_));
   }
   size_t triangles() const override { return display_.triangles(); }
+  bool poll() override { return display_.poll(); }
 
  private:
   /// The most faces a level may have (a 69k-triangle bunny reaches 4.4 million at level 3).
@@ -94,7 +95,7 @@ class MeshMode final : public ViewMode {
 class PatchMode final : public ViewMode {
  public:
   PatchMode(const Viewable& v, const ViewerOptions& o)
-      : display_(o.shading, o.texture, o.up_axis), name_(file_name(v.name)), patches_(v.patches), up_axis_(o.up_axis) {
+      : display_(o), name_(file_name(v.name)), patches_(v.patches), up_axis_(o.up_axis) {
     const PolyMesh net = control_net(patches_);  // the patches lie in their control points' convex hull
     box_ = bounding_box(net);
     tessellate_now();
@@ -117,6 +118,7 @@ class PatchMode final : public ViewMode {
                        display_.describe());
   }
   size_t triangles() const override { return display_.triangles(); }
+  bool poll() override { return display_.poll(); }
 
  private:
   static constexpr int kMaxSteps = 128;

@@ -27,6 +27,8 @@ class ViewMode {
   virtual std::string describe() const = 0;
   /// Whether drawing again with nothing changed improves the picture (the progressive ray tracer).
   virtual bool refining() const { return false; }
+  /// Looks for changes from outside (a shader file edited); true when the picture must be drawn again.
+  virtual bool poll() { return false; }
   /// The triangles of the surface drawn (0 when none is).
   virtual size_t triangles() const { return 0; }
 };

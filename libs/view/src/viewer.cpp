@@ -21,6 +21,9 @@ std::unique_ptr<ViewMode> make_view_mode(const Viewable& v, ViewerOptions o) {
     case ViewableKind::mesh:
       return make_mesh_mode(v, o);
     case ViewableKind::scene:
+      // A scene's materials name their own programs (docs/scene-format.md).
+      if (!o.vertex_shader.empty() || !o.fragment_shader.empty())
+        throw InvalidInput(v.name + ": a scene's shaders are its materials' (\"shader\"), not the viewer's");
       return make_scene_mode(v, o);
     case ViewableKind::volume:
       return make_volume_mode(v, o);
@@ -149,6 +152,7 @@ Camera Viewer::current_camera() const {
 void Viewer::draw() {
   const auto start = std::chrono::steady_clock::now();
   ImageRGBA8& frame = context().framebuffer().color();
+  if (mode_->poll()) moved_ = true;
   mode_->render(current_camera(), moved_ || options_.orbit_frames > 0, frame);
   moved_ = false;
   last_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -173,8 +177,9 @@ void Viewer::draw() {
   }
   if (help_)
     draw_text_box(frame, help_lines(), 6 * scale, (font::kAscent + 6) * scale, scale, glm::u8vec4(255, 230, 150, 255));
-  // Idle pictures are not drawn again until something changes (events call redraw()).
-  if (options_.orbit_frames > 0 || mode_->refining())
+  // Idle pictures are not drawn again until something changes (events call redraw()); watched shader files are
+  // looked at every frame.
+  if (options_.orbit_frames > 0 || mode_->refining() || options_.watch_shaders)
     loop();
   else
     no_loop();

@@ -18,7 +18,7 @@ namespace {
 class VolumeMode final : public ViewMode {
  public:
   VolumeMode(const Viewable& v, const ViewerOptions& o)
-      : display_(o.shading, o.texture, o.up_axis),
+      : display_(o),
         up_axis_(o.up_axis),
         name_(file_name(v.name)),
         volume_(v.volume),
@@ -77,6 +77,7 @@ class VolumeMode final : public ViewMode {
                        display_.triangles(), display_.describe());
   }
   size_t triangles() const override { return rendering_ ? 0 : display_.triangles(); }
+  bool poll() override { return !rendering_ && display_.poll(); }
 
  private:
   void extract() { display_.set_mesh(marching_cubes(*volume_, MarchingCubesOptions{.iso = float(iso_)})); }

@@ -139,6 +139,8 @@ class Program : public raster3d::ContextProgram {
   void set_uniform(std::string_view name, std::span<const int> values);
   /// Sets a uniform from text: "0.5,1,0" (floats) or "2" (ints), as the command line's --uniform name=values.
   void set_uniform_text(std::string_view name, std::string_view values);
+  /// Sets a uniform from "name=v1,v2,..." (the command line's --uniform). Throws InvalidInput without the '='.
+  void set_uniform_assignment(std::string_view assignment);
 
   /// Binds a 2D texture to texture unit `unit` (0 to 15), shared with the caller; null unbinds. A sampler reading
   /// an unbound unit reads (0, 0, 0, 1), as OpenGL's incomplete texture.

@@ -43,6 +43,12 @@ struct ViewerOptions {
   /// the home view's vertical, the turntable's axis and the floor's normal.
   int up_axis = -1;
   std::string texture;      ///< a texture image for surfaces with uvs ("" = a checkerboard)
+  /// A GLSL program drawing the surfaces instead of the shading (both files, or neither; docs/shaders.md), its
+  /// uniforms ("name=v1,v2,...") and `texture` (when given) on texture unit 0.
+  std::string vertex_shader, fragment_shader;
+  std::vector<std::string> uniforms;
+  /// Compile the program again when its files change on disk, checked every frame (the window keeps drawing).
+  bool watch_shaders = false;
   bool status_line = true;  ///< the one-line text at the bottom
   /// The status line shows the last frame's render time (in a window; headless pictures stay deterministic).
   bool frame_time = false;
