@@ -197,6 +197,11 @@ class StageCompiler {
   // ---- registers and instructions
 
   uint32_t fresh(int count = 1) {
+    if (stage_.register_count + uint32_t(count) > ir::kMaxRegisters ||
+        stage_.code.size() + stage_.prologue.size() > ir::kMaxInstructions)
+      throw CompileFailure(0, "the program is too large for Tessera's executor (more than " +
+                                  std::to_string(ir::kMaxRegisters) + " registers or " +
+                                  std::to_string(ir::kMaxInstructions) + " instructions)");
     const uint32_t r = stage_.register_count;
     stage_.register_count += uint32_t(count);
     uniform_.resize(stage_.register_count, false);

@@ -12,6 +12,7 @@
 //
 // Registers that depend only on constants and uniforms are computed once per scratch (the prologue), not per batch.
 #include <cstdint>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -156,6 +157,11 @@ inline constexpr uint32_t kFragCoord = 1000;    // + 0..3: gl_FragCoord x, y, z,
 inline constexpr uint32_t kFrontFacing = 1004;  // gl_FrontFacing (bool)
 
 /// A loop guard: the executor throws once a batch has taken more backward jumps than this.
-inline constexpr int64_t kMaxIterations = int64_t(1) << 24;
+inline constexpr int64_t kMaxIterations = int64_t(1) << 20;
+
+/// The largest program the compiler makes: registers per stage (a register file is 256 bytes a register per thread)
+/// and instructions per stage. A source past them (a huge array indexed by a variable, say) is a compile error.
+inline constexpr uint32_t kMaxRegisters = uint32_t(1) << 16;
+inline constexpr size_t kMaxInstructions = size_t(1) << 20;
 
 }  // namespace tessera::glsl::ir
