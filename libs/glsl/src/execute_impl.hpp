@@ -2,8 +2,6 @@
 // (x86-64), execute_avx2.cpp with -mavx2 -mfma, each in its own namespace (TESSERA_GLSL_ISA). Every instruction is a
 // plain loop over the lanes that GCC vectorizes; -ffp-contract=off (CMakeLists.txt) keeps a * b + c two roundings in
 // both, so the sets give the same pixels. Transcendentals and texture reads are per lane.
-#include <immintrin.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -45,93 +43,6 @@ inline float quad_cube_lod(const CubeMap& cube, const float* x, const float* y, 
   return cube.face(c[0].face).lod(c[1].st - c[0].st, c[2].st - c[0].st);
 }
 
-#ifdef __AVX2__
-/// Eight lanes of texel indices along one axis of n texels: f (a floor) wrapped by repeat or clamp.
-inline __m256i wrap8(__m256 f, int n, Wrap wrap) {
-  const __m256 size = _mm256_set1_ps(float(n));
-  if (wrap == Wrap::repeat) f = _mm256_sub_ps(f, _mm256_mul_ps(size, _mm256_floor_ps(_mm256_div_ps(f, size))));
-  f = _mm256_min_ps(_mm256_max_ps(f, _mm256_setzero_ps()), _mm256_set1_ps(float(n - 1)));
-  return _mm256_cvttps_epi32(f);
-}
-
-/// Channel c of eight RGBA8 texels as v / 255.
-inline __m256 channel8(__m256i texels, int c) {
-  const __m256i bytes = _mm256_and_si256(_mm256_srli_epi32(texels, 8 * c), _mm256_set1_epi32(0xff));
-  return _mm256_div_ps(_mm256_cvtepi32_ps(bytes), _mm256_set1_ps(255.0f));
-}
-
-/// a (1 - t) + b t, as glm::mix.
-inline __m256 mix8(__m256 a, __m256 b, __m256 t) {
-  return _mm256_add_ps(_mm256_mul_ps(a, _mm256_sub_ps(_mm256_set1_ps(1.0f), t)), _mm256_mul_ps(b, t));
-}
-
-/// The notes' bilinear filter (Texture2D::bilinear) of eight lanes on one RGBA8 level, in float: the four texels
-/// gathered at once.
-inline void bilinear8(const ImageRGBA8& level, const Sampler& sampler, __m256 u, __m256 v, __m256 out[4]) {
-  const int w = level.width(), h = level.height();
-  const __m256 x = _mm256_sub_ps(_mm256_mul_ps(u, _mm256_set1_ps(float(w))), _mm256_set1_ps(0.5f));
-  const __m256 y = _mm256_sub_ps(_mm256_mul_ps(v, _mm256_set1_ps(float(h))), _mm256_set1_ps(0.5f));
-  const __m256 fx = _mm256_floor_ps(x), fy = _mm256_floor_ps(y);
-  const __m256 a = _mm256_sub_ps(x, fx), b = _mm256_sub_ps(y, fy);
-  const __m256 one = _mm256_set1_ps(1.0f);
-  const __m256i x0 = wrap8(fx, w, sampler.wrap_u), x1 = wrap8(_mm256_add_ps(fx, one), w, sampler.wrap_u);
-  const __m256i y0 = wrap8(fy, h, sampler.wrap_v), y1 = wrap8(_mm256_add_ps(fy, one), h, sampler.wrap_v);
-  // Texel rows count from the bottom: row h - 1 - y of the image.
-  const __m256i top_row = _mm256_set1_epi32(h - 1), width = _mm256_set1_epi32(w);
-  const __m256i lower = _mm256_mullo_epi32(_mm256_sub_epi32(top_row, y0), width);
-  const __m256i upper = _mm256_mullo_epi32(_mm256_sub_epi32(top_row, y1), width);
-  const int* texels = reinterpret_cast<const int*>(level.row(0));
-  const __m256i t00 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(lower, x0), 4);
-  const __m256i t10 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(lower, x1), 4);
-  const __m256i t01 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(upper, x0), 4);
-  const __m256i t11 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(upper, x1), 4);
-  for (int c = 0; c < 4; ++c) {
-    const __m256 bottom = mix8(channel8(t00, c), channel8(t10, c), a);
-    const __m256 top = mix8(channel8(t01, c), channel8(t11, c), a);
-    out[c] = mix8(bottom, top, b);
-  }
-}
-
-/// Texture2D::sample of an RGBA8 texture with bilinear or trilinear filtering and repeat or clamp wrapping, eight
-/// lanes at a time (lod per lane, as Texture2D::sample clamps it). Level 0's texels must be indexable by int32.
-void sample_rgba8(const Texture2D& t, const float* u, const float* v, const float* lod, float* out[4], int n) {
-  const Sampler& sampler = t.sampler();
-  const int last = t.levels() - 1;
-  for (int l = 0; l < n; l += 8) {
-    const __m256 lu = _mm256_loadu_ps(u + l), lv = _mm256_loadu_ps(v + l);
-    __m256 result[4];
-    if (sampler.filter == Filter::bilinear) {
-      bilinear8(t.level_rgba8(0), sampler, lu, lv, result);
-    } else {
-      // The lanes' levels (a quad's are equal): each distinct lower level once over all eight lanes, kept where it is
-      // the lane's, blended with the next level where the lane's lod has a fraction.
-      int lower[8];
-      float blend[8];
-      for (int k = 0; k < 8; ++k) {
-        const float clamped = lod[l + k] > 0.f ? std::min(lod[l + k], float(last)) : 0.f;
-        lower[k] = int(clamped);
-        blend[k] = clamped - float(lower[k]);
-      }
-      const __m256 weights = _mm256_loadu_ps(blend);
-      const __m256i lanes_level = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lower));
-      for (int k = 0; k < 8; ++k) {
-        if (k > 0 && std::find(lower, lower + k, lower[k]) != lower + k) continue;  // done with an earlier lane
-        __m256 near[4], far[4];
-        bilinear8(t.level_rgba8(lower[k]), sampler, lu, lv, near);
-        const bool blends = lower[k] < last;
-        if (blends) bilinear8(t.level_rgba8(lower[k] + 1), sampler, lu, lv, far);
-        const __m256 mine = _mm256_castsi256_ps(_mm256_cmpeq_epi32(lanes_level, _mm256_set1_epi32(lower[k])));
-        for (int c = 0; c < 4; ++c) {
-          const __m256 value = blends ? mix8(near[c], far[c], weights) : near[c];
-          result[c] = k == 0 ? value : _mm256_blendv_ps(result[c], value, mine);
-        }
-      }
-    }
-    for (int c = 0; c < 4; ++c) _mm256_storeu_ps(out[c] + l, result[c]);
-  }
-}
-#endif
-
 void sample(const ir::Instr& in, float* file, int n, bool fragment, const BoundSampler* samplers) {
   float* out[4];
   for (int k = 0; k < 4; ++k) out[k] = file + size_t(in.dst + uint32_t(k)) * kLanes;
@@ -148,20 +59,17 @@ void sample(const ir::Instr& in, float* file, int n, bool fragment, const BoundS
     for (int l = 0; l < n; ++l) out[0][l] = out[1][l] = out[2][l] = 0.0f, out[3][l] = 1.0f;
     return;
   }
-#ifdef __AVX2__
-  const Texture2D* t = s.texture;
-  if (!cube && t->format() == TexelFormat::rgba8 && t->sampler().filter != Filter::nearest &&
-      t->sampler().wrap_u != Wrap::mirror && t->sampler().wrap_v != Wrap::mirror &&
-      size_t(t->width()) * size_t(t->height()) < (size_t(1) << 31)) {
+  if (!cube) {
+    // 2D textures: the lanes at once (Texture2D::sample_lanes; SIMD for 8-bit textures), each quad's level of detail
+    // from its coordinates' differences.
     alignas(32) float lods[kLanes];
     for (int q = 0; q < n; q += 4) {
-      const float lod = explicit_lod || !fragment ? 0.0f : quad_lod(*t, a, b, q);
+      const float lod = explicit_lod || !fragment ? 0.0f : quad_lod(*s.texture, a, b, q);
       for (int l = q; l < q + 4; ++l) lods[l] = explicit_lod ? d[l] : bias ? lod + d[l] : lod;
     }
-    sample_rgba8(*t, a, b, lods, out, n);
+    s.texture->sample_lanes(a, b, lods, out, n);
     return;
   }
-#endif
   for (int q = 0; q < n; q += 4) {
     float lod = 0.0f;
     if (!explicit_lod && fragment) lod = cube ? quad_cube_lod(*s.cube_map, a, b, c, q) : quad_lod(*s.texture, a, b, q);

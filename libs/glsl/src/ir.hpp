@@ -11,8 +11,8 @@
 // in ordinary bool registers, the executor only knows jump, jump_if_none and jump_if_any.
 //
 // Registers that depend only on constants and uniforms are computed once per scratch (the prologue), not per batch.
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 

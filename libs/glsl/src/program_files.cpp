@@ -17,11 +17,16 @@ std::filesystem::file_time_type modified(const std::filesystem::path& path) {
 
 ProgramFiles::ProgramFiles(std::filesystem::path vertex, std::filesystem::path fragment,
                            std::function<void(Program&)> configure)
-    : vertex_(std::move(vertex)), fragment_(std::move(fragment)), configure_(std::move(configure)),
-      vertex_time_(modified(vertex_)), fragment_time_(modified(fragment_)), program_(compile()) {}
+    : vertex_(std::move(vertex)),
+      fragment_(std::move(fragment)),
+      configure_(std::move(configure)),
+      vertex_time_(modified(vertex_)),
+      fragment_time_(modified(fragment_)),
+      program_(compile()) {}
 
 std::shared_ptr<Program> ProgramFiles::compile() const {
-  auto program = std::make_shared<Program>(Program::compile(read_shader(vertex_.string()), read_shader(fragment_.string())));
+  auto program =
+      std::make_shared<Program>(Program::compile(read_shader(vertex_.string()), read_shader(fragment_.string())));
   if (configure_) configure_(*program);
   return program;
 }

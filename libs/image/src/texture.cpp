@@ -7,9 +7,11 @@
 #include <utility>
 #include <variant>
 
+#include "tessera/core/cpu.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/math/types.hpp"
+#include "texture_lanes.hpp"
 
 namespace tessera {
 namespace {
@@ -269,6 +271,19 @@ glm::vec4 Texture2D::bilinear(glm::vec2 uv, int level) const {
 // One branch on the storage per sample, not per texel (measured in docs/image.md).
 glm::vec4 Texture2D::sample(glm::vec2 uv, float lod) const {
   return rgba8_ ? sample_levels(levels8_, sampler_, uv, lod) : sample_levels(levels_, sampler_, uv, lod);
+}
+
+void Texture2D::sample_lanes(const float* u, const float* v, const float* lod, float* const out[4], int count) const {
+  static const bool avx2 = simd_level() >= SimdLevel::avx2;
+  if (avx2 && rgba8_ && sampler_.filter != Filter::nearest && sampler_.wrap_u != Wrap::mirror &&
+      sampler_.wrap_v != Wrap::mirror && count % 8 == 0 && size_t(width_) * size_t(height_) < (size_t(1) << 31)) {
+    sample_lanes_avx2(*this, u, v, lod, out, count);
+    return;
+  }
+  for (int k = 0; k < count; ++k) {
+    const glm::vec4 c = sample(glm::vec2(u[k], v[k]), lod[k]);
+    out[0][k] = c.x, out[1][k] = c.y, out[2][k] = c.z, out[3][k] = c.w;
+  }
 }
 
 float Texture2D::lod(glm::vec2 duv_dx, glm::vec2 duv_dy) const {

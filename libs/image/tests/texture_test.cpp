@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <random>
 
+#include "tessera/core/rng.hpp"
 #include "tessera/image/image_io.hpp"
 
 namespace tessera {
@@ -444,6 +445,43 @@ TEST(Mipmaps, EightBitLevelsStayWithinHalfAStepPerLevelOfTheFloatPyramid) {
     worst = std::max(worst, largest * 255);
   }
   std::printf("largest difference of the 8-bit and float levels: %.3f / 255\n", worst);
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+TEST(TextureLanes, SampleLanesAgreesWithSample) {
+  // Every filter and wrap on an 8-bit texture of odd size (MIPmap levels of both parities), at random points well
+  // outside [0, 1] and levels of detail below 0, between levels and past the last: within one 8-bit step (the SIMD
+  // path's float coordinates), exactly for the per-point path (nearest, mirror).
+  ImageRGBA8 image(37, 20);
+  Rng rng(3);
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      image(x, y) = glm::u8vec4(rng.next_u32() & 255, rng.next_u32() & 255, rng.next_u32() & 255, rng.next_u32() & 255);
+  constexpr int kCount = 64;
+  float u[kCount], v[kCount], lod[kCount], r[kCount], g[kCount], b[kCount], a[kCount];
+  float* const out[4] = {r, g, b, a};
+  for (const Filter filter : {Filter::nearest, Filter::bilinear, Filter::trilinear})
+    for (const Wrap wrap : {Wrap::repeat, Wrap::clamp, Wrap::mirror}) {
+      const Texture2D texture(image, Sampler{wrap, wrap, filter});
+      float worst = 0;
+      for (int round = 0; round < 50; ++round) {
+        for (int k = 0; k < kCount; ++k) {
+          u[k] = 6 * rng.uniform() - 3, v[k] = 6 * rng.uniform() - 3, lod[k] = 7 * rng.uniform() - 1.5f;
+        }
+        texture.sample_lanes(u, v, lod, out, kCount);
+        for (int k = 0; k < kCount; ++k) {
+          const glm::vec4 want = texture.sample(glm::vec2(u[k], v[k]), lod[k]);
+          for (int c = 0; c < 4; ++c) worst = std::max(worst, std::abs(out[c][k] - want[c]));
+        }
+      }
+      const bool per_point = filter == Filter::nearest || wrap == Wrap::mirror;
+      EXPECT_LE(worst, per_point ? 0.0f : 1.0f / 255) << int(filter) << " " << int(wrap);
+    }
 }
 
 }  // namespace

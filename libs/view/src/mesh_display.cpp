@@ -26,11 +26,13 @@ MeshDisplay::MeshDisplay(const ViewerOptions& o)
   if (o.vertex_shader.empty()) return;
   const std::vector<std::string> uniforms = o.uniforms;
   const std::string texture = o.texture;
-  program_ = std::make_unique<glsl::ProgramFiles>(o.vertex_shader, o.fragment_shader, [uniforms, texture](glsl::Program& p) {
-    for (const std::string& u : uniforms) p.set_uniform_assignment(u);
-    if (!texture.empty())
-      p.bind_texture(0, std::make_shared<const Texture2D>(load_texture(texture, Sampler{.filter = Filter::trilinear})));
-  });
+  program_ =
+      std::make_unique<glsl::ProgramFiles>(o.vertex_shader, o.fragment_shader, [uniforms, texture](glsl::Program& p) {
+        for (const std::string& u : uniforms) p.set_uniform_assignment(u);
+        if (!texture.empty())
+          p.bind_texture(
+              0, std::make_shared<const Texture2D>(load_texture(texture, Sampler{.filter = Filter::trilinear})));
+      });
 }
 
 void MeshDisplay::set_mesh(PolyMesh mesh) {

@@ -33,8 +33,7 @@ namespace {
 /// them), each level made from the one below when first asked for.
 class MeshMode final : public ViewMode {
  public:
-  MeshMode(const Viewable& v, const ViewerOptions& o)
-      : display_(o), name_(file_name(v.name)), up_axis_(o.up_axis) {
+  MeshMode(const Viewable& v, const ViewerOptions& o) : display_(o), name_(file_name(v.name)), up_axis_(o.up_axis) {
     levels_.push_back(v.mesh);
     box_ = bounding_box(v.mesh);
     scheme_ = v.mesh.is_triangle_mesh() ? SubdivisionScheme::loop : SubdivisionScheme::catmull_clark;

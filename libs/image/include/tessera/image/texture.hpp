@@ -77,6 +77,12 @@ class Texture2D {
   glm::vec4 sample(glm::vec2 uv) const { return sample(uv, 0.f); }
   /// Samples at (u, v) with the sampler's filter; only trilinear uses lod (clamped to [0, levels() - 1]).
   glm::vec4 sample(glm::vec2 uv, float lod) const;
+  /// sample(uv, lod) of `count` points at once (a SIMD fragment stage's lanes): (u[k], v[k]) at level of detail
+  /// lod[k] (read by trilinear filtering only) into out[0][k] to out[3][k] (RGBA). An 8-bit texture filtered
+  /// bilinearly or trilinearly with repeat or clamp wrapping is sampled eight points at a time with AVX2 gathers
+  /// where the CPU has them (src/texture_avx2.cpp): its coordinates are then float rather than double, which moves a
+  /// sample by at most a rounding of its weights (within 1/255 of sample()'s). Every other texture: sample() per point.
+  void sample_lanes(const float* u, const float* v, const float* lod, float* const out[4], int count) const;
   /// Samples with the level of detail given by screen-space derivatives of (u, v) (see lod()).
   glm::vec4 sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy) const { return sample(uv, lod(duv_dx, duv_dy)); }
   /// The level of detail of a pixel footprint: log2 of the longer of the two derivative vectors measured in texels,

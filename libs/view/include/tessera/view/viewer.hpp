@@ -42,7 +42,7 @@ struct ViewerOptions {
   /// The model's up axis (1 y, 2 z; -1: z for Bezier patches, whose data sets are z-up as Newell's teapot, else y):
   /// the home view's vertical, the turntable's axis and the floor's normal.
   int up_axis = -1;
-  std::string texture;      ///< a texture image for surfaces with uvs ("" = a checkerboard)
+  std::string texture;  ///< a texture image for surfaces with uvs ("" = a checkerboard)
   /// A GLSL program drawing the surfaces instead of the shading (both files, or neither; docs/shaders.md), its
   /// uniforms ("name=v1,v2,...") and `texture` (when given) on texture unit 0.
   std::string vertex_shader, fragment_shader;
