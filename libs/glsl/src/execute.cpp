@@ -23,8 +23,11 @@ int& executor_isa_cap() {
 
 void Registers::run(int lanes_in_use) {
   if (stage_.discards) std::fill_n(ulanes(stage_.kept), ir::kLanes, ~0u);
-  static const bool cpu_avx2 = simd_level() >= SimdLevel::avx2;
-  if (cpu_avx2 && executor_isa_cap() != 0)
+  static const SimdLevel cpu = simd_level();
+  const int cap = executor_isa_cap();
+  if (cpu >= SimdLevel::avx512 && cap < 0)
+    avx512::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());
+  else if (cpu >= SimdLevel::avx2 && cap != 0)
     avx2::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());
   else
     baseline::run_code(stage_.code, file_.get(), lanes_in_use, fragment_, samplers_.data());

@@ -27,9 +27,13 @@ namespace avx2 {
 void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bool fragment,
               const BoundSampler* samplers);
 }
+namespace avx512 {
+void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bool fragment,
+              const BoundSampler* samplers);
+}
 
-/// A cap on the executor's instruction set, for the tests that compare the sets: 0 the baseline, -1 (the default)
-/// the widest the CPU has.
+/// A cap on the executor's instruction set, for the tests that compare the sets: 0 the baseline, 1 AVX2, -1 (the
+/// default) the widest the CPU has.
 int& executor_isa_cap();
 
 /// One thread's register file for a stage: constants and uniforms in place and the prologue run, ready for batches.
