@@ -7,6 +7,7 @@
 #include "sketch_access.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
+#include "tessera/glsl/program_files.hpp"
 #include "tessera/image/animation.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster3d/gt.hpp"
@@ -63,6 +64,19 @@ raster3d::Context& Sketch::context() {
   if (!context_) throw InvalidInput("context() in a 2D sketch (call size(w, h, Renderer::p3d) for the 3D context)");
   return *context_;
 }
+
+std::shared_ptr<glsl::ProgramFiles> Sketch::load_shader(const std::string& fragment, const std::string& vertex) {
+  return std::make_shared<glsl::ProgramFiles>(vertex, fragment);
+}
+
+void Sketch::shader(const std::shared_ptr<glsl::ProgramFiles>& program) {
+  raster3d::Context& ctx = context();
+  if (program->reload() && !program->error().empty())
+    fmt::print(stderr, "tessera: shader {}: {} (the last good program draws)\n", program->name(), program->error());
+  ctx.use_program(program->program());
+}
+
+void Sketch::reset_shader() { context().use_program(nullptr); }
 
 ImageRGBA8 Sketch::picture() {
   if (context_) return context_->framebuffer().color();

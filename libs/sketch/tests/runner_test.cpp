@@ -3,11 +3,14 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "tessera/glsl/program_files.hpp"
 #include "tessera/image/image_io.hpp"
 
 namespace tessera {
@@ -111,6 +114,60 @@ TEST(Runner, ThreeDimensionalSketchTurns) {
   // The background's corner is the clear color (0.1, 0.1, 0.15); the center is a face of the cube.
   EXPECT_EQ(frames[5](0, 0), glm::u8vec4(26, 26, 38, 255));
   EXPECT_NE(frames[5](48, 48), frames[5](0, 0));
+}
+
+}  // namespace
+}  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// A 3D sketch drawing one quad through a GLSL program loaded from files (Processing's loadShader and shader()).
+class ShaderSketch : public Sketch {
+ public:
+  explicit ShaderSketch(std::filesystem::path dir) : dir_(std::move(dir)) {}
+  void setup() override {
+    size(16, 16, Renderer::p3d);
+    program_ = load_shader((dir_ / "paint.frag").string(), (dir_ / "paint.vert").string());
+  }
+  void draw() override {
+    raster3d::Context& ctx = context();
+    ctx.clear(Vec3f(0));
+    shader(program_);
+    ctx.begin(raster3d::Primitive::quads);
+    for (const auto& [x, y] : {std::pair{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) ctx.vertex(x, y, 0);
+    ctx.end();
+  }
+
+ private:
+  std::filesystem::path dir_;
+  std::shared_ptr<glsl::ProgramFiles> program_;
+};
+
+void write_shader(const std::filesystem::path& path, const std::string& text, int edit) {
+  std::ofstream(path) << text;
+  std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now() + std::chrono::seconds(edit));
+}
+
+TEST(Runner, ShadersAreReloadedWhenTheirFilesChange) {
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "sketch_shader";
+  std::filesystem::create_directories(dir);
+  write_shader(dir / "paint.vert", "void main() { gl_Position = gl_Vertex; }", 0);
+  write_shader(dir / "paint.frag", "void main() { gl_FragColor = vec4(1.0, 0.0, 0.0, 1.0); }", 1);
+  ShaderSketch sketch(dir);
+  RunOptions options;
+  options.frames = 3;
+  std::vector<glm::u8vec4> centers;
+  run_sketch(sketch, options, [&](int frame, const ImageRGBA8& picture) {
+    centers.push_back(picture(8, 8));
+    // After frame 1 the file is edited; after frame 2 it is broken (the last good program keeps drawing).
+    if (frame == 1) write_shader(dir / "paint.frag", "void main() { gl_FragColor = vec4(0.0, 1.0, 0.0, 1.0); }", 2);
+    if (frame == 2) write_shader(dir / "paint.frag", "void main() { gl_FragColor = 1.0; }", 3);
+  });
+  ASSERT_EQ(centers.size(), 3u);
+  EXPECT_EQ(centers[0], glm::u8vec4(255, 0, 0, 255));
+  EXPECT_EQ(centers[1], glm::u8vec4(0, 255, 0, 255));
+  EXPECT_EQ(centers[2], glm::u8vec4(0, 255, 0, 255));
 }
 
 }  // namespace

@@ -41,6 +41,10 @@
 
 namespace tessera {
 
+namespace glsl {
+class ProgramFiles;  // a program from shader files (tessera/glsl/program_files.hpp)
+}
+
 /// What size() draws with: the 2D Canvas (Processing's default renderer) or the 3D gt context (P3D).
 enum class Renderer { p2d, p3d };
 
@@ -145,6 +149,18 @@ class Sketch {
   raster3d::Context& context();
   /// The picture drawn so far, 8-bit (2D: the canvas; 3D: the back buffer, after drawing what is pending).
   ImageRGBA8 picture();
+
+  // ---- GLSL programs (3D sketches; docs/shaders.md) -----------------------------------------------------------------
+  /// Processing's loadShader(fragment, vertex): a GLSL program from two files. Throws as glsl::ProgramFiles (a
+  /// compile error names the file and line).
+  std::shared_ptr<glsl::ProgramFiles> load_shader(const std::string& fragment, const std::string& vertex);
+  /// Processing's shader(s): the 3D triangles drawn after it go through the program, its built-ins from the gt
+  /// context's state. Each call first compiles the files again if they changed on disk (live editing: call it in
+  /// draw()); a broken edit keeps the last good program and prints its error once. Throws InvalidInput in a 2D
+  /// sketch.
+  void shader(const std::shared_ptr<glsl::ProgramFiles>& program);
+  /// Processing's resetShader(): the fixed function again.
+  void reset_shader();
 
   // ---- Drawing: Processing's calls, forwarded to the Canvas (canvas.hpp documents each, with every overload) -------
   // Each throws InvalidInput in a 3D sketch, as canvas().
