@@ -46,7 +46,7 @@ reference::GlslDraw scene(Case c) {
       for (int x = 0; x < 512; ++x)
         t.rgba.insert(t.rgba.end(),
                       {uint8_t(x ^ y), uint8_t((x * 3) & 255), uint8_t(((x / 32 + y / 32) & 1) * 200), 255});
-    t.filter = reference::GlslFilter::linear_mipmap_linear;
+    t.filter = reference::GlFilter::linear_mipmap_linear;
     d.textures.emplace_back(0, t);
     d.uniforms.push_back({"myTexture", {}, {0}});
   } else {

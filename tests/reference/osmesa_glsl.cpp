@@ -152,19 +152,19 @@ void set_int_uniform(GLint location, int components, const std::vector<int>& v) 
   }
 }
 
-GLint min_filter(GlslFilter f) {
+GLint min_filter(GlFilter f) {
   switch (f) {
-    case GlslFilter::nearest:
+    case GlFilter::nearest:
       return GL_NEAREST;
-    case GlslFilter::linear:
+    case GlFilter::linear:
       return GL_LINEAR;
-    case GlslFilter::linear_mipmap_linear:
+    case GlFilter::linear_mipmap_linear:
       return GL_LINEAR_MIPMAP_LINEAR;
   }
   return GL_LINEAR;
 }
 
-GLint mag_filter(GlslFilter f) { return f == GlslFilter::nearest ? GL_NEAREST : GL_LINEAR; }
+GLint mag_filter(GlFilter f) { return f == GlFilter::nearest ? GL_NEAREST : GL_LINEAR; }
 
 }  // namespace
 
@@ -298,13 +298,13 @@ struct GlslRenderer::Impl {
     load_matrix(GL_MODELVIEW, Mat4f(1.0f));
     for (size_t i = 0; i < draw.lights.size(); ++i) {
       const GLenum light = GL_LIGHT0 + GLenum(i);
-      const GlslLight& l = draw.lights[i];
+      const GlLight& l = draw.lights[i];
       glLightfv(light, GL_POSITION, glm::value_ptr(l.position));
       glLightfv(light, GL_AMBIENT, glm::value_ptr(l.ambient));
       glLightfv(light, GL_DIFFUSE, glm::value_ptr(l.diffuse));
       glLightfv(light, GL_SPECULAR, glm::value_ptr(l.specular));
     }
-    const GlslMaterial& m = draw.material;
+    const GlMaterial& m = draw.material;
     glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT, glm::value_ptr(m.ambient));
     glMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, glm::value_ptr(m.diffuse));
     glMaterialfv(GL_FRONT_AND_BACK, GL_SPECULAR, glm::value_ptr(m.specular));
@@ -355,7 +355,7 @@ struct GlslRenderer::Impl {
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter(t.filter));
       glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, mag_filter(t.filter));
       glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, t.width, t.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
-      if (t.filter == GlslFilter::linear_mipmap_linear) glGenerateMipmap(GL_TEXTURE_2D);
+      if (t.filter == GlFilter::linear_mipmap_linear) glGenerateMipmap(GL_TEXTURE_2D);
       check_gl(fmt::format("uploading the texture of unit {}", unit).c_str());
     }
     for (const auto& [unit, c] : draw.cube_maps) {
@@ -372,7 +372,7 @@ struct GlslRenderer::Impl {
       for (int face = 0; face < 6; ++face)
         glTexImage2D(GL_TEXTURE_CUBE_MAP_POSITIVE_X + GLenum(face), 0, GL_RGBA8, c.size, c.size, 0, GL_RGBA,
                      GL_UNSIGNED_BYTE, c.faces[size_t(face)].data());
-      if (c.filter == GlslFilter::linear_mipmap_linear) glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
+      if (c.filter == GlFilter::linear_mipmap_linear) glGenerateMipmap(GL_TEXTURE_CUBE_MAP);
       check_gl(fmt::format("uploading the cube map of unit {}", unit).c_str());
     }
     glActiveTexture(GL_TEXTURE0);

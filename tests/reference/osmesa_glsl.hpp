@@ -18,16 +18,10 @@
 #include <utility>
 #include <vector>
 
+#include "osmesa_renderer.hpp"  // GlLight, GlMaterial, GlFilter
 #include "tessera/math/types.hpp"
 
 namespace tessera::reference {
-
-/// A texture's minification filter (GL_TEXTURE_MIN_FILTER); magnification is GL_NEAREST for nearest, else GL_LINEAR.
-enum class GlslFilter {
-  nearest,               ///< GL_NEAREST
-  linear,                ///< GL_LINEAR
-  linear_mipmap_linear,  ///< GL_LINEAR_MIPMAP_LINEAR, levels built by glGenerateMipmap
-};
 
 /// GL_TEXTURE_WRAP_S and _T.
 enum class GlslWrap {
@@ -39,7 +33,7 @@ enum class GlslWrap {
 struct GlslTexture {
   int width = 0, height = 0;
   std::vector<uint8_t> rgba;  ///< 4 bytes per texel, rows bottom first (as glTexImage2D takes them)
-  GlslFilter filter = GlslFilter::linear;
+  GlFilter filter = GlFilter::linear;
   GlslWrap wrap = GlslWrap::repeat;
 };
 
@@ -49,7 +43,7 @@ struct GlslCubeMap {
   /// +X, -X, +Y, -Y, +Z, -Z (GL_TEXTURE_CUBE_MAP_POSITIVE_X + i): size * size * 4 bytes each, rows as glTexImage2D
   /// takes them (OpenGL's face orientation).
   std::array<std::vector<uint8_t>, 6> faces;
-  GlslFilter filter = GlslFilter::linear;  ///< linear_mipmap_linear builds the levels with glGenerateMipmap
+  GlFilter filter = GlFilter::linear;  ///< linear_mipmap_linear builds the levels with glGenerateMipmap
 };
 
 /// A uniform's value. `floats` go to glUniform{1,2,3,4}fv or glUniformMatrix{2,3,4}fv (column-major, not transposed)
@@ -70,24 +64,6 @@ struct GlslAttribute {
   std::vector<float> data;  ///< components * vertex count
 };
 
-/// GL_LIGHTi's parameters (glLightfv), given in eye space: they are set with an identity model-view. position.w = 0:
-/// a directional light toward position.xyz; w = 1: a point light.
-struct GlslLight {
-  Vec4f position{0, 0, 1, 0};
-  Vec4f ambient{0, 0, 0, 1};
-  Vec4f diffuse{1, 1, 1, 1};
-  Vec4f specular{1, 1, 1, 1};
-};
-
-/// glMaterialfv(GL_FRONT_AND_BACK, ...) (gl_FrontMaterial, gl_BackMaterial): the defaults are OpenGL's.
-struct GlslMaterial {
-  Vec4f ambient{0.2f, 0.2f, 0.2f, 1};
-  Vec4f diffuse{0.8f, 0.8f, 0.8f, 1};
-  Vec4f specular{0, 0, 0, 1};
-  Vec4f emission{0, 0, 0, 1};
-  float shininess = 0;
-};
-
 /// One draw: a program, its vertex arrays, the compatibility state its built-ins read, uniforms and textures.
 struct GlslDraw {
   std::string vertex_source;    ///< the vertex shader's text
@@ -103,8 +79,8 @@ struct GlslDraw {
   Mat4f projection{1.0f};                 ///< glMatrixMode(GL_PROJECTION) + glLoadMatrixf
   /// GL_LIGHT0 + i (at most 8; the others keep OpenGL's defaults: light 0 white, the rest black). They are set with
   /// glLightfv and not enabled: shaders read gl_LightSource[i] either way.
-  std::vector<GlslLight> lights;
-  GlslMaterial material;
+  std::vector<GlLight> lights;
+  GlMaterial material;
   Vec4f current_color{1, 1, 1, 1};  ///< glColor4f: gl_Color when `colors` is empty
   std::vector<GlslUniform> uniforms;
   std::vector<std::pair<int, GlslTexture>> textures;   ///< (unit, texture): GL_TEXTURE_2D on GL_TEXTURE0 + unit

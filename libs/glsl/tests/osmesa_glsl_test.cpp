@@ -170,7 +170,7 @@ Result compare(const Case& c) {
     reference::GlslTexture t;
     t.width = t.height = texture_size;
     t.rgba = c.name == "normal_map" ? bumps(texture_size) : checker(texture_size);
-    t.filter = c.mipmapped ? reference::GlslFilter::linear_mipmap_linear : reference::GlslFilter::linear;
+    t.filter = c.mipmapped ? reference::GlFilter::linear_mipmap_linear : reference::GlFilter::linear;
     t.wrap = c.clamp ? reference::GlslWrap::clamp_to_edge : reference::GlslWrap::repeat;
     d.textures.emplace_back(0, t);
   }
@@ -349,7 +349,7 @@ TEST(GlslMesa, GalleryScenesOfTheNotesPrograms) {
       for (int y = t.height - 1; y >= 0; --y)  // GL rows bottom first
         for (int x = 0; x < t.width; ++x) t.rgba.insert(t.rgba.end(), &s.texture(x, y)[0], &s.texture(x, y)[0] + 4);
       t.filter =
-          s.filter == Filter::trilinear ? reference::GlslFilter::linear_mipmap_linear : reference::GlslFilter::linear;
+          s.filter == Filter::trilinear ? reference::GlFilter::linear_mipmap_linear : reference::GlFilter::linear;
       t.wrap = s.wrap == Wrap::clamp ? reference::GlslWrap::clamp_to_edge : reference::GlslWrap::repeat;
       d.textures.emplace_back(0, t);
     }
