@@ -1111,7 +1111,7 @@ class StageCompiler {
     if (op > glslang::EOpConstructGuardStart && op < glslang::EOpConstructGuardEnd) return construct(node);
     if (node->isTexture()) return texture(node);
     if (op == glslang::EOpFtransform) {
-      TType mat4(glslang::EbtFloat, glslang::EvqUniform, 1, 4, 4);
+      TType mat4(glslang::EbtFloat, glslang::EvqUniform, 0, 4, 4);  // a matrix has vector size 0
       TType vec4(glslang::EbtFloat, glslang::EvqVaryingIn, 4);
       const Regs mvp = uniform_value("gl_ModelViewProjectionMatrix", mat4, true);
       const Regs vertex = attribute("gl_Vertex", AttributeSlot::Source::position, vec4);
