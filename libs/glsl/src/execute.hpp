@@ -49,7 +49,7 @@ class Registers {
   uint32_t* ulanes(uint32_t r) { return reinterpret_cast<uint32_t*>(lanes(r)); }
 
   /// Runs the stage's code over lanes [0, lanes_in_use) (the others compute garbage). Throws InvalidInput when a
-  /// batch takes more than ir::kMaxIterations backward jumps.
+  /// batch's loops run more than ir::kMaxLoopWork instructions.
   void run(int lanes_in_use);
 
  private:

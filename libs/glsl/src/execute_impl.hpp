@@ -88,7 +88,7 @@ void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bo
               const BoundSampler* samplers) {
   // Whole quads (the derivatives read all four lanes), rounded up to 8 lanes so the loops have no scalar tail.
   const int n = std::min(kLanes, (lanes_in_use + 7) & ~7);
-  int64_t iterations = 0;
+  int64_t loop_work = 0;  // instructions repeated by backward jumps (ir::kMaxLoopWork)
   const auto reg = [file](uint32_t r) { return file + size_t(r) * kLanes; };
   for (size_t pc = 0; pc < code.size();) {
     const ir::Instr& in = code[pc++];
@@ -293,10 +293,10 @@ void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bo
         uint32_t any = 0;
         for (int l = 0; l < lanes_in_use; ++l) any |= au[l];
         if ((in.op == Op::jump_if_any) == (any != 0)) {
+          if (in.op == Op::jump_if_any && (loop_work += int64_t(pc - size_t(in.target))) > ir::kMaxLoopWork)
+            throw InvalidInput("a shader's loops ran more than " + std::to_string(ir::kMaxLoopWork) +
+                               " instructions for one batch of pixels (an endless loop?)");
           pc = size_t(in.target);
-          if (in.op == Op::jump_if_any && ++iterations > ir::kMaxIterations)
-            throw InvalidInput("a shader loop ran more than " + std::to_string(ir::kMaxIterations) +
-                               " iterations (an endless loop?)");
         }
         break;
       }

@@ -156,8 +156,9 @@ struct Stage {
 inline constexpr uint32_t kFragCoord = 1000;    // + 0..3: gl_FragCoord x, y, z, w
 inline constexpr uint32_t kFrontFacing = 1004;  // gl_FrontFacing (bool)
 
-/// A loop guard: the executor throws once a batch has taken more backward jumps than this.
-inline constexpr int64_t kMaxIterations = int64_t(1) << 20;
+/// A loop guard: the executor throws once a batch's loops have run more instructions than this (each backward jump
+/// counts the instructions of the body it repeats): a fraction of a second of work, where an endless loop would hang.
+inline constexpr int64_t kMaxLoopWork = int64_t(1) << 20;
 
 /// The largest program the compiler makes: registers per stage (a register file is 256 bytes a register per thread)
 /// and instructions per stage. A source past them (a huge array indexed by a variable, say) is a compile error.
