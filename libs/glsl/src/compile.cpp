@@ -66,6 +66,10 @@ Scalar scalar_of(const TType& type) {
   }
 }
 
+/// The register of element (major, minor) of a run of `per` registers a major index (a matrix's column and row, an
+/// array's element and component).
+size_t element(int major, int per, int minor) { return size_t(major) * size_t(per) + size_t(minor); }
+
 /// The number of scalar registers of a value of `type`.
 int slot_count(const TType& type) {
   int elements = 1;
@@ -115,13 +119,13 @@ BasicType basic_type(const TType& type) {
   const int n = type.getVectorSize() - 1;
   switch (scalar_of(type)) {
     case Scalar::f:
-      return BasicType(int(BasicType::float_) + n);
+      return BasicType(int(BasicType::floating) + n);
     case Scalar::i:
-      return BasicType(int(BasicType::int_) + n);
+      return BasicType(int(BasicType::integer) + n);
     case Scalar::b:
-      return BasicType(int(BasicType::bool_) + n);
+      return BasicType(int(BasicType::boolean) + n);
   }
-  return BasicType::float_;
+  return BasicType::floating;
 }
 
 /// One instruction's register operands (the rest are numbers): which of a, b, c, d it reads.
@@ -568,7 +572,7 @@ class StageCompiler {
       for (int e = 0; e < p.elements; ++e) {
         const uint32_t hit = band(mask_, emit(Op::ieq, p.index, constant_int(e)));
         for (size_t k = 0; k < p.positions.size(); ++k) {
-          uint32_t& r = root[size_t(p.positions[k] + e * p.stride)];
+          uint32_t& r = root[size_t(p.positions[k]) + size_t(e) * size_t(p.stride)];
           r = emit(Op::select, hit, v[k], r);
         }
       }
@@ -654,7 +658,7 @@ class StageCompiler {
     Regs out;
     for (int r = 0; r < rows; ++r) {
       uint32_t sum = emit(Op::fmul, m[size_t(r)], v[0]);
-      for (int c = 1; c < cols; ++c) sum = emit(Op::fadd, sum, emit(Op::fmul, m[size_t(c * rows + r)], v[size_t(c)]));
+      for (int c = 1; c < cols; ++c) sum = emit(Op::fadd, sum, emit(Op::fmul, m[element(c, rows, r)], v[size_t(c)]));
       out.push_back(sum);
     }
     return out;
@@ -664,8 +668,8 @@ class StageCompiler {
   Regs vector_times_matrix(const Regs& v, const Regs& m, int cols, int rows) {
     Regs out;
     for (int c = 0; c < cols; ++c) {
-      uint32_t sum = emit(Op::fmul, v[0], m[size_t(c * rows)]);
-      for (int r = 1; r < rows; ++r) sum = emit(Op::fadd, sum, emit(Op::fmul, v[size_t(r)], m[size_t(c * rows + r)]));
+      uint32_t sum = emit(Op::fmul, v[0], m[element(c, rows, 0)]);
+      for (int r = 1; r < rows; ++r) sum = emit(Op::fadd, sum, emit(Op::fmul, v[size_t(r)], m[element(c, rows, r)]));
       out.push_back(sum);
     }
     return out;
@@ -674,7 +678,7 @@ class StageCompiler {
   Regs matrix_times_matrix(const Regs& a, int a_cols, int a_rows, const Regs& b, int b_cols) {
     Regs out;
     for (int c = 0; c < b_cols; ++c) {
-      const Regs column(b.begin() + c * a_cols, b.begin() + (c + 1) * a_cols);
+      const Regs column(b.begin() + ptrdiff_t(c) * a_cols, b.begin() + ptrdiff_t(c + 1) * a_cols);
       const Regs product = matrix_times_vector(a, a_cols, a_rows, column);
       out.insert(out.end(), product.begin(), product.end());
     }
@@ -744,7 +748,7 @@ class StageCompiler {
     const glslang::TOperator op = node->getOp();
     switch (op) {
       case glslang::EOpAssign: {
-        const Regs v = value(node->getRight());
+        Regs v = value(node->getRight());
         store(node->getLeft(), v);
         return v;
       }
@@ -802,12 +806,10 @@ class StageCompiler {
     const Regs a = value(node->getLeft());
     const Regs b = value(node->getRight());
     Regs result;
+    // (EOpMul on two matrices is matrixCompMult: componentwise, below.)
     if (op == glslang::EOpMatrixTimesVector || op == glslang::EOpVectorTimesMatrix ||
         op == glslang::EOpMatrixTimesMatrix || op == glslang::EOpVectorTimesMatrixAssign ||
         op == glslang::EOpMatrixTimesMatrixAssign) {
-      result = multiply(node, a, b);
-    } else if ((op == glslang::EOpMul || op == glslang::EOpMulAssign) && node->getLeft()->getType().isMatrix() &&
-               node->getRight()->getType().isMatrix()) {
       result = multiply(node, a, b);
     } else {
       const Op o = arithmetic(op, scalar_of(node->getType()));
@@ -841,7 +843,7 @@ class StageCompiler {
       } else {
         uint32_t r = base[size_t(k)];
         for (int e = 1; e < elements; ++e)
-          r = emit(Op::select, emit(Op::ieq, index, constant_int(e)), base[size_t(e * count + k)], r);
+          r = emit(Op::select, emit(Op::ieq, index, constant_int(e)), base[element(e, count, k)], r);
         out.push_back(r);
       }
     }
@@ -900,7 +902,7 @@ class StageCompiler {
       default:
         break;
     }
-    const Regs v = value(node->getOperand());
+    Regs v = value(node->getOperand());
     switch (op) {
       case glslang::EOpNegative:
         return map1(s == Scalar::f ? Op::fneg : Op::ineg, v);
@@ -1012,7 +1014,7 @@ class StageCompiler {
         const int cols = operand_type.getMatrixCols(), rows = operand_type.getMatrixRows();
         Regs out;
         for (int r = 0; r < rows; ++r)
-          for (int c = 0; c < cols; ++c) out.push_back(v[size_t(c * rows + r)]);
+          for (int c = 0; c < cols; ++c) out.push_back(v[element(c, rows, r)]);
         return out;
       }
       default:
@@ -1042,15 +1044,15 @@ class StageCompiler {
       const uint32_t zero = constant(0.0f), one = constant(1.0f);
       Regs out(size_t(n), zero);
       if (args.size() == 1 && args[0].size() == 1) {  // a scalar: the diagonal
-        for (int k = 0; k < std::min(cols, rows); ++k) out[size_t(k * rows + k)] = args[0][0];
+        for (int k = 0; k < std::min(cols, rows); ++k) out[element(k, rows, k)] = args[0][0];
         return out;
       }
       if (args.size() == 1 && types[0]->isMatrix()) {  // a matrix: its upper-left part, identity elsewhere
         const int src_cols = types[0]->getMatrixCols(), src_rows = types[0]->getMatrixRows();
         for (int c = 0; c < cols; ++c)
           for (int r = 0; r < rows; ++r)
-            out[size_t(c * rows + r)] =
-                c < src_cols && r < src_rows ? args[0][size_t(c * src_rows + r)] : (c == r ? one : zero);
+            out[element(c, rows, r)] =
+                c < src_cols && r < src_rows ? args[0][element(c, src_rows, r)] : (c == r ? one : zero);
         return out;
       }
     }
@@ -1465,7 +1467,7 @@ std::string format_log(const std::string& log, const std::string& name) {
     for (const char* prefix : {"ERROR: ", "WARNING: "}) {
       if (line.rfind(prefix, 0) == 0) line = line.substr(std::strlen(prefix));
     }
-    if (line.rfind("0:", 0) == 0) line = name + ":" + line.substr(2);
+    if (line.rfind("0:", 0) == 0) line.replace(0, 1, name);  // "0:12: ..." -> "a.frag:12: ..."
     if (line.find("compilation terminated") != std::string::npos ||
         line.find("compilation errors") != std::string::npos)
       continue;

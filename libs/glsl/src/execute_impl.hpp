@@ -104,8 +104,8 @@ void run_code(std::span<const ir::Instr> code, float* file, int lanes_in_use, bo
     const I32* ai = reinterpret_cast<const I32*>(a);
     const I32* bi = reinterpret_cast<const I32*>(b);
 // One case: `expr` for every lane in use, then break (no case falls through).
-#define TESSERA_LANES(expr)         \
-  for (int l = 0; l < n; ++l) expr; \
+#define TESSERA_LANES(expr)           \
+  for (int l = 0; l < n; ++l) (expr); \
   break
     switch (in.op) {
       case Op::mov:

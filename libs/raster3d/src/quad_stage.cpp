@@ -85,7 +85,7 @@ void fill_quad(FragmentBatch& b, int q, const TriangleRecord& r, const float* da
   }
   const float* pc = data;
   const float* px = data + (n + 1);
-  const float* py = data + 2 * (n + 1);
+  const float* py = data + ptrdiff_t(2) * (n + 1);
   float dx[4], dy[4], w[4];
   for (int k = 0; k < 4; ++k) {
     dx[k] = px_center[k] - r.rx;

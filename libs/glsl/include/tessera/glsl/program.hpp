@@ -40,15 +40,15 @@ class CompileError : public InvalidInput {
 
 /// The basic types a uniform, attribute or varying may have (after arrays and structs are flattened to members).
 enum class BasicType {
-  float_,
+  floating,  ///< float
   vec2,
   vec3,
   vec4,
-  int_,
+  integer,  ///< int
   ivec2,
   ivec3,
   ivec4,
-  bool_,
+  boolean,  ///< bool
   bvec2,
   bvec3,
   bvec4,
