@@ -12,7 +12,10 @@ namespace tessera::glsl {
 namespace {
 
 struct Files {
-  std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "program_files";
+  // A folder of the test's own: ctest runs the tests of this file at once.
+  std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) /
+      (std::string("program_files_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::path vertex = dir / "a.vert", fragment = dir / "a.frag";
   int edits = 0;
 

@@ -363,7 +363,10 @@ namespace {
 
 /// Writes the files of a material shader into the test's folder: a uniform color over ftransform().
 std::filesystem::path shader_folder() {
-  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "scene_shader";
+  // A folder of the test's own: ctest runs the tests of this file at once.
+  const std::filesystem::path dir =
+      std::filesystem::path(::testing::TempDir()) /
+      (std::string("scene_shader_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "flat.vert") << "void main() { gl_Position = ftransform(); }\n";
   std::ofstream(dir / "flat.frag") << "uniform vec3 paint;\nvoid main() { gl_FragColor = vec4(paint, 1.0); }\n";
