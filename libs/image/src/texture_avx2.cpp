@@ -9,36 +9,53 @@
 namespace tessera {
 namespace {
 
-/// Eight lanes of texel indices along one axis of n texels: f (a floor) wrapped by repeat or clamp.
-inline __m256i wrap8(__m256 f, int n, Wrap wrap) {
-  const __m256 size = _mm256_set1_ps(float(n));
-  if (wrap == Wrap::repeat) f = _mm256_sub_ps(f, _mm256_mul_ps(size, _mm256_floor_ps(_mm256_div_ps(f, size))));
-  f = _mm256_min_ps(_mm256_max_ps(f, _mm256_setzero_ps()), _mm256_set1_ps(float(n - 1)));
-  return _mm256_cvttps_epi32(f);
+/// The texel indices x0 and x1 = x0 + 1 along one axis of n texels, wrapped by repeat or clamp, for eight lanes of
+/// floors f. No division: a power-of-two size wraps by a mask, any other by a multiply with 1 / n and one correction.
+inline void wrap8(__m256 f, int n, Wrap wrap, __m256i& x0, __m256i& x1) {
+  const __m256i size = _mm256_set1_epi32(n), one = _mm256_set1_epi32(1);
+  // Beyond 2^24 a float has no fraction left (nor a meaningful texel): the bound keeps the conversion in int32.
+  const __m256 limit = _mm256_set1_ps(16777216.0f);
+  f = _mm256_min_ps(_mm256_max_ps(f, _mm256_sub_ps(_mm256_setzero_ps(), limit)), limit);
+  if (wrap == Wrap::repeat) {
+    __m256i x;
+    if ((n & (n - 1)) == 0) {
+      x = _mm256_and_si256(_mm256_cvttps_epi32(f), _mm256_set1_epi32(n - 1));
+    } else {
+      const __m256 q = _mm256_floor_ps(_mm256_mul_ps(f, _mm256_set1_ps(1.0f / float(n))));
+      x = _mm256_cvttps_epi32(_mm256_sub_ps(f, _mm256_mul_ps(q, _mm256_set1_ps(float(n)))));
+      // The reciprocal's rounding can leave x one period off: bring it into [0, n).
+      x = _mm256_add_epi32(x, _mm256_and_si256(_mm256_cmpgt_epi32(_mm256_setzero_si256(), x), size));
+      x = _mm256_sub_epi32(x, _mm256_andnot_si256(_mm256_cmpgt_epi32(size, x), size));
+    }
+    x0 = x;
+    x1 = _mm256_add_epi32(x, one);
+    x1 = _mm256_andnot_si256(_mm256_cmpeq_epi32(x1, size), x1);  // n wraps to 0
+    return;
+  }
+  const __m256i x = _mm256_cvttps_epi32(f), last = _mm256_set1_epi32(n - 1), zero = _mm256_setzero_si256();
+  x0 = _mm256_min_epi32(_mm256_max_epi32(x, zero), last);
+  x1 = _mm256_min_epi32(_mm256_max_epi32(_mm256_add_epi32(x, one), zero), last);
 }
 
-/// Channel c of eight RGBA8 texels as v / 255.
+/// Channel c of eight RGBA8 texels, as floats 0 to 255.
 inline __m256 channel8(__m256i texels, int c) {
-  const __m256i bytes = _mm256_and_si256(_mm256_srli_epi32(texels, 8 * c), _mm256_set1_epi32(0xff));
-  return _mm256_div_ps(_mm256_cvtepi32_ps(bytes), _mm256_set1_ps(255.0f));
+  return _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srli_epi32(texels, 8 * c), _mm256_set1_epi32(0xff)));
 }
 
-/// a (1 - t) + b t, as glm::mix.
-inline __m256 mix8(__m256 a, __m256 b, __m256 t) {
-  return _mm256_add_ps(_mm256_mul_ps(a, _mm256_sub_ps(_mm256_set1_ps(1.0f), t)), _mm256_mul_ps(b, t));
-}
+/// a + (b - a) t: glm::mix up to rounding.
+inline __m256 mix8(__m256 a, __m256 b, __m256 t) { return _mm256_fmadd_ps(_mm256_sub_ps(b, a), t, a); }
 
-/// The notes' bilinear filter (Texture2D::bilinear) of eight lanes on one RGBA8 level, in float: the four texels
-/// gathered at once.
+/// The notes' bilinear filter (Texture2D::bilinear) of eight lanes on one RGBA8 level, in float, scaled by 255 (the
+/// caller divides once): the four texels gathered at once.
 inline void bilinear8(const ImageRGBA8& level, const Sampler& sampler, __m256 u, __m256 v, __m256 out[4]) {
   const int w = level.width(), h = level.height();
-  const __m256 x = _mm256_sub_ps(_mm256_mul_ps(u, _mm256_set1_ps(float(w))), _mm256_set1_ps(0.5f));
-  const __m256 y = _mm256_sub_ps(_mm256_mul_ps(v, _mm256_set1_ps(float(h))), _mm256_set1_ps(0.5f));
+  const __m256 x = _mm256_fmsub_ps(u, _mm256_set1_ps(float(w)), _mm256_set1_ps(0.5f));
+  const __m256 y = _mm256_fmsub_ps(v, _mm256_set1_ps(float(h)), _mm256_set1_ps(0.5f));
   const __m256 fx = _mm256_floor_ps(x), fy = _mm256_floor_ps(y);
   const __m256 a = _mm256_sub_ps(x, fx), b = _mm256_sub_ps(y, fy);
-  const __m256 one = _mm256_set1_ps(1.0f);
-  const __m256i x0 = wrap8(fx, w, sampler.wrap_u), x1 = wrap8(_mm256_add_ps(fx, one), w, sampler.wrap_u);
-  const __m256i y0 = wrap8(fy, h, sampler.wrap_v), y1 = wrap8(_mm256_add_ps(fy, one), h, sampler.wrap_v);
+  __m256i x0, x1, y0, y1;
+  wrap8(fx, w, sampler.wrap_u, x0, x1);
+  wrap8(fy, h, sampler.wrap_v, y0, y1);
   // Texel rows count from the bottom: row h - 1 - y of the image.
   const __m256i top_row = _mm256_set1_epi32(h - 1), width = _mm256_set1_epi32(w);
   const __m256i lower = _mm256_mullo_epi32(_mm256_sub_epi32(top_row, y0), width);
@@ -91,7 +108,8 @@ void sample_lanes_avx2(const Texture2D& t, const float* u, const float* v, const
         }
       }
     }
-    for (int c = 0; c < 4; ++c) _mm256_storeu_ps(out[c] + l, result[c]);
+    const __m256 scale = _mm256_set1_ps(1.0f / 255.0f);
+    for (int c = 0; c < 4; ++c) _mm256_storeu_ps(out[c] + l, _mm256_mul_ps(result[c], scale));
   }
 }
 

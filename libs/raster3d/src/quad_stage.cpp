@@ -17,6 +17,14 @@ namespace {
 
 constexpr int kBatchQuads = FragmentBatch::kLanes / 4;
 
+/// to_unorm8 of v as a 32-bit integer, in operations that vectorize (min, max, a multiply-add, a truncation).
+inline uint32_t unorm8_bits(float v) {
+  v = v > 0.0f ? v : 0.0f;  // NaN -> 0
+  v = v < 1.0f ? v : 1.0f;
+  constexpr float kRound = 12582912.0f;  // 1.5 * 2^23: adding it rounds to an integer, as to_unorm8
+  return uint32_t(int32_t((v * 255.0f + kRound) - kRound));
+}
+
 /// One thread's working state for the tiles it rasterizes: the batch being filled, the shader's scratch, and what
 /// the writes at the flush need.
 struct QuadTile {
@@ -34,25 +42,32 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
   if (b.quads == 0) return;
   std::fill(std::begin(b.kept), std::end(b.kept), ~0u);
   fs.shade(b, *t.scratch);
-  const int lanes = 4 * b.quads;
-  // The 8-bit colors of all lanes at once (a vectorized loop), unless blending needs the float colors.
-  uint8_t color8[4][FragmentBatch::kLanes];
+  // The 8-bit colors of all lanes at once, packed as the framebuffer stores them (RGBA in memory order): a loop of
+  // fixed length without branches, which the compiler vectorizes. Blending reads the float colors instead.
+  alignas(64) uint32_t packed[FragmentBatch::kLanes];
   if (!params.blend)
-    for (int c = 0; c < 4; ++c)
-      for (int lane = 0; lane < lanes; ++lane) color8[c][lane] = to_unorm8(b.color[c][lane]);
-  const int height = fb.height();
+    for (int lane = 0; lane < FragmentBatch::kLanes; ++lane)
+      packed[lane] = unorm8_bits(b.color[0][lane]) | unorm8_bits(b.color[1][lane]) << 8 |
+                     unorm8_bits(b.color[2][lane]) << 16 | unorm8_bits(b.color[3][lane]) << 24;
+  // The buffers' addresses in locals: the byte-sized color stores may alias anything, so that members read
+  // through fb would be read again after each store.
+  const int height = fb.height(), width = fb.width();
+  const bool color_write = params.color_write, blend = params.blend;
+  glm::u8vec4* const color = color_write ? fb.color().row(0) : nullptr;
+  uint32_t* const depth = fb.depth().row(0);
   for (int q = 0; q < b.quads; ++q)
     for (int k = 0; k < 4; ++k) {
       const int lane = 4 * q + k;
       if (!(b.covered[lane] & b.kept[lane])) continue;
-      const int i = t.quad_i[q] + (k & 1), row = height - 1 - (t.quad_j[q] + (k >> 1));
-      if (params.color_write && params.blend) {
+      const size_t pixel =
+          size_t(height - 1 - (t.quad_j[q] + (k >> 1))) * size_t(width) + size_t(t.quad_i[q] + (k & 1));
+      if (color_write && blend) {
         const Vec4f c(b.color[0][lane], b.color[1][lane], b.color[2][lane], b.color[3][lane]);
-        write_color(params, c, fb.color()(i, row));
-      } else if (params.color_write) {
-        fb.color()(i, row) = glm::u8vec4(color8[0][lane], color8[1][lane], color8[2][lane], color8[3][lane]);
+        write_color(params, c, color[pixel]);
+      } else if (color_write) {
+        std::memcpy(&color[pixel], &packed[lane], sizeof(uint32_t));
       }
-      if (depth_write) fb.depth()(i, row) = t.depth[lane];
+      if (depth_write) depth[pixel] = t.depth[lane];
     }
   for (int q = 0; q < b.quads; ++q) {
     const int by = t.quad_j[q] - t.origin_y;
@@ -62,42 +77,38 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
   b.quads = 0;
 }
 
+/// Four floats, one per lane of a quad: GCC's vector extension (SSE on x86-64, NEON on ARM), so that a quad's
+/// arithmetic is one instruction per operation without intrinsics of one instruction set.
+using Quad4 = float __attribute__((vector_size(16)));
+
 /// Fills quad `q` of the batch: lanes 4q..4q+3 at GL pixel (i, j) and its neighbours, varyings interpolated as
-/// interpolated_fragment does (the same operations, so the C++ shaders' pixels do not change on this stage). Each
-/// loop runs over the quad's four lanes, which are contiguous in every array.
+/// interpolated_fragment does (the same operations, so the C++ shaders' pixels do not change on this stage). The four
+/// lanes are contiguous (and 16-byte aligned) in every array: each step is one vector operation.
 void fill_quad(FragmentBatch& b, int q, const TriangleRecord& r, const float* data, int n, int i, int j, int height) {
   const int l0 = 4 * q;
-  float px_center[4], py_center[4];
-  for (int k = 0; k < 4; ++k) {
-    px_center[k] = float(i + (k & 1)) + 0.5f;
-    py_center[k] = float(j + (k >> 1)) + 0.5f;
-    b.frag_coord[0][l0 + k] = px_center[k];
-    b.frag_coord[1][l0 + k] = py_center[k];
-    // gl_FragCoord.z without the stored depth's fused multiply-adds (a library call on the baseline x86-64).
-    b.frag_coord[2][l0 + k] = r.za + r.zdx * float(i + (k & 1)) + r.zdy * float(height - 1 - (j + (k >> 1)));
-    b.front_facing[l0 + k] = r.front ? ~0u : 0u;
-  }
+  const auto lanes = [l0](float* row) -> Quad4& { return *reinterpret_cast<Quad4*>(row + l0); };
+  const Quad4 step_x = {0.0f, 1.0f, 0.0f, 1.0f}, step_y = {0.0f, 0.0f, 1.0f, 1.0f};
+  const Quad4 gl_x = float(i) + step_x, gl_y = float(j) + step_y;  // exact: small integers
+  const Quad4 px_center = gl_x + 0.5f, py_center = gl_y + 0.5f;
+  lanes(b.frag_coord[0]) = px_center;
+  lanes(b.frag_coord[1]) = py_center;
+  // gl_FragCoord.z without the stored depth's fused multiply-adds (a library call on the baseline x86-64).
+  lanes(b.frag_coord[2]) = r.za + r.zdx * gl_x + r.zdy * (float(height - 1 - j) - step_y);
+  const uint32_t facing = r.front ? ~0u : 0u;
+  for (int k = 0; k < 4; ++k) b.front_facing[l0 + k] = facing;
   if (r.constant) {
-    for (int k = 0; k < 4; ++k) b.frag_coord[3][l0 + k] = 1.0f;
-    for (int v = 0; v < n; ++v)
-      for (int k = 0; k < 4; ++k) b.varyings[v][l0 + k] = data[v];
+    lanes(b.frag_coord[3]) = Quad4{1.0f, 1.0f, 1.0f, 1.0f};
+    for (int v = 0; v < n; ++v) lanes(b.varyings[v]) = data[v] + Quad4{};
     return;
   }
   const float* pc = data;
   const float* px = data + (n + 1);
   const float* py = data + ptrdiff_t(2) * (n + 1);
-  float dx[4], dy[4], w[4];
-  for (int k = 0; k < 4; ++k) {
-    dx[k] = px_center[k] - r.rx;
-    dy[k] = py_center[k] - r.ry;
-    const float inv_w = (pc[0] + py[0] * dy[k]) + px[0] * dx[k];
-    b.frag_coord[3][l0 + k] = inv_w;
-    w[k] = 1.0f / inv_w;
-  }
-  for (int v = 1; v <= n; ++v) {
-    float* out = b.varyings[v - 1] + l0;
-    for (int k = 0; k < 4; ++k) out[k] = ((pc[v] + py[v] * dy[k]) + px[v] * dx[k]) * w[k];
-  }
+  const Quad4 dx = px_center - r.rx, dy = py_center - r.ry;
+  const Quad4 inv_w = (pc[0] + py[0] * dy) + px[0] * dx;
+  lanes(b.frag_coord[3]) = inv_w;
+  const Quad4 w = 1.0f / inv_w;
+  for (int v = 1; v <= n; ++v) lanes(b.varyings[v - 1]) = ((pc[v] + py[v] * dy) + px[v] * dx) * w;
 }
 
 /// Gathers the quads of record r over GL pixels [x0, x1) x [y0, y1) (inside the tile) into the batch, flushing it
@@ -176,6 +187,18 @@ void raster_tile_quads(QuadTile& t, Framebuffer& fb, const SetupPass& binned, co
   t.origin_x = tx * kTileSize, t.origin_y = ty * kTileSize;
   t.batch.varying_count = params.varying_count;
   std::memset(t.waiting, 0, sizeof t.waiting);
+  bool any = false;
+  for (const SetupChunk& chunk : binned) any = any || !chunk.bins[tile].empty();
+  if (!any) return;
+  // The tile's depth and color rows are read and written all over: fetch them at once rather than miss on each (as
+  // raster_tile does).
+  const int height = fb.height();
+  const bool has_color = fb.has_color();
+  for (int j = tile_y0; j < tile_y1; ++j)
+    for (int i = tile_x0; i < tile_x1; i += 16) {
+      __builtin_prefetch(fb.depth().row(height - 1 - j) + i, 1);
+      if (has_color) __builtin_prefetch(fb.color().row(height - 1 - j) + i, 1);
+    }
   for (const SetupChunk& chunk : binned)
     for (const uint32_t index : chunk.bins[tile]) {
       const TriangleRecord& r = chunk.records[index];
