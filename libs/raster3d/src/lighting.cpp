@@ -1,5 +1,6 @@
 #include "tessera/raster3d/lighting.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace tessera::raster3d {
@@ -22,16 +23,27 @@ Material Material::metal(const Vec3f& color, float shininess) {
 namespace {
 
 // x^e for x in [0, 1]: by repeated squaring for the usual integer exponents (a few multiplies instead of powf),
-// std::pow otherwise.
-float specular_power(float x, float e) {
+// pow otherwise. F is float or lanes::Float: the same operations on each lane.
+template <class F>
+F specular_power(const F& x, float e) {
   if (e >= 0 && e <= 256 && e == std::floor(e)) {
-    float result = 1, base = x;
-    for (auto n = unsigned(e); n; n >>= 1, base *= base)
-      if (n & 1) result *= base;
+    F result(1.0f), base = x;
+    for (auto n = unsigned(e); n; n >>= 1, base = base * base)
+      if (n & 1) result = result * base;
     return result;
   }
-  return std::pow(x, e);
+  using std::pow;
+  return pow(x, F(e));
 }
+
+// The scalar forms of the lane operations shade_any uses (lanes.hpp has the lane forms).
+bool any(bool b) { return b; }
+template <class T>
+T select(bool m, const T& a, const T& b) {
+  return m ? a : b;
+}
+float max(float a, float b) { return std::max(a, b); }
+Vec3f clamp(const Vec3f& x, float lo, float hi) { return glm::clamp(x, lo, hi); }
 
 }  // namespace
 
@@ -58,30 +70,41 @@ PreparedLighting::PreparedLighting(const Lighting& lighting)
   }
 }
 
-Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color,
-                              std::span<const float> visibility) const {
-  const Vec3f ambient_m = color_material_ ? color : ambient_m_;
-  Vec3f c = emission_ + ambient_m * ambient_sum_;
-  const Vec3f eye = local_viewer_ ? glm::normalize(-p) : Vec3f(0, 0, 1);
+template <class F, class V3>
+V3 PreparedLighting::shade_any(const V3& n, const V3& p, const V3& color, std::span<const F> visibility) const {
+  const V3 ambient_m = color_material_ ? color : V3(ambient_m_);
+  V3 c = V3(emission_) + ambient_m * V3(ambient_sum_);
+  const V3 eye = local_viewer_ ? normalize(-p) : V3(Vec3f(0, 0, 1));
   for (int i = 0; i < light_count_; ++i) {
     const PreparedLight& light = lights_[size_t(i)];
-    const Vec3f l = light.directional ? light.direction : glm::normalize(Vec3f(light.position) - p);
-    const float n_dot_l = glm::dot(n, l);
-    const float visible = size_t(i) < visibility.size() ? visibility[size_t(i)] : 1.0f;
-    if (n_dot_l <= 0 || visible <= 0) continue;
-    // Times 1 unless in shadow: exactly the unshadowed sums then.
-    c += visible * (n_dot_l * (color_material_ ? color * light.diffuse : light.diffuse));
+    const V3 l = light.directional ? V3(light.direction) : normalize(V3(Vec3f(light.position)) - p);
+    const F n_dot_l = dot(n, l);
+    const F visible = size_t(i) < visibility.size() ? visibility[size_t(i)] : F(1.0f);
+    // Lit where N.L > 0 and the light is visible (a lane's sums are exactly the scalar's: the others keep c).
+    const auto lit = (n_dot_l > F(0.0f)) & (visible > F(0.0f));
+    if (!any(lit)) continue;
+    c = select(lit, c + visible * (n_dot_l * (color_material_ ? color * V3(light.diffuse) : V3(light.diffuse))), c);
     if (!light.has_specular) continue;
-    float spec;
+    F spec;
     if (blinn_) {
-      const Vec3f h = light.directional && !local_viewer_ ? light.half : glm::normalize(l + eye);
-      spec = std::max(glm::dot(n, h), 0.0f);  // (H.N)
+      const V3 h = light.directional && !local_viewer_ ? V3(light.half) : normalize(l + eye);
+      spec = max(dot(n, h), F(0.0f));  // (H.N)
     } else {
-      spec = std::max(glm::dot(eye, 2.0f * n_dot_l * n - l), 0.0f);  // (E.R), R = 2N(N.L) - L
+      spec = max(dot(eye, F(2.0f) * n_dot_l * n - l), F(0.0f));  // (E.R), R = 2N(N.L) - L
     }
-    c += visible * (specular_power(spec, shininess_) * light.specular);
+    c = select(lit, c + visible * (specular_power(spec, shininess_) * V3(light.specular)), c);
   }
-  return glm::clamp(c, 0.0f, 1.0f);
+  return clamp(c, 0.0f, 1.0f);
+}
+
+Vec3f PreparedLighting::shade(const Vec3f& n, const Vec3f& p, const Vec3f& color,
+                              std::span<const float> visibility) const {
+  return shade_any<float, Vec3f>(n, p, color, visibility);
+}
+
+lanes::vec3 PreparedLighting::shade(const lanes::vec3& n, const lanes::vec3& p, const lanes::vec3& color,
+                                    std::span<const lanes::Float> visibility) const {
+  return shade_any<lanes::Float, lanes::vec3>(n, p, color, visibility);
 }
 
 Lighting unlit_lighting() {

@@ -154,11 +154,16 @@ void gather_record(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool
       const uint64_t row_bits[2] = {uint64_t(inside & 3) << bx, uint64_t((inside >> 2) & 3) << bx};
       if ((t.waiting[by] & row_bits[0]) || (by + 1 < kTileSize && (t.waiting[by + 1] & row_bits[1])))
         flush(t, fb, params, depth_write, fs);
-      // The depth test, against depths that every earlier lane over these pixels has written (flushed above).
+      // The depth test, against depths that every earlier lane over these pixels has written (flushed above), and
+      // the stencil test with its operations, applied now, in submission order, before the shader runs (as
+      // draw_triangles: a discard does not undo them).
       uint32_t covered = 0;
       for (int k = 0; k < 4; ++k) {
+        if (!(inside >> k & 1)) continue;
         const int pi = i + (k & 1), row = height - 1 - (j + (k >> 1));
-        if ((inside >> k & 1) && depth_passes<F>(depth[k >> 1][pi - lo[k >> 1]], fb.depth()(pi, row)))
+        const bool depth_pass = depth_passes<F>(depth[k >> 1][pi - lo[k >> 1]], fb.depth()(pi, row));
+        if (params.stencil_test ? stencil_and_depth(params.stencil[r.front], depth_pass, fb.stencil()(pi, row))
+                                : depth_pass)
           covered |= 1u << k;
       }
       if (!covered) continue;
@@ -222,34 +227,43 @@ DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& stat
   if (vertices.size() % stride != 0)
     throw InvalidInput("quad stage: " + std::to_string(vertices.size()) + " vertex floats are not a multiple of " +
                        std::to_string(stride) + " (4 + varyings)");
-  if (state.stencil_test) throw InvalidInput("the quad stage does not support the stencil test yet");
   const auto vertex_count = uint32_t(vertices.size() / stride);
   detail::check_draw(framebuffer, state, indices, vertex_count, 3, "triangle");
-  DrawStats stats;
-  stats.primitives = indices.size() / 3;
-  if (indices.empty()) return stats;
   detail::RasterScratch& scratch = framebuffer.scratch();
   scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
   scratch.inputs[size_t(scratch.input)].vertices.assign(vertices.begin(), vertices.end());
+  return detail::draw_staged_quads(framebuffer, state, vertex_count, varying_count, indices, fs);
+}
+
+namespace detail {
+
+DrawStats draw_staged_quads(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                            int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs) {
+  if (varying_count > FragmentBatch::kMaxVaryings)
+    throw InvalidInput("the quad stage takes at most " + std::to_string(FragmentBatch::kMaxVaryings) +
+                       " varyings, not " + std::to_string(varying_count));
+  DrawStats stats;
+  stats.primitives = indices.size() / 3;
+  if (indices.empty()) return stats;
   // Each thread's batch and shader scratch, made once per draw (not per range of tiles) and not zeroed: every field
   // is set before use.
-  tbb::enumerable_thread_specific<std::unique_ptr<detail::QuadTile>> tiles;
-  const auto raster = [&framebuffer, &fs, &tiles](const detail::SetupPass& pass, const detail::SetupParams& params,
-                                                  const detail::FragmentState& fragment, int64_t begin, int64_t end) {
-    std::unique_ptr<detail::QuadTile>& t = tiles.local();
+  tbb::enumerable_thread_specific<std::unique_ptr<QuadTile>> tiles;
+  const auto raster = [&framebuffer, &fs, &tiles](const SetupPass& pass, const SetupParams& params,
+                                                  const FragmentState& fragment, int64_t begin, int64_t end) {
+    std::unique_ptr<QuadTile>& t = tiles.local();
     if (!t) {
-      t = std::make_unique_for_overwrite<detail::QuadTile>();
+      t = std::make_unique_for_overwrite<QuadTile>();
       t->scratch = fs.begin();
     }
-    detail::dispatch_depth_func(fragment.func, [&](auto f) {
+    dispatch_depth_func(fragment.func, [&](auto f) {
       for (int64_t tile = begin; tile < end; ++tile)
-        detail::raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile),
-                                                      fs);
+        raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile), fs);
     });
   };
-  stats.rasterized += detail::submit_triangle_passes(framebuffer, state, vertex_count, varying_count, indices, raster);
-  stats.rasterized += detail::collect_raster(scratch);
+  stats.rasterized += submit_triangle_passes(framebuffer, state, vertex_count, varying_count, indices, raster);
+  stats.rasterized += collect_raster(framebuffer.scratch());
   return stats;
 }
 
+}  // namespace detail
 }  // namespace tessera::raster3d

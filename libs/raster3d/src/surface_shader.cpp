@@ -128,6 +128,57 @@ bool SurfaceFragmentShader::operator()(const SurfaceVaryings& in, const SurfaceV
   return true;
 }
 
+lanes::vec3 SurfaceLaneShader::operator()(const lanes::Fragment<SurfaceVaryings>& in, lanes::Mask&) const {
+  using lanes::kWidth;
+  const SurfaceUniforms& u = *uniforms;
+  const SurfaceMaps& maps = u.maps;
+  const lanes::vec3 position = in(&SurfaceVaryings::position);
+  lanes::vec3 n = normalize(in(&SurfaceVaryings::normal));
+  if (maps.bump) {
+    const lanes::vec2 uv = in(&SurfaceVaryings::uv);
+    const lanes::vec3 tangent_u = in(&SurfaceVaryings::tangent_u), tangent_v = in(&SurfaceVaryings::tangent_v);
+    for (int k = 0; k < kWidth; ++k) {
+      const Vec2f slope = height_gradient(*maps.bump, uv.lane(k), maps.bump_scale);
+      n.set_lane(k, bump_normal(n.lane(k), tangent_u.lane(k), tangent_v.lane(k), slope.x, slope.y));
+    }
+  }
+  lanes::vec3 surface = in(&SurfaceVaryings::color);
+  if (maps.texture) surface = surface * texture(*maps.texture, in(&SurfaceVaryings::uv)).xyz();
+  const Mat3f to_world(u.eye_to_world);
+  // Each light's visibility, as SurfaceFragmentShader's.
+  std::array<lanes::Float, kMaxLights> visible;
+  visible.fill(1.0f);
+  visible[0] = u.light0;
+  size_t used = u.light0 != 1.0f;
+  bool have_plane = false;
+  lanes::vec3 facet;
+  for (size_t i = 0; i < size_t(u.lighting.light_count()); ++i) {
+    if (!maps.shadows[i]) continue;
+    if (!have_plane) {
+      have_plane = true;
+      facet = cross(dFdx(position), dFdy(position));  // the facet's plane (as SurfaceFragmentShader's)
+    }
+    for (int k = 0; k < kWidth; ++k) {
+      if (visible[i].lane(k) <= 0) continue;
+      const Vec3f f = facet.lane(k);
+      const Vec3f world(u.eye_to_world * Vec4f(position.lane(k), 1.0f));
+      const Vec3f world_plane = glm::normalize(to_world * (glm::dot(f, f) > 0 ? f : n.lane(k)));
+      visible[i].set_lane(k, visible[i].lane(k) * maps.shadows[i]->visibility(world, world_plane, maps.shadow_pcf));
+    }
+    used = i + 1;
+  }
+  lanes::vec3 c = u.lighting.shade(n, position, surface, std::span<const lanes::Float>(visible.data(), used));
+  if (maps.environment || maps.cube) {
+    const lanes::vec3 e = normalize(lanes::vec3(Vec3f(u.viewer)) - position * u.viewer.w);
+    const lanes::vec3 r = to_world * (lanes::Float(2.0f) * dot(n, e) * n - e);
+    lanes::vec3 seen;
+    for (int k = 0; k < kWidth; ++k)
+      seen.set_lane(k, Vec3f(maps.cube ? maps.cube->lookup(r.lane(k)) : maps.environment->lookup(r.lane(k))));
+    c = c + lanes::Float(maps.reflectivity) * seen;
+  }
+  return clamp(c, 0.0f, 1.0f);
+}
+
 DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
                        const SurfaceUniforms& u, const UvTangents* tangents) {
   if (arrays.normals.size() != arrays.positions.size())
@@ -140,7 +191,7 @@ DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const
   const SurfaceVertexShader vs{arrays.attributes(), tangents ? tangents->u.data() : nullptr,
                                tangents ? tangents->v.data() : nullptr, &u};
   return draw_triangles(framebuffer, state, uint32_t(arrays.positions.size()), arrays.indices, vs,
-                        SurfaceFragmentShader{&u});
+                        SurfaceLaneShader{&u});
 }
 
 CubeMap render_cube_map(const Vec3& center, int size,

@@ -173,11 +173,49 @@ TEST(QuadStage, RefusesWhatItCannotDraw) {
   const std::vector<float> vertices(15, 0.0f);
   const std::vector<uint32_t> triangle = {0, 1, 2};
   ColorShader shader;
+  Framebuffer depth_only = Framebuffer::depth_only(8, 8);
   EXPECT_THROW(draw_triangles_quads(fb, {}, vertices, 2, triangle, shader), InvalidInput);  // 15 % 6 != 0
   EXPECT_THROW(draw_triangles_quads(fb, {}, vertices, 40, triangle, shader), InvalidInput);
-  RasterState stencil;
-  stencil.stencil_test = true;
-  EXPECT_THROW(draw_triangles_quads(fb, stencil, std::vector<float>(12, 0.0f), 0, triangle, shader), InvalidInput);
+  EXPECT_THROW(draw_triangles_quads(depth_only, RasterState{.stencil_test = true},
+                                    std::vector<float>(12, 0.0f), 0, triangle, shader),
+               InvalidInput);  // no stencil buffer
+}
+
+TEST(QuadStage, StencilAsDrawTriangles) {
+  // Overlapping triangles of both orientations count into the stencil buffer (wrapping, front and back apart, on
+  // depth pass and fail: shadow volumes' operations), then a second pass draws where the count is not 0. Color, depth
+  // and stencil as draw_triangles'.
+  const Soup s = random_soup(250, 19);
+  RasterState count;
+  count.stencil_test = true;
+  count.depth_write = false;
+  count.stencil_front = {DepthFunc::always, 0, 0xff, 0xff, StencilOp::keep, StencilOp::decr_wrap, StencilOp::incr_wrap};
+  count.stencil_back = {DepthFunc::always, 0, 0xff, 0xff, StencilOp::invert, StencilOp::incr, StencilOp::decr_wrap};
+  RasterState show;
+  show.stencil_test = true;
+  show.depth_func = DepthFunc::lequal;
+  show.stencil_front = show.stencil_back = {DepthFunc::notequal, 0, 0xff, 0xff};
+  for (const int threads : {1, 2}) {
+    ThreadLimit limit(threads);
+    Framebuffer a(150, 110), b(150, 110);
+    for (Framebuffer* fb : {&a, &b}) fb->clear_color(Vec3f(0.2f));
+    const Soup first = random_soup(60, 23);
+    draw_functor(a, RasterState{}, first);
+    draw_triangles_quads(b, RasterState{}, first.vertices, 3, first.indices, ColorShader());
+    draw_functor(a, count, s);
+    draw_triangles_quads(b, count, s.vertices, 3, s.indices, ColorShader());
+    draw_functor(a, show, s);
+    draw_triangles_quads(b, show, s.vertices, 3, s.indices, ColorShader());
+    expect_same(a, b);
+    int stencil_diffs = 0, nonzero = 0;
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x) {
+        stencil_diffs += a.stencil()(x, y) != b.stencil()(x, y);
+        nonzero += a.stencil()(x, y) != 0;
+      }
+    EXPECT_EQ(stencil_diffs, 0);
+    EXPECT_GT(nonzero, a.width() * a.height() / 4);  // the test exercised the operations
+  }
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <span>
 
 #include "tessera/math/types.hpp"
+#include "tessera/raster3d/lanes.hpp"
 #include "tessera/raster3d/shaders.hpp"
 
 namespace tessera::raster3d {
@@ -86,10 +87,17 @@ class PreparedLighting {
   /// visibility[i] scales light i's diffuse and specular terms: the notes' visible(P, L), 0 in its shadow (see
   /// ShadowMap), fractions at a filtered shadow's edge; the lights past the span's end are fully visible.
   Vec3f shade(const Vec3f& n, const Vec3f& p, const Vec3f& color, std::span<const float> visibility = {}) const;
+  /// The same on eight lanes (lanes.hpp), for lane shaders: lane k's result is the scalar shade's of lane k's values.
+  lanes::vec3 shade(const lanes::vec3& n, const lanes::vec3& p, const lanes::vec3& color,
+                    std::span<const lanes::Float> visibility = {}) const;
   /// The lights that are on: lights[0, light_count()).
   int light_count() const { return light_count_; }
 
  private:
+  /// Both shades, on float and Vec3f or on lanes::Float and lanes::vec3 (lighting.cpp).
+  template <class F, class V3>
+  V3 shade_any(const V3& n, const V3& p, const V3& color, std::span<const F> visibility) const;
+
   struct PreparedLight {
     Vec4f position;
     Vec3f direction;  // directional lights: normalized L

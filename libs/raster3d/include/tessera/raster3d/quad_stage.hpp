@@ -63,10 +63,16 @@ class QuadFragmentShader {
 
 /// Draws the triangles `indices` (3 per triangle) of the vertices `vertices`, which hold per vertex the clip-space
 /// position (4 floats) then `varying_count` floats (at most FragmentBatch::kMaxVaryings), through `fs` on the quad
-/// stage. State as draw_triangles (depth, culling, flat, color mask, blending; the painter's algorithm), except that
-/// the stencil test is not supported yet (InvalidInput). Throws InvalidInput as draw_triangles, or when
-/// vertices.size() is not a multiple of 4 + varying_count.
+/// stage. State as draw_triangles (depth, stencil, culling, flat, color mask, blending; the painter's algorithm).
+/// Throws InvalidInput as draw_triangles, or when vertices.size() is not a multiple of 4 + varying_count.
 DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& state, std::span<const float> vertices,
                                int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs);
+
+namespace detail {
+/// draw_triangles_quads for vertices already in the framebuffer's current draw input (its vertex stage has run, as
+/// in draw_triangles; the caller has checked the draw).
+DrawStats draw_staged_quads(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                            int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs);
+}  // namespace detail
 
 }  // namespace tessera::raster3d

@@ -15,6 +15,7 @@
 
 #include "tessera/image/texture.hpp"
 #include "tessera/raster3d/context.hpp"
+#include "tessera/raster3d/lane_shader.hpp"
 #include "tessera/raster3d/lighting.hpp"
 #include "tessera/raster3d/pipeline.hpp"
 #include "tessera/raster3d/shaders.hpp"
@@ -116,7 +117,17 @@ struct SurfaceFragmentShader {
                   Vec3f& color) const;
 };
 
-/// Draws the triangles of `arrays` with the surface shaders and uniforms `u` (normals required; uvs for a texture or
+/// The fragment program as a lane shader (lane_shader.hpp), eight fragments at a time, what draw_surface runs: the same
+/// steps, with the texture's level of detail from each quad's differences (as OpenGL's) and the shadow test's facet
+/// plane from the position's quad differences. Bump mapping, shadow maps and environment lookups run lane by lane.
+struct SurfaceLaneShader {
+  const SurfaceUniforms* uniforms = nullptr;
+
+  lanes::vec3 operator()(const lanes::Fragment<SurfaceVaryings>& in, lanes::Mask& kept) const;
+};
+
+/// Draws the triangles of `arrays` with the surface shaders (SurfaceLaneShader on the quad stage) and uniforms `u`
+/// (normals required; uvs for a texture or
 /// bump map; `tangents`, uv_tangents of the same arrays, for a bump map, else null). Throws InvalidInput when the
 /// normals, the uvs a map needs, or the tangents do not match the positions in number, or a bump map has no tangents.
 DrawStats draw_surface(Framebuffer& framebuffer, const RasterState& state, const VertexArrays& arrays,
