@@ -457,13 +457,13 @@ struct TexturedDraw {
     uniforms.maps.texture = &texture;
   }
 
-  /// The GL texture (rows bottom first) as an image (rows top first).
-  static ImageRGBA texture_image(const reference::GlTexture& gl) {
-    ImageRGBA image(gl.width, gl.height);
+  /// The GL texture (rows bottom first) as an 8-bit image (rows top first): the format llvmpipe samples (GL_RGBA8).
+  static ImageRGBA8 texture_image(const reference::GlTexture& gl) {
+    ImageRGBA8 image(gl.width, gl.height);
     for (int j = 0; j < gl.height; ++j)
       for (int i = 0; i < gl.width; ++i) {
         const uint8_t* t = &gl.rgba[(size_t(j) * gl.width + i) * 4];
-        image(i, gl.height - 1 - j) = Vec4f(t[0], t[1], t[2], 255) / 255.0f;
+        image(i, gl.height - 1 - j) = glm::u8vec4(t[0], t[1], t[2], 255);
       }
     return image;
   }

@@ -86,15 +86,13 @@ void sample_lanes_avx2(const Texture2D& t, const float* u, const float* v, const
     } else {
       // The lanes' levels (a quad's are equal): each distinct lower level once over all eight lanes, kept where it is
       // the lane's, blended with the next level where the lane's lod has a fraction.
-      int lower[8];
-      float blend[8];
-      for (int k = 0; k < 8; ++k) {
-        const float clamped = lod[l + k] > 0.f ? std::min(lod[l + k], float(last)) : 0.f;
-        lower[k] = int(clamped);
-        blend[k] = clamped - float(lower[k]);
-      }
-      const __m256 weights = _mm256_loadu_ps(blend);
-      const __m256i lanes_level = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lower));
+      // In vectors (eight scalar stores read back as one vector would stall the load).
+      const __m256 clamped = _mm256_min_ps(_mm256_max_ps(_mm256_loadu_ps(lod + l), _mm256_setzero_ps()),
+                                           _mm256_set1_ps(float(last)));  // NaN -> 0
+      const __m256i lanes_level = _mm256_cvttps_epi32(clamped);
+      const __m256 weights = _mm256_sub_ps(clamped, _mm256_cvtepi32_ps(lanes_level));
+      alignas(32) int lower[8];
+      _mm256_store_si256(reinterpret_cast<__m256i*>(lower), lanes_level);
       for (int k = 0; k < 8; ++k) {
         if (k > 0 && std::find(lower, lower + k, lower[k]) != lower + k) continue;  // done with an earlier lane
         __m256 near[4], far[4];

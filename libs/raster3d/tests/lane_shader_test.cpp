@@ -29,7 +29,8 @@ VertexArrays sphere_arrays(int slices, int stacks) {
   a.uvs.clear();
   for (const Vec3f& p : a.positions) {
     a.normals.push_back(glm::normalize(p));
-    a.uvs.emplace_back(0.5f + std::atan2(p.z, p.x) / 6.2831853f, 0.5f + std::asin(std::clamp(p.y, -1.0f, 1.0f)) / 3.1415927f);
+    a.uvs.emplace_back(0.5f + std::atan2(p.z, p.x) / 6.2831853f,
+                       0.5f + std::asin(std::clamp(p.y, -1.0f, 1.0f)) / 3.1415927f);
   }
   return a;
 }
@@ -198,7 +199,8 @@ TEST(LaneShader, TextureAtTheQuadsLevelOfDetail) {
       for (int q = 0; q < 2; ++q) {
         // A quad's footprint: lane 0 anywhere, steps of up to 8 texels along x and y.
         const Vec2f origin(4 * rng.uniform() - 2, 4 * rng.uniform() - 2);
-        const Vec2f step_x(0.12f * rng.uniform(), 0.05f * rng.uniform()), step_y(0.02f * rng.uniform(), 0.15f * rng.uniform());
+        const Vec2f step_x(0.12f * rng.uniform(), 0.05f * rng.uniform()),
+            step_y(0.02f * rng.uniform(), 0.15f * rng.uniform());
         for (int k = 0; k < 4; ++k) {
           const Vec2f p = origin + float(k & 1) * step_x + float(k >> 1) * step_y;
           uv.x.set_lane(4 * q + k, p.x), uv.y.set_lane(4 * q + k, p.y);
@@ -243,7 +245,8 @@ TEST(LaneShader, SurfaceShaderAsThePerPixelOne) {
         depth_diffs += a.depth()(x, y) != b.depth()(x, y);
         drawn += a.depth()(x, y) != kDepthMax;
         int worst = 0;
-        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(a.color()(x, y)[c]) - int(b.color()(x, y)[c])));
+        for (int c = 0; c < 3; ++c)
+          worst = std::max(worst, std::abs(int(a.color()(x, y)[c]) - int(b.color()(x, y)[c])));
         off += textured ? worst > 2 : worst > 0;
       }
     EXPECT_EQ(depth_diffs, 0);

@@ -176,8 +176,8 @@ TEST(QuadStage, RefusesWhatItCannotDraw) {
   Framebuffer depth_only = Framebuffer::depth_only(8, 8);
   EXPECT_THROW(draw_triangles_quads(fb, {}, vertices, 2, triangle, shader), InvalidInput);  // 15 % 6 != 0
   EXPECT_THROW(draw_triangles_quads(fb, {}, vertices, 40, triangle, shader), InvalidInput);
-  EXPECT_THROW(draw_triangles_quads(depth_only, RasterState{.stencil_test = true},
-                                    std::vector<float>(12, 0.0f), 0, triangle, shader),
+  EXPECT_THROW(draw_triangles_quads(depth_only, RasterState{.stencil_test = true}, std::vector<float>(12, 0.0f), 0,
+                                    triangle, shader),
                InvalidInput);  // no stencil buffer
 }
 

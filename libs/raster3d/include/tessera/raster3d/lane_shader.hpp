@@ -48,8 +48,8 @@ class Fragment {
   template <class T>
   typename LanesOf<T>::type operator()(T V::*m) const {
     static const V probe{};  // a real object: the member's offset without offsetof on a pointer to member
-    const auto first = size_t(reinterpret_cast<const char*>(&(probe.*m)) - reinterpret_cast<const char*>(&probe)) /
-                       sizeof(float);
+    const auto first =
+        size_t(reinterpret_cast<const char*>(&(probe.*m)) - reinterpret_cast<const char*>(&probe)) / sizeof(float);
     typename LanesOf<T>::type r;
     if constexpr (std::is_same_v<T, float>)
       r = varying(int(first));

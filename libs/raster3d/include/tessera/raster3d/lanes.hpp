@@ -15,6 +15,11 @@
 #include <cstdint>
 #include <cstring>
 #include <glm/glm.hpp>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#elif defined(__ARM_NEON) && defined(__aarch64__)
+#include <arm_neon.h>
+#endif
 
 #include "tessera/math/types.hpp"
 
@@ -27,8 +32,8 @@ namespace tessera::raster3d::lanes {
 /// Lanes per call of a lane shader: two quads.
 inline constexpr int kWidth = 8;
 
-using Float4 = float __attribute__((vector_size(16)));   ///< one quad's floats
-using Int4 = int32_t __attribute__((vector_size(16)));   ///< one quad's masks (0 or -1)
+using Float4 = float __attribute__((vector_size(16)));  ///< one quad's floats
+using Int4 = int32_t __attribute__((vector_size(16)));  ///< one quad's masks (0 or -1)
 
 /// A float per lane.
 struct Float {
@@ -66,7 +71,7 @@ struct Mask {
 
 // ---- Float arithmetic ----------------------------------------------------------------------------------------------
 
-#define TESSERA_LANES_BINARY(OP)                                                                    \
+#define TESSERA_LANES_BINARY(OP)                                                                            \
   inline Float operator OP(const Float& a, const Float& b) { return {a.q[0] OP b.q[0], a.q[1] OP b.q[1]}; } \
   inline Float& operator OP##=(Float& a, const Float& b) { return a = a OP b; }
 TESSERA_LANES_BINARY(+)
@@ -123,14 +128,33 @@ Float per_lane(const Float& a, F&& f) {
   return r;
 }
 /// GLSL's sqrt, inversesqrt (1 / sqrt, as glm), floor, fract, exp2, log2, sin, cos and pow, lane by lane.
-inline Float sqrt(const Float& a) { return per_lane(a, [](float x) { return std::sqrt(x); }); }
+inline Float sqrt(const Float& a) {
+#if defined(__SSE__)
+  // The instruction (std::sqrt's result, correctly rounded, without its errno check per lane).
+  return {Float4(_mm_sqrt_ps(__m128(a.q[0]))), Float4(_mm_sqrt_ps(__m128(a.q[1])))};
+#elif defined(__ARM_NEON) && defined(__aarch64__)
+  return {Float4(vsqrtq_f32(float32x4_t(a.q[0]))), Float4(vsqrtq_f32(float32x4_t(a.q[1])))};
+#else
+  return per_lane(a, [](float x) { return std::sqrt(x); });
+#endif
+}
 inline Float inversesqrt(const Float& a) { return Float(1.0f) / sqrt(a); }
-inline Float floor(const Float& a) { return per_lane(a, [](float x) { return std::floor(x); }); }
+inline Float floor(const Float& a) {
+  return per_lane(a, [](float x) { return std::floor(x); });
+}
 inline Float fract(const Float& a) { return a - floor(a); }
-inline Float exp2(const Float& a) { return per_lane(a, [](float x) { return std::exp2(x); }); }
-inline Float log2(const Float& a) { return per_lane(a, [](float x) { return std::log2(x); }); }
-inline Float sin(const Float& a) { return per_lane(a, [](float x) { return std::sin(x); }); }
-inline Float cos(const Float& a) { return per_lane(a, [](float x) { return std::cos(x); }); }
+inline Float exp2(const Float& a) {
+  return per_lane(a, [](float x) { return std::exp2(x); });
+}
+inline Float log2(const Float& a) {
+  return per_lane(a, [](float x) { return std::log2(x); });
+}
+inline Float sin(const Float& a) {
+  return per_lane(a, [](float x) { return std::sin(x); });
+}
+inline Float cos(const Float& a) {
+  return per_lane(a, [](float x) { return std::cos(x); });
+}
 inline Float pow(const Float& a, const Float& b) {
   Float r;
   for (int k = 0; k < kWidth; ++k) r.set_lane(k, std::pow(a.lane(k), b.lane(k)));
@@ -160,7 +184,8 @@ inline Float dFdy(const Float& a) {
   return {d(a.q[0]), d(a.q[1])};
 }
 
-// ---- Vectors of lanes ------------------------------------------------------------------------------------------------
+// ---- Vectors of lanes
+// ------------------------------------------------------------------------------------------------
 
 /// N floats per lane: GLSL's vec2, vec3, vec4 on lanes (components x, y, z, w).
 template <int N>
@@ -210,26 +235,26 @@ Vec<N> componentwise(const Vec<N>& a, const Vec<N>& b, Op op) {
   for (int i = 0; i < N; ++i) r[i] = op(a[i], b[i]);
   return r;
 }
-#define TESSERA_LANES_VEC_BINARY(OP)                                                                      \
-  template <int N>                                                                                        \
-  Vec<N> operator OP(const Vec<N>& a, const Vec<N>& b) {                                                  \
-    return componentwise(a, b, [](const Float& u, const Float& v) { return u OP v; });                    \
-  }                                                                                                       \
-  template <int N>                                                                                        \
-  Vec<N> operator OP(const Vec<N>& a, const Float& s) {                                                   \
-    Vec<N> r;                                                                                             \
-    for (int i = 0; i < N; ++i) r[i] = a[i] OP s;                                                         \
-    return r;                                                                                             \
-  }                                                                                                       \
-  template <int N>                                                                                        \
-  Vec<N> operator OP(const Float& s, const Vec<N>& a) {                                                   \
-    Vec<N> r;                                                                                             \
-    for (int i = 0; i < N; ++i) r[i] = s OP a[i];                                                         \
-    return r;                                                                                             \
-  }                                                                                                       \
-  template <int N, class T>                                                                               \
-  Vec<N>& operator OP##=(Vec<N>& a, const T& b) {                                                         \
-    return a = a OP b;                                                                                    \
+#define TESSERA_LANES_VEC_BINARY(OP)                                                   \
+  template <int N>                                                                     \
+  Vec<N> operator OP(const Vec<N>& a, const Vec<N>& b) {                               \
+    return componentwise(a, b, [](const Float& u, const Float& v) { return u OP v; }); \
+  }                                                                                    \
+  template <int N>                                                                     \
+  Vec<N> operator OP(const Vec<N>& a, const Float& s) {                                \
+    Vec<N> r;                                                                          \
+    for (int i = 0; i < N; ++i) r[i] = a[i] OP s;                                      \
+    return r;                                                                          \
+  }                                                                                    \
+  template <int N>                                                                     \
+  Vec<N> operator OP(const Float& s, const Vec<N>& a) {                                \
+    Vec<N> r;                                                                          \
+    for (int i = 0; i < N; ++i) r[i] = s OP a[i];                                      \
+    return r;                                                                          \
+  }                                                                                    \
+  template <int N, class T>                                                            \
+  Vec<N>& operator OP##=(Vec<N>& a, const T& b) {                                      \
+    return a = a OP b;                                                                 \
   }
 TESSERA_LANES_VEC_BINARY(+)
 TESSERA_LANES_VEC_BINARY(-)
