@@ -104,10 +104,8 @@ void Context::initialize(int width, int height) {
 // shaders that refer to them. The jobs hold it until they are done.
 struct Context::DrawShaders {
   FixedFunctionUniforms uniforms;
-  PhongFragmentShader phong{&uniforms};
   ColorFragmentShader color;
-  Translucent<PhongFragmentShader> translucent_phong{phong};  // alpha set by the draw (Context::alpha)
-  Translucent<ColorFragmentShader> translucent_color;
+  Translucent<ColorFragmentShader> translucent_color;  // alpha set by the draw (Context::alpha)
 };
 
 Framebuffer& Context::framebuffer() {
@@ -498,12 +496,20 @@ void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t 
                                                    fragment_shader, shaders));
   };
   // Opaque draws keep the plain shaders (and their fast paths: the RGB shaders' alpha is 1).
-  shaders->translucent_phong.alpha = shaders->translucent_color.alpha = alpha_;
+  shaders->translucent_color.alpha = alpha_;
   if (shading_ == ShadingModel::phong) {
-    if (alpha_ == 1)
-      draw(PhongVertexShader{attributes, u}, shaders->phong);
-    else
-      draw(PhongVertexShader{attributes, u}, shaders->translucent_phong);
+    // Per pixel: the lane shader on the quad stage, which holds the uniforms until its jobs are done.
+    detail::check_draw(framebuffer_, s, indices, vertex_count, 3, "triangle");
+    detail::RasterScratch& scratch = framebuffer_.scratch();
+    scratch.input ^= 1;  // as draw_triangles_async
+    detail::run_vertex_stage(scratch, vertex_count, PhongVertexShader{attributes, u});
+    struct Phong final : lanes::QuadShader<PhongVaryings, PhongLaneShader> {
+      Phong(std::shared_ptr<const DrawShaders> s, float alpha)
+          : QuadShader(PhongLaneShader{&s->uniforms, alpha}), shaders(std::move(s)) {}
+      std::shared_ptr<const DrawShaders> shaders;
+    };
+    add_stats(stats_, detail::draw_staged_quads_async(framebuffer_, s, vertex_count, varying_count<PhongVaryings>,
+                                                      indices, std::make_shared<Phong>(shaders, alpha_)));
   } else {
     if (alpha_ == 1)
       draw(FixedFunctionVertexShader{attributes, u}, shaders->color);

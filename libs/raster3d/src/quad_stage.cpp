@@ -232,36 +232,46 @@ DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& stat
   detail::RasterScratch& scratch = framebuffer.scratch();
   scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
   scratch.inputs[size_t(scratch.input)].vertices.assign(vertices.begin(), vertices.end());
-  return detail::draw_staged_quads(framebuffer, state, vertex_count, varying_count, indices, fs);
+  // The caller owns fs and this waits for the jobs: a shared pointer that owns nothing.
+  DrawStats stats = detail::draw_staged_quads_async(framebuffer, state, vertex_count, varying_count, indices,
+                                                    std::shared_ptr<const QuadFragmentShader>(std::shared_ptr<void>(), &fs));
+  stats.rasterized += detail::collect_raster(scratch);
+  return stats;
 }
 
 namespace detail {
 
-DrawStats draw_staged_quads(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
-                            int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs) {
+DrawStats draw_staged_quads_async(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                                  int varying_count, std::span<const uint32_t> indices,
+                                  std::shared_ptr<const QuadFragmentShader> fs) {
   if (varying_count > FragmentBatch::kMaxVaryings)
     throw InvalidInput("the quad stage takes at most " + std::to_string(FragmentBatch::kMaxVaryings) +
                        " varyings, not " + std::to_string(varying_count));
   DrawStats stats;
   stats.primitives = indices.size() / 3;
   if (indices.empty()) return stats;
-  // Each thread's batch and shader scratch, made once per draw (not per range of tiles) and not zeroed: every field
-  // is set before use.
-  tbb::enumerable_thread_specific<std::unique_ptr<QuadTile>> tiles;
-  const auto raster = [&framebuffer, &fs, &tiles](const SetupPass& pass, const SetupParams& params,
-                                                  const FragmentState& fragment, int64_t begin, int64_t end) {
-    std::unique_ptr<QuadTile>& t = tiles.local();
+  // What the jobs share: the shader, and each thread's batch and shader scratch, made once per draw (not per range of
+  // tiles) and not zeroed: every field is set before use.
+  struct Shared {
+    std::shared_ptr<const QuadFragmentShader> fs;
+    tbb::enumerable_thread_specific<std::unique_ptr<QuadTile>> tiles;
+  };
+  const auto shared = std::make_shared<Shared>();
+  shared->fs = std::move(fs);
+  const auto raster = [&framebuffer, shared](const SetupPass& pass, const SetupParams& params,
+                                             const FragmentState& fragment, int64_t begin, int64_t end) {
+    const QuadFragmentShader& shader = *shared->fs;
+    std::unique_ptr<QuadTile>& t = shared->tiles.local();
     if (!t) {
       t = std::make_unique_for_overwrite<QuadTile>();
-      t->scratch = fs.begin();
+      t->scratch = shader.begin();
     }
     dispatch_depth_func(fragment.func, [&](auto f) {
       for (int64_t tile = begin; tile < end; ++tile)
-        raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile), fs);
+        raster_tile_quads<decltype(f)::value>(*t, framebuffer, pass, params, fragment.depth_write, int(tile), shader);
     });
   };
   stats.rasterized += submit_triangle_passes(framebuffer, state, vertex_count, varying_count, indices, raster);
-  stats.rasterized += collect_raster(framebuffer.scratch());
   return stats;
 }
 

@@ -87,9 +87,9 @@ concept FragmentShader = requires(const FS& fs, const Fragment<V>& in, Mask& kep
 
 /// The quad stage's shader that runs lane shader FS eight lanes at a time.
 template <class V, class FS>
-class QuadShader final : public QuadFragmentShader {
+class QuadShader : public QuadFragmentShader {
  public:
-  explicit QuadShader(const FS& fs) : fs_(fs) {}
+  explicit QuadShader(FS fs) : fs_(std::move(fs)) {}
   std::unique_ptr<QuadShaderScratch> begin() const override { return std::make_unique<QuadShaderScratch>(); }
   void shade(FragmentBatch& batch, QuadShaderScratch&) const override {
     if (batch.quads % 2) copy_last_quad(batch);
@@ -116,7 +116,7 @@ class QuadShader final : public QuadFragmentShader {
     std::memcpy(b.front_facing + to, b.front_facing + from, 4 * sizeof(uint32_t));
     std::memset(b.covered + to, 0, 4 * sizeof(uint32_t));
   }
-  const FS& fs_;
+  FS fs_;
 };
 
 }  // namespace tessera::raster3d::lanes
@@ -133,8 +133,10 @@ DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uin
   detail::RasterScratch& scratch = framebuffer.scratch();
   scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
   detail::run_vertex_stage(scratch, vertex_count, vs);
-  return detail::draw_staged_quads(framebuffer, state, vertex_count, varying_count<V>, indices,
-                                   lanes::QuadShader<V, FS>(fs));
+  DrawStats stats = detail::draw_staged_quads_async(framebuffer, state, vertex_count, varying_count<V>, indices,
+                                                    std::make_shared<lanes::QuadShader<V, FS>>(fs));
+  stats.rasterized += detail::collect_raster(scratch);
+  return stats;
 }
 
 }  // namespace tessera::raster3d

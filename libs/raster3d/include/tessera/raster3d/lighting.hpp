@@ -14,6 +14,7 @@
 #include <span>
 
 #include "tessera/math/types.hpp"
+#include "tessera/raster3d/lane_shader.hpp"
 #include "tessera/raster3d/lanes.hpp"
 #include "tessera/raster3d/shaders.hpp"
 
@@ -187,6 +188,18 @@ struct PhongFragmentShader {
   bool operator()(const PhongVaryings& in, Vec3f& color) const {
     color = uniforms->lighting.shade(glm::normalize(in.normal), in.position, in.color);
     return true;
+  }
+};
+
+/// PhongFragmentShader as a lane shader (lane_shader.hpp), the same colors bit for bit, with an opacity for
+/// blending: what Context draws Phong-shaded triangles with.
+struct PhongLaneShader {
+  const FixedFunctionUniforms* uniforms = nullptr;
+  float alpha = 1;  ///< the fragments' alpha (Context::alpha)
+
+  lanes::vec4 operator()(const lanes::Fragment<PhongVaryings>& in, lanes::Mask&) const {
+    const lanes::vec3 n = normalize(in(&PhongVaryings::normal));
+    return {uniforms->lighting.shade(n, in(&PhongVaryings::position), in(&PhongVaryings::color)), alpha};
   }
 };
 

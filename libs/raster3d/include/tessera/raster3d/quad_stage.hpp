@@ -70,9 +70,11 @@ DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& stat
 
 namespace detail {
 /// draw_triangles_quads for vertices already in the framebuffer's current draw input (its vertex stage has run, as
-/// in draw_triangles; the caller has checked the draw).
-DrawStats draw_staged_quads(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
-                            int varying_count, std::span<const uint32_t> indices, const QuadFragmentShader& fs);
+/// in draw_triangles; the caller has checked the draw), returning before the raster thread is done with the last
+/// pass (as draw_triangles_async; collect_raster waits): the jobs hold `fs` until they are done.
+DrawStats draw_staged_quads_async(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                                  int varying_count, std::span<const uint32_t> indices,
+                                  std::shared_ptr<const QuadFragmentShader> fs);
 }  // namespace detail
 
 }  // namespace tessera::raster3d
