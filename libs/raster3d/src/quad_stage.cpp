@@ -233,8 +233,9 @@ DrawStats draw_triangles_quads(Framebuffer& framebuffer, const RasterState& stat
   scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
   scratch.inputs[size_t(scratch.input)].vertices.assign(vertices.begin(), vertices.end());
   // The caller owns fs and this waits for the jobs: a shared pointer that owns nothing.
-  DrawStats stats = detail::draw_staged_quads_async(framebuffer, state, vertex_count, varying_count, indices,
-                                                    std::shared_ptr<const QuadFragmentShader>(std::shared_ptr<void>(), &fs));
+  DrawStats stats =
+      detail::draw_staged_quads_async(framebuffer, state, vertex_count, varying_count, indices,
+                                      std::shared_ptr<const QuadFragmentShader>(std::shared_ptr<void>(), &fs));
   stats.rasterized += detail::collect_raster(scratch);
   return stats;
 }
