@@ -173,13 +173,13 @@ inline Float smoothstep(const Float& e0, const Float& e1, const Float& x) {
 /// 4q + 3 - 4q + 1), the same for both lanes of a column.
 inline Float dFdx(const Float& a) {
   const auto d = [](Float4 v) {
-    return __builtin_shuffle(v, Int4{1, 1, 3, 3}) - __builtin_shuffle(v, Int4{0, 0, 2, 2});
+    return __builtin_shufflevector(v, v, 1, 1, 3, 3) - __builtin_shufflevector(v, v, 0, 0, 2, 2);
   };
   return {d(a.q[0]), d(a.q[1])};
 }
 inline Float dFdy(const Float& a) {
   const auto d = [](Float4 v) {
-    return __builtin_shuffle(v, Int4{2, 3, 2, 3}) - __builtin_shuffle(v, Int4{0, 1, 0, 1});
+    return __builtin_shufflevector(v, v, 2, 3, 2, 3) - __builtin_shufflevector(v, v, 0, 1, 0, 1);
   };
   return {d(a.q[0]), d(a.q[1])};
 }
