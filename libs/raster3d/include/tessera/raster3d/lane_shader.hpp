@@ -5,6 +5,7 @@
 // shader's varyings struct: `in(&V::member)` is that member's value interpolated on the lanes; the shader clears the
 // lanes of `kept` it discards. draw_triangles (below) takes one where it takes a per-pixel shader (shaders.hpp), which
 // stays the simple interface for shaders that do not need the speed.
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <span>
@@ -18,25 +19,18 @@ namespace tessera::raster3d::lanes {
 
 // ---- Fragments -----------------------------------------------------------------------------------------------------
 
+/// The floats in a varyings member of type T: 1 for float, T::length() for a glm vector.
+template <class T>
+constexpr int member_floats() {
+  if constexpr (std::is_same_v<T, float>)
+    return 1;
+  else
+    return T::length();
+}
+
 /// The lanes type of a varyings member type: float -> Float, Vec2f -> vec2, Vec3f -> vec3, Vec4f -> vec4.
 template <class T>
-struct LanesOf;
-template <>
-struct LanesOf<float> {
-  using type = Float;
-};
-template <>
-struct LanesOf<Vec2f> {
-  using type = vec2;
-};
-template <>
-struct LanesOf<Vec3f> {
-  using type = vec3;
-};
-template <>
-struct LanesOf<Vec4f> {
-  using type = vec4;
-};
+using LanesOf = std::conditional_t<member_floats<T>() == 1, Float, Vec<std::max(member_floats<T>(), 2)>>;
 
 /// What a lane shader reads: eight lanes of a FragmentBatch (two quads), starting at `first`.
 template <class V>
@@ -46,11 +40,11 @@ class Fragment {
 
   /// Member `m` of the varyings, interpolated on the lanes: `in(&V::normal)` is a vec3 for a Vec3f normal.
   template <class T>
-  typename LanesOf<T>::type operator()(T V::*m) const {
+  LanesOf<T> operator()(T V::*m) const {
     static const V probe{};  // a real object: the member's offset without offsetof on a pointer to member
     const auto first =
         size_t(reinterpret_cast<const char*>(&(probe.*m)) - reinterpret_cast<const char*>(&probe)) / sizeof(float);
-    typename LanesOf<T>::type r;
+    LanesOf<T> r;
     if constexpr (std::is_same_v<T, float>)
       r = varying(int(first));
     else
