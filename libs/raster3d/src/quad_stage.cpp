@@ -55,9 +55,25 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
   const bool color_write = params.color_write, blend = params.blend;
   glm::u8vec4* const color = color_write ? fb.color().row(0) : nullptr;
   uint32_t* const depth = fb.depth().row(0);
-  for (int q = 0; q < b.quads; ++q)
+  for (int q = 0; q < b.quads; ++q) {
+    const int l0 = 4 * q;
+    if (!blend && (b.covered[l0] & b.kept[l0] & b.covered[l0 + 1] & b.kept[l0 + 1] & b.covered[l0 + 2] &
+                   b.kept[l0 + 2] & b.covered[l0 + 3] & b.kept[l0 + 3])) {
+      // The whole quad (most of a large triangle's): each row's two pixels in one 8-byte store per buffer.
+      const size_t row0 = size_t(height - 1 - t.quad_j[q]) * size_t(width) + size_t(t.quad_i[q]);
+      const size_t row1 = row0 - size_t(width);  // GL row j + 1 is the image row above
+      if (color_write) {
+        std::memcpy(&color[row0], &packed[l0], 2 * sizeof(uint32_t));
+        std::memcpy(&color[row1], &packed[l0 + 2], 2 * sizeof(uint32_t));
+      }
+      if (depth_write) {
+        std::memcpy(&depth[row0], &t.depth[l0], 2 * sizeof(uint32_t));
+        std::memcpy(&depth[row1], &t.depth[l0 + 2], 2 * sizeof(uint32_t));
+      }
+      continue;
+    }
     for (int k = 0; k < 4; ++k) {
-      const int lane = 4 * q + k;
+      const int lane = l0 + k;
       if (!(b.covered[lane] & b.kept[lane])) continue;
       const size_t pixel =
           size_t(height - 1 - (t.quad_j[q] + (k >> 1))) * size_t(width) + size_t(t.quad_i[q] + (k & 1));
@@ -69,6 +85,7 @@ void flush(QuadTile& t, Framebuffer& fb, const SetupParams& params, bool depth_w
       }
       if (depth_write) depth[pixel] = t.depth[lane];
     }
+  }
   for (int q = 0; q < b.quads; ++q) {
     const int by = t.quad_j[q] - t.origin_y;
     t.waiting[by] = 0;
