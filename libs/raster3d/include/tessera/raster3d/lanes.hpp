@@ -171,13 +171,13 @@ inline Float smoothstep(const Float& e0, const Float& e1, const Float& x) {
 /// GLSL's dFdx: per lane, the difference along x within its quad (lane 4q + 1 - 4q in row j, 4q + 3 - 4q + 2 in row
 /// j + 1; FragmentBatch's layout), the same for both lanes of a row. dFdy: the difference along y (4q + 2 - 4q,
 /// 4q + 3 - 4q + 1), the same for both lanes of a column.
-inline Float dFdx(const Float& a) {
+inline Float dFdx(const Float& a) {  // NOLINT(readability-identifier-naming): GLSL's name
   const auto d = [](Float4 v) {
     return __builtin_shufflevector(v, v, 1, 1, 3, 3) - __builtin_shufflevector(v, v, 0, 0, 2, 2);
   };
   return {d(a.q[0]), d(a.q[1])};
 }
-inline Float dFdy(const Float& a) {
+inline Float dFdy(const Float& a) {  // NOLINT(readability-identifier-naming): GLSL's name
   const auto d = [](Float4 v) {
     return __builtin_shufflevector(v, v, 2, 3, 2, 3) - __builtin_shufflevector(v, v, 0, 1, 0, 1);
   };
@@ -318,13 +318,13 @@ Vec<N> select(const Mask& m, const Vec<N>& a, const Vec<N>& b) {
   return r;
 }
 template <int N>
-Vec<N> dFdx(const Vec<N>& a) {
+Vec<N> dFdx(const Vec<N>& a) {  // NOLINT(readability-identifier-naming): GLSL's name
   Vec<N> r;
   for (int i = 0; i < N; ++i) r[i] = dFdx(a[i]);
   return r;
 }
 template <int N>
-Vec<N> dFdy(const Vec<N>& a) {
+Vec<N> dFdy(const Vec<N>& a) {  // NOLINT(readability-identifier-naming): GLSL's name
   Vec<N> r;
   for (int i = 0; i < N; ++i) r[i] = dFdy(a[i]);
   return r;
