@@ -499,17 +499,13 @@ void Context::draw_triangle_arrays(const VertexAttributes& attributes, uint32_t 
   shaders->translucent_color.alpha = alpha_;
   if (shading_ == ShadingModel::phong) {
     // Per pixel: the lane shader on the quad stage, which holds the uniforms until its jobs are done.
-    detail::check_draw(framebuffer_, s, indices, vertex_count, 3, "triangle");
-    detail::RasterScratch& scratch = framebuffer_.scratch();
-    scratch.input ^= 1;  // as draw_triangles_async
-    detail::run_vertex_stage(scratch, vertex_count, PhongVertexShader{attributes, u});
     struct Phong final : lanes::QuadShader<PhongVaryings, PhongLaneShader> {
       Phong(std::shared_ptr<const DrawShaders> s, float alpha)
           : QuadShader(PhongLaneShader{&s->uniforms, alpha}), shaders(std::move(s)) {}
       std::shared_ptr<const DrawShaders> shaders;
     };
-    add_stats(stats_, detail::draw_staged_quads_async(framebuffer_, s, vertex_count, varying_count<PhongVaryings>,
-                                                      indices, std::make_shared<Phong>(shaders, alpha_)));
+    add_stats(stats_, detail::draw_quads_async(framebuffer_, s, vertex_count, indices, PhongVertexShader{attributes, u},
+                                               std::make_shared<Phong>(shaders, alpha_)));
   } else {
     if (alpha_ == 1)
       draw(FixedFunctionVertexShader{attributes, u}, shaders->color);

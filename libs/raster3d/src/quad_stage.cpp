@@ -212,15 +212,7 @@ void raster_tile_quads(QuadTile& t, Framebuffer& fb, const SetupPass& binned, co
   bool any = false;
   for (const SetupChunk& chunk : binned) any = any || !chunk.bins[tile].empty();
   if (!any) return;
-  // The tile's depth and color rows are read and written all over: fetch them at once rather than miss on each (as
-  // raster_tile does).
-  const int height = fb.height();
-  const bool has_color = fb.has_color();
-  for (int j = tile_y0; j < tile_y1; ++j)
-    for (int i = tile_x0; i < tile_x1; i += 16) {
-      __builtin_prefetch(fb.depth().row(height - 1 - j) + i, 1);
-      if (has_color) __builtin_prefetch(fb.color().row(height - 1 - j) + i, 1);
-    }
+  prefetch_rows(fb, tile_x0, tile_x1, tile_y0, tile_y1);
   for (const SetupChunk& chunk : binned)
     for (const uint32_t index : chunk.bins[tile]) {
       const TriangleRecord& r = chunk.records[index];
@@ -262,9 +254,8 @@ namespace detail {
 DrawStats draw_staged_quads_async(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
                                   int varying_count, std::span<const uint32_t> indices,
                                   std::shared_ptr<const QuadFragmentShader> fs) {
-  if (varying_count > FragmentBatch::kMaxVaryings)
-    throw InvalidInput("the quad stage takes at most " + std::to_string(FragmentBatch::kMaxVaryings) +
-                       " varyings, not " + std::to_string(varying_count));
+  // varying_count is in range: draw_triangles_quads checks it, and run_vertex_stage asserts it (kMaxVaryings).
+  static_assert(FragmentBatch::kMaxVaryings == kMaxVaryings);
   DrawStats stats;
   stats.primitives = indices.size() / 3;
   if (indices.empty()) return stats;

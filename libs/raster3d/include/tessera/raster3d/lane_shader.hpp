@@ -117,19 +117,31 @@ class QuadShader : public QuadFragmentShader {
 
 namespace tessera::raster3d {
 
+namespace detail {
+/// The vertex stage of `vs`, then the quad stage with `fs`, returning before the raster thread has finished the last
+/// pass (as draw_triangles_async; collect_raster waits): what draw_triangles with a lane shader and Context's Phong
+/// draws share.
+template <VertexShader VS>
+DrawStats draw_quads_async(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
+                           std::span<const uint32_t> indices, const VS& vs,
+                           std::shared_ptr<const QuadFragmentShader> fs) {
+  check_draw(framebuffer, state, indices, vertex_count, 3, "triangle");
+  RasterScratch& scratch = framebuffer.scratch();
+  scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
+  run_vertex_stage(scratch, vertex_count, vs);
+  return draw_staged_quads_async(framebuffer, state, vertex_count, varying_count<VaryingsOf<VS>>, indices,
+                                 std::move(fs));
+}
+}  // namespace detail
+
 /// draw_triangles with a lane shader (lanes::FragmentShader): the vertex stage as for any fragment shader, then the
 /// quad stage (draw_triangles_quads) runs `fs` eight fragments at a time. Throws as draw_triangles_quads.
 template <VertexShader VS, lanes::FragmentShader<VaryingsOf<VS>> FS>
 DrawStats draw_triangles(Framebuffer& framebuffer, const RasterState& state, uint32_t vertex_count,
                          std::span<const uint32_t> indices, const VS& vs, const FS& fs) {
-  using V = VaryingsOf<VS>;
-  detail::check_draw(framebuffer, state, indices, vertex_count, 3, "triangle");
-  detail::RasterScratch& scratch = framebuffer.scratch();
-  scratch.input ^= 1;  // as draw_triangles_async: the previous draw's job may still read the other input set
-  detail::run_vertex_stage(scratch, vertex_count, vs);
-  DrawStats stats = detail::draw_staged_quads_async(framebuffer, state, vertex_count, varying_count<V>, indices,
-                                                    std::make_shared<lanes::QuadShader<V, FS>>(fs));
-  stats.rasterized += detail::collect_raster(scratch);
+  DrawStats stats = detail::draw_quads_async(framebuffer, state, vertex_count, indices, vs,
+                                             std::make_shared<lanes::QuadShader<VaryingsOf<VS>, FS>>(fs));
+  stats.rasterized += detail::collect_raster(framebuffer.scratch());
   return stats;
 }
 

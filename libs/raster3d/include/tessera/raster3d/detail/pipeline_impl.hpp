@@ -332,6 +332,19 @@ template <int N, class V, class FS, DepthFunc F>
   for_each_tested_span<F>(fb, r, x0, x1, y0, y1, shade_span);
 }
 
+/// Fetches the depth and color rows of GL pixels [x0, x1) x [y0, y1) into the cache for writing: a tile's pixels are
+/// read and written all over, and fetching them at once beats missing on each.
+inline void prefetch_rows(Framebuffer& fb, int x0, int x1, int y0, int y1) {
+  // A depth-only target (a shadow map) has no color rows: null + i would be undefined behaviour (clang's UBSan).
+  const bool has_color = fb.has_color();
+  const int height = fb.height();
+  for (int j = y0; j < y1; ++j)
+    for (int i = x0; i < x1; i += 16) {
+      __builtin_prefetch(fb.depth().row(height - 1 - j) + i, 1);
+      if (has_color) __builtin_prefetch(fb.color().row(height - 1 - j) + i, 1);
+    }
+}
+
 /// Rasterizes the records binned to `tile` of every chunk of the pass, in submission order.
 template <int N, class V, class FS, DepthFunc F>
 void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& params, bool depth_write, int tile,
@@ -357,13 +370,7 @@ void raster_tile(Framebuffer& fb, const SetupPass& binned, const SetupParams& pa
   if (records == 0) return;
   const SpanKernels& kernels = span_kernels();
   FillSpan* const fill_span = kernels.fill[int(F)][write_depth];
-  // A depth-only target (a shadow map) has no color rows: null + i would be undefined behaviour (clang's UBSan).
-  const bool has_color = fb.has_color();
-  for (int j = tile_y0; j < tile_y1; ++j)
-    for (int i = tile_x0; i < tile_x1; i += 16) {
-      __builtin_prefetch(depth.row(height - 1 - j) + i, 1);
-      if (has_color) __builtin_prefetch(color.row(height - 1 - j) + i, 1);
-    }
+  prefetch_rows(fb, tile_x0, tile_x1, tile_y0, tile_y1);
   for (const SetupChunk& chunk : binned) {
     const std::vector<uint32_t>& bin = chunk.bins[tile];
     for (size_t b = 0; b < bin.size(); ++b) {
