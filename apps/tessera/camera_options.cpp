@@ -1,81 +1,8 @@
 #include "camera_options.hpp"
 
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <cmath>
-#include <numbers>
-
 #include "command.hpp"
-#include "tessera/core/error.hpp"
-#include "tessera/math/transform.hpp"
-#include "tessera/scene/mesh_view.hpp"
 
 namespace tessera::cli {
-namespace {
-
-/// The model's front F, right R = U x F and up U (R x U = F; see CameraOptions). Throws InvalidInput when the front
-/// axis is the up axis or its opposite.
-struct ModelFrame {
-  Vec3 front, right, up;
-};
-ModelFrame model_frame(UpAxis up_axis, FrontAxis front_axis) {
-  const Vec3 up = up_axis == UpAxis::x ? Vec3(1, 0, 0) : up_axis == UpAxis::y ? Vec3(0, 1, 0) : Vec3(0, 0, 1);
-  Vec3 front = up_axis == UpAxis::z ? Vec3(0, -1, 0) : Vec3(0, 0, 1);
-  switch (front_axis) {
-    case FrontAxis::automatic:
-      break;
-    case FrontAxis::pos_x:
-      front = {1, 0, 0};
-      break;
-    case FrontAxis::neg_x:
-      front = {-1, 0, 0};
-      break;
-    case FrontAxis::pos_y:
-      front = {0, 1, 0};
-      break;
-    case FrontAxis::neg_y:
-      front = {0, -1, 0};
-      break;
-    case FrontAxis::pos_z:
-      front = {0, 0, 1};
-      break;
-    case FrontAxis::neg_z:
-      front = {0, 0, -1};
-      break;
-  }
-  if (glm::dot(front, up) != 0) throw InvalidInput("--front-axis: expected an axis perpendicular to --up-axis");
-  return {front, glm::cross(up, front), up};
-}
-
-/// The named views' azimuth and elevation, degrees. iso looks down the cube's diagonal (elevation atan(1/sqrt 2));
-/// the default three-quarter view stands 30 degrees to the right of the front and 20 above it.
-struct ViewAngles {
-  double azimuth, elevation;
-};
-ViewAngles view_angles(View view) {
-  switch (view) {
-    case View::three_quarter:
-      return {30, 20};
-    case View::front:
-      return {0, 0};
-    case View::back:
-      return {180, 0};
-    case View::left:
-      return {-90, 0};
-    case View::right:
-      return {90, 0};
-    case View::top:
-      return {0, 90};
-    case View::bottom:
-      return {0, -90};
-    case View::iso:
-      return {45, std::atan(1 / std::sqrt(2.0)) * 180 / std::numbers::pi};
-  }
-  return {0, 0};
-}
-
-}  // namespace
 
 void CameraOptions::add(CLI::App& command, const std::string& default_size) {
   size = default_size;
@@ -142,37 +69,23 @@ double CameraOptions::view_azimuth() const { return azimuth ? *azimuth : view_an
 double CameraOptions::view_elevation() const { return elevation ? *elevation : view_angles(view).elevation; }
 
 Camera CameraOptions::camera(const Vec3& lo, const Vec3& hi) const {
-  const Vec3 mid = 0.5 * (lo + hi);
-  const double extent = 0.5 * glm::length(hi - lo);
-  const auto vec = [](const std::string& text, const char* what, const Vec3& fallback) {
-    return text.empty() ? fallback : parse_vec3(text, what);
+  const auto vec = [](const std::string& text, const char* what) {
+    return text.empty() ? std::nullopt : std::optional<Vec3>(parse_vec3(text, what));
   };
-  if (!(fovy > 0 && fovy < 180)) throw InvalidInput(fmt::format("--fovy: expected degrees in (0, 180), got {}", fovy));
+  Framing f;
+  f.angles = {view_azimuth(), view_elevation()};
+  f.up_axis = up_axis;
+  f.front_axis = front_axis;
+  f.fovy = fovy;
+  f.ortho = ortho;
+  f.ortho_size = ortho_size;
+  f.eye = vec(eye, "--eye");
+  f.center = vec(center, "--center");
+  f.up = vec(up, "--up");
+  f.near = near;
+  f.far = far;
   const Size2 s = image_size();
-  Camera c;
-  c.fovy = radians(fovy);
-  c.aspect = double(s.width) / double(s.height);
-  const double radius = extent > 0 ? extent : 1.0;  // a single point: a unit sphere around it
-  // Distance at which the bounding sphere fits the narrower of the two fields of view, with a small margin.
-  const double half = std::min(c.fovy, 2 * std::atan(std::tan(c.fovy / 2) * c.aspect)) / 2;
-  const double dist = sphere_fit_distance(radius, half, 1.1);
-  // The view's direction from the center to the eye, and the image's up: that direction turned 90 degrees upward.
-  const auto [front, right, model_up] = model_frame(up_axis, front_axis);
-  const double az = radians(view_azimuth()), el = radians(view_elevation());
-  const Vec3 level = std::cos(az) * front + std::sin(az) * right;
-  const Vec3 view_dir = std::cos(el) * level + std::sin(el) * model_up;
-  const Vec3 view_up = -std::sin(el) * level + std::cos(el) * model_up;
-  c.center = vec(center, "--center", mid);
-  c.eye = vec(eye, "--eye", c.center + glm::normalize(view_dir) * dist);
-  c.up = vec(up, "--up", eye.empty() ? view_up : model_up);
-  c.orthographic = ortho;
-  c.ortho_height = ortho_size > 0 ? ortho_size : 2.2 * radius / std::min(1.0, c.aspect);
-  const double d = glm::length(c.eye - mid);
-  c.near = near > 0 ? near : std::max(1e-3 * (d + radius), d - 1.5 * radius);
-  c.far = far > 0 ? far : d + 1.5 * radius;
-  if (!(c.far > c.near))
-    throw InvalidInput(fmt::format("--near/--far: expected near < far, got {} and {}", c.near, c.far));
-  return c;
+  return frame_camera(f, lo, hi, double(s.width) / double(s.height));
 }
 
 void add_samples_option(CLI::App& command, int& samples) {

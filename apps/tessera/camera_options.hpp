@@ -6,28 +6,18 @@
 
 #include "tessera/core/parse.hpp"
 #include "tessera/math/camera.hpp"
+#include "tessera/scene/framing.hpp"
 
 namespace tessera::cli {
 
-/// Where the framed camera stands, as an azimuth about the model's up axis (0 = front, 90 = right) and an elevation
-/// above its horizontal plane (90 = top). three_quarter is the default of raster and trace.
-enum class View { three_quarter, front, back, left, right, top, bottom, iso };
-
-/// The model's up axis (--up-axis): meshes are y-up by OpenGL's convention, CAD data and the teapot (.bpt) are z-up.
-enum class UpAxis { x, y, z };
-
-/// The direction the model's front faces (--front-axis): automatic is +z (glTF's and Blender's OBJ convention), or
-/// -y for z-up models (Blender's front view).
-enum class FrontAxis { automatic, pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
+/// The framed views and model axes are the library's (tessera/scene/framing.hpp), named for the options.
+using View = FramedView;
+using tessera::FrontAxis;
+using tessera::UpAxis;
 
 /// The camera options shared by every 3D command (DESIGN.md section 4): `--eye x,y,z --center x,y,z --up x,y,z
 /// --fovy DEG --near N --far F --size WxH`, the framed views `--view NAME --azimuth DEG --elevation DEG --up-axis
-/// x|y|z`, and `--ortho [--ortho-size H]`.
-///
-/// The model's frame: up U is the --up-axis, front F the --front-axis (by default +z, or -y for z-up: Blender's front
-/// view), right R = U x F (+x for the defaults of y-up and z-up, -y for x-up), so that R x U = F. The framed eye lies
-/// on cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
-/// up (U at elevation 0; -F on the top view: the front at the bottom of the image, as in Blender).
+/// x|y|z --front-axis AXIS`, and `--ortho [--ortho-size H]`; framed by the library's frame_camera (framing.hpp).
 struct CameraOptions {
   std::string eye, center, up, size;
   double fovy = 45, near = 0, far = 0;       ///< near/far 0: chosen from the framed bounds
@@ -47,10 +37,7 @@ struct CameraOptions {
   /// The view's azimuth and elevation in degrees (--azimuth and --elevation replace the view's own).
   double view_azimuth() const;
   double view_elevation() const;
-  /// The camera: options that were given win; the rest frame the bounding sphere of the box [lo, hi] (radius r) from
-  /// the view's direction at the distance where the sphere, grown by 10%, fills the narrower field of view; an
-  /// orthographic camera's height is --ortho-size, or 2.2 r / min(1, aspect) so that the same sphere fits. The aspect
-  /// is the image's.
+  /// The camera framing the box [lo, hi] (frame_camera) with the options given; the aspect is the image's.
   Camera camera(const Vec3& lo, const Vec3& hi) const;
 };
 
