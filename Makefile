@@ -7,7 +7,7 @@ OUT ?= out
 CMAKE ?= cmake
 TESSERA := build/release/apps/tessera/tessera
 
-.PHONY: all deps build demo test lint bench asan install clean
+.PHONY: all deps build demo test lint bench asan install python clean
 
 all: build
 
@@ -52,6 +52,13 @@ asan: deps
 	@$(CMAKE) --preset asan >/dev/null
 	@$(CMAKE) --build --preset asan -j $(JOBS) --target unit_tests
 	ctest --preset asan -L unit
+
+# The Python package in the virtual environment build/venv (Debian's numpy and friends visible, nothing from PyPI),
+# installed from the release build: `. build/venv/bin/activate` then `python -c "import tessera"` (docs/python.md).
+python: build
+	@rm -rf build/venv && /usr/bin/python3 -m venv --system-site-packages build/venv
+	TESSERA_BUILD_DIR=build/release build/venv/bin/pip install --quiet --no-build-isolation --no-index ./python
+	@echo "tessera installed in build/venv: . build/venv/bin/activate"
 
 install: build
 	$(CMAKE) --install build/release --prefix $(PREFIX)

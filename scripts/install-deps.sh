@@ -24,6 +24,8 @@ test_packages=(
   xvfb xauth
   # the real-window tests of tessera sketch and tessera view: input sent by xdotool, the window grabbed by import
   xdotool imagemagick
+  # the Python package: built with pybind11, installed into a virtual environment, tested with pytest
+  pybind11-dev python3-dev python3-venv python3-setuptools python3-pytest
   # glslangValidator, the reference compiler's command line: the GLSL tests check the shipped shaders with it
   glslang-tools
   # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang

@@ -172,11 +172,11 @@ py::object to_python(PolyMesh mesh) {
 }
 
 PolyMesh mesh(py::handle value, const std::string& what) {
-  if (!py::hasattr(value, "vertices") || !py::hasattr(value, "faces"))
-    throw InvalidInput(fmt::format("{}: expected a tessera.Mesh (or an object with vertices and faces), got {}", what,
-                                   std::string(py::str(py::type::of(value).attr("__name__")))));
   // tessera.Mesh keeps faces flat (any valence); other meshes (trimesh's) give an (M, k) array.
   const bool flat = py::hasattr(value, "face_vertices") && py::hasattr(value, "face_offsets");
+  if (!py::hasattr(value, "vertices") || !(flat || py::hasattr(value, "faces")))
+    throw InvalidInput(fmt::format("{}: expected a tessera.Mesh (or an object with vertices and faces), got {}", what,
+                                   std::string(py::str(py::type::of(value).attr("__name__")))));
   PolyMesh m;
   const auto v = rows(value.attr("vertices"), 3, what + ".vertices");
   m.positions.resize(size_t(v.shape(0)));

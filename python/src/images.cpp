@@ -65,9 +65,14 @@ void write(const std::filesystem::path& path, py::handle image, bool srgb, int j
     write_image(path, bytes, options);
     return;
   }
-  const ImageRGBA rgba = image_rgba(image, "image");
+  ImageRGBA rgba = image_rgba(image, "image");
+  // Without alpha the file gets none (an RGB PNG, as the CLI writes renders).
+  const bool opaque = py::array::ensure(image).ndim() == 2 || py::array::ensure(image).shape(2) == 3;
   py::gil_scoped_release release;
-  write_image(path, rgba, options);
+  if (opaque)
+    write_image(path, to_rgb(rgba), options);
+  else
+    write_image(path, rgba, options);
 }
 
 /// Scales the hue component of every color in place (turns <-> the caller's unit).
