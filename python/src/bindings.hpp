@@ -8,5 +8,6 @@ void bind_images(pybind11::module_& m);     ///< images.cpp: image files, colors
 void bind_meshes(pybind11::module_& m);     ///< meshes.cpp: mesh files, primitives, topology, subdivision
 void bind_volumes(pybind11::module_& m);    ///< volumes.cpp: isosurfaces, contours, volume files and rendering
 void bind_rendering(pybind11::module_& m);  ///< rendering.cpp: the rasterizer, the ray tracer, ray casting
+void bind_sketches(pybind11::module_& m);   ///< sketches.cpp: the canvas and sketches
 
 }  // namespace tessera::python

@@ -87,4 +87,5 @@ PYBIND11_MODULE(_tessera, m) {
   tessera::python::bind_meshes(m);
   tessera::python::bind_volumes(m);
   tessera::python::bind_rendering(m);
+  tessera::python::bind_sketches(m);
 }

@@ -16,6 +16,7 @@ import numpy as _np
 
 from . import _tessera
 from ._tessera import (  # noqa: F401 (the public names)
+    Canvas,
     CornerTable,
     Error,
     InvalidInput,

@@ -1,0 +1,244 @@
+// The canvas (Processing's drawing calls) and sketches: Python classes or module-level setup()/draw() functions run
+// by the same runner as the C++ sketches (libs/sketch), in a window or headless.
+#include <pybind11/functional.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "tessera/image/image_io.hpp"
+#include "tessera/raster2d/canvas.hpp"
+#include "tessera/sketch/runner.hpp"
+#include "tessera/sketch/sketch.hpp"
+
+namespace tessera::python {
+namespace {
+
+/// Forwards the runner's calls to the methods a Python subclass defines (python/tessera/sketch.py).
+class PythonSketch : public Sketch {
+ public:
+  void setup() override { PYBIND11_OVERRIDE(void, Sketch, setup, ); }
+  void draw() override { PYBIND11_OVERRIDE(void, Sketch, draw, ); }
+  void mouse_pressed() override { PYBIND11_OVERRIDE(void, Sketch, mouse_pressed, ); }
+  void mouse_released() override { PYBIND11_OVERRIDE(void, Sketch, mouse_released, ); }
+  void mouse_dragged() override { PYBIND11_OVERRIDE(void, Sketch, mouse_dragged, ); }
+  void mouse_moved() override { PYBIND11_OVERRIDE(void, Sketch, mouse_moved, ); }
+  void mouse_wheel(double delta) override { PYBIND11_OVERRIDE(void, Sketch, mouse_wheel, delta); }
+  void key_pressed() override { PYBIND11_OVERRIDE(void, Sketch, key_pressed, ); }
+  void key_released() override { PYBIND11_OVERRIDE(void, Sketch, key_released, ); }
+  void window_resized() override { PYBIND11_OVERRIDE(void, Sketch, window_resized, ); }
+};
+
+/// The canvas's picture as a float32 Image (H, W, 4) viewing its pixels (live: drawing changes it; copy() keeps it).
+py::object canvas_image(py::object self) {
+  const Canvas& c = self.cast<const Canvas&>();
+  const py::array view(py::dtype::of<float>(), std::vector<py::ssize_t>{c.height(), c.width(), 4},
+                       &c.image().pixels()[0][0], self);
+  return view.attr("view")(py::module_::import("tessera").attr("Image"));
+}
+
+/// A color as the tuple (r, g, b, a) in [0, 1].
+py::tuple rgba(const Vec4f& c) { return py::make_tuple(c.x, c.y, c.z, c.w); }
+
+/// Processing's drawing calls with their overloads, on the Canvas.
+void bind_canvas(py::module_& m) {
+  py::enum_<ShapeKind>(m, "ShapeKind")
+      .value("polygon", ShapeKind::polygon)
+      .value("points", ShapeKind::points)
+      .value("lines", ShapeKind::lines)
+      .value("triangles", ShapeKind::triangles)
+      .value("triangle_strip", ShapeKind::triangle_strip)
+      .value("triangle_fan", ShapeKind::triangle_fan)
+      .value("quads", ShapeKind::quads)
+      .value("quad_strip", ShapeKind::quad_strip);
+  py::enum_<ColorMode>(m, "ColorMode").value("rgb", ColorMode::rgb).value("hsb", ColorMode::hsb);
+  py::enum_<ArcMode>(m, "ArcMode").value("open", ArcMode::open).value("chord", ArcMode::chord).value("pie", ArcMode::pie);
+  py::enum_<TextAlignX>(m, "TextAlignX")
+      .value("left", TextAlignX::left)
+      .value("center", TextAlignX::center)
+      .value("right", TextAlignX::right);
+  py::enum_<TextAlignY>(m, "TextAlignY")
+      .value("baseline", TextAlignY::baseline)
+      .value("top", TextAlignY::top)
+      .value("center", TextAlignY::center)
+      .value("bottom", TextAlignY::bottom);
+  py::enum_<LineJoin>(m, "LineJoin").value("miter", LineJoin::miter).value("round", LineJoin::round).value("bevel", LineJoin::bevel);
+  py::enum_<LineCap>(m, "LineCap").value("butt", LineCap::butt).value("round", LineCap::round).value("square", LineCap::square);
+  py::enum_<MouseButton>(m, "MouseButton")
+      .value("none", MouseButton::none)
+      .value("left", MouseButton::left)
+      .value("right", MouseButton::right)
+      .value("center", MouseButton::center);
+
+  using C = Canvas;
+  py::class_<C>(m, "Canvas", R"(A Processing-style 2D drawing surface (docs/canvas.md): Processing's calls in
+lower_case (background, fill, stroke, rect, ellipse, begin_shape, push_matrix, translate, color_mode, text, ...).
+Colors take Processing's forms: gray, (gray, alpha), (v1, v2, v3), (v1, v2, v3, alpha) in the color_mode's ranges
+(0..255 by default). `picture` is what it shows, an Image (H, W, 4) viewing its pixels (live: copy() keeps one).)")
+      .def(py::init<int, int>(), py::arg("width"), py::arg("height"))
+      .def_property_readonly("width", &C::width)
+      .def_property_readonly("height", &C::height)
+      .def_property_readonly("picture", &canvas_image)
+      .def("_repr_png_", [](py::object self) { return canvas_image(self).attr("_repr_png_")(); })
+      .def("save", &C::save, py::arg("path"), "Writes the picture (write_image).")
+      .def("background", py::overload_cast<double>(&C::background))
+      .def("background", py::overload_cast<double, double>(&C::background))
+      .def("background", py::overload_cast<double, double, double>(&C::background))
+      .def("background", py::overload_cast<double, double, double, double>(&C::background))
+      .def("fill", py::overload_cast<double>(&C::fill))
+      .def("fill", py::overload_cast<double, double>(&C::fill))
+      .def("fill", py::overload_cast<double, double, double>(&C::fill))
+      .def("fill", py::overload_cast<double, double, double, double>(&C::fill))
+      .def("no_fill", &C::no_fill)
+      .def("stroke", py::overload_cast<double>(&C::stroke))
+      .def("stroke", py::overload_cast<double, double>(&C::stroke))
+      .def("stroke", py::overload_cast<double, double, double>(&C::stroke))
+      .def("stroke", py::overload_cast<double, double, double, double>(&C::stroke))
+      .def("no_stroke", &C::no_stroke)
+      .def("stroke_weight", &C::stroke_weight, py::arg("weight"))
+      .def("stroke_join", &C::stroke_join, py::arg("join"))
+      .def("stroke_cap", &C::stroke_cap, py::arg("cap"))
+      .def("smooth", &C::smooth)
+      .def("no_smooth", &C::no_smooth)
+      .def("color_mode", py::overload_cast<ColorMode>(&C::color_mode))
+      .def("color_mode", py::overload_cast<ColorMode, double>(&C::color_mode))
+      .def("color_mode", py::overload_cast<ColorMode, double, double, double, double>(&C::color_mode))
+      .def("color", [](const C& c, double g) { return rgba(c.color(g)); })
+      .def("color", [](const C& c, double g, double a) { return rgba(c.color(g, a)); })
+      .def("color", [](const C& c, double v1, double v2, double v3) { return rgba(c.color(v1, v2, v3)); })
+      .def("color", [](const C& c, double v1, double v2, double v3, double a) { return rgba(c.color(v1, v2, v3, a)); })
+      .def("point", &C::point, py::arg("x"), py::arg("y"))
+      .def("line", &C::line, py::arg("x0"), py::arg("y0"), py::arg("x1"), py::arg("y1"))
+      .def("rect", &C::rect, py::arg("x"), py::arg("y"), py::arg("w"), py::arg("h"))
+      .def("ellipse", &C::ellipse, py::arg("cx"), py::arg("cy"), py::arg("w"), py::arg("h"))
+      .def("arc", &C::arc, py::arg("cx"), py::arg("cy"), py::arg("w"), py::arg("h"), py::arg("start"), py::arg("stop"),
+           py::arg("mode") = ArcMode::open)
+      .def("triangle", &C::triangle)
+      .def("quad", &C::quad)
+      .def("begin_shape", &C::begin_shape, py::arg("kind") = ShapeKind::polygon)
+      .def("vertex", &C::vertex, py::arg("x"), py::arg("y"))
+      .def("bezier_vertex", &C::bezier_vertex)
+      .def("quadratic_vertex", &C::quadratic_vertex)
+      .def("begin_contour", &C::begin_contour)
+      .def("end_contour", &C::end_contour)
+      .def("end_shape", &C::end_shape, py::arg("close") = false)
+      .def("push_matrix", &C::push_matrix)
+      .def("pop_matrix", &C::pop_matrix)
+      .def("translate", &C::translate, py::arg("dx"), py::arg("dy"))
+      .def("rotate", &C::rotate, py::arg("angle"))
+      .def("scale", py::overload_cast<double>(&C::scale))
+      .def("scale", py::overload_cast<double, double>(&C::scale))
+      .def("shear_x", &C::shear_x, py::arg("angle"))
+      .def("shear_y", &C::shear_y, py::arg("angle"))
+      .def("reset_matrix", &C::reset_matrix)
+      .def(
+          "apply_matrix",
+          [](C& c, double n00, double n01, double n02, double n10, double n11, double n12) {
+            c.apply_matrix(Mat3(n00, n10, 0, n01, n11, 0, n02, n12, 1));  // glm's columns
+          },
+          "Processing's applyMatrix(n00, n01, n02, n10, n11, n12): x' = n00 x + n01 y + n02, y' = n10 x + n11 y + n12.")
+      .def("text", &C::text, py::arg("text"), py::arg("x"), py::arg("y"))
+      .def("text_size", &C::text_size, py::arg("px"))
+      .def("text_align", &C::text_align, py::arg("x"), py::arg("y") = TextAlignY::baseline)
+      .def("text_width", &C::text_width, py::arg("text"))
+      .def(
+          "image",
+          [](C& c, py::handle img, double x, double y, std::optional<double> w, std::optional<double> h) {
+            const ImageRGBA picture = image_rgba(img, "image");
+            c.image(picture, x, y, w.value_or(picture.width()), h.value_or(picture.height()));
+          },
+          py::arg("image"), py::arg("x"), py::arg("y"), py::arg("w") = py::none(), py::arg("h") = py::none());
+}
+
+/// The runner's options and a run, the GIL released while the runner waits (the sketch's methods take it back).
+py::dict run(PythonSketch& sketch, std::optional<int> frames, std::optional<double> seconds, std::optional<double> fps,
+             std::optional<std::pair<int, int>> size, const std::string& output, bool window, const std::string& input,
+             int threads, uint64_t seed, bool srgb, const std::string& title, const py::object& on_frame) {
+  RunOptions o;
+  o.frames = frames;
+  o.seconds = seconds;
+  o.fps = fps;
+  o.size = size;
+  o.output = output;
+  o.mode = window ? RunMode::window : RunMode::headless;
+  o.input = input;
+  o.threads = threads;
+  o.seed = seed;
+  o.srgb = srgb;
+  o.title = title;
+  FrameCallback callback;
+  if (!on_frame.is_none())
+    callback = [&on_frame](int frame, const ImageRGBA8& picture) {
+      py::gil_scoped_acquire acquire;
+      py::array_t<uint8_t> copy(std::vector<py::ssize_t>{picture.height(), picture.width(), 4},
+                                &picture.pixels()[0][0]);
+      on_frame(frame, copy);
+    };
+  RunResult r;
+  {
+    py::gil_scoped_release release;
+    r = run_sketch(sketch, o, callback);
+  }
+  py::dict d;
+  d["frames"] = r.frames;
+  d["draws"] = r.draws;
+  d["width"] = r.width;
+  d["height"] = r.height;
+  return d;
+}
+
+}  // namespace
+
+void bind_sketches(py::module_& m) {
+  bind_canvas(m);
+  py::class_<Sketch, PythonSketch>(m, "Sketch", "The C++ sketch a Python sketch derives from (tessera.sketch).")
+      .def(py::init<>())
+      .def("setup", &Sketch::setup)
+      .def("draw", &Sketch::draw)
+      .def("mouse_pressed", &Sketch::mouse_pressed)
+      .def("mouse_released", &Sketch::mouse_released)
+      .def("mouse_dragged", &Sketch::mouse_dragged)
+      .def("mouse_moved", &Sketch::mouse_moved)
+      .def("mouse_wheel", &Sketch::mouse_wheel, py::arg("delta"))
+      .def("key_pressed", &Sketch::key_pressed)
+      .def("key_released", &Sketch::key_released)
+      .def("window_resized", &Sketch::window_resized)
+      .def_readonly("frame_count", &Sketch::frame_count)
+      .def_readonly("mouse_x", &Sketch::mouse_x)
+      .def_readonly("mouse_y", &Sketch::mouse_y)
+      .def_readonly("pmouse_x", &Sketch::pmouse_x)
+      .def_readonly("pmouse_y", &Sketch::pmouse_y)
+      .def_readonly("mouse_is_pressed", &Sketch::mouse_is_pressed)
+      .def_readonly("mouse_button", &Sketch::mouse_button)
+      .def_readonly("key_code", &Sketch::key_code)
+      .def_readonly("key_is_pressed", &Sketch::key_is_pressed)
+      .def_readonly("width", &Sketch::width)
+      .def_readonly("height", &Sketch::height)
+      .def_readonly("window_width", &Sketch::window_width)
+      .def_readonly("window_height", &Sketch::window_height)
+      .def_readonly("focused", &Sketch::focused)
+      .def_property_readonly("key", [](const Sketch& s) { return s.key == Key::coded ? std::string() : std::string(1, char(s.key)); })
+      .def("size", [](Sketch& s, int w, int h) { s.size(w, h); }, py::arg("width"), py::arg("height"))
+      .def("frame_rate", py::overload_cast<double>(&Sketch::frame_rate), py::arg("fps"))
+      .def("millis", &Sketch::millis)
+      .def("no_loop", &Sketch::no_loop)
+      .def("loop", &Sketch::loop)
+      .def("redraw", &Sketch::redraw)
+      .def("exit_sketch", &Sketch::exit)
+      .def("save_frame", &Sketch::save_frame, py::arg("pattern") = "screen-####.png")
+      .def("random", py::overload_cast<double, double>(&Sketch::random), py::arg("low"), py::arg("high"))
+      .def("random_seed", &Sketch::random_seed, py::arg("seed"))
+      .def("noise", &Sketch::noise, py::arg("x"), py::arg("y") = 0.0, py::arg("z") = 0.0)
+      .def("noise_seed", &Sketch::noise_seed, py::arg("seed"))
+      .def("noise_detail", py::overload_cast<int>(&Sketch::noise_detail), py::arg("octaves"))
+      .def("noise_detail", py::overload_cast<int, double>(&Sketch::noise_detail), py::arg("octaves"),
+           py::arg("falloff"))
+      .def("canvas", &Sketch::canvas, py::return_value_policy::reference_internal)
+      .def("picture", [](Sketch& s) { return to_python(to_float(s.picture())); });
+  m.def("_run_sketch", &run, py::arg("sketch"), py::arg("frames"), py::arg("seconds"), py::arg("fps"),
+        py::arg("size"), py::arg("output"), py::arg("window"), py::arg("input"), py::arg("threads"), py::arg("seed"),
+        py::arg("srgb"), py::arg("title"), py::arg("on_frame"));
+  m.def("window_supported", &window_supported, "Whether this build can open windows (SDL2).");
+}
+
+}  // namespace tessera::python
