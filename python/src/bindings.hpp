@@ -9,5 +9,7 @@ void bind_meshes(pybind11::module_& m);     ///< meshes.cpp: mesh files, primiti
 void bind_volumes(pybind11::module_& m);    ///< volumes.cpp: isosurfaces, contours, volume files and rendering
 void bind_rendering(pybind11::module_& m);  ///< rendering.cpp: the rasterizer, the ray tracer, ray casting
 void bind_sketches(pybind11::module_& m);   ///< sketches.cpp: the canvas and sketches
+void bind_curves(pybind11::module_& m);     ///< curves.cpp: Bezier curves and patches
+void bind_fractals(pybind11::module_& m);   ///< fractals.cpp: escape-time sets, self-similar sets, terrain
 
 }  // namespace tessera::python

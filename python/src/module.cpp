@@ -88,4 +88,6 @@ PYBIND11_MODULE(_tessera, m) {
   tessera::python::bind_volumes(m);
   tessera::python::bind_rendering(m);
   tessera::python::bind_sketches(m);
+  tessera::python::bind_curves(m);
+  tessera::python::bind_fractals(m);
 }
