@@ -294,7 +294,11 @@ void Options::finish(const std::string& what) const {
 Framing framing(Options& options, double fovy) {
   Framing f;
   f.fovy = options.get("fovy", fovy);
-  const auto view = choice<FramedView>(options.get<std::string>("view", "three-quarter"),
+  const py::object view_name = options.take("view"), azimuth = options.take("azimuth"),
+                   elevation = options.take("elevation"), eye = options.take("eye");
+  if (!eye.is_none() && !(view_name.is_none() && azimuth.is_none() && elevation.is_none()))
+    throw InvalidInput("eye: it places the camera; give eye, or view/azimuth/elevation, not both");
+  const auto view = choice<FramedView>(view_name.is_none() ? "three-quarter" : view_name.cast<std::string>(),
                                        {{"three-quarter", FramedView::three_quarter},
                                         {"front", FramedView::front},
                                         {"back", FramedView::back},
@@ -305,8 +309,9 @@ Framing framing(Options& options, double fovy) {
                                         {"iso", FramedView::iso}},
                                        "view");
   f.angles = view_angles(view);
-  f.angles.azimuth = options.get("azimuth", f.angles.azimuth);
-  f.angles.elevation = options.get("elevation", f.angles.elevation);
+  if (!azimuth.is_none()) f.angles.azimuth = azimuth.cast<double>();
+  if (!elevation.is_none()) f.angles.elevation = elevation.cast<double>();
+  if (!eye.is_none()) f.eye = vec3(eye, "eye");
   f.up_axis = choice<UpAxis>(options.get<std::string>("up_axis", "y"),
                              {{"x", UpAxis::x}, {"y", UpAxis::y}, {"z", UpAxis::z}}, "up_axis");
   f.front_axis = choice<FrontAxis>(options.get<std::string>("front_axis", "auto"),
@@ -318,7 +323,7 @@ Framing framing(Options& options, double fovy) {
                                     {"+z", FrontAxis::pos_z},
                                     {"-z", FrontAxis::neg_z}},
                                    "front_axis");
-  for (auto [name, slot] : {std::pair{"eye", &f.eye}, {"center", &f.center}, {"up", &f.up}})
+  for (auto [name, slot] : {std::pair{"center", &f.center}, {"up", &f.up}})
     if (const py::object o = options.take(name); !o.is_none()) *slot = vec3(o, name);
   f.ortho = options.get("ortho", false);
   f.ortho_size = options.get("ortho_size", 0.0);

@@ -11,7 +11,9 @@
 #include "bindings.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/image/image_io.hpp"
+#include "tessera/image/texture.hpp"
 
 namespace tessera::python {
 namespace {
@@ -107,7 +109,75 @@ py::array convert(py::handle values, const std::string& from_name, const std::st
 
 }  // namespace
 
+namespace {
+
+Sampler sampler(const std::string& filter, const std::string& wrap_u, const std::string& wrap_v) {
+  const auto wrap = [](const std::string& name, const char* what) {
+    return choice<Wrap>(name, {{"repeat", Wrap::repeat}, {"clamp", Wrap::clamp}, {"mirror", Wrap::mirror}}, what);
+  };
+  return {.wrap_u = wrap(wrap_u, "wrap"),
+          .wrap_v = wrap(wrap_v.empty() ? wrap_u : wrap_v, "wrap_v"),
+          .filter = choice<Filter>(
+              filter, {{"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}},
+              "filter")};
+}
+
+void bind_texture(py::module_& m) {
+  py::class_<Texture2D, std::shared_ptr<Texture2D>>(m, "Texture", R"(A 2D texture with MIPmaps (the notes' texture
+mapping): sample(uv) reads it at (u, v) in [0, 1]^2 (v upward, as OpenGL: v = 0 is the image's bottom row) with the
+filter 'nearest', 'bilinear' or 'trilinear' (MIPmaps; lod picks the level) and the wrap 'repeat', 'clamp' or 'mirror'.
+An 8-bit image (uint8, or a file read as 8-bit) stays 8-bit, as GL_RGBA8.)")
+      .def(py::init([](py::handle image, const std::string& filter, const std::string& wrap, const std::string& wrap_v) {
+             const Sampler s = sampler(filter, wrap, wrap_v);
+             if (py::isinstance<py::str>(image) || py::hasattr(image, "__fspath__"))
+               return std::make_shared<Texture2D>(load_texture(py::str(image).cast<std::string>(), s));
+             if (is_rgba_bytes(image))
+               return std::make_shared<Texture2D>(
+                   bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image)), s);
+             return std::make_shared<Texture2D>(image_rgba(image, "image"), s);
+           }),
+           py::arg("image"), py::arg("filter") = "bilinear", py::arg("wrap") = "repeat", py::arg("wrap_v") = "")
+      .def_property_readonly("width", &Texture2D::width)
+      .def_property_readonly("height", &Texture2D::height)
+      .def_property_readonly("levels", &Texture2D::levels)
+      .def("level", [](const Texture2D& t, int i) { return to_python(t.level(i)); }, py::arg("i"),
+           "MIPmap level i (0 = the image) as a float Image.")
+      .def(
+          "sample",
+          [](const Texture2D& t, py::handle uv, py::handle lod) {
+            const auto a = rows(uv, 2, "uv");
+            const auto n = size_t(a.shape(0));
+            std::vector<float> lods(n, 0.0f);
+            if (!lod.is_none()) {
+              const auto l = py::array_t<float, py::array::forcecast>::ensure(lod);
+              if (!l || (l.size() != 1 && size_t(l.size()) != n)) {
+                PyErr_Clear();
+                throw InvalidInput("lod: expected a number or one per uv row");
+              }
+              for (size_t i = 0; i < n; ++i) lods[i] = l.data()[l.size() == 1 ? 0 : i];
+            }
+            py::array_t<float> out(std::vector<py::ssize_t>{py::ssize_t(n), 4});
+            float* o = out.mutable_data();
+            const double* p = a.data();
+            {
+              py::gil_scoped_release release;
+              parallel_for(0, int64_t(n), 16384, [&](int64_t begin, int64_t end) {
+                for (auto i = size_t(begin); i < size_t(end); ++i) {
+                  const glm::vec4 c = t.sample(glm::vec2(float(p[2 * i]), float(p[2 * i + 1])), lods[i]);
+                  for (int k = 0; k < 4; ++k) o[4 * i + size_t(k)] = c[k];
+                }
+              });
+            }
+            return out;
+          },
+          py::arg("uv"), py::arg("lod") = py::none(),
+          "Samples at uv (N, 2), lod a number or (N,) (trilinear only); returns RGBA (N, 4) float32.");
+}
+
+}  // namespace
+
 void bind_images(py::module_& m) {
+  bind_texture(m);
   m.def("read_image", &read, py::arg("path"), py::arg("dtype") = "float32",
         R"(Reads an image file (PNG, JPG, BMP, TGA, HDR, PPM/PGM, PFM) as an Image.
 

@@ -67,7 +67,7 @@ void bind_corner_table(py::module_& m) {
 Corner c (3 per triangle, triangle c // 3) has a vertex V[c] and an opposite corner O[c] across the edge it faces
 (-1 as uint32, i.e. 4294967295, on a boundary). next/prev walk a triangle, swing/unswing walk around a vertex.)")
       .def(py::init([](py::handle value) { return std::make_shared<CornerTable>(mesh(value, "mesh")); }),
-           py::arg("mesh"), "Builds the table of a triangle mesh. Raises InvalidInput for other faces.")
+           py::arg("mesh"), "Builds the table of a triangle mesh. Raises TopologyError for other faces.")
       .def_property_readonly(
           "vertices",
           [](const std::shared_ptr<CornerTable>& t) {

@@ -73,7 +73,8 @@ PYBIND11_MODULE(_tessera, m) {
     int count;
     std::unique_ptr<tessera::ThreadLimit> limit;
   };
-  py::class_<Threads>(m, "threads", "with tessera.threads(n): Tessera's parallel loops use at most n threads (0 = all).")
+  py::class_<Threads>(m, "threads", "with tessera.threads(n): Tessera's parallel loops use at most n threads (0 = all); process-wide, and\n"
+                                    "when caps nest the smallest wins (oneTBB's global_control).")
       .def(py::init([](int n) {
              if (n < 0) throw tessera::InvalidInput(fmt::format("threads: expected a count >= 0, got {}", n));
              return Threads{n, nullptr};
@@ -82,6 +83,11 @@ PYBIND11_MODULE(_tessera, m) {
       .def("__enter__", [](Threads& t) { t.limit = std::make_unique<tessera::ThreadLimit>(t.count); })
       .def("__exit__", [](Threads& t, const py::args&) { t.limit.reset(); });
   m.def("thread_count", &tessera::thread_count, "The number of threads Tessera's parallel loops use now.");
+  m.def(
+      "set_memory_budget", [](uint64_t bytes) { tessera::MemoryBudget::set_limit(bytes); }, py::arg("bytes"),
+      "The most bytes one request may need (the CLI's --max-memory); 0 restores the default, a fraction of the\n"
+      "memory this process may use (cgroup limits included). Requests over it raise MemoryBudgetError up front.");
+  m.def("memory_budget", &tessera::MemoryBudget::bytes, "The memory budget in bytes (set_memory_budget).");
 
   tessera::python::bind_images(m);
   tessera::python::bind_meshes(m);

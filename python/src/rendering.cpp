@@ -39,10 +39,12 @@ glsl::ShaderSource shader(const py::object& value, const char* what) {
 /// textures ({unit: path or image}) bound; null without shaders.
 std::shared_ptr<glsl::Program> program(Options& options, const Sampler& sampler) {
   const py::object vs = options.take("vertex_shader"), fs = options.take("fragment_shader");
-  const py::object uniforms = options.take("uniforms"), textures = options.take("textures");
+  const py::object uniforms = options.take("uniforms"), textures = options.take("textures"),
+                   cube_maps = options.take("cube_maps");
   if (vs.is_none() && fs.is_none()) {
-    if (!uniforms.is_none() || !textures.is_none())
-      throw InvalidInput("uniforms and textures: they are a program's; give vertex_shader and fragment_shader");
+    if (!uniforms.is_none() || !textures.is_none() || !cube_maps.is_none())
+      throw InvalidInput(
+          "uniforms, textures and cube_maps: they are a program's; give vertex_shader and fragment_shader");
     return nullptr;
   }
   if (vs.is_none() || fs.is_none()) throw InvalidInput("vertex_shader and fragment_shader: give both");
@@ -59,6 +61,16 @@ std::shared_ptr<glsl::Program> program(Options& options, const Sampler& sampler)
     for (const auto& [unit, value] : textures.cast<py::dict>())
       p->bind_texture(unit.cast<int>(), std::make_shared<Texture2D>(texture(py::reinterpret_borrow<py::object>(value),
                                                                             sampler, "textures")));
+  if (!cube_maps.is_none())
+    for (const auto& [unit, value] : cube_maps.cast<py::dict>()) {
+      const py::object v = py::reinterpret_borrow<py::object>(value);
+      const EnvironmentMap env = py::isinstance<py::str>(v) ? load_environment_map(v.cast<std::string>())
+                                                            : EnvironmentMap(image_rgba(v, "cube_maps"));
+      // The lat-long image resampled onto six faces of half its height (at most 1024), as `tessera raster`.
+      const int size = std::clamp(env.texture().height() / 2, 1, 1024);
+      p->bind_cube_map(unit.cast<int>(), std::make_shared<CubeMap>(CubeMap::from_function(
+                                             size, [&](const glm::vec3& d) { return env.lookup(d); }, Filter::bilinear)));
+    }
   return p;
 }
 

@@ -14,7 +14,7 @@ namespace tessera::python {
 namespace {
 
 /// The transfer function of render_volume: None (automatic, from the values' profile), a preset name, a file
-/// (.json or .csv, as --tf reads) or rows (value, r, g, b, opacity).
+/// (.json or .csv, as --tf reads) or rows (value, r, g, b, opacity in [0, 1] per unit length).
 TransferFunction transfer_function(const py::object& value, const Volume<float>& v) {
   if (value.is_none()) return TransferFunction::automatic(profile_values(v));
   if (py::isinstance<py::str>(value)) {
@@ -61,7 +61,7 @@ py::object render(py::handle value, int width, int height, py::dict kwargs) {
 void bind_volumes(py::module_& m) {
   m.def(
       "read_volume",
-      [](const std::string& name, std::optional<std::array<int, 3>> dims, const std::string& dtype,
+      [](const std::filesystem::path& name, std::optional<std::array<int, 3>> dims, const std::string& dtype,
          const std::string& byte_order, std::optional<std::array<double, 3>> spacing, uint64_t header_skip) {
         RawLayout layout;
         if (dims) layout.dims = {(*dims)[0], (*dims)[1], (*dims)[2]};
@@ -72,7 +72,7 @@ void bind_volumes(py::module_& m) {
         Volume<float> v;
         {
           py::gil_scoped_release release;
-          v = to_float(read_volume(name, layout));
+          v = to_float(read_volume(name.string(), layout));
         }
         return to_python(std::move(v));
       },

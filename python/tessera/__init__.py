@@ -23,6 +23,7 @@ from ._tessera import (  # noqa: F401 (the public names)
     IoError,
     MemoryBudgetError,
     RayCaster,
+    Texture,
     TopologyError,
     __version__,
     bezier,
@@ -55,6 +56,7 @@ from ._tessera import (  # noqa: F401 (the public names)
     mandelbrot,
     marching_cubes,
     marching_squares,
+    memory_budget,
     midpoint_displacement,
     octahedron,
     patch_control_net,
@@ -66,6 +68,7 @@ from ._tessera import (  # noqa: F401 (the public names)
     read_mesh,
     read_patches,
     read_volume,
+    set_memory_budget,
     sierpinski_carpet,
     sierpinski_triangle,
     signed_volume,
@@ -272,24 +275,27 @@ def _given(**options):
 
 
 def render_mesh(mesh, size=(512, 512), *, shading="gouraud", color=(0.8, 0.8, 0.8), background=(0, 0, 0),
-                view="three-quarter", azimuth=None, elevation=None, up_axis="y", front_axis="auto", fovy=45,
+                view=None, azimuth=None, elevation=None, up_axis="y", front_axis="auto", fovy=45,
                 eye=None, center=None, up=None, ortho=False, ortho_size=None, near=None, far=None, light_dir=None,
                 light_pos=None, wireframe=False, cull="none", samples=1, hidden_surface="zbuffer", opacity=1.0,
                 texture=None, filter="trilinear", bump=None, bump_scale=0.01, env=None, reflect=0.6,
                 env_cube=False, shadows=False, shadow_method="map", shadow_size=2048, floor=False,
-                vertex_shader=None, fragment_shader=None, uniforms=None, textures=None, depth=False, threads=None):
+                vertex_shader=None, fragment_shader=None, uniforms=None, textures=None, cube_maps=None, depth=False,
+                threads=None):
     """Draws a mesh with the rasterizer, as `tessera raster` does (the same pixels for the same options).
 
     size: (width, height). shading: 'unlit', 'flat', 'gouraud', 'phong' or 'normals'. color, background: (r, g, b) in
-    [0, 1] or a name / #rrggbb. The camera frames the mesh from `view` ('three-quarter', 'front', 'back', 'left',
-    'right', 'top', 'bottom', 'iso') or azimuth/elevation degrees about up_axis ('x', 'y', 'z'), front_axis ('auto',
-    '+x', ..., '-z'); eye/center/up, fovy, ortho/ortho_size, near/far replace what they name. light_dir or light_pos:
+    [0, 1] or a name / #rrggbb. The camera frames the mesh from `view` ('three-quarter' by default, 'front', 'back',
+    'left', 'right', 'top', 'bottom', 'iso') or azimuth/elevation degrees about up_axis ('x', 'y', 'z'), front_axis
+    ('auto', '+x', ..., '-z'); or eye places it (not with view/azimuth/elevation); center/up, fovy, ortho/ortho_size
+    and near/far replace what they name. light_dir or light_pos:
     one white light (default: over the viewer's shoulder). wireframe: edges over the surface; cull 'none' or 'back';
     samples: jittered anti-aliasing samples; hidden_surface 'zbuffer' or 'painter'; opacity < 1 blends sorted
     triangles. Maps (per pixel, Phong): texture (a path or an image array; the mesh needs uvs) with filter 'nearest',
     'bilinear' or 'trilinear'; bump (a height image) and bump_scale; env (a lat-long image) and reflect; env_cube;
     shadows with shadow_method 'map', 'zpass' or 'zfail' and shadow_size; floor. A GLSL program: vertex_shader and
-    fragment_shader (file paths, or source text with newlines), uniforms {name: value(s)}, textures {unit: image}.
+    fragment_shader (file paths, or source text with newlines), uniforms {name: value(s)}, textures {unit: image},
+    cube_maps {unit: lat-long image} (resampled onto six faces, as the CLI's --cube-map).
 
     Returns the Image (H, W, 3); with depth=True, (image, depth (H, W) window z in [0, 1], 1 = background).
     """
@@ -300,7 +306,8 @@ def render_mesh(mesh, size=(512, 512), *, shading="gouraud", color=(0.8, 0.8, 0.
                      hidden_surface=hidden_surface, opacity=opacity, texture=texture, filter=filter, bump=bump,
                      bump_scale=bump_scale, env=env, reflect=reflect, env_cube=env_cube, shadows=shadows,
                      shadow_method=shadow_method, shadow_size=shadow_size, floor=floor, vertex_shader=vertex_shader,
-                     fragment_shader=fragment_shader, uniforms=uniforms, textures=textures)
+                     fragment_shader=fragment_shader, uniforms=uniforms, textures=textures,
+                     cube_maps=cube_maps)
     for key in ("texture", "bump", "env"):
         if isinstance(options.get(key), _os.PathLike):
             options[key] = _os.fspath(options[key])
@@ -310,14 +317,14 @@ def render_mesh(mesh, size=(512, 512), *, shading="gouraud", color=(0.8, 0.8, 0.
 
 
 def render_volume(volume, size=(256, 256), *, transfer=None, mip=False, step=None, shading=True,
-                  background=(0, 0, 0), view="three-quarter", azimuth=None, elevation=None, up_axis="y",
+                  background=(0, 0, 0), view=None, azimuth=None, elevation=None, up_axis="y",
                   front_axis="auto", fovy=30, eye=None, center=None, up=None, ortho=False, ortho_size=None,
                   threads=None):
     """Ray-casts a volume (direct volume rendering, as `tessera volume render`): front-to-back compositing of the
     transfer function's colors and opacities with gradient shading, or mip=True for a maximum-intensity projection.
 
     transfer: None (automatic: Otsu's threshold of the values), a preset name, a .json/.csv file, or rows
-    (value, r, g, b, opacity per unit length). step: sample distance in world units (default half the smallest
+    (value, r, g, b, opacity): opacity in [0, 1] is that of a unit length of the medium. step: sample distance in world units (default half the smallest
     spacing). The camera options frame the volume's box as render_mesh frames a mesh. Returns the Image (H, W, 3).
     """
     options = _given(transfer=None if transfer is None else (_os.fspath(transfer) if isinstance(transfer, _os.PathLike)
@@ -329,6 +336,24 @@ def render_volume(volume, size=(256, 256), *, transfer=None, mip=False, step=Non
     return _threaded(threads, lambda: _tessera._render_volume(volume, width, height, options))
 
 
+class Scene:
+    """A scene (docs/scene-format.md): a built-in name (tessera.builtin_scenes), a .json file or a dict. render()
+    draws it as render_scene does; a notebook shows a one-sample ray-traced preview at the scene's own size."""
+
+    def __init__(self, source):
+        self.source = source
+
+    def render(self, size=None, **options):
+        """render_scene(self.source, size, **options)."""
+        return render_scene(self.source, size, **options)
+
+    def __repr__(self):
+        return f"tessera.Scene({self.source!r})" if not isinstance(self.source, dict) else "tessera.Scene({...})"
+
+    def _repr_png_(self):
+        return self.render(samples=1)._repr_png_()
+
+
 def render_scene(scene, size=None, *, samples=None, depth=None, seed=0, backend="raytrace", threads=None):
     """Renders a scene (docs/scene-format.md) with the ray tracer (backend 'raytrace': recursive and distribution
     ray tracing) or the rasterizer ('raster'), as `tessera render` does.
@@ -337,6 +362,8 @@ def render_scene(scene, size=None, *, samples=None, depth=None, seed=0, backend=
     to the working folder). size (width, height), samples (per pixel) and depth (recursion) replace the scene's own.
     Returns the Image (H, W, 3), linear.
     """
+    if isinstance(scene, Scene):
+        scene = scene.source
     if isinstance(scene, dict):
         source, is_text, base = _json.dumps(scene), True, _os.getcwd()
     else:

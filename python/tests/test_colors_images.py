@@ -78,3 +78,32 @@ def test_image_errors_name_the_file(tmp_path):
     assert not list(tmp_path.glob("a.xyz*"))
     with pytest.raises(ValueError, match=r"\(H, W\)"):
         tessera.write_image(tmp_path / "a.png", np.zeros((2, 2, 5), np.float32))
+
+
+def test_textures_sample_as_the_notes_say():
+    texels = np.array([[[255, 0, 0, 255], [0, 255, 0, 255]], [[0, 0, 255, 255], [255, 255, 255, 255]]], np.uint8)
+    nearest = tessera.Texture(texels, filter="nearest")
+    # v runs upward: v = 0.75 is the top row (row 0 of the image).
+    assert np.array_equal(nearest.sample([[0.25, 0.75], [0.75, 0.75], [0.25, 0.25]]),
+                          [[1, 0, 0, 1], [0, 1, 0, 1], [0, 0, 1, 1]])
+    bilinear = tessera.Texture(texels, filter="bilinear", wrap="clamp")
+    center = bilinear.sample([[0.5, 0.5]])[0]
+    assert np.allclose(center, texels.reshape(4, 4).mean(axis=0) / 255, atol=1 / 255)
+    assert nearest.levels == 2 and nearest.level(1).shape == (1, 1, 4)
+    trilinear = tessera.Texture(texels, filter="trilinear")
+    assert np.allclose(trilinear.sample([[0.3, 0.6]], lod=1)[0], texels.reshape(4, 4).mean(axis=0) / 255, atol=1 / 255)
+    with pytest.raises(tessera.InvalidInput, match="wrap: expected one of"):
+        tessera.Texture(texels, wrap="tile")
+
+
+def test_memory_budget_refuses_up_front():
+    try:
+        tessera.set_memory_budget(1 << 20)
+        assert tessera.memory_budget() == 1 << 20
+        with pytest.raises(MemoryError, match="budget"):
+            tessera.render_mesh(tessera.cube(), size=(4000, 4000))
+        with pytest.raises(tessera.MemoryBudgetError):
+            tessera.procedural_volume("sphere:400")
+    finally:
+        tessera.set_memory_budget(0)
+    assert tessera.memory_budget() > 1 << 20

@@ -82,3 +82,19 @@ def test_unknown_options_and_threads():
         assert tessera.thread_count() == 1
         one = tessera.render_mesh(tessera.cube(), size=(40, 40))
     assert np.array_equal(one, tessera.render_mesh(tessera.cube(), size=(40, 40), threads=2))
+
+
+def test_camera_options_are_checked_as_the_cli_checks_them():
+    with pytest.raises(tessera.InvalidInput, match="eye: it places the camera"):
+        tessera.render_mesh(tessera.cube(), size=(8, 8), eye=(0, 3, 4), view="top")
+    eye = tessera.render_mesh(tessera.cube(), size=(24, 24), eye=(0, 0, 5), center=(0, 0, 0))
+    front = tessera.render_mesh(tessera.cube(), size=(24, 24), view="front")
+    assert eye.shape == front.shape == (24, 24, 3)
+
+
+def test_scene_objects_show_a_preview():
+    scene = tessera.Scene("whitted")
+    assert repr(scene) == "tessera.Scene('whitted')"
+    preview = scene.render(size=(32, 24), samples=1)
+    assert preview.shape == (24, 32, 3)
+    assert np.array_equal(preview, tessera.render_scene("whitted", size=(32, 24), samples=1))

@@ -69,7 +69,7 @@ def test_real_volume_reads_with_its_header(shared_data):
     path = shared_data / "volumes" / "headsq_64x64x93_int16le.mhd"
     if not path.exists():
         pytest.skip(f"no {path}")
-    head = tessera.read_volume(str(path))
+    head = tessera.read_volume(path)
     assert head.data.shape == (93, 64, 64)
     raw = np.fromfile(path.with_suffix(".raw"), dtype="<i2").reshape(93, 64, 64)
     assert np.array_equal(head.data, raw.astype(np.float32))

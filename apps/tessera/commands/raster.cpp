@@ -11,7 +11,6 @@
 #include "camera_options.hpp"
 #include "command.hpp"
 #include "tessera/core/error.hpp"
-#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/glsl/program.hpp"
@@ -174,14 +173,11 @@ void run_raster(const RasterArgs& a, const CommonOptions& common) {
   // lambdas below capture them, which clang-tidy's clang 14 cannot parse.)
   const Size2 size = a.camera.image_size();
   const int width = size.width, height = size.height;
-  // Per pixel: the framebuffer (color and depth), the samples' sum and depth, the 8-bit copy (42 bytes measured). A
-  // shadow map: 4 bytes a texel, 1.5 times size^2 texels for a point light among the casters (six faces of size/2).
-  const bool shadow_map = a.shadows && a.shadow_method == ShadowMethod::map;
-  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), 44}) +
-                          (shadow_map ? saturating_product({uint64_t(a.shadow_size), uint64_t(a.shadow_size), 6}) : 0),
-                      shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height,
-                                               a.shadow_size, a.shadow_size)
-                                 : fmt::format("rasterizing {}x{} pixels", width, height));
+  MeshViewOptions planned;  // what the memory estimate reads
+  planned.shadows = a.shadows;
+  planned.shadow_method = a.shadow_method;
+  planned.shadow_size = a.shadow_size;
+  check_mesh_view_memory(width, height, planned);
   const Rgb color = parse_color(a.color, "--color"), background = parse_color(a.background, "--background");
   if (!a.light_dir.empty() && !a.light_pos.empty())
     throw InvalidInput("--light-dir and --light-pos: give one light, not both");

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parallel.hpp"
 #include "tessera/core/progress.hpp"
 #include "tessera/math/transform.hpp"
@@ -585,6 +586,18 @@ Bounds3 MeshView::scene_bounds() const {
   return scene;
 }
 
+void check_mesh_view_memory(int width, int height, const MeshViewOptions& options) {
+  const auto s = uint64_t(std::max(1, options.supersample));
+  const bool shadow_map = options.shadows && options.shadow_method == ShadowMethod::map;
+  const auto shadow_size = uint64_t(std::max(0, options.shadow_size));
+  MemoryBudget::check(
+      saturating_product({uint64_t(std::max(0, width)), uint64_t(std::max(0, height)), 44, s, s}) +
+          (shadow_map ? saturating_product({shadow_size, shadow_size, 6}) : 0),
+      shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height, shadow_size,
+                               shadow_size)
+                 : fmt::format("rasterizing {}x{} pixels", width, height));
+}
+
 MeshPicture MeshView::render(const Camera& camera, int width, int height, Progress* progress) const {
   return render_impl(camera, width, height, progress, nullptr);
 }
@@ -605,6 +618,7 @@ MeshPicture MeshView::render_impl(const Camera& camera, int width, int height, P
   if (width <= 0 || height <= 0 || options_.samples < 1)
     throw InvalidInput(
         fmt::format("mesh view: bad image size {}x{} or sample count {}", width, height, options_.samples));
+  check_mesh_view_memory(width, height, options_);
   if (triangles_ == 0) return {ImageRGB(width, height, options_.background), DepthImage(width, height, 1.0f), 0};
   SampleResolve resolve(width * s, height * s, options_.samples, direct);
   const Frame frame{options_, arrays_, edge_vertices_, edge_lines_, bounds_, width * s, height * s, s, progress};

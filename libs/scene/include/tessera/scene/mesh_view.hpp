@@ -216,6 +216,12 @@ class MeshView {
   mutable std::unique_ptr<raster3d::Context> context_;  // kept between renders: no framebuffer allocated per frame
 };
 
+/// Refuses up front (MemoryBudgetError, core/memory_budget.hpp) a width x height render with `options` whose memory
+/// would exceed the budget: per pixel the framebuffer's color and depth, the samples' sum and depth and an 8-bit copy
+/// (44 bytes measured), times supersample^2; with shadow mapping 6 bytes per shadow texel (a point light among the
+/// casters has six faces of half the size). MeshView::render checks it; a caller may check before preparing anything.
+void check_mesh_view_memory(int width, int height, const MeshViewOptions& options);
+
 /// One picture of `mesh` through `camera` at width x height: MeshView(mesh, options).render(camera, width, height).
 MeshPicture render_mesh(const PolyMesh& mesh, const Camera& camera, int width, int height,
                         const MeshViewOptions& options = {});
