@@ -1,0 +1,174 @@
+"""A Python sketch in a real window, checked from outside (run inside an X server by test_sketch_window.py, as
+`xvfb-run -a -s "-screen 0 1280x1024x24" python sketch_window_check.py SCRATCH`).
+
+A pink_square-like sketch (a pink square that follows the mouse, darker while a button is held, 's' toggles a black
+outline) opens a 400x400 window with run_sketch(window=True); xdotool moves the real pointer into it, presses and
+releases a button, types a key, and after each step ImageMagick's `import` grabs the window. Each grab must match the
+headless render of the same state (run_sketch with an input script setting the same mouse position, button and key
+at frame 1, one frame) within 1/255 on at least 99% of the pixels, as tests/cli/window_lib.sh's compare_grab. Escape
+then ends the run: the sketch process must exit with status 0. Exit status 0 when all holds, else 1 with the reason.
+"""
+import os
+import pathlib
+import subprocess
+import sys
+import time
+
+import numpy as np
+from PIL import Image
+
+TITLE = "python sketch window test"
+SKETCH = f'''import sys
+
+from tessera.sketch import *  # noqa: F401,F403
+
+outlined = False
+
+
+def setup():
+    size(400, 400)
+
+
+def draw():
+    background(255)
+    if mouse_is_pressed:
+        fill(220, 90, 120)
+    else:
+        fill(255, 150, 150)
+    if outlined:
+        stroke(0)
+        stroke_weight(4)
+    else:
+        no_stroke()
+    rect(mouse_x - 25, mouse_y - 25, 50, 50)
+
+
+def key_pressed():
+    global outlined
+    if key == "s":
+        outlined = not outlined
+
+
+if sys.argv[1] == "window":
+    print("result", run_sketch(window=True, seconds=60, title={TITLE!r}), flush=True)
+else:  # headless INPUT OUTPUT: one frame of the scripted state
+    run_sketch(frames=1, input=sys.argv[2], output=sys.argv[3])
+'''
+GRAB_TRIES = 6  # a grab that does not match yet is taken again (the window may not have drawn the new state)
+
+
+class Failure(Exception):
+    pass
+
+
+def xdotool(*args, timeout=10):
+    r = subprocess.run(["xdotool", *map(str, args)], capture_output=True, text=True, timeout=timeout)
+    if r.returncode != 0:
+        raise Failure(f"xdotool {' '.join(map(str, args))} failed ({r.returncode}): {r.stderr.strip()}")
+    return r.stdout
+
+
+def closeness(grab_path, want_path):
+    """The fraction of pixels within 1/255 in every channel (compare_grab of window_lib.sh, at scale 1)."""
+    grab = np.asarray(Image.open(grab_path).convert("RGB")).astype(int)
+    want = np.asarray(Image.open(want_path).convert("RGB")).astype(int)
+    if grab.shape != want.shape:
+        raise Failure(f"{grab_path}: grab {grab.shape} vs headless {want.shape}")
+    return (np.abs(grab - want).max(axis=2) <= 1).mean()
+
+
+def main():
+    scratch = pathlib.Path(sys.argv[1])
+    scratch.mkdir(parents=True, exist_ok=True)
+    script = scratch / "window_sketch.py"
+    script.write_text(SKETCH)
+    env = {k: v for k, v in os.environ.items() if k != "WAYLAND_DISPLAY"}  # the X server of xvfb-run, not Wayland
+
+    def headless(name, events):
+        (scratch / f"{name}.txt").write_text(events)
+        subprocess.run([sys.executable, script, "headless", scratch / f"{name}.txt", scratch / f"{name}-headless.png"],
+                       check=True, env=env, cwd=scratch, timeout=30)
+
+    # The headless renders first (they need no window): the states the window will be driven through.
+    states = {"move": "1 mouse_move 100 80\n",
+              "drag": "1 mouse_move 100 80\n1 mouse_press left\n1 mouse_move 150 120\n",
+              "key": "1 mouse_move 150 120\n1 key_press s\n"}
+    for name, events in states.items():
+        headless(name, events)
+
+    log = open(scratch / "window.out", "w")
+    sketch = subprocess.Popen([sys.executable, script, "window"], stdout=log, stderr=subprocess.STDOUT, env=env,
+                              cwd=scratch)
+    try:
+        def output():
+            log.flush()
+            return (scratch / "window.out").read_text()
+
+        wid = ""
+        deadline = time.monotonic() + 20
+        while not wid:
+            if sketch.poll() is not None:
+                raise Failure(f"the sketch ended ({sketch.returncode}) before its window appeared: {output()}")
+            if time.monotonic() > deadline:
+                raise Failure(f"no window appeared in 20 s: {output()}")
+            try:
+                r = subprocess.run(["xdotool", "search", "--sync", "--name", TITLE], capture_output=True, text=True,
+                                   timeout=2)
+                wid = r.stdout.split()[0] if r.stdout.split() else ""
+            except subprocess.TimeoutExpired:
+                pass
+        geometry = xdotool("getwindowgeometry", wid)
+        if "Geometry: 400x400" not in geometry:
+            raise Failure(f"the window is not 400x400: {geometry}")
+
+        def check(name):
+            """Grabs the window until it shows the headless render of `name` (a few tries, 0.5 s apart)."""
+            grab = scratch / f"{name}-window.png"
+            for attempt in range(GRAB_TRIES):
+                time.sleep(0.5)
+                subprocess.run(["import", "-window", wid, grab], check=True, capture_output=True, timeout=15)
+                close = closeness(grab, scratch / f"{name}-headless.png")
+                print(f"{name}: {100 * close:.3f}% of pixels within 1/255 (grab {attempt + 1})", flush=True)
+                if close >= 0.99:
+                    return
+                if sketch.poll() is not None:
+                    break
+            raise Failure(f"{name}: the window differs from the headless render ({100 * close:.3f}% within 1/255)")
+
+        # The pointer moves into the window: the square follows it.
+        xdotool("mousemove", "--window", wid, 100, 80)
+        check("move")
+        # A button held while the pointer moves: the square darkens; then released.
+        xdotool("mousedown", 1)
+        xdotool("mousemove", "--window", wid, 150, 120)
+        check("drag")
+        xdotool("mouseup", 1)
+        # A key typed into the focused window: 's' toggles the outline.
+        xdotool("windowfocus", "--sync", wid)
+        xdotool("key", "s")
+        check("key")
+
+        # Escape ends the run, as in Processing: status 0, well before the 60 seconds.
+        xdotool("windowfocus", "--sync", wid)
+        xdotool("key", "Escape")
+        try:
+            status = sketch.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            raise Failure(f"the sketch did not end within 10 s of Escape: {output()}")
+        if status != 0:
+            raise Failure(f"the sketch exited {status} after Escape: {output()}")
+        print("sketch output:", output().strip(), flush=True)
+        print("sketch_window_check: ok", flush=True)
+    finally:
+        if sketch.poll() is None:
+            sketch.kill()
+            sketch.wait()
+        log.close()
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except (Failure, subprocess.SubprocessError, OSError) as e:
+        print(f"sketch_window_check: {e}", flush=True)
+        sys.exit(1)
