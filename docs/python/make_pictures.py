@@ -258,6 +258,96 @@ def raycast():
     return image, False
 
 
+# The canvas and sketches ----------------------------------------------------------------------------------------------
+
+@picture("canvas")
+def canvas():
+    canvas = tessera.Canvas(320, 160)
+    canvas.background(250)
+    canvas.stroke(40)
+    canvas.stroke_weight(3)
+    canvas.fill(255, 150, 150)
+    canvas.rect(20, 30, 90, 90)
+    canvas.fill(90, 150, 230, 180)
+    canvas.ellipse(130, 80, 110, 110)
+    canvas.no_fill()
+    canvas.begin_shape()
+    canvas.vertex(200, 130)
+    canvas.bezier_vertex(220, 10, 300, 10, 300, 130)
+    canvas.end_shape()
+    canvas.fill(40)
+    canvas.text_size(16)
+    canvas.text("canvas", 210, 150)
+    return canvas.picture, False
+
+
+@picture("sketch")
+def sketch():
+    from tessera import sketch as ts
+
+    class Orbit(ts.Sketch):
+        """A square orbiting the center, its trail fading: frames 10, 20, 30 side by side."""
+
+        def setup(self):
+            self.size(120, 120)
+            self.background(255)
+
+        def draw(self):
+            self.no_stroke()
+            self.fill(255, 255, 255, 40)
+            self.rect(0, 0, 120, 120)
+            angle = self.frame_count * 0.2
+            self.fill(255, 150, 150)
+            self.rect(60 + 35 * np.cos(angle) - 10, 60 + 35 * np.sin(angle) - 10, 20, 20)
+
+    frames = []
+    ts.run_sketch(Orbit(), frames=30, on_frame=lambda n, rgba: frames.append(rgba) if n % 10 == 0 else None)
+    return row(*[f.astype(np.float32) / 255 for f in frames]), False
+
+
+# Curves, patches and fractals ---------------------------------------------------------------------------------------
+
+@picture("curves", "bezier/teapot.bpt")
+def curves():
+    points = np.array([[20, 140], [60, 20], [200, 20], [240, 140]], float)
+    canvas = tessera.Canvas(260, 160)
+    canvas.background(255)
+    canvas.stroke(180)
+    canvas.stroke_weight(1)
+    for level in tessera.bezier_levels(points, 0.4)[:-1]:  # de Casteljau's construction at t = 0.4
+        for a, b in zip(level[:-1], level[1:]):
+            canvas.line(*a, *b)
+    canvas.stroke(200, 40, 40)
+    canvas.stroke_weight(2)
+    curve = tessera.bezier(points, np.linspace(0, 1, 64))
+    for a, b in zip(curve[:-1], curve[1:]):
+        canvas.line(*a, *b)
+    canvas.no_stroke()
+    canvas.fill(40)
+    x, y = tessera.bezier(points, [0.4])[0]
+    canvas.ellipse(x, y, 7, 7)
+    patches = tessera.read_patches(DATA / "bezier/teapot.bpt")
+    teapot = tessera.tessellate_patches(patches, 8, orientation="outward")
+    pot = tessera.render_mesh(teapot, (240, 160), up_axis="z", shading="phong", color="goldenrod",
+                              background="white", samples=4)
+    return row(np.asarray(canvas.picture)[..., :3], pot), True
+
+
+@picture("fractals")
+def fractals():
+    mandelbrot = tessera.mandelbrot((240, 160), center=-0.745 + 0.11j, scale=0.12, iterations=800)
+    julia = tessera.julia(-0.8 + 0.156j, (240, 160), palette="ocean")
+    canvas = tessera.Canvas(160, 160)
+    canvas.background(255)
+    canvas.fill(60, 110, 200)
+    canvas.no_stroke()
+    canvas.begin_shape()
+    for x, y in tessera.koch_snowflake(4):
+        canvas.vertex(20 + 120 * x, 130 - 120 * y)
+    canvas.end_shape(True)
+    return row(mandelbrot, julia, np.asarray(canvas.picture)[..., :3]), False
+
+
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
