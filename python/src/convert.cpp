@@ -57,7 +57,7 @@ std::vector<V> vectors(py::handle value, size_t count, const std::string& what, 
 }  // namespace
 
 py::array_t<double, py::array::c_style | py::array::forcecast> rows(py::handle value, int cols,
-                                                                     const std::string& what) {
+                                                                    const std::string& what) {
   auto a = as_array<double>(value, what);
   if (a.ndim() != 2 || a.shape(1) != cols)
     throw InvalidInput(fmt::format("{}: expected an (N, {}) array, got shape {}", what, cols, shape_text(a)));
@@ -87,8 +87,8 @@ Vec3f color(py::handle value, const std::string& what) {
       return {c.x, c.y, c.z};
     } catch (const InvalidInput&) {
       throw InvalidInput(fmt::format(
-          "{}: expected a color name (as SVG's: white, cornflowerblue), #rrggbb or (r, g, b) in [0, 1], got '{}'",
-          what, text));
+          "{}: expected a color name (as SVG's: white, cornflowerblue), #rrggbb or (r, g, b) in [0, 1], got '{}'", what,
+          text));
     }
   }
   const Vec3 c = vec3(value, what);
@@ -133,7 +133,7 @@ ImageRGBA image_rgba(py::handle value, const std::string& what) {
   std::span<Vec4f> px = out.pixels();
   for (size_t i = 0; i < px.size(); ++i) {
     const float* s = p + i * size_t(channels);
-    px[i] = channels == 1 ? Vec4f(Vec3f(s[0] * scale), 1.0f)
+    px[i] = channels == 1   ? Vec4f(Vec3f(s[0] * scale), 1.0f)
             : channels == 3 ? Vec4f(s[0] * scale, s[1] * scale, s[2] * scale, 1.0f)
                             : Vec4f(s[0], s[1], s[2], s[3]) * scale;
   }
@@ -151,10 +151,13 @@ DepthImage field(py::handle value, const std::string& what) {
 py::object to_python(PolyMesh mesh) {
   auto owner = std::make_shared<const PolyMesh>(std::move(mesh));
   const PolyMesh& m = *owner;
-  const auto flat = [&](const std::vector<uint32_t>& v) { return owned_array<uint32_t>(owner, v.data(), {py::ssize_t(v.size())}); };
+  const auto flat = [&](const std::vector<uint32_t>& v) {
+    return owned_array<uint32_t>(owner, v.data(), {py::ssize_t(v.size())});
+  };
   std::vector<uint32_t> edges, corner_vertices;
   std::vector<float> crease_sharpness, corner_sharpness;
-  for (const EdgeCrease& c : m.creases) edges.insert(edges.end(), {c.v0, c.v1}), crease_sharpness.push_back(c.sharpness);
+  for (const EdgeCrease& c : m.creases)
+    edges.insert(edges.end(), {c.v0, c.v1}), crease_sharpness.push_back(c.sharpness);
   for (const VertexCorner& c : m.corners) corner_vertices.push_back(c.v), corner_sharpness.push_back(c.sharpness);
   py::object creases = py::none(), corners = py::none();
   if (!m.creases.empty())
@@ -181,15 +184,13 @@ PolyMesh mesh(py::handle value, const std::string& what) {
   const auto v = rows(value.attr("vertices"), 3, what + ".vertices");
   m.positions.resize(size_t(v.shape(0)));
   std::memcpy(m.positions.data(), v.data(), m.positions.size() * sizeof(Vec3));
-  const auto indices = [&](py::handle h, const std::string& name) {
-    return as_array<int64_t>(h, what + "." + name);
-  };
+  const auto indices = [&](py::handle h, const std::string& name) { return as_array<int64_t>(h, what + "." + name); };
   if (flat) {
     const auto fv = indices(value.attr("face_vertices"), "face_vertices");
     const auto fo = indices(value.attr("face_offsets"), "face_offsets");
     if (fv.ndim() != 1 || fo.ndim() != 1 || fo.size() < 1 || fo.data()[0] != 0 || fo.data()[fo.size() - 1] != fv.size())
-      throw InvalidInput(fmt::format("{}: face_offsets must start at 0 and end at len(face_vertices) ({})", what,
-                                     fv.size()));
+      throw InvalidInput(
+          fmt::format("{}: face_offsets must start at 0 and end at len(face_vertices) ({})", what, fv.size()));
     for (py::ssize_t f = 0; f + 1 < fo.size(); ++f)
       if (fo.data()[f + 1] < fo.data()[f] + 3)
         throw InvalidInput(
@@ -255,8 +256,8 @@ PolyMesh mesh(py::handle value, const std::string& what) {
 
 Volume<float> volume(py::handle value, const std::string& what) {
   const bool wrapped = py::hasattr(value, "data") && py::hasattr(value, "spacing") && !py::isinstance<py::array>(value);
-  const auto a = as_array<float>(wrapped ? value.attr("data") : py::object(py::reinterpret_borrow<py::object>(value)),
-                                 what);
+  const auto a =
+      as_array<float>(wrapped ? value.attr("data") : py::object(py::reinterpret_borrow<py::object>(value)), what);
   if (a.ndim() != 3)
     throw InvalidInput(fmt::format("{}: expected a volume array (Z, Y, X), got shape {}", what, shape_text(a)));
   const Vec3 spacing = wrapped ? vec3(value.attr("spacing"), what + ".spacing") : Vec3(1.0);

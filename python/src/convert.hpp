@@ -16,8 +16,8 @@
 #include "tessera/core/error.hpp"
 #include "tessera/image/image.hpp"
 #include "tessera/math/types.hpp"
-#include "tessera/scene/framing.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
+#include "tessera/scene/framing.hpp"
 #include "tessera/volume/volume.hpp"
 
 namespace tessera::python {
@@ -46,7 +46,8 @@ T choice(const std::string& name, std::initializer_list<std::pair<const char*, T
 
 /// A contiguous float64 array from any array-like `value` of shape (N, cols). Throws InvalidInput naming `what` for
 /// another shape or a value that is not finite.
-py::array_t<double, py::array::c_style | py::array::forcecast> rows(py::handle value, int cols, const std::string& what);
+py::array_t<double, py::array::c_style | py::array::forcecast> rows(py::handle value, int cols,
+                                                                    const std::string& what);
 /// Three numbers from a sequence or array of 3 (a point, a direction). Throws InvalidInput naming `what`.
 Vec3 vec3(py::handle value, const std::string& what);
 /// A color: three numbers in [0, 1], or a name / #rrggbb as SVG and CSS spell them. Throws InvalidInput naming `what`.

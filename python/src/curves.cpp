@@ -58,7 +58,8 @@ std::vector<BezierPatch> patches(py::handle value) {
   }
   std::vector<BezierPatch> out(size_t(a.shape(0)));
   for (size_t p = 0; p < out.size(); ++p)
-    for (size_t i = 0; i < 16; ++i) out[p].points[i] = Vec3(a.data()[48 * p + 3 * i], a.data()[48 * p + 3 * i + 1], a.data()[48 * p + 3 * i + 2]);
+    for (size_t i = 0; i < 16; ++i)
+      out[p].points[i] = Vec3(a.data()[48 * p + 3 * i], a.data()[48 * p + 3 * i + 1], a.data()[48 * p + 3 * i + 2]);
   return out;
 }
 
@@ -138,9 +139,8 @@ Casteljau's construction (default), the Bernstein sum, or Horner's rule on the p
       "read_patches", [](const std::filesystem::path& path) { return patches_array(read_bpt(path)); }, py::arg("path"),
       "Reads bicubic Bezier patches from a .bpt file (the Utah teapot's format) as an array (P, 4, 4, 3).");
   m.def(
-      "write_patches",
-      [](const std::filesystem::path& path, py::handle value) { write_bpt(path, patches(value)); }, py::arg("path"),
-      py::arg("patches"), "Writes patches (P, 4, 4, 3) as a .bpt file.");
+      "write_patches", [](const std::filesystem::path& path, py::handle value) { write_bpt(path, patches(value)); },
+      py::arg("path"), py::arg("patches"), "Writes patches (P, 4, 4, 3) as a .bpt file.");
   m.def(
       "patch_points",
       [](py::handle value, double u, double v) {
@@ -148,7 +148,8 @@ Casteljau's construction (default), the Bernstein sum, or Horner's rule on the p
         for (const BezierPatch& p : patches(value)) out.push_back(evaluate_bernstein(p, u, v));
         return points_array(out);
       },
-      py::arg("patches"), py::arg("u"), py::arg("v"), "S(u, v) of every patch (P, 3) (the tensor-product Bernstein sum).");
+      py::arg("patches"), py::arg("u"), py::arg("v"),
+      "S(u, v) of every patch (P, 3) (the tensor-product Bernstein sum).");
   m.def(
       "tessellate_patches",
       [](py::handle value, int steps, double tolerance, const std::string& orientation) {
@@ -173,8 +174,8 @@ Casteljau's construction (default), the Bernstein sum, or Horner's rule on the p
       R"(Triangles of the patches: each on an (steps + 1)^2 grid of (u, v), or with tolerance > 0 as many steps as the
 flatness bound needs (at most `steps`); normals and uvs per vertex. orientation 'as-given', 'flipped' or 'outward'.)");
   m.def(
-      "patch_control_net", [](py::handle value) { return to_python(control_net(patches(value))); },
-      py::arg("patches"), "The control nets as a Mesh: per patch its 16 points and 9 quads.");
+      "patch_control_net", [](py::handle value) { return to_python(control_net(patches(value))); }, py::arg("patches"),
+      "The control nets as a Mesh: per patch its 16 points and 9 quads.");
 }
 
 }  // namespace tessera::python

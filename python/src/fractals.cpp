@@ -84,27 +84,45 @@ iterations colored smoothly by a palette ('classic', 'fire', 'ocean', 'gray'); r
   m.def("julia_is_connected", &julia_is_connected, py::arg("c"), py::arg("max_iterations") = 10000,
         "The notes' test: the Julia set of c is connected iff the orbit of 0 stays bounded.");
   m.def(
-      "cantor_set", [](int depth) { const auto v = cantor_set(depth); return records(v, {py::ssize_t(v.size()), 2}); },
+      "cantor_set",
+      [](int depth) {
+        const auto v = cantor_set(depth);
+        return records(v, {py::ssize_t(v.size()), 2});
+      },
       py::arg("depth"), "The intervals (K, 2) [a, b] of the Cantor set's construction at depth.");
   m.def(
-      "cantor_dust", [](int depth) { const auto v = cantor_dust(depth); return records(v, {py::ssize_t(v.size()), 4}); },
+      "cantor_dust",
+      [](int depth) {
+        const auto v = cantor_dust(depth);
+        return records(v, {py::ssize_t(v.size()), 4});
+      },
       py::arg("depth"), "The squares (K, 4) (x, y, w, h) of Cantor dust.");
   m.def(
       "sierpinski_carpet",
-      [](int depth) { const auto v = sierpinski_carpet(depth); return records(v, {py::ssize_t(v.size()), 4}); },
+      [](int depth) {
+        const auto v = sierpinski_carpet(depth);
+        return records(v, {py::ssize_t(v.size()), 4});
+      },
       py::arg("depth"), "The squares (K, 4) (x, y, w, h) that remain of the unit square.");
   m.def(
       "sierpinski_triangle",
-      [](int depth) { const auto v = sierpinski_triangle(depth); return records(v, {py::ssize_t(v.size()), 3, 2}); },
+      [](int depth) {
+        const auto v = sierpinski_triangle(depth);
+        return records(v, {py::ssize_t(v.size()), 3, 2});
+      },
       py::arg("depth"), "The triangles (K, 3, 2) that remain, counterclockwise.");
-  m.def("koch_curve", [](int depth) { return polyline(koch_curve(depth)); }, py::arg("depth"),
-        "The Koch curve from (0, 0) to (1, 0) as a polyline (4^depth + 1, 2).");
-  m.def("koch_snowflake", [](int depth) { return polyline(koch_snowflake(depth)); }, py::arg("depth"),
-        "The Koch snowflake as a closed polygon (K, 2).");
-  m.def("hilbert_curve", [](int depth) { return polyline(hilbert_curve(depth)); }, py::arg("depth"),
-        "Hilbert's space-filling curve in the unit square (4^depth points).");
-  m.def("peano_curve", [](int depth) { return polyline(peano_curve(depth)); }, py::arg("depth"),
-        "Peano's space-filling curve in the unit square (9^depth points).");
+  m.def(
+      "koch_curve", [](int depth) { return polyline(koch_curve(depth)); }, py::arg("depth"),
+      "The Koch curve from (0, 0) to (1, 0) as a polyline (4^depth + 1, 2).");
+  m.def(
+      "koch_snowflake", [](int depth) { return polyline(koch_snowflake(depth)); }, py::arg("depth"),
+      "The Koch snowflake as a closed polygon (K, 2).");
+  m.def(
+      "hilbert_curve", [](int depth) { return polyline(hilbert_curve(depth)); }, py::arg("depth"),
+      "Hilbert's space-filling curve in the unit square (4^depth points).");
+  m.def(
+      "peano_curve", [](int depth) { return polyline(peano_curve(depth)); }, py::arg("depth"),
+      "Peano's space-filling curve in the unit square (9^depth points).");
   m.def(
       "midpoint_displacement",
       [](int depth, double initial_range, double roughness, uint64_t seed) {
@@ -129,7 +147,9 @@ iterations colored smoothly by a palette ('classic', 'fire', 'ocean', 'gray'); r
       "A height field (2^depth + 1)^2 by the diamond-square algorithm (float32 (H, W)).");
   m.def(
       "height_map_mesh",
-      [](py::handle heights, double height_scale) { return to_python(height_map_mesh(field(heights, "heights"), height_scale)); },
+      [](py::handle heights, double height_scale) {
+        return to_python(height_map_mesh(field(heights, "heights"), height_scale));
+      },
       py::arg("heights"), py::arg("height_scale") = 1.0, "A grid Mesh over a height field (H, W).");
   m.def(
       "box_counting_dimension",

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <variant>
 
-#include "convert.hpp"
 #include "bindings.hpp"
+#include "convert.hpp"
 #include "tessera/color/model.hpp"
 #include "tessera/core/error.hpp"
 #include "tessera/core/parallel.hpp"
@@ -54,7 +54,7 @@ py::object read(const std::filesystem::path& path, const std::string& dtype) {
     py::gil_scoped_release release;
     FileImage file = read_image_native(path);
     bytes = std::holds_alternative<ImageRGBA8>(file) ? std::move(std::get<ImageRGBA8>(file))
-                                                      : to_rgba8(std::get<ImageRGBA>(file));
+                                                     : to_rgba8(std::get<ImageRGBA>(file));
   }
   return to_python_bytes(std::move(bytes));
 }
@@ -62,7 +62,8 @@ py::object read(const std::filesystem::path& path, const std::string& dtype) {
 void write(const std::filesystem::path& path, py::handle image, bool srgb, int jpeg_quality) {
   const WriteOptions options{.srgb = srgb, .jpeg_quality = jpeg_quality};
   if (is_rgba_bytes(image)) {
-    const ImageRGBA8 bytes = bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image));
+    const ImageRGBA8 bytes =
+        bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image));
     py::gil_scoped_release release;
     write_image(path, bytes, options);
     return;
@@ -127,21 +128,23 @@ void bind_texture(py::module_& m) {
 mapping): sample(uv) reads it at (u, v) in [0, 1]^2 (v upward, as OpenGL: v = 0 is the image's bottom row) with the
 filter 'nearest', 'bilinear' or 'trilinear' (MIPmaps; lod picks the level) and the wrap 'repeat', 'clamp' or 'mirror'.
 An 8-bit image (uint8, or a file read as 8-bit) stays 8-bit, as GL_RGBA8.)")
-      .def(py::init([](py::handle image, const std::string& filter, const std::string& wrap, const std::string& wrap_v) {
-             const Sampler s = sampler(filter, wrap, wrap_v);
-             if (py::isinstance<py::str>(image) || py::hasattr(image, "__fspath__"))
-               return std::make_shared<Texture2D>(load_texture(py::str(image).cast<std::string>(), s));
-             if (is_rgba_bytes(image))
-               return std::make_shared<Texture2D>(
-                   bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image)), s);
-             return std::make_shared<Texture2D>(image_rgba(image, "image"), s);
-           }),
-           py::arg("image"), py::arg("filter") = "bilinear", py::arg("wrap") = "repeat", py::arg("wrap_v") = "")
+      .def(
+          py::init([](py::handle image, const std::string& filter, const std::string& wrap, const std::string& wrap_v) {
+            const Sampler s = sampler(filter, wrap, wrap_v);
+            if (py::isinstance<py::str>(image) || py::hasattr(image, "__fspath__"))
+              return std::make_shared<Texture2D>(load_texture(py::str(image).cast<std::string>(), s));
+            if (is_rgba_bytes(image))
+              return std::make_shared<Texture2D>(
+                  bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image)), s);
+            return std::make_shared<Texture2D>(image_rgba(image, "image"), s);
+          }),
+          py::arg("image"), py::arg("filter") = "bilinear", py::arg("wrap") = "repeat", py::arg("wrap_v") = "")
       .def_property_readonly("width", &Texture2D::width)
       .def_property_readonly("height", &Texture2D::height)
       .def_property_readonly("levels", &Texture2D::levels)
-      .def("level", [](const Texture2D& t, int i) { return to_python(t.level(i)); }, py::arg("i"),
-           "MIPmap level i (0 = the image) as a float Image.")
+      .def(
+          "level", [](const Texture2D& t, int i) { return to_python(t.level(i)); }, py::arg("i"),
+          "MIPmap level i (0 = the image) as a float Image.")
       .def(
           "sample",
           [](const Texture2D& t, py::handle uv, py::handle lod) {

@@ -2,8 +2,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "convert.hpp"
 #include "bindings.hpp"
+#include "convert.hpp"
 #include "tessera/mesh/corner_table.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
@@ -120,32 +120,43 @@ void bind_meshes(py::module_& m) {
       py::arg("path"), py::arg("mesh"), py::kw_only(), py::arg("binary") = true, py::arg("double_precision") = false,
       "Writes a Mesh as OBJ, PLY, OFF or STL (by extension); PLY and STL binary unless binary=False. Atomic.");
 
-  m.def("tetrahedron", [] { return to_python(make_tetrahedron()); }, "A regular tetrahedron, circumradius 1.");
-  m.def("cube", [] { return to_python(make_cube()); }, "A cube of 6 quads, circumradius 1.");
-  m.def("octahedron", [] { return to_python(make_octahedron()); }, "A regular octahedron, circumradius 1.");
-  m.def("dodecahedron", [] { return to_python(make_dodecahedron()); }, "A regular dodecahedron (12 pentagons).");
-  m.def("icosahedron", [] { return to_python(make_icosahedron()); }, "A regular icosahedron, circumradius 1.");
-  m.def("box", [] { return to_python(make_box()); }, "The box [-1, 1]^3 of 6 quads.");
-  m.def("uv_sphere", [](int slices, int stacks) { return to_python(make_uv_sphere(slices, stacks)); },
-        py::arg("slices") = 32, py::arg("stacks") = 16, "A unit sphere of slices x stacks (poles triangles).");
-  m.def("quad_sphere", [](int n) { return to_python(make_quad_sphere(n)); }, py::arg("n") = 8,
-        "A unit sphere of quads: a cube's faces split n x n and projected.");
-  m.def("cylinder", [](int segments, bool caps) { return to_python(make_cylinder(segments, caps)); },
-        py::arg("segments") = 32, py::arg("caps") = true, "A cylinder of radius 1 and height 2 along y.");
-  m.def("cone", [](int segments, bool cap) { return to_python(make_cone(segments, cap)); }, py::arg("segments") = 32,
-        py::arg("cap") = true, "A cone of radius 1 and height 2 along y.");
-  m.def("torus", [](double major, double minor, int n, int m2) { return to_python(make_torus(major, minor, n, m2)); },
-        py::arg("major_radius") = 1.0, py::arg("minor_radius") = 0.4, py::arg("n") = 48, py::arg("m") = 24,
-        "A torus about y of quads: n around the ring, m around the tube.");
-  m.def("grid", [](int nx, int ny) { return to_python(make_grid(nx, ny)); }, py::arg("nx") = 10, py::arg("ny") = 10,
-        "A flat grid of nx x ny quads over [-1, 1]^2 in the xz plane.");
+  m.def(
+      "tetrahedron", [] { return to_python(make_tetrahedron()); }, "A regular tetrahedron, circumradius 1.");
+  m.def(
+      "cube", [] { return to_python(make_cube()); }, "A cube of 6 quads, circumradius 1.");
+  m.def(
+      "octahedron", [] { return to_python(make_octahedron()); }, "A regular octahedron, circumradius 1.");
+  m.def(
+      "dodecahedron", [] { return to_python(make_dodecahedron()); }, "A regular dodecahedron (12 pentagons).");
+  m.def(
+      "icosahedron", [] { return to_python(make_icosahedron()); }, "A regular icosahedron, circumradius 1.");
+  m.def(
+      "box", [] { return to_python(make_box()); }, "The box [-1, 1]^3 of 6 quads.");
+  m.def(
+      "uv_sphere", [](int slices, int stacks) { return to_python(make_uv_sphere(slices, stacks)); },
+      py::arg("slices") = 32, py::arg("stacks") = 16, "A unit sphere of slices x stacks (poles triangles).");
+  m.def(
+      "quad_sphere", [](int n) { return to_python(make_quad_sphere(n)); }, py::arg("n") = 8,
+      "A unit sphere of quads: a cube's faces split n x n and projected.");
+  m.def(
+      "cylinder", [](int segments, bool caps) { return to_python(make_cylinder(segments, caps)); },
+      py::arg("segments") = 32, py::arg("caps") = true, "A cylinder of radius 1 and height 2 along y.");
+  m.def(
+      "cone", [](int segments, bool cap) { return to_python(make_cone(segments, cap)); }, py::arg("segments") = 32,
+      py::arg("cap") = true, "A cone of radius 1 and height 2 along y.");
+  m.def(
+      "torus", [](double major, double minor, int n, int m2) { return to_python(make_torus(major, minor, n, m2)); },
+      py::arg("major_radius") = 1.0, py::arg("minor_radius") = 0.4, py::arg("n") = 48, py::arg("m") = 24,
+      "A torus about y of quads: n around the ring, m around the tube.");
+  m.def(
+      "grid", [](int nx, int ny) { return to_python(make_grid(nx, ny)); }, py::arg("nx") = 10, py::arg("ny") = 10,
+      "A flat grid of nx x ny quads over [-1, 1]^2 in the xz plane.");
 
   m.def(
       "vertex_normals",
       [](py::handle value, const std::string& weighting) {
-        const NormalWeighting w =
-            choice<NormalWeighting>(weighting, {{"area", NormalWeighting::area}, {"angle", NormalWeighting::angle}},
-                                    "weighting");
+        const NormalWeighting w = choice<NormalWeighting>(
+            weighting, {{"area", NormalWeighting::area}, {"angle", NormalWeighting::angle}}, "weighting");
         const PolyMesh polys = mesh(value, "mesh");
         std::vector<Vec3> normals;
         {
@@ -211,9 +222,8 @@ void bind_meshes(py::module_& m) {
   m.def(
       "with_normals",
       [](py::handle value, const std::string& weighting) {
-        const NormalWeighting w =
-            choice<NormalWeighting>(weighting, {{"area", NormalWeighting::area}, {"angle", NormalWeighting::angle}},
-                                    "weighting");
+        const NormalWeighting w = choice<NormalWeighting>(
+            weighting, {{"area", NormalWeighting::area}, {"angle", NormalWeighting::angle}}, "weighting");
         return mesh_op(value, [=](PolyMesh p) {
           compute_vertex_normals(p, w);
           return p;

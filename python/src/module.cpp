@@ -1,7 +1,6 @@
 // tessera._tessera: the extension module of the Python package (python/tessera/__init__.py wraps it).
-#include <pybind11/pybind11.h>
-
 #include <fmt/format.h>
+#include <pybind11/pybind11.h>
 
 #include <memory>
 #include <new>
@@ -41,15 +40,18 @@ PYBIND11_MODULE(_tessera, m) {
   // Tessera's errors as Python exceptions carrying its message (file, line, what was expected); each also derives
   // from the built-in a Python user would catch (ValueError for bad input, OSError for files).
   error_class = exception_class(m, "Error", py::make_tuple(py::handle(PyExc_RuntimeError)),
-                                    "Base of every error Tessera raises.");
-  const auto error_and = [&](PyObject* builtin) { return py::make_tuple(py::handle(error_class), py::handle(builtin)); };
+                                "Base of every error Tessera raises.");
+  const auto error_and = [&](PyObject* builtin) {
+    return py::make_tuple(py::handle(error_class), py::handle(builtin));
+  };
   invalid_class = exception_class(m, "InvalidInput", error_and(PyExc_ValueError),
-                                      "Input that breaks a documented precondition: a malformed file, a bad value.");
+                                  "Input that breaks a documented precondition: a malformed file, a bad value.");
   io_class = exception_class(m, "IoError", error_and(PyExc_OSError), "A file that cannot be read or written.");
   topology_class = exception_class(m, "TopologyError", error_and(PyExc_ValueError),
-                                       "A mesh whose connectivity does not allow the operation.");
-  budget_class = exception_class(m, "MemoryBudgetError", py::make_tuple(py::handle(invalid_class), py::handle(PyExc_MemoryError)),
-                                     "A request that would need more memory than the budget allows (refused up front).");
+                                   "A mesh whose connectivity does not allow the operation.");
+  budget_class =
+      exception_class(m, "MemoryBudgetError", py::make_tuple(py::handle(invalid_class), py::handle(PyExc_MemoryError)),
+                      "A request that would need more memory than the budget allows (refused up front).");
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -73,8 +75,10 @@ PYBIND11_MODULE(_tessera, m) {
     int count;
     std::unique_ptr<tessera::ThreadLimit> limit;
   };
-  py::class_<Threads>(m, "threads", "with tessera.threads(n): Tessera's parallel loops use at most n threads (0 = all); process-wide, and\n"
-                                    "when caps nest the smallest wins (oneTBB's global_control).")
+  py::class_<Threads>(
+      m, "threads",
+      "with tessera.threads(n): Tessera's parallel loops use at most n threads (0 = all); process-wide, and\n"
+      "when caps nest the smallest wins (oneTBB's global_control).")
       .def(py::init([](int n) {
              if (n < 0) throw tessera::InvalidInput(fmt::format("threads: expected a count >= 0, got {}", n));
              return Threads{n, nullptr};

@@ -54,13 +54,14 @@ std::shared_ptr<glsl::Program> program(Options& options, const Sampler& sampler)
     for (const auto& [name, value] : uniforms.cast<py::dict>()) {
       const py::array a = py::array::ensure(value);
       std::string text;
-      for (const py::handle v : a.attr("ravel")()) text += (text.empty() ? "" : ",") + std::string(py::repr(v.attr("item")()));
+      for (const py::handle v : a.attr("ravel")())
+        text += (text.empty() ? "" : ",") + std::string(py::repr(v.attr("item")()));
       p->set_uniform_text(std::string(py::str(name)), text);
     }
   if (!textures.is_none())
     for (const auto& [unit, value] : textures.cast<py::dict>())
-      p->bind_texture(unit.cast<int>(), std::make_shared<Texture2D>(texture(py::reinterpret_borrow<py::object>(value),
-                                                                            sampler, "textures")));
+      p->bind_texture(unit.cast<int>(), std::make_shared<Texture2D>(
+                                            texture(py::reinterpret_borrow<py::object>(value), sampler, "textures")));
   if (!cube_maps.is_none())
     for (const auto& [unit, value] : cube_maps.cast<py::dict>()) {
       const py::object v = py::reinterpret_borrow<py::object>(value);
@@ -68,8 +69,9 @@ std::shared_ptr<glsl::Program> program(Options& options, const Sampler& sampler)
                                                             : EnvironmentMap(image_rgba(v, "cube_maps"));
       // The lat-long image resampled onto six faces of half its height (at most 1024), as `tessera raster`.
       const int size = std::clamp(env.texture().height() / 2, 1, 1024);
-      p->bind_cube_map(unit.cast<int>(), std::make_shared<CubeMap>(CubeMap::from_function(
-                                             size, [&](const glm::vec3& d) { return env.lookup(d); }, Filter::bilinear)));
+      p->bind_cube_map(unit.cast<int>(),
+                       std::make_shared<CubeMap>(CubeMap::from_function(
+                           size, [&](const glm::vec3& d) { return env.lookup(d); }, Filter::bilinear)));
     }
   return p;
 }
@@ -97,17 +99,18 @@ MeshViewOptions view_options(Options& options) {
       {{"zbuffer", raster3d::HiddenSurface::zbuffer}, {"painter", raster3d::HiddenSurface::painter}}, "hidden_surface");
   o.opacity = options.get("opacity", 1.0);
   o.samples = options.get("samples", 1);
-  const Sampler sampler{.filter = choice<Filter>(
-                            options.get<std::string>("filter", "trilinear"),
-                            {{"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}},
-                            "filter")};
+  const Sampler sampler{
+      .filter = choice<Filter>(
+          options.get<std::string>("filter", "trilinear"),
+          {{"nearest", Filter::nearest}, {"bilinear", Filter::bilinear}, {"trilinear", Filter::trilinear}}, "filter")};
   if (const py::object t = options.take("texture"); !t.is_none())
     o.texture = std::make_shared<Texture2D>(texture(t, sampler, "texture"));
   if (const py::object b = options.take("bump"); !b.is_none())
     o.bump = std::make_shared<Texture2D>(texture(b, Sampler{}, "bump"));
   if (const py::object e = options.take("env"); !e.is_none())
-    o.environment = std::make_shared<EnvironmentMap>(
-        py::isinstance<py::str>(e) ? load_environment_map(e.cast<std::string>()) : EnvironmentMap(image_rgba(e, "env")));
+    o.environment =
+        std::make_shared<EnvironmentMap>(py::isinstance<py::str>(e) ? load_environment_map(e.cast<std::string>())
+                                                                    : EnvironmentMap(image_rgba(e, "env")));
   o.bump_scale = options.get("bump_scale", o.bump_scale);
   o.reflect = options.get("reflect", o.reflect);
   o.env_cube = options.get("env_cube", false);
@@ -153,8 +156,7 @@ py::tuple render_mesh_picture(py::handle value, int width, int height, py::dict 
 py::object render_scene(const std::string& source, bool is_text, const std::string& base_dir, std::optional<int> width,
                         std::optional<int> height, std::optional<int> samples, std::optional<int> depth, uint64_t seed,
                         const std::string& backend) {
-  const bool raster =
-      choice<bool>(backend, {{"raytrace", false}, {"raster", true}}, "backend");
+  const bool raster = choice<bool>(backend, {{"raytrace", false}, {"raster", true}}, "backend");
   ImageRGB image;
   {
     py::gil_scoped_release release;
@@ -181,8 +183,8 @@ struct RayCaster {
 py::tuple cast_rays(const RayCaster& caster, py::handle origins, py::handle directions, float tmin, float tmax) {
   const auto o = rows(origins, 3, "origins"), d = rows(directions, 3, "directions");
   if (o.shape(0) != d.shape(0))
-    throw InvalidInput(fmt::format("origins and directions: expected the same number of rays, got {} and {}",
-                                   o.shape(0), d.shape(0)));
+    throw InvalidInput(
+        fmt::format("origins and directions: expected the same number of rays, got {} and {}", o.shape(0), d.shape(0)));
   const auto n = size_t(o.shape(0));
   std::vector<Ray> rays(n);
   for (size_t i = 0; i < n; ++i) {
@@ -220,12 +222,12 @@ py::tuple cast_rays(const RayCaster& caster, py::handle origins, py::handle dire
 }  // namespace
 
 void bind_rendering(py::module_& m) {
-  m.def("_render_mesh", &render_mesh_picture, py::arg("mesh"), py::arg("width"), py::arg("height"),
-        py::arg("options"));
+  m.def("_render_mesh", &render_mesh_picture, py::arg("mesh"), py::arg("width"), py::arg("height"), py::arg("options"));
   m.def("_render_scene", &render_scene, py::arg("source"), py::arg("is_text"), py::arg("base_dir"), py::arg("width"),
         py::arg("height"), py::arg("samples"), py::arg("depth"), py::arg("seed"), py::arg("backend"));
   m.attr("builtin_scenes") = builtin_scene_names();
-  py::class_<RayCaster, std::shared_ptr<RayCaster>>(m, "RayCaster", R"(A mesh's bounding volume hierarchy for casting rays.
+  py::class_<RayCaster, std::shared_ptr<RayCaster>>(m, "RayCaster",
+                                                    R"(A mesh's bounding volume hierarchy for casting rays.
 
 Built once (SAH binary BVH collapsed to 4- or 8-wide nodes, SIMD triangle tests, as the ray tracer's), then cast with
 batches of rays: cast(origins (N, 3), directions (N, 3)) returns the hit distances t (N,) (inf for a miss), the

@@ -52,7 +52,10 @@ void bind_canvas(py::module_& m) {
       .value("quads", ShapeKind::quads)
       .value("quad_strip", ShapeKind::quad_strip);
   py::enum_<ColorMode>(m, "ColorMode").value("rgb", ColorMode::rgb).value("hsb", ColorMode::hsb);
-  py::enum_<ArcMode>(m, "ArcMode").value("open", ArcMode::open).value("chord", ArcMode::chord).value("pie", ArcMode::pie);
+  py::enum_<ArcMode>(m, "ArcMode")
+      .value("open", ArcMode::open)
+      .value("chord", ArcMode::chord)
+      .value("pie", ArcMode::pie);
   py::enum_<TextAlignX>(m, "TextAlignX")
       .value("left", TextAlignX::left)
       .value("center", TextAlignX::center)
@@ -62,8 +65,14 @@ void bind_canvas(py::module_& m) {
       .value("top", TextAlignY::top)
       .value("center", TextAlignY::center)
       .value("bottom", TextAlignY::bottom);
-  py::enum_<LineJoin>(m, "LineJoin").value("miter", LineJoin::miter).value("round", LineJoin::round).value("bevel", LineJoin::bevel);
-  py::enum_<LineCap>(m, "LineCap").value("butt", LineCap::butt).value("round", LineCap::round).value("square", LineCap::square);
+  py::enum_<LineJoin>(m, "LineJoin")
+      .value("miter", LineJoin::miter)
+      .value("round", LineJoin::round)
+      .value("bevel", LineJoin::bevel);
+  py::enum_<LineCap>(m, "LineCap")
+      .value("butt", LineCap::butt)
+      .value("round", LineCap::round)
+      .value("square", LineCap::square);
   py::enum_<MouseButton>(m, "MouseButton")
       .value("none", MouseButton::none)
       .value("left", MouseButton::left)
@@ -217,8 +226,10 @@ void bind_sketches(py::module_& m) {
       .def_readonly("window_width", &Sketch::window_width)
       .def_readonly("window_height", &Sketch::window_height)
       .def_readonly("focused", &Sketch::focused)
-      .def_property_readonly("key", [](const Sketch& s) { return s.key == Key::coded ? std::string() : std::string(1, char(s.key)); })
-      .def("size", [](Sketch& s, int w, int h) { s.size(w, h); }, py::arg("width"), py::arg("height"))
+      .def_property_readonly(
+          "key", [](const Sketch& s) { return s.key == Key::coded ? std::string() : std::string(1, char(s.key)); })
+      .def(
+          "size", [](Sketch& s, int w, int h) { s.size(w, h); }, py::arg("width"), py::arg("height"))
       .def("frame_rate", py::overload_cast<double>(&Sketch::frame_rate), py::arg("fps"))
       .def("millis", &Sketch::millis)
       .def("no_loop", &Sketch::no_loop)
@@ -235,9 +246,9 @@ void bind_sketches(py::module_& m) {
            py::arg("falloff"))
       .def("canvas", &Sketch::canvas, py::return_value_policy::reference_internal)
       .def("picture", [](Sketch& s) { return to_python(to_float(s.picture())); });
-  m.def("_run_sketch", &run, py::arg("sketch"), py::arg("frames"), py::arg("seconds"), py::arg("fps"),
-        py::arg("size"), py::arg("output"), py::arg("window"), py::arg("input"), py::arg("threads"), py::arg("seed"),
-        py::arg("srgb"), py::arg("title"), py::arg("on_frame"));
+  m.def("_run_sketch", &run, py::arg("sketch"), py::arg("frames"), py::arg("seconds"), py::arg("fps"), py::arg("size"),
+        py::arg("output"), py::arg("window"), py::arg("input"), py::arg("threads"), py::arg("seed"), py::arg("srgb"),
+        py::arg("title"), py::arg("on_frame"));
   m.def("window_supported", &window_supported, "Whether this build can open windows (SDL2).");
 }
 

@@ -2,8 +2,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "convert.hpp"
 #include "bindings.hpp"
+#include "convert.hpp"
 #include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/marching_squares.hpp"
 #include "tessera/volume/procedural.hpp"
@@ -120,10 +120,9 @@ normals: per-vertex normals from the field's gradient.)");
         py::list out;
         for (Polyline& line : lines) {
           auto owner = std::make_shared<const Polyline>(std::move(line));
-          out.append(py::make_tuple(
-              owned_array<double>(owner, owner->points.empty() ? nullptr : &owner->points[0][0],
-                                  {py::ssize_t(owner->points.size()), 2}),
-              owner->closed));
+          out.append(py::make_tuple(owned_array<double>(owner, owner->points.empty() ? nullptr : &owner->points[0][0],
+                                                        {py::ssize_t(owner->points.size()), 2}),
+                                    owner->closed));
         }
         return out;
       },
@@ -140,7 +139,8 @@ normals: per-vertex normals from the field's gradient.)");
         }
         return to_python(std::move(v));
       },
-      py::arg("spec"), "A procedural field: 'sphere:N', 'torus:N', 'gyroid:N', 'metaballs:N' or 'noise:N' (N^3 voxels).");
+      py::arg("spec"),
+      "A procedural field: 'sphere:N', 'torus:N', 'gyroid:N', 'metaballs:N' or 'noise:N' (N^3 voxels).");
   m.def("_render_volume", &render, py::arg("volume"), py::arg("width"), py::arg("height"), py::arg("options"));
 }
 

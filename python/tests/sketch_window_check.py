@@ -68,13 +68,19 @@ def xdotool(*args, timeout=10):
     return r.stdout
 
 
-def closeness(grab_path, want_path):
-    """The fraction of pixels within 1/255 in every channel (compare_grab of window_lib.sh, at scale 1)."""
-    grab = np.asarray(Image.open(grab_path).convert("RGB")).astype(int)
-    want = np.asarray(Image.open(want_path).convert("RGB")).astype(int)
+def closeness(grab_path, want_path, before_path):
+    """The fraction of pixels within 1/255 in every channel (compare_grab of window_lib.sh, at scale 1), and that
+    fraction among the pixels where the render differs from the one before the step (the outline of a key press is
+    under 1% of the picture: the step must show there too)."""
+    grab, want, before = (np.asarray(Image.open(p).convert("RGB")).astype(int)
+                          for p in (grab_path, want_path, before_path))
     if grab.shape != want.shape:
         raise Failure(f"{grab_path}: grab {grab.shape} vs headless {want.shape}")
-    return (np.abs(grab - want).max(axis=2) <= 1).mean()
+    close = np.abs(grab - want).max(axis=2) <= 1
+    changed = np.abs(want - before).max(axis=2) > 1
+    if not changed.any():
+        raise Failure(f"{want_path}: the headless render equals the one before the step")
+    return close.mean(), close[changed].mean()
 
 
 def main():
@@ -89,9 +95,12 @@ def main():
         subprocess.run([sys.executable, script, "headless", scratch / f"{name}.txt", scratch / f"{name}-headless.png"],
                        check=True, env=env, cwd=scratch, timeout=30)
 
-    # The headless renders first (they need no window): the states the window will be driven through.
-    states = {"move": "1 mouse_move 100 80\n",
+    # The headless renders first (they need no window): the states the window will be driven through, and each
+    # step's state before it (the start: no events, the pointer at (0, 0)).
+    states = {"start": "",
+              "move": "1 mouse_move 100 80\n",
               "drag": "1 mouse_move 100 80\n1 mouse_press left\n1 mouse_move 150 120\n",
+              "released": "1 mouse_move 150 120\n",
               "key": "1 mouse_move 150 120\n1 key_press s\n"}
     for name, events in states.items():
         headless(name, events)
@@ -104,6 +113,9 @@ def main():
             log.flush()
             return (scratch / "window.out").read_text()
 
+        # Its window, by the process id SDL sets (_NET_WM_PID), and then its title. (Not `xdotool search --name`:
+        # in a Python process, whose locale is UTF-8, SDL writes WM_NAME with the type "UTF-8", which xdotool's
+        # name search does not decode; _NET_WM_NAME, which getwindowname reads, is right.)
         wid = ""
         deadline = time.monotonic() + 20
         while not wid:
@@ -112,41 +124,51 @@ def main():
             if time.monotonic() > deadline:
                 raise Failure(f"no window appeared in 20 s: {output()}")
             try:
-                r = subprocess.run(["xdotool", "search", "--sync", "--name", TITLE], capture_output=True, text=True,
-                                   timeout=2)
-                wid = r.stdout.split()[0] if r.stdout.split() else ""
+                r = subprocess.run(["xdotool", "search", "--sync", "--pid", str(sketch.pid)], capture_output=True,
+                                   text=True, timeout=2)
             except subprocess.TimeoutExpired:
-                pass
+                continue
+            for window in r.stdout.split():
+                name = subprocess.run(["xdotool", "getwindowname", window], capture_output=True, text=True,
+                                      timeout=10).stdout.strip()
+                if name == TITLE:
+                    wid = window
+                    break
+            else:
+                time.sleep(0.2)
         geometry = xdotool("getwindowgeometry", wid)
         if "Geometry: 400x400" not in geometry:
             raise Failure(f"the window is not 400x400: {geometry}")
 
-        def check(name):
-            """Grabs the window until it shows the headless render of `name` (a few tries, 0.5 s apart)."""
+        def check(name, before):
+            """Grabs the window until it shows the headless render of `name` (a few tries, 0.5 s apart): within
+            1/255 on 99% of the pixels, and on 99% of those the step changed from the state `before`."""
             grab = scratch / f"{name}-window.png"
             for attempt in range(GRAB_TRIES):
                 time.sleep(0.5)
                 subprocess.run(["import", "-window", wid, grab], check=True, capture_output=True, timeout=15)
-                close = closeness(grab, scratch / f"{name}-headless.png")
-                print(f"{name}: {100 * close:.3f}% of pixels within 1/255 (grab {attempt + 1})", flush=True)
-                if close >= 0.99:
+                close, changed = closeness(grab, scratch / f"{name}-headless.png", scratch / f"{before}-headless.png")
+                print(f"{name}: {100 * close:.3f}% of pixels within 1/255, {100 * changed:.3f}% of those the step "
+                      f"changed (grab {attempt + 1})", flush=True)
+                if close >= 0.99 and changed >= 0.99:
                     return
                 if sketch.poll() is not None:
                     break
-            raise Failure(f"{name}: the window differs from the headless render ({100 * close:.3f}% within 1/255)")
+            raise Failure(f"{name}: the window differs from the headless render ({100 * close:.3f}% within 1/255, "
+                          f"{100 * changed:.3f}% of the pixels the step changed)")
 
         # The pointer moves into the window: the square follows it.
         xdotool("mousemove", "--window", wid, 100, 80)
-        check("move")
+        check("move", "start")
         # A button held while the pointer moves: the square darkens; then released.
         xdotool("mousedown", 1)
         xdotool("mousemove", "--window", wid, 150, 120)
-        check("drag")
+        check("drag", "move")
         xdotool("mouseup", 1)
         # A key typed into the focused window: 's' toggles the outline.
         xdotool("windowfocus", "--sync", wid)
         xdotool("key", "s")
-        check("key")
+        check("key", "released")
 
         # Escape ends the run, as in Processing: status 0, well before the 60 seconds.
         xdotool("windowfocus", "--sync", wid)

@@ -99,8 +99,7 @@ Camera frame_camera(const Framing& framing, const Vec3& lo, const Vec3& hi, doub
   const double d = glm::length(c.eye - mid);
   c.near = f.near > 0 ? f.near : std::max(1e-3 * (d + radius), d - 1.5 * radius);
   c.far = f.far > 0 ? f.far : d + 1.5 * radius;
-  if (!(c.far > c.near))
-    throw InvalidInput(fmt::format("near/far: expected near < far, got {} and {}", c.near, c.far));
+  if (!(c.far > c.near)) throw InvalidInput(fmt::format("near/far: expected near < far, got {} and {}", c.near, c.far));
   return c;
 }
 

@@ -590,12 +590,11 @@ void check_mesh_view_memory(int width, int height, const MeshViewOptions& option
   const auto s = uint64_t(std::max(1, options.supersample));
   const bool shadow_map = options.shadows && options.shadow_method == ShadowMethod::map;
   const auto shadow_size = uint64_t(std::max(0, options.shadow_size));
-  MemoryBudget::check(
-      saturating_product({uint64_t(std::max(0, width)), uint64_t(std::max(0, height)), 44, s, s}) +
-          (shadow_map ? saturating_product({shadow_size, shadow_size, 6}) : 0),
-      shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height, shadow_size,
-                               shadow_size)
-                 : fmt::format("rasterizing {}x{} pixels", width, height));
+  MemoryBudget::check(saturating_product({uint64_t(std::max(0, width)), uint64_t(std::max(0, height)), 44, s, s}) +
+                          (shadow_map ? saturating_product({shadow_size, shadow_size, 6}) : 0),
+                      shadow_map ? fmt::format("rasterizing {}x{} pixels with a {}x{} shadow map", width, height,
+                                               shadow_size, shadow_size)
+                                 : fmt::format("rasterizing {}x{} pixels", width, height));
 }
 
 MeshPicture MeshView::render(const Camera& camera, int width, int height, Progress* progress) const {

@@ -37,11 +37,11 @@ struct Framing {
   ViewAngles angles = view_angles(FramedView::three_quarter);
   UpAxis up_axis = UpAxis::y;
   FrontAxis front_axis = FrontAxis::automatic;
-  double fovy = 45;                  ///< vertical field of view, degrees, in (0, 180)
-  bool ortho = false;                ///< parallel projection
-  double ortho_size = 0;             ///< the orthographic view's height in world units; 0 frames the box
+  double fovy = 45;                     ///< vertical field of view, degrees, in (0, 180)
+  bool ortho = false;                   ///< parallel projection
+  double ortho_size = 0;                ///< the orthographic view's height in world units; 0 frames the box
   std::optional<Vec3> eye, center, up;  ///< given, they replace the framed ones (center: the box's middle)
-  double near = 0, far = 0;          ///< clipping distances; 0 = chosen from the box
+  double near = 0, far = 0;             ///< clipping distances; 0 = chosen from the box
 };
 
 /// The camera of `framing` for the box [lo, hi] and an image of the given aspect (width / height): the box's bounding
