@@ -158,9 +158,9 @@ Casteljau's construction (default), the Bernstein sum, or Horner's rule on the p
         o.steps = steps;
         o.tolerance = tolerance;
         o.orientation = choice<PatchOrientation>(orientation,
-                                                 {{"as-given", PatchOrientation::as_given},
-                                                  {"flipped", PatchOrientation::flipped},
-                                                  {"outward", PatchOrientation::outward}},
+                                                 {{"outward", PatchOrientation::outward},
+                                                  {"given", PatchOrientation::as_given},
+                                                  {"flip", PatchOrientation::flipped}},
                                                  "orientation");
         PolyMesh mesh;
         {
@@ -170,9 +170,10 @@ Casteljau's construction (default), the Bernstein sum, or Horner's rule on the p
         return to_python(std::move(mesh));
       },
       py::arg("patches"), py::arg("steps") = 8, py::kw_only(), py::arg("tolerance") = 0.0,
-      py::arg("orientation") = "as-given",
+      py::arg("orientation") = "outward",
       R"(Triangles of the patches: each on an (steps + 1)^2 grid of (u, v), or with tolerance > 0 as many steps as the
-flatness bound needs (at most `steps`); normals and uvs per vertex. orientation 'as-given', 'flipped' or 'outward'.)");
+flatness bound needs (at most `steps`); normals and uvs per vertex. orientation (as `tessera patch --orient`):
+'outward' (out of the model: a positive signed volume), 'given' (du x dv) or 'flip'.)");
   m.def(
       "patch_control_net", [](py::handle value) { return to_python(control_net(patches(value))); }, py::arg("patches"),
       "The control nets as a Mesh: per patch its 16 points and 9 quads.");

@@ -97,8 +97,13 @@ py::array convert(py::handle values, const std::string& from_name, const std::st
   std::vector<py::ssize_t> shape(in.shape(), in.shape() + in.ndim());
   shape.back() = nt;
   py::array_t<double> out(shape);
-  std::vector<double> source(in.data(), in.data() + in.size());
-  scale_hue(source, nf, hue_index(from), 1 / turn);
+  std::span<const double> source(in.data(), size_t(in.size()));
+  std::vector<double> scaled;  // a copy only when the hue's unit is not the library's turns
+  if (turn != 1 && hue_index(from) >= 0) {
+    scaled.assign(source.begin(), source.end());
+    scale_hue(scaled, nf, hue_index(from), 1 / turn);
+    source = scaled;
+  }
   std::span<double> target(out.mutable_data(), size_t(out.size()));
   {
     py::gil_scoped_release release;
@@ -138,10 +143,11 @@ An 8-bit image (uint8, or a file read as 8-bit) stays 8-bit, as GL_RGBA8.)")
                   bytes_image(py::array_t<uint8_t, py::array::c_style | py::array::forcecast>::ensure(image)), s);
             return std::make_shared<Texture2D>(image_rgba(image, "image"), s);
           }),
-          py::arg("image"), py::arg("filter") = "bilinear", py::arg("wrap") = "repeat", py::arg("wrap_v") = "")
-      .def_property_readonly("width", &Texture2D::width)
-      .def_property_readonly("height", &Texture2D::height)
-      .def_property_readonly("levels", &Texture2D::levels)
+          py::arg("image"), py::arg("filter") = "bilinear", py::arg("wrap") = "repeat", py::arg("wrap_v") = "",
+          "A texture of an image array or file with its sampler (wrap_v: as wrap unless given).")
+      .def_property_readonly("width", &Texture2D::width, "Width of level 0 in texels.")
+      .def_property_readonly("height", &Texture2D::height, "Height of level 0 in texels.")
+      .def_property_readonly("levels", &Texture2D::levels, "The number of MIPmap levels.")
       .def(
           "level", [](const Texture2D& t, int i) { return to_python(t.level(i)); }, py::arg("i"),
           "MIPmap level i (0 = the image) as a float Image.")

@@ -80,9 +80,9 @@ Corner c (3 per triangle, triangle c // 3) has a vertex V[c] and an opposite cor
             return owned_array<uint32_t>(t, t->opposites().data(), {py::ssize_t(t->corner_count())});
           },
           "O: the opposite corner of every corner (uint32; 4294967295 on a boundary)")
-      .def_property_readonly("corner_count", &CornerTable::corner_count)
-      .def_property_readonly("triangle_count", &CornerTable::triangle_count)
-      .def_property_readonly("vertex_count", &CornerTable::vertex_count)
+      .def_property_readonly("corner_count", &CornerTable::corner_count, "The number of corners (3 per triangle).")
+      .def_property_readonly("triangle_count", &CornerTable::triangle_count, "The number of triangles.")
+      .def_property_readonly("vertex_count", &CornerTable::vertex_count, "The number of vertices.")
       .def_static("next", &CornerTable::next, py::arg("c"), "The next corner of c's triangle.")
       .def_static("prev", &CornerTable::prev, py::arg("c"), "The previous corner of c's triangle.")
       .def_static("triangle", &CornerTable::triangle, py::arg("c"), "The triangle of corner c.")

@@ -83,7 +83,7 @@ PYBIND11_MODULE(_tessera, m) {
              if (n < 0) throw tessera::InvalidInput(fmt::format("threads: expected a count >= 0, got {}", n));
              return Threads{n, nullptr};
            }),
-           py::arg("n"))
+           py::arg("n"), "A cap of n threads (0: none) for the with-block.")
       .def("__enter__", [](Threads& t) { t.limit = std::make_unique<tessera::ThreadLimit>(t.count); })
       .def("__exit__", [](Threads& t, const py::args&) { t.limit.reset(); });
   m.def("thread_count", &tessera::thread_count, "The number of threads Tessera's parallel loops use now.");

@@ -238,11 +238,13 @@ barycentrics (N, 2) of the triangle's vertices 1 and 2. Directions need not be u
              py::gil_scoped_release release;
              return std::make_shared<RayCaster>(polys);
            }),
-           py::arg("mesh"))
+           py::arg("mesh"), "Builds the BVH of a mesh (triangulated), the GIL released while it builds.")
       .def("cast", &cast_rays, py::arg("origins"), py::arg("directions"), py::kw_only(), py::arg("tmin") = 0.0f,
            py::arg("tmax") = std::numeric_limits<float>::infinity(),
            "Nearest hits of the rays origin + t direction, t in [tmin, tmax]: (t, triangle ids, barycentrics).")
-      .def_property_readonly("triangle_count", [](const RayCaster& c) { return c.accel.triangle_count(); });
+      .def_property_readonly(
+          "triangle_count", [](const RayCaster& c) { return c.accel.triangle_count(); },
+          "The number of triangles cast against.");
 }
 
 }  // namespace tessera::python

@@ -9,6 +9,7 @@ import sys
 import pytest
 
 import tessera
+import tessera.sketch
 from tessera import _tessera
 
 STUB = pathlib.Path(tessera.__file__).with_name("_tessera.pyi")
@@ -96,3 +97,31 @@ def test_mypy_accepts_typed_use(tmp_path):
     result = subprocess.run([sys.executable, "-m", "mypy", "--ignore-missing-imports", "--no-incremental",
                              "--cache-dir", str(tmp_path / "cache"), str(script)], capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
+
+
+def test_every_public_function_has_help():
+    """help() says what each call does: a docstring beyond pybind11's signature lines."""
+    def text(obj):
+        lines = [line.strip() for line in (obj.__doc__ or "").splitlines()]
+        return [line for line in lines if line and line != "Overloaded function."
+                and not re.match(r"^(\d+\. )?\w+\(.*\) -> ", line)]
+
+    undocumented = []
+    for name in dir(_tessera):
+        obj = getattr(_tessera, name)
+        if name.startswith("_") or isinstance(obj, (str, list)):
+            continue
+        if isinstance(obj, type) and hasattr(obj, "__members__"):
+            continue  # the enums: their members are the documentation
+        if not text(obj):
+            undocumented.append(name)
+        if isinstance(obj, type) and not issubclass(obj, BaseException):
+            for attr, member in vars(obj).items():
+                if (attr == "__init__" or not attr.startswith("_")) and (callable(member) or isinstance(member, property)):
+                    if not text(getattr(obj, attr)):
+                        undocumented.append(f"{name}.{attr}")
+    for name in dir(tessera) + [f"sketch.{n}" for n in dir(tessera.sketch)]:
+        obj = getattr(tessera.sketch, name[7:]) if name.startswith("sketch.") else getattr(tessera, name)
+        if not name.split(".")[-1].startswith("_") and callable(obj) and not isinstance(obj, type) and not text(obj):
+            undocumented.append(name)
+    assert not undocumented, undocumented

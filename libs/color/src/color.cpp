@@ -22,15 +22,13 @@ HueChroma hue_chroma(const Vec3& rgb) {
   const double minc = std::min({rgb.x, rgb.y, rgb.z});
   const double range = maxc - minc;
   if (range == 0) return {0.0, maxc, minc};
-  const double rc = (maxc - rgb.x) / range, gc = (maxc - rgb.y) / range, bc = (maxc - rgb.z) / range;
-  double h;
-  if (rgb.x == maxc)
-    h = bc - gc;
-  else if (rgb.y == maxc)
-    h = 2.0 + rc - bc;
-  else
-    h = 4.0 + gc - rc;
-  return {wrap_hue(h / 6.0), maxc, minc};
+  const double inv = 1.0 / range;  // one division for the three (within an ulp of colorsys's three)
+  const double rc = (maxc - rgb.x) * inv, gc = (maxc - rgb.y) * inv, bc = (maxc - rgb.z) * inv;
+  // Selects rather than branches (random colors mispredict the branches); h / 6 lies in [-1/6, 5/6], so wrapping it
+  // adds 1 below 0 (wrap_hue's floor is a library call without SSE4.1), and a sum that rounds to 1 is 0 as there.
+  const double h = (rgb.x == maxc ? bc - gc : rgb.y == maxc ? 2.0 + rc - bc : 4.0 + gc - rc) / 6.0;
+  const double wrapped = h < 0 ? h + 1.0 : h;
+  return {wrapped < 1.0 ? wrapped : 0.0, maxc, minc};
 }
 
 // One channel of the HLS double hexcone: m1 + (m2 - m1) * ramp(hue) (Foley and van Dam, "HLS_TO_RGB" / Value()).

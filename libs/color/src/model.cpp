@@ -5,6 +5,7 @@
 #include "tessera/color/color.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/error.hpp"
+#include "tessera/core/parallel.hpp"
 #include "tessera/core/parse.hpp"
 
 namespace tessera {
@@ -88,12 +89,17 @@ void convert_many(ColorModel from, ColorModel to, std::span<const double> in, st
   if (in.size() % n_from != 0 || out.size() != count * n_to)
     throw InvalidInput(fmt::format("convert_many: {} {} values and {} {} values are not the same number of colors",
                                    in.size(), model_name(from), out.size(), model_name(to)));
-  for (size_t i = 0; i < count; ++i) {
-    Vec4 v(0.0);
-    for (size_t c = 0; c < n_from; ++c) v[int(c)] = in[i * n_from + c];
-    const Vec4 result = convert(from, to, v);
-    for (size_t c = 0; c < n_to; ++c) out[i * n_to + c] = result[int(c)];
-  }
+  // Each color on its own: chunks in parallel give the same values for any thread count. The table's conversions are
+  // looked up once, not per color.
+  const ModelInfo &source = info(from), &target = info(to);
+  parallel_for(0, int64_t(count), 16384, [&](int64_t begin, int64_t end) {
+    for (auto i = size_t(begin); i < size_t(end); ++i) {
+      Vec4 v(0.0);
+      for (size_t c = 0; c < n_from; ++c) v[int(c)] = in[i * n_from + c];
+      const Vec4 result = from == to ? v : target.from_rgb(source.to_rgb(v));
+      for (size_t c = 0; c < n_to; ++c) out[i * n_to + c] = result[int(c)];
+    }
+  });
 }
 
 double full_turn(HueUnit unit) {
