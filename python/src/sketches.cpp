@@ -161,6 +161,14 @@ Colors take Processing's forms: gray, (gray, alpha), (v1, v2, v3), (v1, v2, v3, 
       .def("shear_y", &C::shear_y, py::arg("angle"), "Shears y by the angle: y' = y + tan(angle) x.")
       .def("reset_matrix", &C::reset_matrix, "The identity transformation again.")
       .def(
+          "matrix",
+          [](const C& c) {
+            const Mat3& m = c.matrix();  // glm's columns: m[column][row]
+            return py::make_tuple(py::make_tuple(m[0][0], m[1][0], m[2][0]), py::make_tuple(m[0][1], m[1][1], m[2][1]),
+                                  py::make_tuple(m[0][2], m[1][2], m[2][2]));
+          },
+          "The current transformation as rows ((n00, n01, n02), (n10, n11, n12), (0, 0, 1)): the user-to-pixel map.")
+      .def(
           "apply_matrix",
           [](C& c, double n00, double n01, double n02, double n10, double n11, double n12) {
             c.apply_matrix(Mat3(n00, n10, 0, n01, n11, 0, n02, n12, 1));  // glm's columns

@@ -190,7 +190,7 @@ for _name in ("size", "frame_rate", "millis", "no_loop", "loop", "redraw", "exit
               "no_stroke", "stroke_weight", "stroke_join", "stroke_cap", "smooth", "no_smooth", "color_mode", "color",
               "point", "line", "rect", "ellipse", "arc", "triangle", "quad", "begin_shape", "vertex", "bezier_vertex",
               "quadratic_vertex", "begin_contour", "end_contour", "end_shape", "push_matrix", "pop_matrix",
-              "translate", "rotate", "scale", "shear_x", "shear_y", "reset_matrix", "apply_matrix", "text",
+              "translate", "rotate", "scale", "shear_x", "shear_y", "reset_matrix", "apply_matrix", "matrix", "text",
               "text_size", "text_align", "text_width", "image"):
     globals()[_name] = _forward(_name, f"Processing's {_name} on the running sketch (see tessera.Canvas.{_name}).")
 del _name

@@ -16,7 +16,8 @@ EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" /
 
 
 @pytest.mark.parametrize("name,options", [("pink_square", ["--frames", "60", "--demo"]),
-                                          ("transformations", ["--frames", "90"])])
+                                          ("transformations", ["--frames", "90"]),
+                                          ("body", ["--frames", "60"])])
 def test_python_sketch_equals_the_builtin(tmp_path, cli, name, options):
     subprocess.run([sys.executable, EXAMPLES / f"{name}.py", f"{tmp_path}/py/"], check=True, cwd=tmp_path)
     cli("sketch", name, *options, "-o", f"{tmp_path}/cli/")
