@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Runs clang-tidy (the checks of .clang-tidy) on the library's and the command's sources and fails (exit 1) on a
-finding that .clang-tidy-baseline does not list: the findings the tree had when the check was introduced are listed
-there per file and check, to be fixed over time; a new one fails `make test`.
+"""Runs clang-tidy (the checks of .clang-tidy) on the library's, the command's and the Python module's sources and
+fails (exit 1) on a finding that .clang-tidy-baseline does not list: the findings the tree had when the check was
+introduced are listed there per file and check, to be fixed over time; a new one fails `make test`.
 
   scripts/check-tidy.py BUILD_DIR                 BUILD_DIR has compile_commands.json (the clang build: build/asan)
   scripts/check-tidy.py BUILD_DIR --write-cache   the same, and on success records every source's findings in
@@ -46,13 +46,14 @@ def relative(path):
 
 
 def sources(build):
-    """The sources to check (the library's and the command's, as this build compiles them) and their commands."""
+    """The sources to check (the library's, the command's and the Python module's, as this build compiles them) and
+    their commands."""
     commands = {}
     for entry in json.loads((build / "compile_commands.json").read_text()):
         name = relative(Path(entry["directory"], entry["file"]))
         if name:
             commands[name] = entry
-    tracked = subprocess.run(["git", "ls-files", "libs/*/src/*.cpp", "apps/*.cpp"], cwd=ROOT, check=True,
+    tracked = subprocess.run(["git", "ls-files", "libs/*/src/*.cpp", "apps/*.cpp", "python/src/*.cpp"], cwd=ROOT, check=True,
                              capture_output=True, text=True).stdout.split()
     # A source of a disabled option (the window without SDL2) has no command and is not checked.
     return {name: commands[name] for name in tracked if name in commands}

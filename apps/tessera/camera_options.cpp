@@ -3,6 +3,17 @@
 #include "command.hpp"
 
 namespace tessera::cli {
+namespace {
+
+/// A library table of names as add_choice's list.
+template <class T, size_t N>
+std::vector<std::pair<std::string, T>> names_of(const std::array<std::pair<std::string_view, T>, N>& names) {
+  std::vector<std::pair<std::string, T>> out;
+  for (const auto& [name, value] : names) out.emplace_back(name, value);
+  return out;
+}
+
+}  // namespace
 
 void CameraOptions::add(CLI::App& command, const std::string& default_size) {
   size = default_size;
@@ -21,15 +32,7 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
     command.add_option("--far", far, "Far-plane distance (default: from the scene's bounds)")->check(non_negative());
   }
   command.add_option("--size", size, "Image size WxH")->check(size_format())->capture_default_str();
-  CLI::Option* view_option = add_choice(command, "--view", view,
-                                        {{"three-quarter", View::three_quarter},
-                                         {"front", View::front},
-                                         {"back", View::back},
-                                         {"left", View::left},
-                                         {"right", View::right},
-                                         {"top", View::top},
-                                         {"bottom", View::bottom},
-                                         {"iso", View::iso}},
+  CLI::Option* view_option = add_choice(command, "--view", view, names_of(kFramedViewNames),
                                         "Framed view of the model (with --up-axis): three-quarter is 30 degrees right "
                                         "of the front and 20 above, iso looks down the cube's diagonal");
   CLI::Option* azimuth_option =
@@ -39,16 +42,9 @@ void CameraOptions::add(CLI::App& command, const std::string& default_size) {
   CLI::Option* elevation_option =
       command.add_option("--elevation", elevation, "Degrees above the horizontal plane (90 = top, -90 = bottom)")
           ->check(CLI::Range(-90.0, 90.0));
-  add_choice(command, "--up-axis", up_axis, {{"x", UpAxis::x}, {"y", UpAxis::y}, {"z", UpAxis::z}},
+  add_choice(command, "--up-axis", up_axis, names_of(kUpAxisNames),
              "The model's up axis (meshes are usually y-up; the teapot .bpt is z-up)");
-  add_choice(command, "--front-axis", front_axis,
-             {{"auto", FrontAxis::automatic},
-              {"+x", FrontAxis::pos_x},
-              {"-x", FrontAxis::neg_x},
-              {"+y", FrontAxis::pos_y},
-              {"-y", FrontAxis::neg_y},
-              {"+z", FrontAxis::pos_z},
-              {"-z", FrontAxis::neg_z}},
+  add_choice(command, "--front-axis", front_axis, names_of(kFrontAxisNames),
              "Where the model's front faces, for the views (auto: +z, or -y for z-up; Spot faces -z)");
   CLI::Option* ortho_option =
       command.add_flag("--ortho", ortho, "Orthographic (parallel) projection instead of perspective");

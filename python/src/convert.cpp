@@ -299,31 +299,14 @@ Framing framing(Options& options, double fovy) {
                    elevation = options.take("elevation"), eye = options.take("eye");
   if (!eye.is_none() && !(view_name.is_none() && azimuth.is_none() && elevation.is_none()))
     throw InvalidInput("eye: it places the camera; give eye, or view/azimuth/elevation, not both");
-  const auto view = choice<FramedView>(view_name.is_none() ? "three-quarter" : view_name.cast<std::string>(),
-                                       {{"three-quarter", FramedView::three_quarter},
-                                        {"front", FramedView::front},
-                                        {"back", FramedView::back},
-                                        {"left", FramedView::left},
-                                        {"right", FramedView::right},
-                                        {"top", FramedView::top},
-                                        {"bottom", FramedView::bottom},
-                                        {"iso", FramedView::iso}},
-                                       "view");
+  const auto view =
+      choice(view_name.is_none() ? "three-quarter" : view_name.cast<std::string>(), kFramedViewNames, "view");
   f.angles = view_angles(view);
   if (!azimuth.is_none()) f.angles.azimuth = azimuth.cast<double>();
   if (!elevation.is_none()) f.angles.elevation = elevation.cast<double>();
   if (!eye.is_none()) f.eye = vec3(eye, "eye");
-  f.up_axis = choice<UpAxis>(options.get<std::string>("up_axis", "y"),
-                             {{"x", UpAxis::x}, {"y", UpAxis::y}, {"z", UpAxis::z}}, "up_axis");
-  f.front_axis = choice<FrontAxis>(options.get<std::string>("front_axis", "auto"),
-                                   {{"auto", FrontAxis::automatic},
-                                    {"+x", FrontAxis::pos_x},
-                                    {"-x", FrontAxis::neg_x},
-                                    {"+y", FrontAxis::pos_y},
-                                    {"-y", FrontAxis::neg_y},
-                                    {"+z", FrontAxis::pos_z},
-                                    {"-z", FrontAxis::neg_z}},
-                                   "front_axis");
+  f.up_axis = choice(options.get<std::string>("up_axis", "y"), kUpAxisNames, "up_axis");
+  f.front_axis = choice(options.get<std::string>("front_axis", "auto"), kFrontAxisNames, "front_axis");
   for (auto [name, slot] : {std::pair{"center", &f.center}, {"up", &f.up}})
     if (const py::object o = options.take(name); !o.is_none()) *slot = vec3(o, name);
   f.ortho = options.get("ortho", false);

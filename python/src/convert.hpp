@@ -32,16 +32,26 @@ py::array_t<T> owned_array(std::shared_ptr<const void> owner, const T* data, std
   return py::array_t<T>(std::move(shape), data, base);
 }
 
-/// The value named `name` among `names` (the keyword arguments' string choices, spelled as the CLI spells them).
-/// Throws InvalidInput naming `what` and listing the names.
-template <class T>
-T choice(const std::string& name, std::initializer_list<std::pair<const char*, T>> names, const std::string& what) {
+/// The value named `name` among `names` (pairs of a name and a value): the keyword arguments' string choices, spelled
+/// as the CLI spells them. Throws InvalidInput naming `what` and listing the names.
+template <class T, class Names>
+T choose(const std::string& name, const Names& names, const std::string& what) {
   std::string list;
   for (const auto& [n, value] : names) {
     if (name == n) return value;
     list += (list.empty() ? "" : ", ") + std::string(n);
   }
   throw InvalidInput(fmt::format("{}: expected one of {}, got '{}'", what, list, name));
+}
+/// choose() over names written in place, {{"name", value}, ...}.
+template <class T>
+T choice(const std::string& name, std::initializer_list<std::pair<const char*, T>> names, const std::string& what) {
+  return choose<T>(name, names, what);
+}
+/// choose() over a library table of names (framing.hpp's).
+template <class T, size_t N>
+T choice(const std::string& name, const std::array<std::pair<std::string_view, T>, N>& names, const std::string& what) {
+  return choose<T>(name, names, what);
 }
 
 /// A contiguous float64 array from any array-like `value` of shape (N, cols). Throws InvalidInput naming `what` for

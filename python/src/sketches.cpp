@@ -8,6 +8,7 @@
 #include "convert.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/raster2d/canvas.hpp"
+#include "tessera/sketch/registry.hpp"
 #include "tessera/sketch/runner.hpp"
 #include "tessera/sketch/sketch.hpp"
 
@@ -193,7 +194,8 @@ Colors take Processing's forms: gray, (gray, alpha), (v1, v2, v3), (v1, v2, v3, 
 /// The runner's options and a run, the GIL released while the runner waits (the sketch's methods take it back).
 py::dict run(PythonSketch& sketch, std::optional<int> frames, std::optional<double> seconds, std::optional<double> fps,
              std::optional<std::pair<int, int>> size, const std::string& output, bool window, const std::string& input,
-             int threads, uint64_t seed, bool srgb, const std::string& title, const py::object& on_frame) {
+             const std::string& events, int threads, uint64_t seed, bool srgb, const std::string& title,
+             const py::object& on_frame) {
   RunOptions o;
   o.frames = frames;
   o.seconds = seconds;
@@ -202,6 +204,7 @@ py::dict run(PythonSketch& sketch, std::optional<int> frames, std::optional<doub
   o.output = output;
   o.mode = window ? RunMode::window : RunMode::headless;
   o.input = input;
+  if (!events.empty()) o.events = parse_input_script(events, "events");
   o.threads = threads;
   o.seed = seed;
   o.srgb = srgb;
@@ -287,9 +290,18 @@ void bind_sketches(py::module_& m) {
           "picture", [](Sketch& s) { return to_python(to_float(s.picture())); },
           "The picture drawn so far as an Image.");
   m.def("_run_sketch", &run, py::arg("sketch"), py::arg("frames"), py::arg("seconds"), py::arg("fps"), py::arg("size"),
-        py::arg("output"), py::arg("window"), py::arg("input"), py::arg("threads"), py::arg("seed"), py::arg("srgb"),
-        py::arg("title"), py::arg("on_frame"));
+        py::arg("output"), py::arg("window"), py::arg("input"), py::arg("events"), py::arg("threads"), py::arg("seed"),
+        py::arg("srgb"), py::arg("title"), py::arg("on_frame"));
   m.def("window_supported", &window_supported, "Whether this build can open windows (SDL2).");
+  m.def(
+      "builtin_demo_input",
+      [](const std::string& name) {
+        const SketchInfo* info = find_sketch(name);
+        if (!info) throw InvalidInput(fmt::format("'{}' is not a built-in sketch (tessera sketch --list)", name));
+        return std::string(info->demo_input);
+      },
+      py::arg("name"),
+      "The input script (docs/sketch.md) of a built-in sketch's demo recording (`tessera sketch NAME --demo`).");
 }
 
 }  // namespace tessera::python

@@ -15,10 +15,11 @@ last picture (output=). In a notebook, run_sketch(..., animation=True) returns a
 import inspect as _inspect
 import os as _os
 import tempfile as _tempfile
+import types as _types
 
 from . import _tessera
 from ._tessera import ArcMode, ColorMode, LineCap, LineJoin, MouseButton, ShapeKind, TextAlignX, TextAlignY
-from ._tessera import window_supported  # noqa: F401
+from ._tessera import builtin_demo_input, window_supported  # noqa: F401
 
 # Processing's constants.
 POINTS, LINES, TRIANGLES = ShapeKind.points, ShapeKind.lines, ShapeKind.triangles
@@ -136,20 +137,24 @@ class Animation:
 
 
 def run_sketch(sketch=None, *, frames=None, seconds=None, fps=None, size=None, output=None, window=False,
-               input=None, threads=0, seed=0, srgb=False, title="tessera sketch", on_frame=None, animation=False):
-    """Runs a sketch: `sketch` (a Sketch instance), or the calling script's module-level setup() and draw().
+               input=None, events=None, threads=0, seed=0, srgb=False, title="tessera sketch", on_frame=None,
+               animation=False):
+    """Runs a sketch: `sketch` (a Sketch instance, or a module or dict whose setup() and draw() functions make one),
+    or by default the calling script's module-level setup() and draw().
 
     frames / seconds: stop after so many (headless: one second's by default); fps replaces the sketch's frame rate;
     size (width, height) replaces its size(). output: .gif, .mp4/.webm/.mov/.mkv (ffmpeg), a folder/ or
     frame-####.png for every frame, or one .png for the last. window=True opens a real window (SDL2) that runs until
-    closed (Escape), exit_sketch(), or the frames/seconds given. input: a script of input events, one per line
-    'FRAME EVENT ARGS' (docs/sketch.md). seed: of random() and noise(). on_frame(number, rgba8 (H, W, 4)) sees every
+    closed (Escape), exit_sketch(), or the frames/seconds given. input: a file of input events, one per line
+    'FRAME EVENT ARGS' (docs/sketch.md); events: such a script as text (builtin_demo_input(name) gives a built-in's). seed: of random() and noise(). on_frame(number, rgba8 (H, W, 4)) sees every
     frame. animation=True returns an Animation (a GIF) instead of the run's counts. Exceptions raised by the
     sketch's functions end the run and propagate.
     """
     global _current
     if sketch is None:
         sketch = _FunctionSketch(_inspect.stack()[1].frame.f_globals)
+    elif isinstance(sketch, (dict, _types.ModuleType)):
+        sketch = _FunctionSketch(sketch if isinstance(sketch, dict) else vars(sketch))
     if animation and output:
         raise _tessera.InvalidInput("animation=True writes its own GIF: give no output")
     folder = _tempfile.TemporaryDirectory() if animation else None
@@ -157,7 +162,7 @@ def run_sketch(sketch=None, *, frames=None, seconds=None, fps=None, size=None, o
     previous, _current = _current, sketch
     try:
         result = _tessera._run_sketch(sketch, frames, seconds, fps, size, target, window,
-                                      _os.fspath(input or ""), threads, seed, srgb, title, on_frame)
+                                      _os.fspath(input or ""), events or "", threads, seed, srgb, title, on_frame)
         if animation:
             with open(target, "rb") as f:
                 return Animation(f.read())

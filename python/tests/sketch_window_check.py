@@ -1,9 +1,10 @@
 """A Python sketch in a real window, checked from outside (run inside an X server by test_sketch_window.py, as
 `xvfb-run -a -s "-screen 0 1280x1024x24" python sketch_window_check.py SCRATCH`).
 
-A pink_square-like sketch (a pink square that follows the mouse, darker while a button is held, 's' toggles a black
-outline) opens a 400x400 window with run_sketch(window=True); xdotool moves the real pointer into it, presses and
-releases a button, types a key, and after each step ImageMagick's `import` grabs the window. Each grab must match the
+The notes' pink_square as a Python sketch (a pink square that follows the mouse, darker while a button is held, 's'
+toggles a black outline; examples/python/sketches/pink_square.py) opens a 400x400 window with
+run_sketch(module, window=True); xdotool moves the real pointer into it, presses and releases a button, types a key,
+and after each step ImageMagick's `import` grabs the window. Each grab must match the
 headless render of the same state (run_sketch with an input script setting the same mouse position, button and key
 at frame 1, one frame) within 1/255 on at least 99% of the pixels, as tests/cli/window_lib.sh's compare_grab. Escape
 then ends the run: the sketch process must exit with status 0. Exit status 0 when all holds, else 1 with the reason.
@@ -18,41 +19,21 @@ import numpy as np
 from PIL import Image
 
 TITLE = "python sketch window test"
-SKETCH = f'''import sys
+# The notes' pink_square as Python (examples/python/sketches/pink_square.py), loaded as a module and run by
+# run_sketch(module): in the window, or headless for one frame of a scripted state.
+EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / "sketches" / "pink_square.py"
+SKETCH = f'''import importlib.util
+import sys
 
-from tessera.sketch import *  # noqa: F401,F403
+from tessera.sketch import run_sketch
 
-outlined = False
-
-
-def setup():
-    size(400, 400)
-
-
-def draw():
-    background(255)
-    if mouse_is_pressed:
-        fill(220, 90, 120)
-    else:
-        fill(255, 150, 150)
-    if outlined:
-        stroke(0)
-        stroke_weight(4)
-    else:
-        no_stroke()
-    rect(mouse_x - 25, mouse_y - 25, 50, 50)
-
-
-def key_pressed():
-    global outlined
-    if key == "s":
-        outlined = not outlined
-
-
+spec = importlib.util.spec_from_file_location("pink_square", {str(EXAMPLE)!r})
+module = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(module)
 if sys.argv[1] == "window":
-    print("result", run_sketch(window=True, seconds=60, title={TITLE!r}), flush=True)
+    print("result", run_sketch(module, window=True, seconds=60, title={TITLE!r}), flush=True)
 else:  # headless INPUT OUTPUT: one frame of the scripted state
-    run_sketch(frames=1, input=sys.argv[2], output=sys.argv[3])
+    run_sketch(module, frames=1, input=sys.argv[2], output=sys.argv[3])
 '''
 GRAB_TRIES = 6  # a grab that does not match yet is taken again (the window may not have drawn the new state)
 

@@ -4,7 +4,7 @@ Pressing a button makes it darker while held; the key 's' toggles a black outlin
 `tessera sketch pink_square` (the tests compare them).
 
     python3 pink_square.py                 # a window
-    python3 pink_square.py out.gif         # headless, 60 frames, the gallery's scripted mouse
+    python3 pink_square.py out.gif         # headless, 60 frames, the built-in's scripted mouse and keys
 """
 import sys
 
@@ -37,30 +37,8 @@ def key_pressed():
         outlined = not outlined
 
 
-# The pointer circles the canvas once in 40 frames, then presses and drags (the built-in's demo input).
-DEMO = """1 mouse_move 200 120
-6 mouse_move 257 143
-11 mouse_move 280 200
-16 mouse_move 257 257
-21 mouse_move 200 280
-26 mouse_move 143 257
-31 mouse_move 120 200
-36 mouse_move 143 143
-41 mouse_move 200 120
-46 mouse_press left
-46 mouse_move 240 160
-51 mouse_move 280 200
-56 mouse_release left
-58 key_press s
-59 key_release s
-"""
-
 if __name__ == "__main__":
-    if len(sys.argv) > 1:
-        import pathlib
-        import tempfile
-        script = pathlib.Path(tempfile.mkdtemp()) / "demo.txt"
-        script.write_text(DEMO)
-        run_sketch(frames=60, output=sys.argv[1], input=script)
+    if len(sys.argv) > 1:  # the built-in's demo: the pointer goes round, then presses, drags, and types s
+        run_sketch(frames=60, output=sys.argv[1], events=builtin_demo_input("pink_square"))
     else:
         run_sketch(window=True)

@@ -7,7 +7,10 @@
 // view), right R = U x F (+x for the defaults of y-up and z-up, -y for x-up), so that R x U = F. The framed eye lies
 // on cos(el) (cos(az) F + sin(az) R) + sin(el) U from the center; the image's up is that direction turned 90 degrees
 // up (U at elevation 0; -F on the top view: the front at the bottom of the image, as in Blender).
+#include <array>
 #include <optional>
+#include <string_view>
+#include <utility>
 
 #include "tessera/math/camera.hpp"
 
@@ -22,6 +25,32 @@ enum class UpAxis { x, y, z };
 
 /// The direction the model's front faces: automatic is +z (glTF's and Blender's OBJ convention), or -y for z-up models.
 enum class FrontAxis { automatic, pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
+
+/// The names the command line (--view, --up-axis, --front-axis) and the Python package give the views and axes.
+inline constexpr std::array<std::pair<std::string_view, FramedView>, 8> kFramedViewNames = {{
+    {"three-quarter", FramedView::three_quarter},
+    {"front", FramedView::front},
+    {"back", FramedView::back},
+    {"left", FramedView::left},
+    {"right", FramedView::right},
+    {"top", FramedView::top},
+    {"bottom", FramedView::bottom},
+    {"iso", FramedView::iso},
+}};
+inline constexpr std::array<std::pair<std::string_view, UpAxis>, 3> kUpAxisNames = {{
+    {"x", UpAxis::x},
+    {"y", UpAxis::y},
+    {"z", UpAxis::z},
+}};
+inline constexpr std::array<std::pair<std::string_view, FrontAxis>, 7> kFrontAxisNames = {{
+    {"auto", FrontAxis::automatic},
+    {"+x", FrontAxis::pos_x},
+    {"-x", FrontAxis::neg_x},
+    {"+y", FrontAxis::pos_y},
+    {"-y", FrontAxis::neg_y},
+    {"+z", FrontAxis::pos_z},
+    {"-z", FrontAxis::neg_z},
+}};
 
 /// A view's azimuth about the up axis (0 = front, 90 = right) and elevation above the horizontal plane (90 = top),
 /// degrees.

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "tessera/core/error.hpp"
+#include "tessera/core/memory.hpp"
 #include "tessera/image/image.hpp"
 #include "tessera/math/types.hpp"
 
@@ -120,7 +121,7 @@ class Volume {
   glm::ivec3 dims_{0};
   Vec3 spacing_{1.0};
   Vec3 origin_{0.0};
-  std::vector<T> voxels_;
+  RawVector<T> voxels_;  // huge pages for large volumes: filling 64 MiB of 4 KiB pages costs more than the filling
 };
 
 /// A volume of any of the reader types.
