@@ -89,7 +89,7 @@ def key(tidy_version, checks, entry):
 
 def run_tidy(tidy, build, name):
     """The findings clang-tidy reports in the tree's files for one source, as sorted 'file check line:col' strings."""
-    result = subprocess.run([tidy, "-p", str(build), "--quiet", f"--header-filter=^{ROOT}/(libs|apps)/", name],
+    result = subprocess.run([tidy, "-p", str(build), "--quiet", f"--header-filter=^{ROOT}/(libs|apps|python)/", name],
                             cwd=ROOT, capture_output=True, text=True)
     if result.returncode != 0:
         errors = [line for line in result.stdout.splitlines() if ": error: " in line]

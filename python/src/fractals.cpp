@@ -41,7 +41,7 @@ TerrainOptions terrain(int depth, double initial_range, double roughness, uint64
 }
 
 template <class T>
-py::array_t<double> records(const std::vector<T>& items, std::vector<py::ssize_t> shape) {
+py::array_t<double> records(const std::vector<T>& items, const std::vector<py::ssize_t>& shape) {
   py::array_t<double> out(shape);
   static_assert(sizeof(T) % sizeof(double) == 0);
   if (!items.empty()) std::memcpy(out.mutable_data(), items.data(), items.size() * sizeof(T));

@@ -208,7 +208,7 @@ void bind_meshes(py::module_& m) {
   bind_corner_table(m);
 
   m.def(
-      "triangulate", [](py::handle value) { return mesh_op(value, [](PolyMesh p) { return triangulate(p); }); },
+      "triangulate", [](py::handle value) { return mesh_op(value, [](const PolyMesh& p) { return triangulate(p); }); },
       py::arg("mesh"), "Triangles of every polygon (ear clipping; convex ones as fans).");
   m.def(
       "weld",

@@ -52,6 +52,7 @@ PYBIND11_MODULE(_tessera, m) {
   budget_class =
       exception_class(m, "MemoryBudgetError", py::make_tuple(py::handle(invalid_class), py::handle(PyExc_MemoryError)),
                       "A request that would need more memory than the budget allows (refused up front).");
+  // NOLINTNEXTLINE(performance-unnecessary-value-param): pybind11's translator type takes the pointer by value
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);

@@ -31,7 +31,7 @@ class PythonSketch : public Sketch {
 };
 
 /// The canvas's picture as a float32 Image (H, W, 4) viewing its pixels (live: drawing changes it; copy() keeps it).
-py::object canvas_image(py::object self) {
+py::object canvas_image(const py::object& self) {
   const Canvas& c = self.cast<const Canvas&>();
   const py::array view(py::dtype::of<float>(), std::vector<py::ssize_t>{c.height(), c.width(), 4},
                        &c.image().pixels()[0][0], self);
@@ -92,7 +92,7 @@ Colors take Processing's forms: gray, (gray, alpha), (v1, v2, v3), (v1, v2, v3, 
       .def_property_readonly("height", &C::height, "Height in pixels.")
       .def_property_readonly("picture", &canvas_image,
                              "What the canvas shows: an Image (H, W, 4) viewing its pixels (live; copy() keeps one).")
-      .def("_repr_png_", [](py::object self) { return canvas_image(self).attr("_repr_png_")(); })
+      .def("_repr_png_", [](const py::object& self) { return canvas_image(self).attr("_repr_png_")(); })
       .def("save", &C::save, py::arg("path"), "Writes the picture (write_image).")
       .def("background", py::overload_cast<double>(&C::background),
            "Clears the canvas to a color (gray, (gray, alpha), (v1, v2, v3), (v1, v2, v3, alpha) in the color mode).")
