@@ -24,11 +24,13 @@ HueChroma hue_chroma(const Vec3& rgb) {
   if (range == 0) return {0.0, maxc, minc};
   const double inv = 1.0 / range;  // one division for the three (within an ulp of colorsys's three)
   const double rc = (maxc - rgb.x) * inv, gc = (maxc - rgb.y) * inv, bc = (maxc - rgb.z) * inv;
-  // Selects rather than branches (random colors mispredict the branches); h / 6 lies in [-1/6, 5/6], so wrapping it
-  // adds 1 below 0 (wrap_hue's floor is a library call without SSE4.1), and a sum that rounds to 1 is 0 as there.
-  const double h = (rgb.x == maxc ? bc - gc : rgb.y == maxc ? 2.0 + rc - bc : 4.0 + gc - rc) / 6.0;
-  const double wrapped = h < 0 ? h + 1.0 : h;
-  return {wrapped < 1.0 ? wrapped : 0.0, maxc, minc};
+  // The sector by weights of 0 or 1 instead of branches, which random colors mispredict (x * 1 + 0 + 0 is x exactly):
+  // red wins ties, then green, as colorsys; / 6 as a product (an ulp of colorsys). h lies in [-1/6, 5/6]: wrapping
+  // adds 1 below 0 (wrap_hue's floor is a library call without SSE4.1), and a sum that rounds to 1 is 0, as there.
+  const double red = rgb.x == maxc, green = (1.0 - red) * double(rgb.y == maxc), blue = 1.0 - red - green;
+  const double h = (red * (bc - gc) + green * (2.0 + rc - bc) + blue * (4.0 + gc - rc)) * (1.0 / 6.0);
+  const double wrapped = h + double(h < 0);
+  return {wrapped * double(wrapped < 1.0), maxc, minc};
 }
 
 // One channel of the HLS double hexcone: m1 + (m2 - m1) * ramp(hue) (Foley and van Dam, "HLS_TO_RGB" / Value()).

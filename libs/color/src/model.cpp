@@ -96,7 +96,10 @@ void convert_many(ColorModel from, ColorModel to, std::span<const double> in, st
     for (auto i = size_t(begin); i < size_t(end); ++i) {
       Vec4 v(0.0);
       for (size_t c = 0; c < n_from; ++c) v[int(c)] = in[i * n_from + c];
-      const Vec4 result = from == to ? v : target.from_rgb(source.to_rgb(v));
+      const Vec4 result = from == to                ? v
+                          : from == ColorModel::rgb ? target.from_rgb(Vec3(v))  // the hub: one conversion
+                          : to == ColorModel::rgb   ? Vec4(source.to_rgb(v), 0.0)
+                                                    : target.from_rgb(source.to_rgb(v));
       for (size_t c = 0; c < n_to; ++c) out[i * n_to + c] = result[int(c)];
     }
   });
