@@ -4,8 +4,8 @@ fails (exit 1) on a finding that .clang-tidy-baseline does not list: the finding
 introduced are listed there per file and check, to be fixed over time; a new one fails `make test`.
 
   scripts/check-tidy.py BUILD_DIR                 BUILD_DIR has compile_commands.json (the clang build: build/asan)
-  scripts/check-tidy.py BUILD_DIR --write-cache   the same, and on success records every source's findings in
-                                                  .clang-tidy-cache (commit it with the change)
+  scripts/check-tidy.py BUILD_DIR --write-cache   the same, and records every source's findings in
+                                                  .clang-tidy-cache (commit it with the change, once it passes)
   scripts/check-tidy.py BUILD_DIR --update        rewrite the baseline (and the cache) from the current findings
 
 clang-tidy takes about 10 CPU seconds a source (most of CI's time once), so each source's findings are kept in
@@ -133,6 +133,11 @@ def main():
     print(f"check-tidy: {len(stale)} of {len(todo)} sources checked, {len(todo) - len(stale)} unchanged since "
           f".clang-tidy-cache")
 
+    if mode in ("--update", "--write-cache"):
+        # Each source's findings, new ones too: a failing run need not check its sources again once they are fixed.
+        recorded = {name: {"key": keys[name], "findings": findings[name]} for name in sorted(todo) if keys[name]}
+        CACHE.write_text(json.dumps(recorded, indent=1) + "\n")
+        print(f"check-tidy: .clang-tidy-cache records {len(recorded)} sources")
     if mode == "--update":
         BASELINE.write_text("".join(f"{k} {n}\n" for k, n in sorted(counts.items())))
         print(f"check-tidy: baseline rewritten ({total} findings)")
@@ -147,10 +152,6 @@ def main():
             fail(f"new clang-tidy findings (run clang-tidy -p {args[0]} FILE to see them; fix them):\n" + "\n".join(new),
                  1)
         print(f"check-tidy: no new findings ({total} listed in .clang-tidy-baseline remain)")
-    if mode in ("--update", "--write-cache"):
-        recorded = {name: {"key": keys[name], "findings": findings[name]} for name in sorted(todo) if keys[name]}
-        CACHE.write_text(json.dumps(recorded, indent=1) + "\n")
-        print(f"check-tidy: .clang-tidy-cache records {len(recorded)} sources")
 
 
 if __name__ == "__main__":

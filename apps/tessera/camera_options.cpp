@@ -9,6 +9,7 @@ namespace {
 template <class T, size_t N>
 std::vector<std::pair<std::string, T>> names_of(const std::array<std::pair<std::string_view, T>, N>& names) {
   std::vector<std::pair<std::string, T>> out;
+  out.reserve(N);
   for (const auto& [name, value] : names) out.emplace_back(name, value);
   return out;
 }
