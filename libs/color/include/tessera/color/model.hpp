@@ -43,8 +43,8 @@ Vec4 convert(ColorModel from, ColorModel to, const Vec4& values);
 std::vector<double> convert(ColorModel from, ColorModel to, std::span<const double> values);
 
 /// Converts many colors stored contiguously (component_count(from) numbers each in `in`, component_count(to) each
-/// in `out`), with no allocation per color, in parallel (the same values for any thread count): the path for arrays. Throws InvalidInput when the sizes do not hold the
-/// same whole number of colors, or as the Vec4 version.
+/// in `out`), with no allocation per color, in parallel (the same values for any thread count): the path for arrays.
+/// Throws InvalidInput when the sizes do not hold the same whole number of colors, or as the Vec4 version.
 void convert_many(ColorModel from, ColorModel to, std::span<const double> in, std::span<double> out);
 
 /// Units for hue on the command line (the library uses turns).
