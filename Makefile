@@ -18,11 +18,11 @@ build: deps
 	@$(CMAKE) --preset release >/dev/null
 	@$(CMAKE) --build --preset release -j $(JOBS)
 
-# The demo needs only the library and the command: the packages to build them, and no tests or test peers. The same
-# build folder as `make test` (which turns the tests back on), so that neither builds the library twice.
+# The demo needs only the library and the command: the packages to build them, and no tests, test peers or Python
+# module. The same build folder as `make test` (which turns them back on), so that neither builds the library twice.
 demo:
 	@scripts/install-deps.sh demo
-	@$(CMAKE) --preset release -DTESSERA_BUILD_TESTS=OFF >/dev/null
+	@$(CMAKE) --preset release -DTESSERA_BUILD_TESTS=OFF -DTESSERA_BUILD_PYTHON=OFF >/dev/null
 	@$(CMAKE) --build --preset release -j $(JOBS) --target tessera
 	$(TESSERA) demo -o $(OUT)
 	@echo "demo pictures written to $(OUT)/ (open $(OUT)/index.html)"
