@@ -254,16 +254,21 @@ PolyMesh mesh(py::handle value, const std::string& what) {
   return m;
 }
 
-Volume<float> volume(py::handle value, const std::string& what) {
+BorrowedVoxels voxels(py::handle value, const std::string& what) {
   const bool wrapped = py::hasattr(value, "data") && py::hasattr(value, "spacing") && !py::isinstance<py::array>(value);
-  const auto a =
-      as_array<float>(wrapped ? value.attr("data") : py::object(py::reinterpret_borrow<py::object>(value)), what);
+  auto a = as_array<float>(wrapped ? value.attr("data") : py::object(py::reinterpret_borrow<py::object>(value)), what);
   if (a.ndim() != 3)
     throw InvalidInput(fmt::format("{}: expected a volume array (Z, Y, X), got shape {}", what, shape_text(a)));
   const Vec3 spacing = wrapped ? vec3(value.attr("spacing"), what + ".spacing") : Vec3(1.0);
   const Vec3 origin = wrapped ? vec3(value.attr("origin"), what + ".origin") : Vec3(0.0);
-  Volume<float> v(glm::ivec3(int(a.shape(2)), int(a.shape(1)), int(a.shape(0))), 0.0f, spacing, origin);
-  std::copy_n(a.data(), a.size(), v.voxels().data());
+  const VoxelGrid grid{a.data(), glm::ivec3(int(a.shape(2)), int(a.shape(1)), int(a.shape(0))), spacing, origin};
+  return {std::move(a), grid};
+}
+
+Volume<float> volume(py::handle value, const std::string& what) {
+  const BorrowedVoxels b = voxels(value, what);
+  Volume<float> v(b.grid.dims, 0.0f, b.grid.spacing, b.grid.origin);
+  std::copy_n(b.grid.voxels, v.voxel_count(), v.voxels().data());
   return v;
 }
 

@@ -18,6 +18,7 @@
 #include "tessera/math/types.hpp"
 #include "tessera/mesh/poly_mesh.hpp"
 #include "tessera/scene/framing.hpp"
+#include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/volume.hpp"
 
 namespace tessera::python {
@@ -105,6 +106,13 @@ py::object to_python(PolyMesh mesh);
 /// face indices and every per-vertex and per-corner array's length. Throws InvalidInput naming `what`.
 PolyMesh mesh(py::handle value, const std::string& what);
 
+/// A volume argument's voxels where they are: a float32 C-contiguous array is read in place (numpy converts another
+/// dtype or layout once); `array` keeps them alive for as long as the grid is used.
+struct BorrowedVoxels {
+  py::array_t<float, py::array::c_style | py::array::forcecast> array;
+  VoxelGrid grid;
+};
+BorrowedVoxels voxels(py::handle value, const std::string& what);
 /// A volume argument: a tessera.Volume, or an array (Z, Y, X) of numbers with spacing and origin 1 and 0. Throws
 /// InvalidInput naming `what`.
 Volume<float> volume(py::handle value, const std::string& what);

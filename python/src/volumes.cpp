@@ -94,11 +94,11 @@ the file and what was expected.)");
   m.def(
       "marching_cubes",
       [](py::handle value, float iso, bool topological, bool normals) {
-        const Volume<float> v = volume(value, "volume");
+        const BorrowedVoxels v = voxels(value, "volume");  // read in place: no copy of a float32 array
         PolyMesh mesh;
         {
           py::gil_scoped_release release;
-          mesh = marching_cubes(v, {.iso = iso, .topological = topological, .normals = normals});
+          mesh = marching_cubes(v.grid, {.iso = iso, .topological = topological, .normals = normals});
         }
         return to_python(std::move(mesh));
       },

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rows.hpp"
 #include "tessera/color/chromaticity.hpp"
 #include "tessera/core/error.hpp"
 
@@ -160,4 +161,85 @@ Vec3 xyy_to_xyz(const Vec3& xyy) {
 Vec3 rgb_to_xyy(const Vec3& rgb) { return xyz_to_xyy(rgb_to_xyz(rgb)); }
 Vec3 xyy_to_rgb(const Vec3& xyy) { return xyz_to_rgb(xyy_to_xyz(xyy)); }
 
+namespace detail {
+namespace {
+
+// Two doubles per register (SSE2, every x86-64; NEON on ARM): GCC's vector extension, as raster3d's lanes.
+using D2 = double __attribute__((vector_size(16)));
+using M2 = long long __attribute__((vector_size(16)));
+
+D2 weight(M2 mask) { return __builtin_convertvector(-mask, D2); }  // true (-1) -> 1.0, false -> 0.0
+D2 pick(M2 mask, D2 a, D2 b) { return mask ? a : b; }
+
+/// Two colors' components from rows i and i + 1.
+struct Pair {
+  D2 r, g, b;
+};
+Pair load(std::span<const double> in, size_t i) {
+  const double* p = in.data() + 3 * i;
+  return {D2{p[0], p[3]}, D2{p[1], p[4]}, D2{p[2], p[5]}};
+}
+void store(std::span<double> out, size_t i, D2 x, D2 y, D2 z) {
+  double* p = out.data() + 3 * i;
+  p[0] = x[0], p[1] = y[0], p[2] = z[0], p[3] = x[1], p[4] = y[1], p[5] = z[1];
+}
+
+/// hue_chroma of two colors: the same operations (grays, range 0, get hue 0 by a select where it returns early).
+struct HueChroma2 {
+  D2 hue, max, min, range;
+};
+HueChroma2 hue_chroma2(const Pair& c) {
+  D2 maxc = c.r, minc = c.r;  // as std::max_element and std::min_element: the first of equals
+  maxc = pick(maxc < c.g, c.g, maxc), maxc = pick(maxc < c.b, c.b, maxc);
+  minc = pick(c.g < minc, c.g, minc), minc = pick(c.b < minc, c.b, minc);
+  const D2 range = maxc - minc;
+  const D2 inv = 1.0 / range;
+  const D2 rc = (maxc - c.r) * inv, gc = (maxc - c.g) * inv, bc = (maxc - c.b) * inv;
+  const D2 red = weight(c.r == maxc), green = (1.0 - red) * weight(c.g == maxc), blue = 1.0 - red - green;
+  const D2 h = (red * (bc - gc) + green * (2.0 + rc - bc) + blue * (4.0 + gc - rc)) * (1.0 / 6.0);
+  const D2 wrapped = h + weight(h < 0.0);
+  const D2 zero = {0.0, 0.0};
+  return {pick(range == 0.0, zero, wrapped * weight(wrapped < 1.0)), maxc, minc, range};
+}
+
+/// f(pair) for each two rows, the one-color function for a last odd row.
+template <class Two, class One>
+void rows(std::span<const double> in, std::span<double> out, Two two, One one) {
+  const size_t n = in.size() / 3;
+  for (size_t i = 0; i + 1 < n; i += 2) two(load(in, i), i);
+  if (n % 2 == 1) {
+    const size_t i = n - 1;
+    const Vec3 v = one(Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]));
+    out[3 * i] = v.x, out[3 * i + 1] = v.y, out[3 * i + 2] = v.z;
+  }
+}
+
+}  // namespace
+
+void rgb_to_hsv_rows(std::span<const double> in, std::span<double> out) {
+  const D2 zero = {0.0, 0.0};
+  rows(
+      in, out,
+      [&](const Pair& c, size_t i) {
+        const HueChroma2 hc = hue_chroma2(c);
+        store(out, i, hc.hue, pick(hc.max > 0.0, (hc.max - hc.min) / hc.max, zero), hc.max);
+      },
+      rgb_to_hsv);
+}
+
+void rgb_to_hls_rows(std::span<const double> in, std::span<double> out) {
+  const D2 zero = {0.0, 0.0};
+  rows(
+      in, out,
+      [&](const Pair& c, size_t i) {
+        const HueChroma2 hc = hue_chroma2(c);
+        const D2 sum = hc.max + hc.min, l = sum / 2.0;
+        const D2 denominator = pick(l <= 0.5, sum, 2.0 - hc.max - hc.min);
+        const D2 s = pick(denominator > 0.0, hc.range / denominator, zero);
+        store(out, i, hc.hue, l, pick(hc.range == 0.0, zero, s));
+      },
+      rgb_to_hls);
+}
+
+}  // namespace detail
 }  // namespace tessera

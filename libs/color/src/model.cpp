@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "rows.hpp"
 #include "tessera/color/color.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/error.hpp"
@@ -93,6 +94,13 @@ void convert_many(ColorModel from, ColorModel to, std::span<const double> in, st
   // looked up once, not per color.
   const ModelInfo &source = info(from), &target = info(to);
   parallel_for(0, int64_t(count), 16384, [&](int64_t begin, int64_t end) {
+    // The hue models from the hub two colors at a time (rows.hpp): the same values as one at a time.
+    if (from == ColorModel::rgb && (to == ColorModel::hsv || to == ColorModel::hls)) {
+      const auto first = size_t(begin) * 3, size = size_t(end - begin) * 3;
+      (to == ColorModel::hsv ? detail::rgb_to_hsv_rows : detail::rgb_to_hls_rows)(in.subspan(first, size),
+                                                                                  out.subspan(first, size));
+      return;
+    }
     for (auto i = size_t(begin); i < size_t(end); ++i) {
       Vec4 v(0.0);
       for (size_t c = 0; c < n_from; ++c) v[int(c)] = in[i * n_from + c];

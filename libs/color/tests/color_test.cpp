@@ -338,6 +338,27 @@ TEST(ColorModels, ConvertManyMatchesOneByOne) {
   }
 }
 
+// The two-colors-at-a-time paths of convert_many (rgb to hsv and hls) give the one-color functions' values, on random
+// colors, grays, black, white, ties between channels and an odd count.
+TEST(ColorModels, ConvertManyHueModelsMatchOneByOne) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> in;
+  for (int i = 0; i < 2001; ++i) in.insert(in.end(), {u(rng), u(rng), u(rng)});
+  for (const Vec3 c : {Vec3(0.0), Vec3(1.0), Vec3(0.5), Vec3(0.3, 0.3, 0.1), Vec3(0.2, 0.7, 0.7), Vec3(0.9, 0.1, 0.9),
+                       Vec3(0.6, 0.4, 0.6), Vec3(1.0, 0.0, 0.0), Vec3(0.0, 0.0, 1.0)})
+    in.insert(in.end(), {c.x, c.y, c.z});
+  std::vector<double> out(in.size());
+  for (const ColorModel to : {ColorModel::hsv, ColorModel::hls}) {
+    convert_many(ColorModel::rgb, to, in, out);
+    for (size_t i = 0; i < in.size(); i += 3) {
+      const Vec3 rgb(in[i], in[i + 1], in[i + 2]);
+      const Vec3 one = to == ColorModel::hsv ? rgb_to_hsv(rgb) : rgb_to_hls(rgb);
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(out[i + size_t(c)], one[c]) << model_name(to) << " row " << i / 3;
+    }
+  }
+}
+
 // The heat ramp at its knots, computed by hand from the three tents, and clamping outside [0, 1].
 TEST(ColorMap, HeatRampKnots) {
   auto expect = [](float x, Vec3f want) {

@@ -89,13 +89,14 @@ inline int bit(const Word* row, int x) { return int((row[x >> 6] >> (x & 63)) & 
 template <class V>
 class Extractor {
  public:
-  Extractor(const Volume<float>& v, const MarchingCubesOptions& o)
-      : v_(v),
-        o_(o),
-        d_(v.dims()),
-        data_(v.voxels().data()),
+  Extractor(const VoxelGrid& v, const MarchingCubesOptions& o)
+      : o_(o),
+        d_(v.dims),
+        data_(v.voxels),
+        spacing_(v.spacing),
+        origin_(v.origin),
         plane_(size_t(d_.x) * size_t(d_.y)),
-        per_difference_(std::min({v.spacing().x, v.spacing().y, v.spacing().z}) / v.spacing()),
+        per_difference_(std::min({v.spacing.x, v.spacing.y, v.spacing.z}) / v.spacing),
         words_(size_t(d_.x + 63) / 64) {}
 
   /// Fills positions, normals (when asked for) and 3 indices per triangle; `fresh(array, n)` sizes an array for
@@ -263,7 +264,7 @@ class Extractor {
       const double len = glm::length(g);
       if (len > 0) normal = -g / len;
     }
-    return {v_.to_world(grid), normal};
+    return {origin_ + spacing_ * grid, normal};  // Volume::to_world
   }
 
   void emit(uint32_t id, int x, int y, int z, int axis) const {
@@ -446,10 +447,10 @@ class Extractor {
     return {p / double(count), len > 0 ? n / len : n};
   }
 
-  const Volume<float>& v_;
   MarchingCubesOptions o_;
   glm::ivec3 d_;
   const float* data_;
+  Vec3 spacing_, origin_;
   size_t plane_;
   Vec3 per_difference_;  ///< smallest spacing / spacing: a difference over one voxel, scaled as gradient() returns
   size_t words_;
@@ -472,10 +473,19 @@ class Extractor {
 }  // namespace
 
 PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options) {
+  return marching_cubes(VoxelGrid::of(volume), options);
+}
+
+PolyMesh marching_cubes(const VoxelGrid& grid, const MarchingCubesOptions& options) {
+  if (!grid.voxels) throw InvalidInput("marching cubes: no voxels");
+  checked_voxel_count(grid.dims);
+  const Vec3& s = grid.spacing;
+  if (!(s.x > 0 && s.y > 0 && s.z > 0))
+    throw InvalidInput(fmt::format("marching cubes: spacing must be positive, got {},{},{}", s.x, s.y, s.z));
   PolyMesh mesh;
   const auto fresh = [](auto& array, size_t n) { resize_fresh(array, n); };
   const uint64_t triangles =
-      Extractor<Vec3>(volume, options).run(mesh.positions, mesh.normals, mesh.face_vertices, fresh, sizeof(uint32_t));
+      Extractor<Vec3>(grid, options).run(mesh.positions, mesh.normals, mesh.face_vertices, fresh, sizeof(uint32_t));
   resize_fresh(mesh.face_offsets, size_t(triangles) + 1);
   uint32_t* offsets = mesh.face_offsets.data();
   parallel_for(0, int64_t(triangles) + 1, 1 << 16, [&](int64_t b, int64_t e) {
@@ -489,7 +499,7 @@ IsoSurface extract_iso_surface(const Volume<float>& volume, const MarchingCubesO
   // Uninitialized, on huge pages: pass 2 writes every element, each slab its own ranges, so the pages are first
   // touched there, in parallel, and never zeroed by the library.
   const auto fresh = [](auto& array, size_t n) { array.resize(n); };
-  Extractor<Vec3f>(volume, options).run(s.positions, s.normals, s.indices, fresh, 0);
+  Extractor<Vec3f>(VoxelGrid::of(volume), options).run(s.positions, s.normals, s.indices, fresh, 0);
   return s;
 }
 

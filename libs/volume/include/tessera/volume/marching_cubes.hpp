@@ -23,6 +23,19 @@ struct MarchingCubesOptions {
   int slab_layers = 8;       ///< cell layers per parallel work item (any value gives the same mesh)
 };
 
+/// Float voxels held elsewhere (a numpy array, a mapped file), laid out as Volume's (x fastest, then y, then z), with
+/// the volume's placement: what marching cubes reads, so that such voxels need not be copied into a Volume first.
+struct VoxelGrid {
+  const float* voxels = nullptr;  ///< dims.x * dims.y * dims.z values
+  glm::ivec3 dims{0};
+  Vec3 spacing{1.0}, origin{0.0};
+
+  /// The grid of a volume (valid while it lives).
+  static VoxelGrid of(const Volume<float>& volume) {
+    return {volume.voxels().data(), volume.dims(), volume.spacing(), volume.origin()};
+  }
+};
+
 /// Extracts the iso-surface as a triangle mesh in world coordinates (origin + spacing * voxel). Each cut edge gives
 /// one shared vertex; triangles are counterclockwise seen from the outside (value < iso), and normals point outside.
 /// Classic mode uses mc::classic_table(); topological mode decides every ambiguous face by its bilinear saddle value
@@ -30,6 +43,9 @@ struct MarchingCubesOptions {
 /// Parallel over slabs of z layers; the result is identical for any thread count. Volumes under 2 voxels along an
 /// axis give an empty mesh.
 PolyMesh marching_cubes(const Volume<float>& volume, const MarchingCubesOptions& options = {});
+/// marching_cubes() of voxels held elsewhere. Throws InvalidInput for null voxels, dims < 1 or over kMaxVoxels, or a
+/// spacing that is not positive.
+PolyMesh marching_cubes(const VoxelGrid& grid, const MarchingCubesOptions& options = {});
 
 /// An iso-surface as marching cubes outputs it: float positions and normals (as VTK's and scikit-image's are) and
 /// 3 indices per triangle; half the bytes of a PolyMesh, whose dvec3 arrays and face offsets the extraction spends
