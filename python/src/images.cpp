@@ -34,8 +34,9 @@ ImageRGBA8 bytes_image(const py::array_t<uint8_t, py::array::c_style>& a) {
 
 /// Whether `value` is a uint8 array (H, W, 4): written as its bytes, without a float round trip.
 bool is_rgba_bytes(py::handle value) {
-  return py::isinstance<py::array>(value) && py::array::ensure(value).dtype().is(py::dtype::of<uint8_t>()) &&
-         py::array::ensure(value).ndim() == 3 && py::array::ensure(value).shape(2) == 4;
+  if (!py::isinstance<py::array>(value)) return false;
+  const auto a = py::reinterpret_borrow<py::array>(value);
+  return a.dtype().is(py::dtype::of<uint8_t>()) && a.ndim() == 3 && a.shape(2) == 4;
 }
 
 py::object read(const std::filesystem::path& path, const std::string& dtype) {

@@ -208,13 +208,13 @@ py::tuple cast_rays(const RayCaster& caster, py::handle origins, py::handle dire
     parallel_for(0, int64_t(n), 4096, [&](int64_t begin, int64_t end) {
       caster.accel.intersect(std::span(rays).subspan(size_t(begin), size_t(end - begin)),
                              std::span(hits).subspan(size_t(begin), size_t(end - begin)));
+      for (auto i = size_t(begin); i < size_t(end); ++i) {  // into numpy's arrays while the chunk is in cache
+        tp[i] = hits[i].t;
+        pp[i] = hits[i].prim;
+        uvp[2 * i] = hits[i].uv.x;
+        uvp[2 * i + 1] = hits[i].uv.y;
+      }
     });
-    for (size_t i = 0; i < n; ++i) {
-      tp[i] = hits[i].t;
-      pp[i] = hits[i].prim;
-      uvp[2 * i] = hits[i].uv.x;
-      uvp[2 * i + 1] = hits[i].uv.y;
-    }
   }
   return py::make_tuple(t, prim, uv);
 }
