@@ -6,4 +6,4 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/tesseraConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/tesseraConfig.cmake INSTALL_DESTINATION ${config_dir})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/tesseraConfig.cmake ${PROJECT_BINARY_DIR}/tesseraConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/FindStb.cmake DESTINATION ${config_dir})
+        DESTINATION ${config_dir})

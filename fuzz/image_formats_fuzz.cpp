@@ -1,17 +1,20 @@
 // libFuzzer target for every image reader behind tessera::decode_image (what read_image, textures and slice stacks
 // use): the first byte picks the file name's extension (.png .jpg .jpeg .bmp .tga .hdr .ppm .pgm .pnm .pfm, or an
 // unknown .gif), the rest is the file. The extension picks Tessera's own reader for PPM/PGM and PFM and stb_image for
-// the others (stb_image then goes by the content, so any of its formats can arrive under any of those names). The
-// memory budget is 64 MiB, so that a header declaring a large image is refused before decoding (as a
-// decompression bomb would be) and one input stays well under a second.
+// the others, except that JPEG and binary Netpbm files go to libjpeg-turbo and Tessera's reader by their signatures
+// (stb_image goes by the content too, so any of its formats can arrive under any of those names). The memory budget
+// is 64 MiB, so that a header declaring a large image is refused before decoding (as a decompression bomb would be)
+// and one input stays well under a second.
 // tessera::Error is the expected outcome for a malformed file; anything else (a crash, another exception, a sanitizer
 // report) is a bug, and so is a decoded image that is empty, or one whose values are outside [0, 1] (8- and 16-bit
-// formats: stb_image's PNG/JPG/BMP/TGA/..., PPM/PGM), negative or not finite (Radiance HDR), or not finite (PFM, whose
+// formats: PNG, JPEG, BMP, TGA, PPM/PGM), negative or not finite (Radiance HDR), or not finite (PFM, whose
 // reader refuses NaN and infinity).
 // The native read (8-bit files kept 8-bit, what textures use) must decode the same file to the same values: v/255 of
 // each 8-bit sample is the float read's value, and a float result is the float read's, bit for bit.
-// stb_image comes from Debian's libstb, built without coverage instrumentation: libFuzzer is guided by Tessera's
-// code only, and ASan sees stb's memory errors only where they pass through intercepted calls (memcpy, free).
+// stb_image is compiled with the project (libs/image/src/stb.cpp), so libFuzzer's coverage, ASan and UBSan see inside
+// it; libjpeg-turbo is Debian's prebuilt library (fuzzed by OSS-Fuzz), seen only through intercepted calls. Before
+// stb was compiled here, this target found a JPEG that decoded differently on each read (stb read memory it never
+// wrote), and instrumenting stb then showed its DHT parser writing past its Huffman tables: hence libjpeg-turbo.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

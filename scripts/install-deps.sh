@@ -9,7 +9,7 @@ demo_packages=(
   # build
   cmake ninja-build g++ pkg-config
   # libraries
-  libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev libgif-dev
+  libglm-dev libstb-dev libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev zlib1g-dev libgif-dev libjpeg62-turbo-dev
   # the window of tessera sketch and tessera view (without it they run headless only)
   libsdl2-dev
   # GLSL programs: glslang, the Khronos reference compiler, parses and type-checks them (without it they are left out)

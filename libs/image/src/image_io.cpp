@@ -15,6 +15,8 @@
 #include <string_view>
 #include <vector>
 
+#include "jpeg_decode.hpp"
+#include "pixel_budget.hpp"
 #include "png_encode.hpp"
 #include "tessera/color/srgb.hpp"
 #include "tessera/core/atomic_file.hpp"
@@ -23,7 +25,18 @@
 #include "tessera/core/parse.hpp"
 
 namespace tessera {
+
+void detail::check_pixel_count(const std::string& name, long long width, long long height, uint64_t bytes_per_pixel) {
+  if (width < 1 || height < 1 || width > kMaxReadPixels / height)
+    throw InvalidInput(
+        fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width, height, kMaxReadPixels));
+  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), bytes_per_pixel}),
+                      fmt::format("'{}': decoding {}x{} pixels", name, width, height));
+}
+
 namespace {
+
+using detail::check_pixel_count;
 
 enum class Format { png, jpg, bmp, tga, hdr, ppm, pfm };
 
@@ -54,18 +67,6 @@ Format format_of(const std::filesystem::path& path, bool writing) {
   }
   throw InvalidInput(fmt::format("'{}': unknown image extension '{}' ({} supports {})", name_of(path), ext,
                                  writing ? "writing" : "reading", supported));
-}
-
-// Refuses an image size that is invalid, or whose decoding needs more than the memory budget: `bytes_per_pixel` is
-// what the reader holds at its peak (the decoder's samples plus the image: 16 bytes of float RGBA, or 4 of 8-bit
-// RGBA when an 8-bit file is read natively), counted from the header before any pixel is decoded (a 746 KB PNG can
-// declare 16000x16000 pixels).
-void check_pixel_count(const std::string& name, long long width, long long height, uint64_t bytes_per_pixel) {
-  if (width < 1 || height < 1 || width > kMaxReadPixels / height)
-    throw InvalidInput(
-        fmt::format("'{}': image size {}x{} is invalid or larger than {} pixels", name, width, height, kMaxReadPixels));
-  MemoryBudget::check(saturating_product({uint64_t(width), uint64_t(height), bytes_per_pixel}),
-                      fmt::format("'{}': decoding {}x{} pixels", name, width, height));
 }
 
 // Decoded pixels before they become RGBA: `channels` (1 or 3) floats per pixel, top row first; a pixel's value is
@@ -280,16 +281,40 @@ ImageRGBA from_interleaved_rgba(const Sample* p, int width, int height, float di
   return image;
 }
 
-// PNG, JPG, BMP, TGA, HDR through stb_image: 16-bit files scaled to [0, 1], HDR as stored, 8-bit files scaled to
+// Walks a PNG file's chunks and refuses one whose declared length runs past the end of the file, before stb_image
+// (which would first grow its buffer to the declared length: up to 2 GiB for a chunk in a 100-byte file).
+void check_png_chunks(std::string_view data, const std::string& name) {
+  constexpr std::string_view signature("\x89PNG\r\n\x1A\n", 8);
+  if (!data.starts_with(signature)) return;
+  const auto byte = [&](size_t i) { return uint32_t(static_cast<unsigned char>(data[i])); };
+  for (size_t at = signature.size(); at + 8 <= data.size();) {
+    const uint64_t length = byte(at) << 24 | byte(at + 1) << 16 | byte(at + 2) << 8 | byte(at + 3);
+    const std::string_view type = data.substr(at + 4, 4);
+    if (length + 12 > data.size() - at)
+      throw InvalidInput(
+          fmt::format("'{}': PNG chunk '{}' at byte {} declares {} bytes of data, but the file ends {} "
+                      "bytes later",
+                      name, printable(type), at, length, data.size() - at));
+    if (type == "IEND") return;
+    at += 12 + length;
+  }
+}
+
+// PNG, BMP, TGA, HDR through stb_image: 16-bit files scaled to [0, 1], HDR as stored, 8-bit files scaled to
 // [0, 1] or, with `keep_8bit`, copied as they are.
 FileImage read_stb(std::string_view data, const std::string& name, bool keep_8bit) {
   if (data.size() > size_t(INT_MAX)) throw InvalidInput(fmt::format("'{}': file is larger than 2 GiB", name));
+  check_png_chunks(data, name);
   const auto* bytes = reinterpret_cast<const stbi_uc*>(data.data());
   const int size = int(data.size());
   int width = 0, height = 0, channels = 0;
   const auto failed = [&] {
-    const char* reason = stbi_failure_reason();
-    return InvalidInput(fmt::format("'{}': cannot decode image: {}", name, reason ? reason : "unknown error"));
+    const std::string_view reason = stbi_failure_reason() ? stbi_failure_reason() : "unknown error";
+    if (reason == "outofmem")
+      return InvalidInput(
+          fmt::format("'{}': cannot decode image: it needs a buffer larger than the memory budget of {}", name,
+                      format_bytes(MemoryBudget::bytes())));
+    return InvalidInput(fmt::format("'{}': cannot decode image: {}", name, reason));
   };
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) throw failed();
   const bool hdr = stbi_is_hdr_from_memory(bytes, size), wide = !hdr && stbi_is_16_bit_from_memory(bytes, size);
@@ -319,12 +344,14 @@ FileImage read_stb(std::string_view data, const std::string& name, bool keep_8bi
 
 // Every reader; `keep_8bit` keeps 8-bit files 8-bit (read_image_native).
 FileImage decode(std::string_view data, const std::filesystem::path& path, bool keep_8bit) {
-  // stb_image recognizes files by their content, and would decode a binary Netpbm file under another extension,
-  // badly: Debian's stb reads 16-bit samples in the wrong byte order and converts their channels as if 8-bit, into
-  // half the buffer it returns (a heap overflow found by fuzz_image_formats). Tessera's own reader takes them.
+  // stb_image recognizes files by their content, so the extension names a format only where the content has no
+  // signature. JPEG and binary Netpbm files go to their readers by signature whatever they are called (Debian's stb
+  // decoded a 16-bit Netpbm file misnamed .png into half the buffer it returned, a heap overflow found by
+  // fuzz_image_formats; its JPEG decoder corrupts its own tables on a DHT of more than 256 codes).
   const bool netpbm = data.size() >= 2 && data[0] == 'P' && (data[1] == '5' || data[1] == '6');
   const Format format = netpbm ? Format::ppm : format_of(path, false);
   const std::string name = name_of(path);
+  if (detail::is_jpeg(data)) return detail::decode_jpeg(data, name, keep_8bit);
   switch (format) {
     case Format::ppm: {
       const Decoded d = read_netpbm(data, name, keep_8bit);

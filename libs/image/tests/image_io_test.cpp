@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstdio>
@@ -92,6 +93,30 @@ TEST_F(ImageIo, PngMatchesAnIndependentDecoder) {
       in >> v;
       ASSERT_EQ(v, p[k]);
     }
+}
+
+// Baseline, progressive, gray, unsubsampled and Adobe CMYK JPEGs from PIL decode to PIL's own RGB, sample for sample.
+TEST_F(ImageIo, JpegsDecodeAsPilDecodesThem) {
+  const auto out = run((fs::exists("/usr/bin/python3") ? "/usr/bin/python3 " : "python3 ") +
+                       std::string(TESSERA_SOURCE_DIR) + "/libs/image/tests/jpeg_reference.py " + path("").string());
+  if (!out) GTEST_SKIP() << "python3 with PIL is not available";
+  std::istringstream in(*out);
+  std::string kind;
+  int count = 0;
+  for (int w = 0, h = 0; in >> kind >> w >> h; ++count) {
+    SCOPED_TRACE(kind);
+    const FileImage native = read_image_native(path(kind + ".jpg"));
+    const auto* image = std::get_if<ImageRGBA8>(&native);
+    ASSERT_NE(image, nullptr);
+    ASSERT_EQ(image->width(), w);
+    ASSERT_EQ(image->height(), h);
+    for (const glm::u8vec4& p : image->pixels()) {
+      int r = -1, g = -1, b = -1;
+      in >> r >> g >> b;
+      ASSERT_EQ(glm::ivec4(p), glm::ivec4(r, g, b, 255));
+    }
+  }
+  EXPECT_EQ(count, 5);
 }
 
 // Big enough for several deflate bands (256 KiB each) and for every filter type to win some rows: smooth
@@ -460,6 +485,33 @@ TEST_F(ImageIo, HostileSizesAreRejectedBeforeAllocating) {
   expect_invalid(path("big.png"), {"cannot decode"});
 }
 
+// A PNG chunk cannot declare more bytes than the file holds (stb_image would first grow a buffer to the declared
+// length, 700 MB for a 100-byte file in fuzz_image_formats), and no deflate stream may inflate past the memory budget.
+TEST_F(ImageIo, PngChunksAndDeflateStreamsCannotOutgrowTheFileOrTheBudget) {
+  const auto chunk = [](std::string_view type, const std::string& data) {
+    const auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+    return be32(uint32_t(data.size())) + std::string(type) + data + std::string(4, '\0');  // stb skips CRCs
+  };
+  const std::string signature = "\x89PNG\r\n\x1a\n";
+  const std::string header = chunk("IHDR", std::string("\0\0\0\x01\0\0\0\x01\x08\0\0\0\0", 13));  // 1x1 gray
+  std::string liar = signature + header + chunk("IDAT", "x");
+  liar[8 + 25 + 0] = '\x2C';  // the IDAT chunk's length: 0x2C000001 bytes
+  write_bytes("liar.png", liar);
+  expect_invalid(path("liar.png"), {"PNG chunk 'IDAT' at byte 33 declares 738197505 bytes", "ends 13 bytes later"});
+
+  const std::string zeros(size_t(80) << 20, '\0');  // 80 MiB of zero rows for a 1x1 image
+  uLongf size = compressBound(uLong(zeros.size()));
+  std::string deflated(size, '\0');
+  ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(deflated.data()), &size, reinterpret_cast<const Bytef*>(zeros.data()),
+                      uLong(zeros.size()), 9),
+            Z_OK);
+  deflated.resize(size);
+  write_bytes("bomb.png", signature + header + chunk("IDAT", deflated) + chunk("IEND", ""));
+  MemoryBudget::set_limit(uint64_t(32) << 20);
+  expect_invalid(path("bomb.png"), {"larger than the memory budget of 32.0 MiB"});
+  MemoryBudget::set_limit(0);
+}
+
 TEST_F(ImageIo, MalformedNetpbmSaysWhatIsWrong) {
   write_bytes("v.ppm", "P3 1 1 10\n1 11 2\n");
   expect_invalid(path("v.ppm"), {"byte offset 12", "outside [0, 10]"});
@@ -494,9 +546,31 @@ TEST_F(ImageIo, CorruptStbFilesNameTheFile) {
   write_image(path("good.png"), image);
   const std::string bytes = read_file(path("good.png"));
   write_bytes("cut.png", bytes.substr(0, bytes.size() / 2));
-  expect_invalid(path("cut.png"), {"cannot decode"});
+  expect_invalid(path("cut.png"), {"PNG chunk 'IDAT' at byte 33 declares"});
   write_bytes("empty.jpg", "");
   expect_invalid(path("empty.jpg"), {"cannot decode"});
+}
+
+// JPEG files are decoded by libjpeg-turbo, which refuses damaged tables: Debian's stb_image decoded a JPEG whose
+// quantization tables were lost from an uninitialized struct (two reads of one file differed; found by
+// fuzz_image_formats), and wrote past its Huffman tables on a DHT segment of more than 256 codes.
+TEST_F(ImageIo, JpegsWithDamagedTablesAreRefused) {
+  write_image(path("good.jpg"), random_rgba8(24, 16, 3));
+  const std::string good = read_file(path("good.jpg"));
+  const size_t scan = good.find("\xFF\xDA");
+  ASSERT_NE(scan, std::string::npos);
+  std::string no_tables = good;  // each DQT marker's 0xFF damaged: the segments become junk between markers
+  for (size_t i = no_tables.find("\xFF\xDB"); i < scan; i = no_tables.find("\xFF\xDB", i)) no_tables[i] = '\xFE';
+  write_bytes("no_tables.jpg", no_tables);
+  expect_invalid(path("no_tables.jpg"), {"no_tables.jpg", "Quantization table 0x00 was not defined"});
+  std::string huge_dht = good;  // the first DHT's 16 code counts become 255 each: 4080 codes, where 256 is the most
+  const size_t dht = huge_dht.find("\xFF\xC4");
+  ASSERT_LT(dht, scan);
+  for (size_t i = 0; i < 16; ++i) huge_dht[dht + 5 + i] = '\xFF';
+  write_bytes("huge_dht.jpg", huge_dht);
+  expect_invalid(path("huge_dht.jpg"), {"huge_dht.jpg", "Bogus Huffman table definition"});
+  write_bytes("cut.jpg", good.substr(0, scan + (good.size() - scan) / 2));  // half the entropy-coded data
+  expect_invalid(path("cut.jpg"), {"cut.jpg", "at byte", "Premature end of JPEG file"});
 }
 
 TEST_F(ImageIo, FailedWritesLeaveNoFile) {
