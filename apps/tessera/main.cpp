@@ -21,6 +21,7 @@
 namespace tessera::cli {
 using tessera::Progress;
 void setup_bench(CLI::App&, CommonOptions&);
+void setup_assemble(CLI::App&, CommonOptions&);
 void setup_canvas(CLI::App&, CommonOptions&);
 void setup_color(CLI::App&, CommonOptions&);
 void setup_curve(CLI::App&, CommonOptions&);
@@ -50,7 +51,10 @@ const Command kCommands[] = {
     {"volume", "Volume data: info, slice, contour (marching squares), isosurface (marching cubes), render",
      setup_volume},
     {"raster", "Z-buffered 3D rasterization of a mesh (flat, Gouraud or Phong shading)", setup_raster},
-    {"render", "Render a scene file or a built-in scene (ray tracing or rasterization)", setup_render},
+    {"render", "Render a scene file or a built-in scene (ray tracing or rasterization); frames, tiles, movies",
+     setup_render},
+    {"assemble", "Stitch the tiles of rendered frames into the frames; optionally encode them as a movie",
+     setup_assemble},
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
     {"sketch", "Run a Processing sketch of the notes, in a window or headless (--list shows them)", setup_sketch},
     {"view", "View a mesh, scene, volume or Bezier patches: orbit, pan, zoom, shading keys; --headless --orbit N",

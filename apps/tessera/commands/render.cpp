@@ -1,9 +1,11 @@
 // tessera render SCENE.json|BUILTIN -o IMG: render a scene file (or a built-in scene by name) with the ray tracer or
-// the rasterizer.
+// the rasterizer; one frame, a range of frames of an animated scene (files, a GIF or a video), or a tile of a frame
+// (docs/farm.md).
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -13,6 +15,9 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/parse.hpp"
+#include "tessera/farm/frames.hpp"
+#include "tessera/farm/manifest.hpp"
+#include "tessera/image/animation.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/raster.hpp"
 #include "tessera/scene/trace.hpp"
@@ -20,13 +25,16 @@
 namespace tessera::cli {
 namespace {
 
+namespace fs = std::filesystem;
+
 enum class Backend { raytrace, raster };
 
 struct RenderArgs {
-  std::string scene, output, size;
+  std::string scene, output, size, frames, tile, crop;
+  std::optional<int> frame;
   Backend backend = Backend::raytrace;
   RasterShadows shadow_method = RasterShadows::map;
-  bool shadow_method_given = false;
+  bool shadow_method_given = false, skip_existing = false;
   std::optional<int> spp, depth;
   uint64_t seed = 0;
 };
@@ -44,8 +52,93 @@ void check_render_memory(Size2 size) {
                       fmt::format("rendering {}x{} pixels", size.width, size.height));
 }
 
+// `tessera render --list`: each built-in scene, its frames when it moves, and its description.
+void print_builtin_list() {
+  for (const auto& name : builtin_scene_names()) {
+    const AnimatedScene scene = load_animated_scene(name);
+    const SceneAnimation& a = scene.animation();
+    std::string frames = scene.keyed() ? fmt::format("frames {}:{} at {} fps", a.first, a.last, a.fps) : "still";
+    std::fputs(fmt::format("{:<16} {}\n", name, frames).c_str(), stdout);
+  }
+}
+
+// The part of a frame to render: the whole frame, a tile (K/N bands of rows) or a crop window.
+struct Part {
+  std::optional<TileSpec> tile;
+  std::optional<PixelRect> crop;
+  // The pixels of a width x height frame the part covers.
+  std::optional<PixelRect> rect(int width, int height) const {
+    if (tile) return tile_rect(*tile, width, height);
+    if (crop && !(crop->x0 < crop->x1 && crop->x1 <= width && crop->y0 < crop->y1 && crop->y1 <= height))
+      throw InvalidInput(fmt::format("--crop {},{},{},{}: expected 0 <= x0 < x1 <= {} and 0 <= y0 < y1 <= {}", crop->x0,
+                                     crop->y0, crop->x1, crop->y1, width, height));
+    return crop;
+  }
+};
+
+PixelRect parse_crop(const std::string& text) {
+  const std::vector<double> v = parse_doubles(text, 4, "--crop");
+  for (double x : v)
+    if (x != std::floor(x) || x < 0 || x > 65536)
+      throw InvalidInput(fmt::format("--crop: expected x0,y0,x1,y1 in whole pixels, got '{}'", printable(text)));
+  return {int(v[0]), int(v[1]), int(v[2]), int(v[3])};
+}
+
+// What a run adds up for --stats.
+struct Totals {
+  StatRows first_frame;  // the per-frame figures of the first frame rendered (size, samples, objects, ...)
+  double seconds = 0, eye_rays = 0, rays = 0, ray_seconds = 0;
+  int rendered = 0, skipped = 0;
+};
+
+// Renders `part` of one frame of the scene.
+ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptions& common, const Size2& size,
+                      const Part& part, PhaseTimer& timer, Totals& totals) {
+  RenderSettings settings = render_settings(scene);
+  if (size.width > 0) settings.width = size.width, settings.height = size.height;
+  check_render_memory({settings.width, settings.height});  // a scene file's own size
+  if (a.spp) settings.samples = *a.spp;
+  if (a.depth) settings.max_depth = *a.depth;
+  settings.seed = a.seed;
+  settings.progress = !common.quiet;
+  const std::optional<PixelRect> rect = part.rect(settings.width, settings.height);
+  // The raster backend shades one sample per pixel, locally: the scene's samples and depth do not apply.
+  const int samples = a.backend == Backend::raster ? 1 : settings.samples;
+  const int width = rect ? rect->x1 - rect->x0 : settings.width, height = rect ? rect->y1 - rect->y0 : settings.height;
+  if (totals.first_frame.empty())
+    totals.first_frame = {{"width", stat_value(width)},
+                          {"height", stat_value(height)},
+                          {"pixels", stat_value(double(width) * height)},
+                          {"samples", stat_value(samples)},
+                          {"objects", stat_value(double(scene.objects.size()))},
+                          {"lights", stat_value(double(scene.lights.size()))}};
+  ImageRGB image;
+  if (a.backend == Backend::raster) {
+    // The rasterizer draws the whole frame (its pixels are then those of an unsplit render) and the part is cut out.
+    image = timer.time("compute_s",
+                       [&] { return rasterize_scene(scene, settings.width, settings.height, a.shadow_method); });
+    totals.seconds = timer.seconds("compute_s");
+    if (rect) {
+      ImageRGB cut(width, height);
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) cut(x, y) = image(x + rect->x0, y + rect->y0);
+      image = std::move(cut);
+    }
+  } else {
+    if (rect) settings.window = RenderSettings::Window{rect->x0, rect->y0, rect->x1, rect->y1};
+    RenderStats stats;
+    image = timer.time("compute_s", [&] { return render(to_ray_scene(scene), settings, &stats); });
+    totals.seconds += stats.seconds;
+    totals.eye_rays += double(stats.eye_rays);
+    totals.rays += double(stats.rays);
+    totals.ray_seconds += stats.seconds;
+  }
+  ++totals.rendered;
+  return image;
+}
+
 void run_render(const RenderArgs& a, const CommonOptions& common) {
-  // Every option and the output format are checked before the scene is built or anything is written.
+  // Every option and the output are checked before the scene is built or anything is written.
   Size2 size{0, 0};
   if (!a.size.empty()) size = parse_size(a.size, "--size");
   check_render_memory(size);
@@ -55,51 +148,106 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
   if (a.depth && (*a.depth < 1 || *a.depth > RenderSettings::kMaxDepth))
     throw InvalidInput(
         fmt::format("--depth: expected a recursion depth in [1, {}], got {}", RenderSettings::kMaxDepth, *a.depth));
-  const std::string ext = std::filesystem::path(a.output).extension().string();
-  static const std::set<std::string> kFormats = {".png", ".ppm", ".pfm", ".hdr", ".jpg", ".jpeg", ".bmp", ".tga"};
-  std::string lower(ext.size(), ' ');
-  std::transform(ext.begin(), ext.end(), lower.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (!kFormats.count(lower))
-    throw InvalidInput(
-        fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga)", a.output));
   if (a.shadow_method_given && a.backend != Backend::raster)
     throw InvalidInput("--shadow-method: only the raster backend has shadow methods; add --backend raster");
+  if (a.frame && !a.frames.empty()) throw InvalidInput("--frame and --frames: give one of them");
+  if (!a.tile.empty() && !a.crop.empty()) throw InvalidInput("--tile and --crop: give one of them");
+  std::optional<FrameRange> frames;
+  if (!a.frames.empty()) frames = parse_frame_range(a.frames, "--frames");
+  if (a.frame) frames = parse_frame_range(std::to_string(*a.frame), "--frame");
+  Part part;
+  if (!a.tile.empty()) part.tile = parse_tile(a.tile, "--tile");
+  if (!a.crop.empty()) part.crop = parse_crop(a.crop);
+
+  const fs::path output(a.output);
+  const std::string lower = [&] {
+    std::string ext = output.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+  }();
+  static const std::set<std::string> kImages = {".png", ".ppm", ".pfm", ".hdr", ".jpg", ".jpeg", ".bmp", ".tga"};
+  static const std::set<std::string> kMovies = {".gif", ".mp4", ".mov", ".mkv", ".webm"};
+  const bool movie = kMovies.count(lower) > 0;
+  if (!movie && !kImages.count(lower))
+    throw InvalidInput(
+        fmt::format("-o {}: expected an image file (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga), or with "
+                    "--frames a numbered one (frame_%04d.png) or a movie (.gif, .mp4, .mov, .mkv, .webm)",
+                    a.output));
+  if (movie && (part.tile || part.crop)) throw InvalidInput("--tile/--crop: a movie is made of whole frames");
+  if (movie && !frames) throw InvalidInput(fmt::format("-o {}: a movie needs --frames A:B", a.output));
+  if (part.tile) check_lossless_image_path(output);
+  const bool numbered = numbered_frame_path(output, 0) != output;
+  if (frames && frames->count() > 1 && !movie && !numbered)
+    throw InvalidInput(
+        fmt::format("-o {}: several frames need a numbered file name (frame_%04d.png or "
+                    "frame-####.png) or a movie",
+                    a.output));
+
   PhaseTimer timer;
-  const Scene scene = timer.time("read_s", [&] { return load_scene_or_builtin(a.scene); });
-  RenderSettings settings = render_settings(scene);
-  if (size.width > 0) settings.width = size.width, settings.height = size.height;
-  check_render_memory({settings.width, settings.height});  // a scene file's own size
-  if (a.spp) settings.samples = *a.spp;
-  if (a.depth) settings.max_depth = *a.depth;
-  settings.seed = a.seed;
-  settings.progress = !common.quiet;
-  // The raster backend shades one sample per pixel, locally: the scene's samples and depth do not apply.
-  const int samples = a.backend == Backend::raster ? 1 : settings.samples;
-  StatRows figures = {{"width", stat_value(settings.width)},
-                      {"height", stat_value(settings.height)},
-                      {"pixels", stat_value(double(settings.width) * settings.height)},
-                      {"samples", stat_value(samples)},
-                      {"objects", stat_value(double(scene.objects.size()))},
-                      {"lights", stat_value(double(scene.lights.size()))}};
-  ImageRGB image;
-  double seconds = 0;  // the rendering's own time: the deprecated `seconds` scripts read
-  if (a.backend == Backend::raster) {
-    image = timer.time("compute_s",
-                       [&] { return rasterize_scene(scene, settings.width, settings.height, a.shadow_method); });
-    seconds = timer.seconds("compute_s");
-  } else {
-    RenderStats stats;
-    image = timer.time("compute_s", [&] { return render(to_ray_scene(scene), settings, &stats); });
-    seconds = stats.seconds;
-    figures.insert(figures.end(), {{"eye_rays", stat_value(double(stats.eye_rays))},
-                                   {"rays", stat_value(double(stats.rays))},
-                                   {"rays_per_s", stat_value(double(stats.rays) / std::max(stats.seconds, 1e-9))}});
+  const AnimatedScene animated = timer.time("read_s", [&] { return load_animated_scene(a.scene); });
+  const FrameRange range = frames.value_or(FrameRange{animated.animation().first, animated.animation().first});
+  if (range.first < animated.animation().first || range.last > animated.animation().last)
+    throw InvalidInput(fmt::format("--frames {}:{}: the scene '{}' has frames {}:{}", range.first, range.last, a.scene,
+                                   animated.animation().first, animated.animation().last));
+
+  // Frames and tiles of a farm are recorded in the output folder's manifest (frames.json) and can be skipped when a
+  // resubmitted task finds them already there and whole.
+  const bool farm_output = (frames && !movie) || part.tile;
+  const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  if (farm_output) fs::create_directories(folder);
+  const Manifest manifest = farm_output && a.skip_existing ? Manifest::read(folder) : Manifest();
+  std::optional<AnimationWriter> writer;
+  if (movie) writer.emplace(output, AnimationOptions{.fps = animated.animation().fps, .srgb = common.srgb});
+
+  Totals totals;
+  for (int f = range.first; f <= range.last; ++f) {
+    const fs::path frame_file = numbered_frame_path(output, f);
+    const fs::path file = part.tile ? tile_file(frame_file, *part.tile) : frame_file;
+    const std::string name = file.filename().string();
+    if (farm_output && a.skip_existing) {
+      std::error_code ec;
+      const bool done = manifest.find(name) ? manifest.verified(folder, name) : fs::is_regular_file(file, ec);
+      if (done) {
+        ++totals.skipped;
+        continue;
+      }
+    }
+    const Scene scene = timer.time("read_s", [&] { return animated.at(f); });
+    const double before = timer.seconds("compute_s");
+    const ImageRGB image = render_frame(scene, a, common, size, part, timer, totals);
+    const double seconds = timer.seconds("compute_s") - before;
+    if (writer) {
+      timer.time("write_s", [&] { writer->add(image); });
+      continue;
+    }
+    timer.time("write_s", [&] {
+      write_image(file, image, common.write_options());
+      if (farm_output)
+        Manifest::record(folder, name,
+                         ManifestEntry{.frame = f,
+                                       .tile = part.tile ? part.tile->index : -1,
+                                       .tiles = part.tile ? part.tile->count : 1,
+                                       .crc32 = file_crc32(file),
+                                       .bytes = uint64_t(fs::file_size(file)),
+                                       .seconds = seconds,
+                                       .host = host_name()});
+    });
+    if (farm_output && !common.quiet)
+      std::fputs(fmt::format("tessera render: frame {} -> {} ({:.3f} s)\n", f, file.string(), seconds).c_str(), stderr);
   }
-  timer.time("write_s", [&] { write_image(a.output, image, common.write_options()); });
-  figures.emplace_back("seconds", stat_value(seconds));
+  if (writer) timer.time("write_s", [&] { writer->finish(); });
+  if (!common.stats) return;
+  StatRows figures = totals.first_frame;
+  if (a.backend == Backend::raytrace && totals.rendered > 0)
+    figures.insert(figures.end(), {{"eye_rays", stat_value(totals.eye_rays)},
+                                   {"rays", stat_value(totals.rays)},
+                                   {"rays_per_s", stat_value(totals.rays / std::max(totals.ray_seconds, 1e-9))}});
+  if (frames)
+    figures.insert(figures.end(), {{"frames", stat_value(totals.rendered)}, {"skipped", stat_value(totals.skipped)}});
+  figures.emplace_back("seconds", stat_value(totals.seconds));
   const StatRows phases = timer.rows();
   figures.insert(figures.end(), phases.begin(), phases.end());
-  if (common.stats) print_stats(figures);
+  print_stats(figures);
 }
 
 }  // namespace
@@ -108,7 +256,27 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   auto a = std::make_shared<RenderArgs>();
   cmd.add_option("scene", a->scene, "Scene file (.json, docs/scene-format.md) or a built-in scene: " + builtin_list())
       ->required();
-  cmd.add_option("-o,--output", a->output, "Output image (.png, .hdr, .pfm, .ppm, .jpg)")->required();
+  cmd.add_option("-o,--output", a->output,
+                 "Output image (.png, .hdr, .pfm, .ppm, .jpg, .bmp, .tga); with --frames a numbered file name "
+                 "(frames/frame_%04d.png or frame-####.png) or a movie (.gif, .mp4, .mov, .mkv, .webm)")
+      ->required();
+  // Like --help, --list runs while the command line is parsed, before the required arguments are asked for.
+  cmd.add_flag_callback(
+      "--list",
+      [] {
+        print_builtin_list();
+        throw CLI::Success();
+      },
+      "List the built-in scenes and the frames of those that move, then exit");
+  cmd.add_option("--frames", a->frames, "Render frames A:B of an animated scene (default: its first frame)");
+  cmd.add_option("--frame", a->frame, "Render frame N of an animated scene");
+  cmd.add_option("--tile", a->tile,
+                 "Render tile K of N (bands of rows, K from 0) into <output stem>.tile-K-of-N<ext>; `tessera "
+                 "assemble` stitches the tiles (docs/farm.md)");
+  cmd.add_option("--crop", a->crop, "Render only the pixels x0,y0,x1,y1 ([x0, x1) x [y0, y1)) of the frame");
+  cmd.add_flag("--skip-existing", a->skip_existing,
+               "With --frames or --tile: skip frames and tiles already written whole (checked against the folder's "
+               "frames.json)");
   cmd.add_option("--spp", a->spp, "Samples per pixel (default: the scene's)");
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)")->check(size_format());
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");

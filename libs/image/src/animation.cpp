@@ -1,6 +1,7 @@
 #include "tessera/image/animation.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "animation_sinks.hpp"
@@ -58,24 +59,44 @@ class SequenceSink final : public AnimationSink {
   bool srgb_;
 };
 
-/// The first run of '#' in `name` as [begin, end), and whether a second run follows.
-struct HashRun {
+/// Where a frame number goes in a file name: the first run of '#' (Processing's saveFrame) or printf's "%d" or
+/// "%0Nd" (render farms' "frame_%04d.png"), as [begin, end) and the zero-padded width; and whether a second follows.
+struct NumberField {
   size_t begin = std::string::npos, end = std::string::npos;
+  int width = 1;
   bool more = false;
 };
-HashRun find_hash_run(const std::string& name) {
-  HashRun run;
-  run.begin = name.find('#');
-  if (run.begin == std::string::npos) return run;
-  run.end = name.find_first_not_of('#', run.begin);
-  if (run.end == std::string::npos) run.end = name.size();
-  run.more = name.find('#', run.end) != std::string::npos;
-  return run;
+NumberField find_number_field(const std::string& name) {
+  const auto field_at = [&](size_t from) {
+    NumberField f;
+    for (size_t i = from; i < name.size(); ++i) {
+      if (name[i] == '#') {
+        f.begin = i;
+        f.end = std::min(name.find_first_not_of('#', i), name.size());
+        f.width = int(f.end - f.begin);
+        return f;
+      }
+      if (name[i] != '%') continue;
+      size_t j = i + 1;
+      const bool zero = j < name.size() && name[j] == '0';
+      while (j < name.size() && j - i < 4 && std::isdigit(static_cast<unsigned char>(name[j]))) ++j;
+      if (j < name.size() && name[j] == 'd' && (j == i + 1 || zero)) {
+        f.begin = i;
+        f.end = j + 1;
+        f.width = j == i + 1 ? 1 : std::stoi(name.substr(i + 1, j - i - 1));
+        return f;
+      }
+    }
+    return f;
+  };
+  NumberField field = field_at(0);
+  if (field.begin != std::string::npos) field.more = field_at(field.end).begin != std::string::npos;
+  return field;
 }
 
 /// The sequence pattern for a path: itself when its file name has '#', else "<folder>/frame-####.png".
 fs::path sequence_pattern(const fs::path& path) {
-  if (find_hash_run(path.filename().string()).begin != std::string::npos) return path;
+  if (find_number_field(path.filename().string()).begin != std::string::npos) return path;
   return path / "frame-####.png";
 }
 
@@ -84,7 +105,7 @@ fs::path sequence_pattern(const fs::path& path) {
 
 AnimationFormat animation_format(const fs::path& path) {
   const std::string name = path.filename().string();
-  if (name.find('#') != std::string::npos) return AnimationFormat::sequence;
+  if (detail::find_number_field(name).begin != std::string::npos) return AnimationFormat::sequence;
   const std::string ext = detail::lower_extension(path);
   if (ext == ".gif") return AnimationFormat::gif;
   if (ext == ".mp4" || ext == ".mov" || ext == ".mkv" || ext == ".webm") return AnimationFormat::video;
@@ -92,19 +113,21 @@ AnimationFormat animation_format(const fs::path& path) {
   if (name.empty() || fs::is_directory(path, ec)) return AnimationFormat::sequence;
   throw InvalidInput(
       fmt::format("'{}': unknown animation format: expected .gif, .mp4, .mov, .mkv, .webm, a file name "
-                  "with a run of '#' (frame-####.png) or a folder",
+                  "with a run of '#' or %0Nd (frame-####.png, frame_%04d.png) or a folder",
                   printable(path.string())));
 }
 
 fs::path numbered_frame_path(const fs::path& pattern, long long frame) {
   if (frame < 0) throw InvalidInput(fmt::format("frame number {} is negative", frame));
   const std::string name = pattern.filename().string();
-  const detail::HashRun run = detail::find_hash_run(name);
+  const detail::NumberField run = detail::find_number_field(name);
   if (run.begin == std::string::npos) return pattern;
   if (run.more)
-    throw InvalidInput(fmt::format("'{}': the file name has more than one run of '#' (expected one, as frame-####.png)",
-                                   printable(pattern.string())));
-  const std::string number = fmt::format("{:0{}}", frame, run.end - run.begin);
+    throw InvalidInput(
+        fmt::format("'{}': the file name has more than one frame number field ('#' run or %d; expected one, as "
+                    "frame-####.png or frame_%04d.png)",
+                    printable(pattern.string())));
+  const std::string number = fmt::format("{:0{}}", frame, run.width);
   return pattern.parent_path() / (name.substr(0, run.begin) + number + name.substr(run.end));
 }
 

@@ -100,8 +100,8 @@ FileImage decode_jpeg(std::string_view data, const std::string& name, bool keep_
   // file (64 two-byte coefficients per 8x8 block of each component).
   const int width = int(d.info.image_width), height = int(d.info.image_height);
   const uint64_t coefficients = jpeg_has_multiple_scans(&d.info) ? 2 * uint64_t(d.info.num_components) : 0;
-  check_pixel_count(name, width, height, sizeof(ImageRGBA8::Pixel) + (keep_8bit ? 0 : sizeof(ImageRGBA::Pixel)) +
-                                             coefficients);
+  check_pixel_count(name, width, height,
+                    sizeof(ImageRGBA8::Pixel) + (keep_8bit ? 0 : sizeof(ImageRGBA::Pixel)) + coefficients);
 
   ImageRGBA8 image(width, height);
   std::vector<JSAMPLE> cmyk_row(cmyk ? size_t(width) * 4 : 0);
@@ -119,7 +119,8 @@ FileImage decode_jpeg(std::string_view data, const std::string& name, bool keep_
         rgba[4 * x + 3] = 255;
       }
     }
-    // Not jpeg_finish_decompress: the pixels are all read, and what follows them (EOI, trailing bytes) cannot change them.
+    // Not jpeg_finish_decompress: the pixels are all read, and what follows them (EOI, trailing bytes) cannot change
+    // them.
   });
   if (keep_8bit) return image;
   return to_float(image);

@@ -1,9 +1,10 @@
 // stb_image (PNG, BMP, TGA and Radiance HDR; JPEG goes to libjpeg-turbo, jpeg_decode.cpp) and stb_image_write,
 // compiled here from Debian's libstb-dev headers rather than linked from its libstb, so that every buffer stb allocates
-// starts zeroed and stb decodes no format Tessera does not name (GIF, PSD, PIC and PNM stay out). stb_image reads memory it never wrote on some corrupt files (a JPEG
-// without the quantization tables its frame names decodes from an uninitialized struct, found by fuzz_image_formats):
-// with plain malloc such a file decodes differently from one run to the next. Zeroed allocations make every decode of a
-// file the same, and compiling stb with the project lets the sanitizers and the fuzzers see inside it.
+// starts zeroed and stb decodes no format Tessera does not name (GIF, PSD, PIC and PNM stay out). stb_image reads
+// memory it never wrote on some corrupt files (a JPEG without the quantization tables its frame names decodes from an
+// uninitialized struct, found by fuzz_image_formats): with plain malloc such a file decodes differently from one run to
+// the next. Zeroed allocations make every decode of a file the same, and compiling stb with the project lets the
+// sanitizers and the fuzzers see inside it.
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>

@@ -315,6 +315,10 @@ void check_settings(const RayScene& scene, const RenderSettings& s) {
     throw InvalidInput(
         fmt::format("render: max depth must be in [1, {}], got {}", RenderSettings::kMaxDepth, s.max_depth));
   if (s.tile_size <= 0) throw InvalidInput("render: tile size must be positive");
+  if (const auto& w = s.window;
+      w && !(0 <= w->x0 && w->x0 < w->x1 && w->x1 <= s.width && 0 <= w->y0 && w->y0 < w->y1 && w->y1 <= s.height))
+    throw InvalidInput(fmt::format("render: window [{}, {}) x [{}, {}) is empty or outside the {}x{} frame", w->x0,
+                                   w->x1, w->y0, w->y1, s.width, s.height));
   for (int i = 0; i < scene.world.size(); ++i)
     if (scene.world.material(i) < 0 || size_t(scene.world.material(i)) >= scene.materials.size())
       throw InvalidInput(
@@ -377,12 +381,13 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   check_settings(scene, settings);
   const auto start = std::chrono::steady_clock::now();
   const int w = settings.width, h = settings.height;
+  const RenderSettings::Window window = settings.window.value_or(RenderSettings::Window{0, 0, w, h});
   const CameraRays camera(scene, w, h);
   const Tracer tracer(scene, settings);
-  ImageRGB image(w, h);
+  ImageRGB image(window.x1 - window.x0, window.y1 - window.y0);
   const auto spp = uint32_t(settings.samples);
-  const int tiles_x = (w + settings.tile_size - 1) / settings.tile_size;
-  const int tiles_y = (h + settings.tile_size - 1) / settings.tile_size;
+  const int tiles_x = (image.width() + settings.tile_size - 1) / settings.tile_size;
+  const int tiles_y = (image.height() + settings.tile_size - 1) / settings.tile_size;
   std::unique_ptr<Progress> progress;
   if (settings.progress) progress = std::make_unique<Progress>("render", int64_t(tiles_x) * tiles_y);
   std::atomic<uint64_t> total_rays{0};
@@ -395,13 +400,13 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
   used[kLens] = scene.aperture > 0.0f;
   std::optional<SmallPattern> small;
   if (spp <= kBlock) small.emplace(spp);
-  parallel_tiles(w, h, settings.tile_size, [&](const Tile& tile) {
+  parallel_tiles(image.width(), image.height(), settings.tile_size, [&](const Tile& tile) {
     uint64_t rays = 0;
     // The hashed patterns beyond kBlock samples, set per pixel; declared per tile so that pixels with few samples
     // don't pay for clearing them.
     std::optional<StratifiedPattern> pattern[kDimensions];
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
+    for (int y = tile.y0 + window.y0; y < tile.y1 + window.y0; ++y)
+      for (int x = tile.x0 + window.x0; x < tile.x1 + window.x0; ++x) {
         const uint64_t pixel = uint64_t(y) * uint64_t(w) + uint64_t(x);
         Rng rng(pixel, settings.seed);
         // Only the dimensions the scene uses are drawn (each is its own pattern, so skipping one changes no other).
@@ -429,14 +434,14 @@ ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderSta
             sum += tracer.radiance(ray.origin, ray.dir, ray.time, 1, Vec3f(1.0f), rng, &primary, rays);
           }
         }
-        image(x, y) = sum / float(spp);
+        image(x - window.x0, y - window.y0) = sum / float(spp);
       }
     total_rays += rays;
     if (progress) progress->advance();
   });
   if (progress) progress->done();
   if (stats) {
-    stats->eye_rays = uint64_t(w) * uint64_t(h) * spp;
+    stats->eye_rays = uint64_t(image.width()) * uint64_t(image.height()) * spp;
     stats->rays = total_rays;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -1,5 +1,7 @@
 // The JSON scene loader (docs/scene-format.md): every value is checked where it is read, and errors name the JSON
 // path of the bad value.
+#include "scene_json.hpp"
+
 #include <algorithm>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -21,7 +23,7 @@
 namespace tessera {
 namespace {
 
-using Json = nlohmann::json;
+using detail::Json;
 
 /// nlohmann's DOM parser, also remembering the byte where parsing failed (a parse_error carries its byte, but a number
 /// out of range ("1e999") is reported as an out_of_range exception without one) and refusing duplicate keys (the DOM
@@ -528,7 +530,9 @@ SceneObject read_object(const Node& n, const Scene& scene, const std::filesystem
 
 }  // namespace
 
-Scene parse_scene(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+namespace detail {
+
+Json parse_scene_json(std::string_view text, const std::string& name) {
   Json doc;
   LocatingParser parser(doc, name);
   try {
@@ -541,10 +545,14 @@ Scene parse_scene(std::string_view text, const std::string& name, const std::fil
     if (bracket != std::string::npos) what = what.substr(bracket + 2);
     throw InvalidInput(located(at_byte(name, static_cast<long long>(parser.error_byte)), what));
   }
+  return doc;
+}
+
+Scene scene_from_json(const Json& doc, const std::string& name, const std::filesystem::path& base_dir) {
   Scene scene;
   scene.name = name;
   const Node root(doc, "", scene.name);
-  root.only({"image", "camera", "ambient", "lights", "materials", "objects", "description"});
+  root.only({"image", "camera", "ambient", "lights", "materials", "objects", "description", "animation"});
   if (root.has("image")) read_image_settings(root["image"], scene.image);
   if (root.has("camera")) read_camera(root["camera"], scene.camera);
   if (root.has("ambient")) scene.ambient = root["ambient"].color();
@@ -566,6 +574,13 @@ Scene parse_scene(std::string_view text, const std::string& name, const std::fil
   objects.expect_array(1);
   for (size_t i = 0; i < objects.size(); ++i) scene.objects.push_back(read_object(objects.item(i), scene, base_dir));
   return scene;
+}
+
+}  // namespace detail
+
+Scene parse_scene(std::string_view text, const std::string& name, const std::filesystem::path& base_dir) {
+  const AnimatedScene animated(text, name, base_dir);
+  return animated.at(animated.animation().first);
 }
 
 Camera SceneCamera::camera(double aspect, double near, double far) const {

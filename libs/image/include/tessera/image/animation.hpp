@@ -21,8 +21,9 @@ namespace tessera {
 /// What the output path asks for.
 enum class AnimationFormat {
   gif,       ///< "*.gif": an animated GIF (giflib)
-  sequence,  ///< a file name with a run of '#' ("frames/frame-####.png"), an existing folder or a path ending in
-             ///< '/' (then "frame-0000.png", "frame-0001.png", ...): one image file per frame, through write_image
+  sequence,  ///< a file name with a run of '#' or a "%0Nd" ("frames/frame-####.png", "frame_%04d.png"), an existing
+             ///< folder or a path ending in '/' (then "frame-0000.png", "frame-0001.png", ...): one image file per
+             ///< frame, through write_image
   video,     ///< "*.mp4", "*.mov", "*.mkv" (H.264) or "*.webm" (VP9), encoded by ffmpeg found on PATH
 };
 
@@ -51,8 +52,9 @@ AnimationFormat animation_format(const std::filesystem::path& path);
 
 /// Processing's saveFrame naming: `pattern` with the run of '#' in its file name replaced by `frame`, zero-padded
 /// to the run's width ("frame-####.png", 7 -> "frame-0007.png"; a wider number is written whole, 12345 ->
-/// "frame-12345.png"). A file name without '#' is returned unchanged. Throws InvalidInput for two or more runs of
-/// '#' in the file name or a negative frame.
+/// "frame-12345.png"); printf's "%0Nd" and "%d" work the same ("frame_%04d.png", 7 -> "frame_0007.png"). A file
+/// name without either is returned unchanged. Throws InvalidInput for two or more such fields in the file name or a
+/// negative frame.
 std::filesystem::path numbered_frame_path(const std::filesystem::path& pattern, long long frame);
 
 /// Streams frames to the animation `path` asks for (animation_format). Not copyable; movable (a moved-from writer may

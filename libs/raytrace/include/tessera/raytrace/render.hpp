@@ -9,6 +9,7 @@
 // where an area light's term is the average over its shadow rays. Recursion stops at max_depth and when the product
 // of the weights along the path falls below min_contribution (both of the notes' rules).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "tessera/image/image.hpp"
@@ -40,6 +41,12 @@ struct RenderSettings {
   uint64_t seed = 0;               ///< the same seed gives the same picture for any thread count
   int tile_size = 16;              ///< pixels per tile side (parallel work unit)
   bool progress = true;            ///< progress bar with ETA on stderr (when it is a terminal)
+  /// Render only the pixels [x0, x1) x [y0, y1) of the width x height frame (a tile of a split frame, render farms'
+  /// crop window); each pixel is the one the whole frame would have, bit for bit. Empty: the whole frame.
+  struct Window {
+    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  };
+  std::optional<Window> window;
   /// The deepest recursion allowed (as in scene files): each level is a stack frame, and two facing mirrors would
   /// otherwise recurse until the stack overflows.
   static constexpr int kMaxDepth = 64;
@@ -70,9 +77,10 @@ Ray eye_ray(const RayScene& scene, int width, int height, int x, int y, const Ve
 /// area light; 0 or 1 for point and directional lights). `pattern` scrambles the samples.
 float visible_fraction(const RayScene& scene, const Vec3f& p, const Light& light, int n, uint32_t pattern);
 
-/// Renders the scene. Pixel (x, y)'s samples depend only on (x, y), the settings and the seed, so the image is
-/// identical for any thread count. Throws InvalidInput for a non-positive size or sample count, a max_depth outside
-/// [1, kMaxDepth], or an object whose material index is out of range.
+/// Renders the scene (or settings.window of it, an image of the window's size). Pixel (x, y)'s samples depend only
+/// on (x, y), the settings and the seed, so the image is identical for any thread count and any split into windows.
+/// Throws InvalidInput for a non-positive size or sample count, a max_depth outside [1, kMaxDepth], or an object whose
+/// material index is out of range.
 ImageRGB render(const RayScene& scene, const RenderSettings& settings, RenderStats* stats = nullptr);
 
 /// The color seen along one ray (recursion and all), with `rng_sequence` selecting the random stream of the

@@ -72,8 +72,48 @@ struct Scene {
 
 /// Parses scene JSON. `name` prefixes error messages; mesh and texture paths are relative to `base_dir`. Throws
 /// InvalidInput "name: objects[3].radius: expected a positive number" (the JSON path of the bad value), or
-/// "name: byte N: ..." for malformed JSON; IoError for a mesh or texture file that cannot be read.
+/// "name: byte N: ..." for malformed JSON; IoError for a mesh or texture file that cannot be read. A scene with keyed
+/// values (AnimatedScene) gives its first frame.
 Scene parse_scene(std::string_view json, const std::string& name, const std::filesystem::path& base_dir);
+
+/// A scene's time line ("animation" in docs/scene-format.md).
+struct SceneAnimation {
+  int first = 0, last = 0;  ///< the frames it spans, both included (a scene without "animation" has frame 0 only)
+  double fps = 24;          ///< frames per second (for movies made of the frames)
+  /// The fraction of a frame the shutter is open: an object whose placement is keyed moves over [frame, frame +
+  /// shutter] (motion blur, with more than one sample per pixel). 0.5 (a 180-degree shutter) by default, 0 for none.
+  double shutter = 0.5;
+};
+
+/// Scene JSON in which any number or array of numbers may be keyed, {"keys": [[frame, value], ...],
+/// "interpolation": "linear" | "smooth" | "step"}: camera, placements, materials, lights. at(frame) makes the Scene
+/// of one frame, so every frame (and every tile of one) is made independently, as a render farm's tasks need.
+class AnimatedScene {
+ public:
+  /// Parses the JSON and checks its "animation" and every keyed value (throws as parse_scene); frames are made by
+  /// at(), which loads meshes and textures.
+  AnimatedScene(std::string_view json, std::string name, std::filesystem::path base_dir);
+  AnimatedScene(AnimatedScene&&) noexcept;
+  AnimatedScene& operator=(AnimatedScene&&) noexcept;
+  ~AnimatedScene();
+
+  /// The frame range, rate and shutter.
+  const SceneAnimation& animation() const;
+  /// True when some value is keyed (the frames differ).
+  bool keyed() const;
+  /// The scene at `frame`: each keyed value interpolated there (held before its first key and after its last); an
+  /// object whose transform is keyed gets transform_end at frame + shutter. Throws InvalidInput for a frame outside
+  /// [first, last], and as parse_scene for values that are invalid at that frame.
+  Scene at(int frame) const;
+
+ private:
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
+/// The scene file (paths inside are relative to its folder), or a built-in scene when `name_or_path` names one and no
+/// such file exists, with its time line. Throws as load_scene_or_builtin.
+AnimatedScene load_animated_scene(const std::string& name_or_path);
 
 /// Reads a scene file (paths inside are relative to its folder). Throws as parse_scene, IoError when unreadable.
 Scene load_scene(const std::filesystem::path& path);
