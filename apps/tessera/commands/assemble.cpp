@@ -45,9 +45,9 @@ void run_assemble(const AssembleArgs& a, const CommonOptions& common) {
       for (int k = 0; k < a.tiles && a.tiles > 1; ++k) {
         const std::string name = tile_file(numbered_frame_path(pattern, f), {k, a.tiles}).filename().string();
         std::error_code ec;
-        const char* problem = !fs::is_regular_file(folder / name, ec)                       ? "missing"
+        const char* problem = !fs::is_regular_file(folder / name, ec)                   ? "missing"
                               : manifest.find(name) && !manifest.verified(folder, name) ? "differs from frames.json"
-                                                                                          : nullptr;
+                                                                                        : nullptr;
         if (problem && ++problem_count <= 20) problems += fmt::format("\n  {}: {}", name, problem);
       }
   });
@@ -74,8 +74,7 @@ void run_assemble(const AssembleArgs& a, const CommonOptions& common) {
 
 void setup_assemble(CLI::App& cmd, CommonOptions& common) {
   auto a = std::make_shared<AssembleArgs>();
-  cmd.add_option("pattern", a->pattern,
-                 "The frames' numbered file name, as given to render -o (frames/frame_%04d.png)")
+  cmd.add_option("pattern", a->pattern, "The frames' numbered file name, as given to render -o (frames/frame_%04d.png)")
       ->required();
   cmd.add_option("--frames", a->frames, "Frames A:B (or one frame N)")->required();
   cmd.add_option("--tiles", a->tiles, "Tiles per frame, as render --tile K/N was given N (1: frames are whole)");

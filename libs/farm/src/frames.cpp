@@ -48,6 +48,7 @@ PixelRect tile_rect(TileSpec tile, int width, int height) {
 }
 
 fs::path tile_file(const fs::path& frame_file, TileSpec tile) {
+  if (tile.count == 1) return frame_file;
   return frame_file.parent_path() / fmt::format("{}.tile-{}-of-{}{}", frame_file.stem().string(), tile.index,
                                                 tile.count, frame_file.extension().string());
 }
@@ -64,6 +65,7 @@ void assemble_tiles(const fs::path& frame_file, int tile_count) {
   check_lossless_image_path(frame_file);
   if (tile_count < 1 || tile_count > 4096)
     throw InvalidInput(fmt::format("assemble: expected 1 to 4096 tiles, got {}", tile_count));
+  if (tile_count == 1) return;  // the one tile is the frame
   // Tiles are read as floats (8-bit values v / 255, which write back to v) and the frame is written without alpha,
   // as a render writes it: the frame file's bytes are the unsplit render's.
   std::vector<ImageRGBA> tiles;

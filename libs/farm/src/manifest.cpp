@@ -40,7 +40,10 @@ class FileLock {
 };
 
 Json to_json(const ManifestEntry& e) {
-  Json j = {{"frame", e.frame}, {"crc32", fmt::format("{:08x}", e.crc32)}, {"bytes", e.bytes}, {"seconds", e.seconds},
+  Json j = {{"frame", e.frame},
+            {"crc32", fmt::format("{:08x}", e.crc32)},
+            {"bytes", e.bytes},
+            {"seconds", e.seconds},
             {"host", e.host}};
   if (e.tile >= 0) j["tile"] = {e.tile, e.tiles};
   return j;
@@ -60,8 +63,8 @@ ManifestEntry from_json(const Json& j, const std::string& where) {
     }
     return e;
   } catch (const std::exception& error) {
-    throw InvalidInput(fmt::format("{}: expected frame, crc32 (hex), bytes, seconds and host: {}", where,
-                                   printable(error.what())));
+    throw InvalidInput(
+        fmt::format("{}: expected frame, crc32 (hex), bytes, seconds and host: {}", where, printable(error.what())));
   }
 }
 

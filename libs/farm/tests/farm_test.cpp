@@ -99,7 +99,12 @@ class ManifestTest : public testing::ScratchDirTest {};
 TEST_F(ManifestTest, RecordsVerifiesAndNoticesChangedFiles) {
   write_file_atomic(path("a.png"), std::string("abc"));
   EXPECT_TRUE(Manifest::read(path("")).entries().empty());
-  ManifestEntry e{.frame = 3, .tile = 1, .tiles = 4, .crc32 = file_crc32(path("a.png")), .bytes = 3, .seconds = 0.5,
+  ManifestEntry e{.frame = 3,
+                  .tile = 1,
+                  .tiles = 4,
+                  .crc32 = file_crc32(path("a.png")),
+                  .bytes = 3,
+                  .seconds = 0.5,
                   .host = host_name()};
   EXPECT_EQ(e.crc32, 0x352441c2u);  // CRC-32 of "abc" (the check value of zlib's and PNG's CRC)
   Manifest::record(path(""), "a.png", e);

@@ -24,7 +24,6 @@ struct Track {
   std::vector<double> frames;
   std::vector<Json> values;
   Interpolation interpolation = Interpolation::linear;
-  bool integers = true;  // every value an integer (or integers): interpolated values are rounded
 };
 
 std::string child(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
@@ -43,13 +42,6 @@ bool numeric(const Json& v) {
   if (!v.is_array() || v.empty()) return false;
   for (const Json& x : v)
     if (!x.is_number()) return false;
-  return true;
-}
-
-bool integral(const Json& v) {
-  if (v.is_number()) return v.is_number_integer();
-  for (const Json& x : v)
-    if (!x.is_number_integer()) return false;
   return true;
 }
 
@@ -75,8 +67,7 @@ Track read_track(const Json& v, const std::string& name, const std::string& path
   for (size_t i = 0; i < keys.size(); ++i) {
     const std::string at = fmt::format("{}[{}]", keys_path, i);
     const Json& key = keys[i];
-    if (!key.is_array() || key.size() != 2 || !key[0].is_number())
-      fail(name, at, "expected [frame, value]");
+    if (!key.is_array() || key.size() != 2 || !key[0].is_number()) fail(name, at, "expected [frame, value]");
     const double frame = key[0].get<double>();
     if (!std::isfinite(frame)) fail(name, at, "expected a finite frame number");
     if (i > 0 && !(frame > track.frames.back()))
@@ -89,7 +80,6 @@ Track read_track(const Json& v, const std::string& name, const std::string& path
       if (i > 0 && (key[1].is_array() != track.values[0].is_array() ||
                     (key[1].is_array() && key[1].size() != track.values[0].size())))
         fail(name, at, "every key's value must have the shape of the first");
-      track.integers = track.integers && integral(key[1]);
     }
     track.frames.push_back(frame);
     track.values.push_back(key[1]);
@@ -129,12 +119,10 @@ Json evaluate(const Track& track, double frame) {
       value = (2 * s3 - 3 * s2 + 1) * a + (s3 - 2 * s2 + s) * h * slope(i) + (-2 * s3 + 3 * s2) * b +
               (s3 - s2) * h * slope(i + 1);
     }
-    if (track.integers) value = std::round(value);
-    const Json number = track.integers ? Json(static_cast<long long>(value)) : Json(value);
     if (p0.is_number())
-      out = number;
+      out = value;
     else
-      out.push_back(number);
+      out.push_back(value);
   }
   return out;
 }
@@ -181,7 +169,8 @@ SceneAnimation read_animation(const Json& doc, const std::string& name) {
     };
     if (!f.is_array() || f.size() != 2 || !frame_ok(f[0]) || !frame_ok(f[1]) ||
         f[0].get<long long>() > f[1].get<long long>())
-      fail(name, "animation.frames", fmt::format("expected [first, last]: integers, 0 <= first <= last <= {}", kMaxFrame));
+      fail(name, "animation.frames",
+           fmt::format("expected [first, last]: integers, 0 <= first <= last <= {}", kMaxFrame));
     a.first = int(f[0].get<long long>());
     a.last = int(f[1].get<long long>());
   }

@@ -142,10 +142,11 @@ class Node {
       fail("expected a non-negative number");
     return v_.get<double>();
   }
+  /// An integer, also written as a number with no fraction (4.0: what a keyed value gives at a key).
   int integer(int lo, int hi) const {
-    if (!v_.is_number_integer() || v_.get<long long>() < lo || v_.get<long long>() > hi)
-      fail(fmt::format("expected an integer in [{}, {}]", lo, hi));
-    return int(v_.get<long long>());
+    const double d = v_.is_number() ? v_.get<double>() : std::nan("");
+    if (!(d >= lo && d <= hi && d == std::floor(d))) fail(fmt::format("expected an integer in [{}, {}]", lo, hi));
+    return int(d);
   }
   bool boolean() const {
     if (!v_.is_boolean()) fail("expected true or false");

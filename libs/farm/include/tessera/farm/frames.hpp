@@ -35,13 +35,13 @@ struct PixelRect {
 PixelRect tile_rect(TileSpec tile, int width, int height);
 
 /// Where tile K of N of `frame_file` goes: "<stem>.tile-K-of-N<ext>" beside it ("f_0007.png" ->
-/// "f_0007.tile-2-of-8.png").
+/// "f_0007.tile-2-of-8.png"); the frame file itself when N = 1 (the one tile is the frame).
 std::filesystem::path tile_file(const std::filesystem::path& frame_file, TileSpec tile);
 
 /// Stitches the `tile_count` tile files of `frame_file` (tile_file of K = 0..N-1, each the rows tile_rect gives) into
-/// the frame and writes it atomically in the frame file's format. Lossless formats only: the frame's bytes are those
-/// an unsplit render writes. Throws IoError naming a missing or unreadable tile, InvalidInput for tiles whose sizes
-/// do not fit together or a lossy (JPEG) format.
+/// the frame and writes it atomically in the frame file's format (nothing to do for one tile). Lossless formats only:
+/// the frame's bytes are those an unsplit render writes. Throws IoError naming a missing or unreadable tile,
+/// InvalidInput for tiles whose sizes do not fit together or a lossy (JPEG) format.
 void assemble_tiles(const std::filesystem::path& frame_file, int tile_count);
 
 /// Refuses formats whose pixels do not survive a write and a read (JPEG): a tile must hold the frame's own values.
