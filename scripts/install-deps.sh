@@ -28,6 +28,8 @@ test_packages=(
   pybind11-dev python3-dev python3-venv python3-setuptools python3-pytest
   # the Python tests: mypy checks the type stubs, nbclient and ipykernel run the tour notebook
   python3-mypy python3-nbclient python3-ipykernel
+  # render farms: a real one-node Slurm cluster (tests/cli/slurm.sh) and Open MPI's mpirun (tessera ... --mpi)
+  slurm-wlm munge libopenmpi-dev openmpi-bin
   # glslangValidator, the reference compiler's command line: the GLSL tests check the shipped shaders with it
   glslang-tools
   # the sanitizer build (make asan): clang's UBSan sees what GCC's does not, and libFuzzer comes with clang

@@ -26,6 +26,7 @@ void setup_canvas(CLI::App&, CommonOptions&);
 void setup_color(CLI::App&, CommonOptions&);
 void setup_curve(CLI::App&, CommonOptions&);
 void setup_demo(CLI::App&, CommonOptions&);
+void setup_farm(CLI::App&, CommonOptions&);
 void setup_fractal(CLI::App&, CommonOptions&);
 void setup_gallery(CLI::App&, CommonOptions&);
 void setup_mesh(CLI::App&, CommonOptions&);
@@ -55,6 +56,7 @@ const Command kCommands[] = {
      setup_render},
     {"assemble", "Stitch the tiles of rendered frames into the frames; optionally encode them as a movie",
      setup_assemble},
+    {"farm", "Render an animation on a Slurm cluster (job arrays) and follow its progress", setup_farm},
     {"trace", "Ray-cast a mesh into a shaded image", setup_trace},
     {"sketch", "Run a Processing sketch of the notes, in a window or headless (--list shows them)", setup_sketch},
     {"view", "View a mesh, scene, volume or Bezier patches: orbit, pan, zoom, shading keys; --headless --orbit N",

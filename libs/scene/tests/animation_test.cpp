@@ -44,8 +44,8 @@ TEST(Animation, StepKeysJump) {
 TEST(Animation, SmoothKeysFollowAQuadraticExactlyBetweenInteriorKeys) {
   std::string eye = R"({"interpolation": "smooth", "keys": [)";
   for (int f = 0; f <= 8; f += 2)
-    eye += (f ? ", " : "") + std::string("[") + std::to_string(f) + ", [0, 0, " + std::to_string(4 + f * f / 4.0) +
-           "]]";
+    eye +=
+        (f ? ", " : "") + std::string("[") + std::to_string(f) + ", [0, 0, " + std::to_string(4 + f * f / 4.0) + "]]";
   eye += "]}";
   for (int f = 0; f <= 8; f += 2) EXPECT_DOUBLE_EQ(eye_at(eye, f).z, 4 + f * f / 4.0) << f;
   EXPECT_NEAR(eye_at(eye, 3).z, 4 + 9 / 4.0, 1e-12);
@@ -56,7 +56,8 @@ TEST(Animation, SmoothKeysFollowAQuadraticExactlyBetweenInteriorKeys) {
 TEST(Animation, KeyedIntegerSettingsStep) {
   const auto samples = [](const std::string& interpolation) {
     return R"({"animation": {"frames": [0, 10]}, "image": {"samples": {"keys": [[0, 1], [10, 8]], "interpolation": ")" +
-           interpolation + R"("}}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})";
+           interpolation +
+           R"("}}, "materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})";
   };
   EXPECT_EQ(AnimatedScene(samples("step"), "test", {}).at(5).image.samples, 1);
   EXPECT_EQ(AnimatedScene(samples("step"), "test", {}).at(10).image.samples, 8);
@@ -81,7 +82,8 @@ TEST(Animation, KeyedPlacementsBlurOverTheShutter) {
 }
 
 TEST(Animation, AStillSceneHasFrameZeroOnly) {
-  const AnimatedScene scene(R"({"materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "still", {});
+  const AnimatedScene scene(
+      R"({"materials": {"m": {}}, "objects": [{"type": "sphere", "radius": 1, "material": "m"}]})", "still", {});
   EXPECT_FALSE(scene.keyed());
   EXPECT_EQ(scene.animation().first, 0);
   EXPECT_EQ(scene.animation().last, 0);
