@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -17,6 +20,7 @@
 #include "tessera/core/parse.hpp"
 #include "tessera/farm/frames.hpp"
 #include "tessera/farm/manifest.hpp"
+#include "tessera/farm/mpi.hpp"
 #include "tessera/image/animation.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/scene/raster.hpp"
@@ -31,10 +35,10 @@ enum class Backend { raytrace, raster };
 
 struct RenderArgs {
   std::string scene, output, size, frames, tile, crop;
-  std::optional<int> frame;
+  std::optional<int> frame, tiles;
   Backend backend = Backend::raytrace;
   RasterShadows shadow_method = RasterShadows::map;
-  bool shadow_method_given = false, skip_existing = false;
+  bool shadow_method_given = false, skip_existing = false, mpi = false;
   std::optional<int> spp, depth;
   uint64_t seed = 0;
 };
@@ -137,6 +141,138 @@ ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptio
   return image;
 }
 
+// Where frames (or a tile of each) go and how: image files, recorded in the folder's manifest (frames.json) for a
+// farm so that a resubmitted task can skip what is already there and whole, or a movie.
+struct Output {
+  fs::path pattern;
+  bool farm = false;
+  std::optional<TileSpec> tile;
+
+  fs::path folder() const { return pattern.parent_path().empty() ? fs::path(".") : pattern.parent_path(); }
+  fs::path file(int frame) const {
+    const fs::path frame_file = numbered_frame_path(pattern, frame);
+    return tile ? tile_file(frame_file, *tile) : frame_file;
+  }
+  // Written whole by an earlier run: it matches its manifest entry or, without one, exists (writes are atomic).
+  bool done(const Manifest& manifest, int frame) const {
+    const std::string name = file(frame).filename().string();
+    std::error_code ec;
+    return manifest.find(name) ? manifest.verified(folder(), name) : fs::is_regular_file(file(frame), ec);
+  }
+  // Writes a rendered frame (or tile) that took `seconds`: into the movie when there is one, else to its file.
+  void write(const ImageRGB& image, int frame, double seconds, const CommonOptions& common,
+             std::optional<AnimationWriter>& movie, PhaseTimer& timer) const {
+    if (movie) return timer.time("write_s", [&] { movie->add(image); });
+    const fs::path path = file(frame);
+    timer.time("write_s", [&] {
+      write_image(path, image, common.write_options());
+      if (farm)
+        Manifest::record(folder(), path.filename().string(),
+                         ManifestEntry{.frame = frame,
+                                       .tile = tile ? tile->index : -1,
+                                       .tiles = tile ? tile->count : 1,
+                                       .crc32 = file_crc32(path),
+                                       .bytes = uint64_t(fs::file_size(path)),
+                                       .seconds = seconds,
+                                       .host = host_name()});
+    });
+    if (farm && !common.quiet)
+      std::fputs(fmt::format("tessera render: frame {} -> {} ({:.3f} s)\n", frame, path.string(), seconds).c_str(),
+                 stderr);
+  }
+};
+
+// `mpirun -n R tessera render ... --mpi`: every rank renders tiles of the frames, handed out one at a time by rank 0
+// (mpi::farm_units), which stitches them and writes each frame as it completes (a movie in frame order). Rank 0
+// decides which frames to render (--skip-existing) and tells the others. Only rank 0 writes or prints: true on it.
+bool run_render_mpi(const RenderArgs& a, const CommonOptions& common, const AnimatedScene& animated, FrameRange range,
+                    Size2 size, const Output& out, const std::function<void()>& open_movie,
+                    std::optional<AnimationWriter>& writer, PhaseTimer& timer, Totals& totals) {
+  const mpi::Session session;
+  const bool root = session.rank() == 0;
+  CommonOptions quiet = common;
+  quiet.quiet = !root || common.quiet;
+  std::vector<int> frames;
+  if (root) {
+    const Manifest manifest = out.farm && a.skip_existing ? Manifest::read(out.folder()) : Manifest();
+    for (int f = range.first; f <= range.last; ++f) {
+      if (out.farm && a.skip_existing && out.done(manifest, f))
+        ++totals.skipped;
+      else
+        frames.push_back(f);
+    }
+    open_movie();
+  }
+  mpi::broadcast(session, frames);
+  if (frames.empty()) return root;
+  // The frame's size, and the tiles each frame is cut into: as asked, else one per frame for an animation, or four
+  // per rank for a single frame (slow tiles balance); the rasterizer draws whole frames.
+  const Scene first = animated.at(frames.front());
+  RenderSettings probe = render_settings(first);
+  if (size.width > 0) probe.width = size.width, probe.height = size.height;
+  const int width = probe.width, height = probe.height;
+  int tiles = a.tiles.value_or(frames.size() > 1 ? 1 : std::min(height, 4 * session.size()));
+  if (a.backend == Backend::raster) tiles = 1;
+  if (tiles < 1 || tiles > height)
+    throw InvalidInput(fmt::format("--tiles: expected 1 to {} (the frame's rows), got {}", height, tiles));
+  std::optional<std::pair<int, Scene>> cached;  // the scene of the frame this rank rendered last
+  const auto render_unit = [&](int unit) {
+    const int frame = frames[size_t(unit / tiles)];
+    if (!cached || cached->first != frame) cached.emplace(frame, animated.at(frame));
+    Part part;
+    if (tiles > 1) part.tile = TileSpec{unit % tiles, tiles};
+    PhaseTimer unit_timer;
+    Totals unit_totals;
+    CommonOptions silent = common;
+    silent.quiet = true;
+    return render_frame(cached->second, a, silent, size, part, unit_timer, unit_totals);
+  };
+  struct Pending {
+    ImageRGB image;
+    int tiles_left = 0;
+    double seconds = 0;
+  };
+  std::map<int, Pending> pending;    // frames with tiles still to come
+  std::map<int, ImageRGB> finished;  // whole frames waiting for an earlier one (a movie is written in order)
+  size_t next_in_order = 0;
+  const auto deliver = [&](mpi::UnitResult&& r) {
+    const int frame = frames[size_t(r.unit / tiles)];
+    Pending& p = pending[frame];
+    if (p.tiles_left == 0) p = Pending{ImageRGB(width, height), tiles, 0.0};
+    const PixelRect rect = tile_rect({r.unit % tiles, tiles}, width, height);
+    if (r.image.width() != width || r.image.height() != rect.y1 - rect.y0)
+      throw InvalidInput(
+          fmt::format("frame {}: the scene's size changes between frames, which --mpi does not split", frame));
+    for (int y = rect.y0; y < rect.y1; ++y) std::copy_n(r.image.row(y - rect.y0), width, p.image.row(y));
+    p.seconds += r.seconds;
+    if (--p.tiles_left > 0) return;
+    ++totals.rendered;
+    if (!writer) {
+      out.write(p.image, frame, p.seconds, quiet, writer, timer);
+    } else {
+      finished.emplace(frame, std::move(p.image));
+      for (auto it = finished.begin(); it != finished.end() && it->first == frames[next_in_order];
+           it = finished.erase(it), ++next_in_order)
+        out.write(it->second, it->first, 0, quiet, writer, timer);
+    }
+    pending.erase(frame);
+  };
+  if (root)
+    totals.first_frame = {{"width", stat_value(width)},
+                          {"height", stat_value(height)},
+                          {"pixels", stat_value(double(width) * height)},
+                          {"samples", stat_value(a.backend == Backend::raster ? 1 : a.spp.value_or(probe.samples))},
+                          {"objects", stat_value(double(first.objects.size()))},
+                          {"lights", stat_value(double(first.lights.size()))},
+                          {"ranks", stat_value(session.size())},
+                          {"tiles", stat_value(tiles)}};
+  const auto start = std::chrono::steady_clock::now();
+  timer.time("compute_s", [&] { mpi::farm_units(session, int(frames.size()) * tiles, render_unit, deliver); });
+  totals.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (writer) timer.time("write_s", [&] { writer->finish(); });
+  return root;
+}
+
 void run_render(const RenderArgs& a, const CommonOptions& common) {
   // Every option and the output are checked before the scene is built or anything is written.
   Size2 size{0, 0};
@@ -183,62 +319,44 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
                     "frame-####.png) or a movie",
                     a.output));
 
+  const bool farm_output = (frames && !movie) || part.tile;
+  const Output out{output, farm_output, part.tile};
   PhaseTimer timer;
   const AnimatedScene animated = timer.time("read_s", [&] { return load_animated_scene(a.scene); });
   const FrameRange range = frames.value_or(FrameRange{animated.animation().first, animated.animation().first});
   if (range.first < animated.animation().first || range.last > animated.animation().last)
     throw InvalidInput(fmt::format("--frames {}:{}: the scene '{}' has frames {}:{}", range.first, range.last, a.scene,
                                    animated.animation().first, animated.animation().last));
-
-  // Frames and tiles of a farm are recorded in the output folder's manifest (frames.json) and can be skipped when a
-  // resubmitted task finds them already there and whole.
-  const bool farm_output = (frames && !movie) || part.tile;
-  const fs::path folder = output.parent_path().empty() ? fs::path(".") : output.parent_path();
-  if (farm_output) fs::create_directories(folder);
-  const Manifest manifest = farm_output && a.skip_existing ? Manifest::read(folder) : Manifest();
+  if (a.tiles && !a.mpi)
+    throw InvalidInput("--tiles: splits frames among MPI ranks; with --mpi only (else --tile K/N)");
+  if (a.mpi && (part.tile || part.crop))
+    throw InvalidInput("--mpi: ranks share whole frames; --tile/--crop do not apply");
+  if (farm_output) fs::create_directories(out.folder());
   std::optional<AnimationWriter> writer;
-  if (movie) writer.emplace(output, AnimationOptions{.fps = animated.animation().fps, .srgb = common.srgb});
-
+  const auto open_movie = [&] {
+    if (movie) writer.emplace(output, AnimationOptions{.fps = animated.animation().fps, .srgb = common.srgb});
+  };
   Totals totals;
-  for (int f = range.first; f <= range.last; ++f) {
-    const fs::path frame_file = numbered_frame_path(output, f);
-    const fs::path file = part.tile ? tile_file(frame_file, *part.tile) : frame_file;
-    const std::string name = file.filename().string();
-    if (farm_output && a.skip_existing) {
-      std::error_code ec;
-      const bool done = manifest.find(name) ? manifest.verified(folder, name) : fs::is_regular_file(file, ec);
-      if (done) {
+  if (a.mpi) {
+    if (!run_render_mpi(a, common, animated, range, size, out, open_movie, writer, timer, totals)) return;
+  } else {
+    open_movie();
+    const Manifest manifest = farm_output && a.skip_existing ? Manifest::read(out.folder()) : Manifest();
+    for (int f = range.first; f <= range.last; ++f) {
+      if (farm_output && a.skip_existing && out.done(manifest, f)) {
         ++totals.skipped;
         continue;
       }
+      const Scene scene = timer.time("read_s", [&] { return animated.at(f); });
+      const double before = timer.seconds("compute_s");
+      const ImageRGB image = render_frame(scene, a, common, size, part, timer, totals);
+      out.write(image, f, timer.seconds("compute_s") - before, common, writer, timer);
     }
-    const Scene scene = timer.time("read_s", [&] { return animated.at(f); });
-    const double before = timer.seconds("compute_s");
-    const ImageRGB image = render_frame(scene, a, common, size, part, timer, totals);
-    const double seconds = timer.seconds("compute_s") - before;
-    if (writer) {
-      timer.time("write_s", [&] { writer->add(image); });
-      continue;
-    }
-    timer.time("write_s", [&] {
-      write_image(file, image, common.write_options());
-      if (farm_output)
-        Manifest::record(folder, name,
-                         ManifestEntry{.frame = f,
-                                       .tile = part.tile ? part.tile->index : -1,
-                                       .tiles = part.tile ? part.tile->count : 1,
-                                       .crc32 = file_crc32(file),
-                                       .bytes = uint64_t(fs::file_size(file)),
-                                       .seconds = seconds,
-                                       .host = host_name()});
-    });
-    if (farm_output && !common.quiet)
-      std::fputs(fmt::format("tessera render: frame {} -> {} ({:.3f} s)\n", f, file.string(), seconds).c_str(), stderr);
+    if (writer) timer.time("write_s", [&] { writer->finish(); });
   }
-  if (writer) timer.time("write_s", [&] { writer->finish(); });
   if (!common.stats) return;
   StatRows figures = totals.first_frame;
-  if (a.backend == Backend::raytrace && totals.rendered > 0)
+  if (a.backend == Backend::raytrace && totals.rendered > 0 && !a.mpi)
     figures.insert(figures.end(), {{"eye_rays", stat_value(totals.eye_rays)},
                                    {"rays", stat_value(totals.rays)},
                                    {"rays_per_s", stat_value(totals.rays / std::max(totals.ray_seconds, 1e-9))}});
@@ -277,6 +395,11 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
   cmd.add_flag("--skip-existing", a->skip_existing,
                "With --frames or --tile: skip frames and tiles already written whole (checked against the folder's "
                "frames.json)");
+  cmd.add_flag("--mpi", a->mpi,
+               "Render across the ranks of `mpirun -n R tessera render ... --mpi`: tiles of each frame handed out "
+               "as ranks become free, written by rank 0 (docs/farm.md)");
+  cmd.add_option("--tiles", a->tiles,
+                 "With --mpi: tiles per frame (default: 1 for several frames, 4 per rank for one frame)");
   cmd.add_option("--spp", a->spp, "Samples per pixel (default: the scene's)");
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)")->check(size_format());
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");

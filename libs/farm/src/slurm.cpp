@@ -24,7 +24,12 @@ std::string sbatch_header(const SlurmJob& job, std::string_view name, std::strin
 
 std::string shell_quote(std::string_view text) {
   std::string quoted = "'";
-  for (const char c : text) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (const char c : text) {
+    if (c == '\'')
+      quoted += "'\\''";  // close the quote, an escaped quote, reopen
+    else
+      quoted += c;
+  }
   return quoted + "'";
 }
 
@@ -62,8 +67,8 @@ std::string slurm_render_script(const SlurmJob& job) {
   if (job.tiles > 1) command += fmt::format(" --tile \"$(( task % {} ))/{}\"", job.tiles, job.tiles);
   command += " --skip-existing --progress plain";
   if (job.cpus_per_task > 0) command += " --threads \"$SLURM_CPUS_PER_TASK\"";
-  for (const std::string& option : job.render_options) command += " " + shell_quote(option);
-  return s + "exec " + command + "\n";
+  for (const std::string& option : job.render_options) command += fmt::format(" {}", shell_quote(option));
+  return fmt::format("{}exec {}\n", s, command);
 }
 
 std::string slurm_assemble_script(const SlurmJob& job) {

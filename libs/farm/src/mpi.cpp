@@ -1,0 +1,181 @@
+#include "tessera/farm/mpi.hpp"
+
+#include <fmt/format.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <deque>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+#include "tessera/core/error.hpp"
+
+#if TESSERA_HAS_MPI
+#include <mpi.h>
+#endif
+
+namespace tessera::mpi {
+
+bool available() { return TESSERA_HAS_MPI != 0; }
+
+#if TESSERA_HAS_MPI
+
+namespace {
+
+enum Tag : int { kRequest = 1, kAssign, kHeader, kPixels };
+
+// A unit's header on the wire: unit index, width, height; the seconds travel as a second message field.
+struct Header {
+  int unit, width, height;
+  double seconds;
+};
+
+[[noreturn]] void abort_job(const char* what) {
+  std::fputs(fmt::format("tessera: error: {}\n", what).c_str(), stderr);
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::abort();  // MPI_Abort does not return
+}
+
+UnitResult timed_render(const std::function<ImageRGB(int)>& render, int unit) {
+  const auto start = std::chrono::steady_clock::now();
+  UnitResult r{unit, render(unit), 0.0};
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+// Rank 0: serves the other ranks' requests and gathers their results on this (the main) thread, while a second
+// thread renders rank 0's own share from the same counter.
+void serve(const Session& session, int count, const std::function<ImageRGB(int)>& render,
+           const std::function<void(UnitResult&&)>& deliver) {
+  std::atomic<int> next{0};
+  std::mutex mutex;
+  std::condition_variable ready;
+  std::deque<UnitResult> local;
+  std::exception_ptr local_error;
+  bool local_done = false;
+  std::thread worker([&] {
+    try {
+      for (int unit; (unit = next++) < count;) {
+        UnitResult r = timed_render(render, unit);
+        const std::lock_guard lock(mutex);
+        local.push_back(std::move(r));
+        ready.notify_one();
+      }
+    } catch (...) {
+      local_error = std::current_exception();
+    }
+    const std::lock_guard lock(mutex);
+    local_done = true;
+    ready.notify_one();
+  });
+  int delivered = 0, released = 0;
+  const int others = session.size() - 1;
+  try {
+    while (delivered < count || released < others) {
+      // Results of this rank first, then every message waiting; when there is nothing, wait a little for either
+      // (a blocking MPI receive would spin a core that the local renderer needs).
+      std::deque<UnitResult> mine;
+      {
+        std::unique_lock lock(mutex);
+        ready.wait_for(lock, std::chrono::microseconds(200), [&] { return !local.empty() || local_done; });
+        mine.swap(local);
+        if (local_error) std::rethrow_exception(local_error);
+      }
+      for (UnitResult& r : mine) ++delivered, deliver(std::move(r));
+      for (int flag = 1; flag;) {
+        MPI_Status status;
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &status);
+        if (!flag) break;
+        const int source = status.MPI_SOURCE;
+        if (status.MPI_TAG == kRequest) {
+          int ignored = 0;
+          MPI_Recv(&ignored, 1, MPI_INT, source, kRequest, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+          int unit = next++;
+          if (unit >= count) unit = -1, ++released;
+          MPI_Send(&unit, 1, MPI_INT, source, kAssign, MPI_COMM_WORLD);
+        } else if (status.MPI_TAG == kHeader) {
+          Header h{};
+          MPI_Recv(&h, sizeof h, MPI_BYTE, source, kHeader, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+          UnitResult r{h.unit, ImageRGB(h.width, h.height), h.seconds};
+          MPI_Recv(r.image.pixels().data(), int(r.image.pixels().size() * 3), MPI_FLOAT, source, kPixels,
+                   MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+          ++delivered;
+          deliver(std::move(r));
+        } else {
+          abort_job(fmt::format("MPI: unexpected message tag {} from rank {}", status.MPI_TAG, source).c_str());
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    abort_job(e.what());
+  }
+  worker.join();
+}
+
+// Ranks 1..: ask rank 0 for a unit, render it, send it back, until rank 0 answers -1.
+void work(const std::function<ImageRGB(int)>& render) {
+  try {
+    for (;;) {
+      int unit = 0;
+      MPI_Send(&unit, 1, MPI_INT, 0, kRequest, MPI_COMM_WORLD);
+      MPI_Recv(&unit, 1, MPI_INT, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (unit < 0) return;
+      const UnitResult r = timed_render(render, unit);
+      const Header h{unit, r.image.width(), r.image.height(), r.seconds};
+      MPI_Send(&h, sizeof h, MPI_BYTE, 0, kHeader, MPI_COMM_WORLD);
+      MPI_Send(r.image.pixels().data(), int(r.image.pixels().size() * 3), MPI_FLOAT, 0, kPixels, MPI_COMM_WORLD);
+    }
+  } catch (const std::exception& e) {
+    abort_job(e.what());
+  }
+}
+
+}  // namespace
+
+Session::Session() {
+  int provided = 0;
+  MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+Session::~Session() { MPI_Finalize(); }
+
+void broadcast(const Session&, std::vector<int>& values) {
+  int size = int(values.size());
+  MPI_Bcast(&size, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  values.resize(size_t(size));
+  MPI_Bcast(values.data(), size, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+void farm_units(const Session& session, int count, const std::function<ImageRGB(int)>& render,
+                const std::function<void(UnitResult&&)>& deliver) {
+  if (session.rank() == 0)
+    serve(session, count, render, deliver);
+  else
+    work(render);
+  MPI_Barrier(MPI_COMM_WORLD);
+}
+
+#else
+
+Session::Session() {
+  throw InvalidInput("--mpi: this Tessera was built without MPI (install Open MPI, Debian libopenmpi-dev, and build "
+                     "again)");
+}
+
+Session::~Session() = default;
+
+void broadcast(const Session&, std::vector<int>&) { throw InvalidInput("MPI: this Tessera was built without MPI"); }
+
+void farm_units(const Session&, int, const std::function<ImageRGB(int)>&, const std::function<void(UnitResult&&)>&) {
+  throw InvalidInput("MPI: this Tessera was built without MPI");
+}
+
+#endif
+
+}  // namespace tessera::mpi
