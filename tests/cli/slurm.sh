@@ -3,7 +3,8 @@
 # generated slurm.conf on 127.0.0.1 (their own key, socket, ports and state in the scratch folder; the machine's own
 # Slurm or MUNGE, if any, are not touched). The job array renders tiles of an animated scene, the dependent job
 # stitches them and encodes a GIF, and every frame must equal a local render byte for byte; a resubmission finds
-# everything done. Exits 77 (skipped) only when Slurm cannot start here: not installed, or not root.
+# everything done. Exits 77 (skipped) only when Slurm cannot run here: not installed, or not root; a daemon that is
+# installed but does not start fails the test.
 set -euo pipefail
 tessera="$1"
 scratch="$2"
@@ -35,7 +36,7 @@ trap cleanup EXIT
 mungekey -c -k "$scratch/cluster/munge.key"
 munged -f -S "$scratch/cluster/munge.sock" --key-file="$scratch/cluster/munge.key" \
   --log-file="$scratch/cluster/log/munged.log" --pid-file="$scratch/cluster/munged.pid" \
-  --seed-file="$scratch/cluster/munged.seed" || skip "munged does not start"
+  --seed-file="$scratch/cluster/munged.seed" || fail "munged does not start"
 host=$(hostname -s)
 port=$((20000 + RANDOM % 20000))
 cat > cluster/slurm.conf <<CONF
@@ -70,8 +71,8 @@ NodeName=$host NodeAddr=127.0.0.1 CPUs=$(nproc) State=UNKNOWN
 PartitionName=tessera Nodes=ALL Default=YES MaxTime=INFINITE State=UP
 CONF
 export SLURM_CONF="$scratch/cluster/slurm.conf"
-slurmctld -c -f "$SLURM_CONF" || skip "slurmctld does not start"
-slurmd -f "$SLURM_CONF" || skip "slurmd does not start"
+slurmctld -c -f "$SLURM_CONF" || fail "slurmctld does not start"
+slurmd -f "$SLURM_CONF" || fail "slurmd does not start"
 for ((i = 0; i < 60; i++)); do
   sinfo -h -o %T 2> /dev/null | grep -q idle && break
   sleep 1

@@ -42,7 +42,7 @@ void run_assemble(const AssembleArgs& a, const CommonOptions& common) {
   int problem_count = 0;
   timer.time("read_s", [&] {
     for (int f = range.first; f <= range.last; ++f)
-      for (int k = 0; k < a.tiles && a.tiles > 1; ++k) {
+      for (int k = 0; k < a.tiles; ++k) {  // with one tile: the frame file itself
         const std::string name = tile_file(numbered_frame_path(pattern, f), {k, a.tiles}).filename().string();
         std::error_code ec;
         const char* problem = !fs::is_regular_file(folder / name, ec)                   ? "missing"

@@ -28,7 +28,7 @@ struct SlurmArgs {
   int tiles = 1, frames_per_task = 1, cpus_per_task = 0, max_running = 0;
   std::optional<int> spp, depth;
   std::optional<uint64_t> seed;
-  double fps = 24;
+  std::optional<double> fps;
   bool submit = false;
 };
 
@@ -77,7 +77,16 @@ void run_farm_slurm(const SlurmArgs& a, const CommonOptions& common) {
                                    a.scene, scene.animation().first, scene.animation().last));
   job.scene = fs::exists(a.scene) ? fs::absolute(a.scene).lexically_normal().string() : a.scene;
   job.tessera = fs::read_symlink("/proc/self/exe");
-  job.fps = a.movie.empty() ? scene.animation().fps : a.fps;
+  job.fps = a.fps.value_or(scene.animation().fps);
+  // Values written into #SBATCH lines: one word of Slurm's characters (a newline would add lines to the script).
+  for (const auto& [flag, value] :
+       {std::pair{"--partition", &a.partition}, std::pair{"--time", &a.time_limit}, std::pair{"--account", &a.account}})
+    if (value->find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_.:,+-") !=
+        std::string::npos)
+      throw InvalidInput(fmt::format("{}: expected a Slurm name or time (letters, digits, _ . : , + -), got '{}'", flag,
+                                     printable(*value)));
+  if (a.cpus_per_task < 0 || a.max_running < 0)
+    throw InvalidInput("--cpus-per-task and --max-running: expected a positive number (0: Slurm's default)");
   job.partition = a.partition;
   job.time_limit = a.time_limit;
   job.account = a.account;
@@ -96,7 +105,10 @@ void run_farm_slurm(const SlurmArgs& a, const CommonOptions& common) {
   fs::create_directories(job.log_folder);
   const fs::path render_script = folder / "render.sbatch", assemble_script = folder / "assemble.sbatch";
   write_file_atomic(render_script, slurm_render_script(job));
-  if (follow_up) write_file_atomic(assemble_script, slurm_assemble_script(job));
+  if (follow_up)
+    write_file_atomic(assemble_script, slurm_assemble_script(job));
+  else
+    fs::remove(assemble_script);  // a stale one from an earlier run with tiles or a movie
   std::string report =
       fmt::format("tessera farm: {} ({} array task{}){}\n", render_script.string(), tasks, tasks == 1 ? "" : "s",
                   follow_up ? fmt::format(", then {}", assemble_script.string()) : "");

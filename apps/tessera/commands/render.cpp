@@ -61,7 +61,8 @@ void print_builtin_list() {
   for (const auto& name : builtin_scene_names()) {
     const AnimatedScene scene = load_animated_scene(name);
     const SceneAnimation& a = scene.animation();
-    std::string frames = scene.keyed() ? fmt::format("frames {}:{} at {} fps", a.first, a.last, a.fps) : "still";
+    std::string frames =
+        scene.keyed() || a.last > a.first ? fmt::format("frames {}:{} at {} fps", a.first, a.last, a.fps) : "still";
     std::fputs(fmt::format("{:<16} {}\n", name, frames).c_str(), stdout);
   }
 }
@@ -176,7 +177,7 @@ struct Output {
                                        .seconds = seconds,
                                        .host = host_name()});
     });
-    if (farm && !common.quiet)
+    if (farm && !common.quiet && common.progress != "none")
       std::fputs(fmt::format("tessera render: frame {} -> {} ({:.3f} s)\n", frame, path.string(), seconds).c_str(),
                  stderr);
   }
@@ -311,6 +312,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
                     a.output));
   if (movie && (part.tile || part.crop)) throw InvalidInput("--tile/--crop: a movie is made of whole frames");
   if (movie && !frames) throw InvalidInput(fmt::format("-o {}: a movie needs --frames A:B", a.output));
+  if (movie && numbered_frame_path(output, 0) != output)
+    throw InvalidInput(fmt::format("-o {}: a movie is one file; its name has no frame number", a.output));
   if (part.tile) check_lossless_image_path(output);
   const bool numbered = numbered_frame_path(output, 0) != output;
   if (frames && frames->count() > 1 && !movie && !numbered)
@@ -319,7 +322,8 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
                     "frame-####.png) or a movie",
                     a.output));
 
-  const bool farm_output = (frames && !movie) || part.tile;
+  // A crop is not part of a farm's frames: it is neither recorded in frames.json nor skipped.
+  const bool farm_output = (frames && !movie && !part.crop) || part.tile;
   const Output out{output, farm_output, part.tile};
   PhaseTimer timer;
   const AnimatedScene animated = timer.time("read_s", [&] { return load_animated_scene(a.scene); });

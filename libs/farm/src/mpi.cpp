@@ -164,8 +164,9 @@ void farm_units(const Session& session, int count, const std::function<ImageRGB(
 #else
 
 Session::Session() {
-  throw InvalidInput("--mpi: this Tessera was built without MPI (install Open MPI, Debian libopenmpi-dev, and build "
-                     "again)");
+  throw InvalidInput(
+      "--mpi: this Tessera was built without MPI (install Open MPI, Debian libopenmpi-dev, and build "
+      "again)");
 }
 
 Session::~Session() = default;

@@ -222,6 +222,15 @@ Scene AnimatedScene::at(int frame) const {
     throw InvalidInput(fmt::format("{}: frame {} is outside the scene's frames {}..{}", d.name, frame,
                                    d.animation.first, d.animation.last));
   if (!d.keyed) return detail::scene_from_json(d.doc, d.name, d.base_dir);
+  try {
+    return frame_scene(d, frame);
+  } catch (const InvalidInput& e) {
+    // A value that is wrong at some frames only: the message says which.
+    throw InvalidInput(fmt::format("{} (at frame {})", e.what(), frame));
+  }
+}
+
+Scene AnimatedScene::frame_scene(const Data& d, int frame) {
   Json doc = resolve(d.doc, frame, d.name, "");
   // Motion blur: an object whose placement is keyed (and that states no motion of its own) moves from its transform
   // at the frame to its transform when the shutter closes; the ray tracer interpolates the steps in between.

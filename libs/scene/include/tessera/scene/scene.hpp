@@ -108,6 +108,7 @@ class AnimatedScene {
 
  private:
   struct Data;
+  static Scene frame_scene(const Data& data, int frame);
   std::unique_ptr<Data> data_;
 };
 
