@@ -10,6 +10,7 @@
 #include "tessera/core/error.hpp"
 #include "tessera/core/memory_budget.hpp"
 #include "tessera/core/progress.hpp"
+#include "tessera/farm/mpi.hpp"
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
@@ -278,8 +279,8 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
 }
 
 /// Says on stderr why a rendered picture shows nothing but the background, when it does.
-void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, const Volume<float>& v) {
-  const auto [lo, hi] = value_range(v);
+void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, std::pair<double, double> range) {
+  const auto [lo, hi] = range;
   if (o.mip && !(hi > lo)) {
     warn_constant(lo, "the projection is black");
     return;
@@ -300,14 +301,55 @@ void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, const Vo
              "makes visible (is the volume in view? are the transfer function's values those of the volume?)\n");
 }
 
+// `mpirun -n R tessera volume render ... --mpi`: rank r keeps slab r of the volume's cells along z (with the slices
+// its samples and gradients reach), renders what that slab adds to each pixel, and the layers are composited
+// sort-last, nearest the eye first, by binary swap (mpi::composite_layers). The picture on rank 0, empty elsewhere.
+ImageRGB render_bricks(const mpi::Session& session, Volume<float> whole, const VolumeRenderOptions& options) {
+  const int ranks = session.size(), rank = session.rank();
+  const glm::ivec3 dims = whole.dims();
+  const int cells = dims.z - 1;
+  if (cells < ranks)
+    throw InvalidInput(
+        fmt::format("--mpi: {} ranks cannot share the {} cells of z between {} slices", ranks, cells, dims.z));
+  const auto bound = [&](int r) { return int(int64_t(r) * cells / ranks); };
+  VolumeRenderOptions o = options;
+  o.brick = VolumeRenderOptions::Brick{dims, 0, bound(rank), bound(rank + 1), rank == 0, rank == ranks - 1};
+  const int z0 = std::max(0, o.brick->z_begin - 1), z1 = std::min(dims.z - 1, o.brick->z_end + 1);
+  o.brick->offset = z0;
+  const auto [lo, hi] = value_range(whole);
+  const Vec3 origin = whole.origin(), spacing = whole.spacing();
+  Volume<float> brick(glm::ivec3(dims.x, dims.y, z1 - z0 + 1), 0.0f, spacing, whole.to_world(Vec3(0, 0, z0)));
+  std::copy_n(&whole(0, 0, z0), brick.voxel_count(), &brick(0, 0, 0));
+  whole = Volume<float>();  // only the brick stays
+  const ImageRGBA layer = VolumeRenderer(brick, lo, hi).render_layer(o);
+  // Visibility order: the slab the eye is in (or nearest to) first, then those beyond it on either side; a ray
+  // crosses only the slabs on one side, so the order holds along every ray.
+  std::vector<int> order;
+  const Camera& camera = o.camera;
+  const double eye_z = camera.orthographic ? ((camera.center - camera.eye).z >= 0 ? -1.0 : double(cells))
+                                           : (camera.eye.z - origin.z) / spacing.z;
+  int nearest = 0;
+  while (nearest + 1 < ranks && eye_z >= bound(nearest + 1)) ++nearest;
+  for (int r = nearest; r < ranks; ++r) order.push_back(r);
+  for (int r = nearest - 1; r >= 0; --r) order.push_back(r);
+  const ImageRGBA composite = mpi::composite_layers(session, layer, order);
+  if (rank != 0) return {};
+  ImageRGB image(composite.width(), composite.height());
+  for (size_t i = 0; i < image.pixels().size(); ++i) {
+    const Vec4f& c = composite.pixels()[i];
+    image.pixels()[i] = Vec3f(c) + (1 - c.w) * options.background;
+  }
+  return image;
+}
+
 void setup_render(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand("render", "Direct volume rendering (ray casting) or maximum-intensity projection");
   auto in = std::make_shared<VolumeInput>();
   struct Args {
     std::string output, tf, preset;
     CameraOptions camera;
-    bool mip = false;
-    float step = 0;
+    bool mip = false, mpi = false;
+    float step = 0, termination = 0.99f;
   };
   auto a = std::make_shared<Args>();
   in->add(*cmd);
@@ -325,6 +367,13 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
   mip->excludes(tf)->excludes(preset);
   cmd->add_option("--step", a->step, "Sample distance in world units (default: half the smallest spacing)")
       ->check(non_negative());
+  cmd->add_option("--termination", a->termination,
+                  "Early ray termination: a ray stops once its opacity reaches this (1: never; with --mpi each "
+                  "brick applies it to its own opacity)")
+      ->check(CLI::Range(0.5f, 1.0f));
+  cmd->add_flag("--mpi", a->mpi,
+                "Render across the ranks of `mpirun -n R tessera volume render ... --mpi`: each renders a slab of z, "
+                "composited sort-last by binary swap (docs/farm.md)");
   add_common_options(*cmd, common);
   add_srgb_option(*cmd, common);
   cmd->callback([in, a, &common] {
@@ -334,36 +383,53 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     MemoryBudget::check(saturating_product({uint64_t(size.width), uint64_t(size.height), 24}),
                         fmt::format("rendering {}x{} pixels", size.width, size.height));
     PhaseTimer timer;
-    const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
+    std::optional<mpi::Session> session;
+    if (a->mpi) {
+      if (a->mip) throw InvalidInput("--mpi: maximum-intensity projection is not split into bricks");
+      session.emplace();
+    }
+    const bool root = !session || session->rank() == 0;
+    CommonOptions shown = common;
+    shown.quiet = common.quiet || !root;
+    std::optional<Volume<float>> whole = timer.time("read_s", [&] { return to_float(in->read()); });
+    const Volume<float>& v = *whole;
     VolumeRenderOptions o;
     o.width = size.width;
     o.height = size.height;
     o.step = a->step;
     o.mip = a->mip;
+    o.termination = a->termination;
     // Framed as every 3D command frames its scene (CameraOptions: a three-quarter view of the bounding sphere).
     const Vec3 lo = v.origin(), hi = v.to_world(Vec3(v.dims() - 1));
     o.camera = a->camera.camera(lo, hi);
-    const ImageRGB image = timer.time("compute_s", [&] {
-      if (!a->tf.empty()) {
-        o.transfer = TransferFunction::load(a->tf);
-      } else if (!a->mip) {
-        const ValueProfile p = profile_values(v);
-        o.transfer = a->preset.empty() ? TransferFunction::automatic(p) : TransferFunction::preset(a->preset, p);
-        if (!common.quiet)
-          fmt::print(
-              stderr,
-              "tessera: note: {} over values {:.4g}..{:.4g} (Otsu's threshold {:.4g}, top of the object {:.4g})\n",
-              a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
-              o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
-      }
-      Progress progress("render", int64_t(o.width) * o.height);
-      o.progress = [&](int64_t pixels) { progress.advance(pixels); };
-      ImageRGB picture = render_volume(v, o);
-      progress.done();
-      o.progress = nullptr;
-      return picture;
-    });
-    warn_if_empty(image, o, v);
+    if (!a->tf.empty()) {
+      o.transfer = TransferFunction::load(a->tf);
+    } else if (!a->mip) {
+      const ValueProfile p = timer.time("compute_s", [&] { return profile_values(v); });
+      o.transfer = a->preset.empty() ? TransferFunction::automatic(p) : TransferFunction::preset(a->preset, p);
+      if (!shown.quiet)
+        fmt::print(stderr,
+                   "tessera: note: {} over values {:.4g}..{:.4g} (Otsu's threshold {:.4g}, top of the object {:.4g})\n",
+                   a->preset.empty() ? std::string("default transfer function") : "preset " + a->preset,
+                   o.transfer.points().front().value, o.transfer.points().back().value, p.threshold, p.top);
+    }
+    const std::pair<double, double> range = value_range(v);
+    ImageRGB image;
+    if (session) {
+      image = timer.time("compute_s", [&] { return render_bricks(*session, std::move(*whole), o); });
+      whole.reset();
+      if (!root) return;
+    } else {
+      image = timer.time("compute_s", [&] {
+        Progress progress("render", int64_t(o.width) * o.height);
+        o.progress = [&](int64_t pixels) { progress.advance(pixels); };
+        ImageRGB picture = render_volume(v, o);
+        progress.done();
+        o.progress = nullptr;
+        return picture;
+      });
+    }
+    warn_if_empty(image, o, range);
     timer.time("write_s", [&] { write_image(a->output, image, common.write_options()); });
     if (common.stats) {
       // pixels: those the volume covers (docs/cli.md), i.e. not left at the background.

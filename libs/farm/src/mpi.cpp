@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -134,6 +135,33 @@ void work(const std::function<ImageRGB(int)>& render) {
   }
 }
 
+// front over back, rows [y0, y1) of `front` (and of `back`, which holds just those rows from row 0) into `front`.
+void over(ImageRGBA& front, int y0, int y1, const std::vector<float>& back) {
+  const auto width = size_t(front.width());
+  for (int y = y0; y < y1; ++y)
+    for (size_t x = 0; x < width; ++x) {
+      glm::vec4& f = front.row(y)[x];
+      const float* b = &back[4 * ((size_t(y - y0)) * width + x)];
+      const float t = 1 - f.w;
+      f = glm::vec4(f.x + t * b[0], f.y + t * b[1], f.z + t * b[2], f.w + t * b[3]);
+    }
+}
+
+// back over nothing, then `front` (rows [y0, y1) from row 0) over it: the result in `image`'s rows.
+void under(ImageRGBA& image, int y0, int y1, const std::vector<float>& front) {
+  const auto width = size_t(image.width());
+  for (int y = y0; y < y1; ++y)
+    for (size_t x = 0; x < width; ++x) {
+      glm::vec4& b = image.row(y)[x];
+      const float* f = &front[4 * ((size_t(y - y0)) * width + x)];
+      const float t = 1 - f[3];
+      b = glm::vec4(f[0] + t * b.x, f[1] + t * b.y, f[2] + t * b.z, f[3] + t * b.w);
+    }
+}
+
+float* rows_of(ImageRGBA& image, int y) { return &image.row(y)->x; }
+int floats(const ImageRGBA& image, int y0, int y1) { return (y1 - y0) * image.width() * 4; }
+
 }  // namespace
 
 Session::Session() {
@@ -144,6 +172,73 @@ Session::Session() {
 }
 
 Session::~Session() { MPI_Finalize(); }
+
+ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::vector<int>& front_to_back) {
+  const int ranks = session.size();
+  if (int(front_to_back.size()) != ranks) throw InvalidInput("composite_layers: the order must list every rank once");
+  const int position =
+      int(std::find(front_to_back.begin(), front_to_back.end(), session.rank()) - front_to_back.begin());
+  int power = 1;
+  while (power * 2 <= ranks) power *= 2;
+  const int extra = ranks - power;
+  const int height = layer.height();
+  std::vector<float> received;
+  // Fold: positions 2i + 1 (i < extra) hand their layer to 2i, in front of them.
+  if (position < 2 * extra) {
+    if (position % 2 == 1) {
+      MPI_Send(rows_of(layer, 0), floats(layer, 0, height), MPI_FLOAT, front_to_back[size_t(position - 1)], kPixels,
+               MPI_COMM_WORLD);
+      return {};
+    }
+    received.resize(size_t(floats(layer, 0, height)));
+    MPI_Recv(received.data(), int(received.size()), MPI_FLOAT, front_to_back[size_t(position + 1)], kPixels,
+             MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    over(layer, 0, height, received);
+  }
+  // The 2^k participants, in visibility order, and this rank's index among them.
+  const auto participant = [&](int v) { return front_to_back[size_t(v < extra ? 2 * v : v + extra)]; };
+  const int v = position < 2 * extra ? position / 2 : position - extra;
+  int y0 = 0, y1 = height;
+  for (int bit = 1; bit < power; bit *= 2) {
+    const int partner = v ^ bit;
+    const int mid = y0 + (y1 - y0) / 2;
+    const bool front = v < partner;  // the lower index holds the nearer group of parts
+    const int keep0 = front ? y0 : mid, keep1 = front ? mid : y1;
+    const int give0 = front ? mid : y0, give1 = front ? y1 : mid;
+    received.resize(size_t(floats(layer, keep0, keep1)));
+    MPI_Sendrecv(rows_of(layer, give0), floats(layer, give0, give1), MPI_FLOAT, participant(partner), kPixels,
+                 received.data(), int(received.size()), MPI_FLOAT, participant(partner), kPixels, MPI_COMM_WORLD,
+                 MPI_STATUS_IGNORE);
+    if (front)
+      over(layer, keep0, keep1, received);
+    else
+      under(layer, keep0, keep1, received);
+    y0 = keep0, y1 = keep1;
+  }
+  // Gather: every participant's rows to rank 0.
+  if (session.rank() != 0) {
+    const int range[2] = {y0, y1};
+    MPI_Send(range, 2, MPI_INT, 0, kHeader, MPI_COMM_WORLD);
+    MPI_Send(rows_of(layer, y0), floats(layer, y0, y1), MPI_FLOAT, 0, kPixels, MPI_COMM_WORLD);
+    return {};
+  }
+  ImageRGBA whole(layer.width(), height, glm::vec4(0.0f));
+  const auto place = [&](int from, int to, const float* data) {
+    std::copy_n(data, size_t(floats(whole, from, to)), rows_of(whole, from));
+  };
+  const bool root_participates = position >= 2 * extra || position % 2 == 0;
+  if (root_participates) place(y0, y1, rows_of(layer, y0));
+  for (int i = 0; i < power - (root_participates ? 1 : 0); ++i) {
+    int range[2];
+    MPI_Status status;
+    MPI_Recv(range, 2, MPI_INT, MPI_ANY_SOURCE, kHeader, MPI_COMM_WORLD, &status);
+    received.resize(size_t(floats(whole, range[0], range[1])));
+    MPI_Recv(received.data(), int(received.size()), MPI_FLOAT, status.MPI_SOURCE, kPixels, MPI_COMM_WORLD,
+             MPI_STATUS_IGNORE);
+    place(range[0], range[1], received.data());
+  }
+  return whole;
+}
 
 void broadcast(const Session&, std::vector<int>& values) {
   int size = int(values.size());
@@ -172,6 +267,10 @@ Session::Session() {
 Session::~Session() = default;
 
 void broadcast(const Session&, std::vector<int>&) { throw InvalidInput("MPI: this Tessera was built without MPI"); }
+
+ImageRGBA composite_layers(const Session&, ImageRGBA, const std::vector<int>&) {
+  throw InvalidInput("MPI: this Tessera was built without MPI");
+}
 
 void farm_units(const Session&, int, const std::function<ImageRGB(int)>&, const std::function<void(UnitResult&&)>&) {
   throw InvalidInput("MPI: this Tessera was built without MPI");

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "tessera/core/cpu.hpp"
+#include "tessera/image/image_io.hpp"
 #include "volume_render_internal.hpp"
 
 namespace tessera {
@@ -35,20 +36,50 @@ float sample_step(const Volume<float>& volume, const VolumeRenderOptions& option
   return float(step);
 }
 
-/// The ray caster: MIP from the float volume, compositing from the prepared one (`packed`, unused for MIP).
-ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& options, double vlo, double vhi,
-                   const PackedVolume* packed_volume) {
+/// The samples of a ray that fall in `brick`, [begin, end): sample k's z (in the whole volume's voxels) is the one
+/// march() computes; it is monotonic in k, so the brick's samples are consecutive and found by bisection.
+std::pair<int, int> brick_samples(const RaySamples& r, const VolumeRenderOptions::Brick& brick) {
+  const auto z = [&](int k) {
+    return k == r.n - 1 && r.short_last() ? r.last_point.z : r.first.z + float(k) * r.delta.z;
+  };
+  const bool rising = r.n < 2 || z(r.n - 1) >= z(0);
+  // The first sample at or past `plane` in the ray's direction (n if none).
+  const auto crossing = [&](float plane) {
+    int lo = 0, hi = r.n;
+    while (lo < hi) {
+      const int mid = lo + (hi - lo) / 2;
+      if (rising ? z(mid) >= plane : z(mid) < plane)
+        hi = mid;
+      else
+        lo = mid + 1;
+    }
+    return lo;
+  };
+  const int below_begin = brick.first ? (rising ? 0 : r.n) : crossing(float(brick.z_begin));
+  const int below_end = brick.last ? (rising ? r.n : 0) : crossing(float(brick.z_end));
+  return rising ? std::pair{below_begin, below_end} : std::pair{below_end, below_begin};
+}
+
+/// The ray caster: MIP from the float volume, compositing from the prepared one (`packed`, unused for MIP). The
+/// result is the layer (premultiplied color, opacity) when `layer`, else the image over the background.
+ImageRGBA cast_rays(const Volume<float>& volume, const VolumeRenderOptions& options, double vlo, double vhi,
+                    const PackedVolume* packed_volume, bool layer) {
   Camera camera = options.camera;
   camera.aspect = double(options.width) / double(options.height);
   const EyeRays rays(camera, options.width, options.height);
   const Vec3 sp = volume.spacing();
   const float step = sample_step(volume, options);
+  // A brick samples where the whole volume does: its box and voxel coordinates are the whole volume's.
+  const auto& brick = options.brick;
+  if (brick && options.mip) throw InvalidInput("maximum-intensity projection is not rendered in bricks");
+  const Vec3 whole_origin = brick ? volume.origin() - Vec3(0, 0, brick->offset * sp.z) : volume.origin();
+  const glm::ivec3 whole_dims = brick ? brick->whole_dims : volume.dims();
   AABB box;
-  box.expand(Vec3f(volume.origin()));
-  box.expand(Vec3f(volume.to_world(Vec3(volume.dims() - 1))));
+  box.expand(Vec3f(whole_origin));
+  box.expand(Vec3f(whole_origin + sp * Vec3(whole_dims - 1)));
   const Vec3f inv_spacing = Vec3f(1.0 / sp);
-  const Vec3f origin = Vec3f(volume.origin());
-  ImageRGB image(options.width, options.height, options.background);
+  const Vec3f origin = Vec3f(whole_origin);
+  ImageRGBA image(options.width, options.height, layer ? Vec4f(0.0f) : Vec4f(options.background, 1.0f));
   const auto report = [&](const Tile& tile) {
     if (options.progress) options.progress(int64_t(tile.x1 - tile.x0) * (tile.y1 - tile.y0));
   };
@@ -70,7 +101,7 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
           }
           // A range of any width, however tiny, spans black to white (the values are floats: vhi - vlo > 0 is
           // at least their smallest difference, and the quotient is in [0, 1]).
-          if (best > -INFINITY) image(i, j) = Vec3f(vhi > vlo ? float((best - vlo) / (vhi - vlo)) : 0.0f);
+          if (best > -INFINITY) image(i, j) = Vec4f(Vec3f(vhi > vlo ? float((best - vlo) / (vhi - vlo)) : 0.0f), 1.0f);
         }
       report(tile);
     });
@@ -127,13 +158,25 @@ ImageRGB cast_rays(const Volume<float>& volume, const VolumeRenderOptions& optio
           r[lane] = setup(pixel[lane].x, pixel[lane].y);
           color[lane] = Vec3f(0.0f);
           alpha[lane] = 0;
+          if (brick) {
+            // Only the brick's samples, in the brick's own voxels (z less the offset: exact, as the offset is a
+            // whole number no larger than z); a brick that ends before the ray does has no shorter last segment.
+            const auto [begin, end] = brick_samples(r[lane], *brick);
+            if (end < r[lane].n) r[lane].last_fraction = 1;
+            r[lane].n = std::max(end, begin);
+            k[lane] = begin;
+            r[lane].first.z -= float(brick->offset);
+            r[lane].last_point.z -= float(brick->offset);
+          }
         }
 #if TESSERA_VOLUME_AVX2
         if (simd) march8(cast, r, count, color, alpha, k);
 #endif
         for (int lane = 0; lane < count; ++lane) {
           cast.march(r[lane], k[lane], color[lane], alpha[lane]);
-          image(pixel[lane].x, pixel[lane].y) = color[lane] + (1 - alpha[lane]) * options.background;
+          image(pixel[lane].x, pixel[lane].y) = layer
+                                                    ? Vec4f(color[lane], alpha[lane])
+                                                    : Vec4f(color[lane] + (1 - alpha[lane]) * options.background, 1.0f);
         }
       }
     report(tile);
@@ -148,7 +191,7 @@ ImageRGB render_volume(const Volume<float>& volume, const VolumeRenderOptions& o
   if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
   if (options.mip) {
     const auto [lo, hi] = value_range(volume);
-    return cast_rays(volume, options, lo, hi, nullptr);
+    return to_rgb(cast_rays(volume, options, lo, hi, nullptr, false));
   }
   return VolumeRenderer(volume).render(options);
 }
@@ -164,13 +207,25 @@ VolumeRenderer::VolumeRenderer(const Volume<float>& volume) : volume_(&volume) {
   if (volume.empty()) throw InvalidInput("cannot render an empty volume");
   prepared_ = std::make_unique<Prepared>(volume, value_range(volume));
 }
+VolumeRenderer::VolumeRenderer(const Volume<float>& volume, double lo, double hi) : volume_(&volume) {
+  if (volume.empty()) throw InvalidInput("cannot render an empty volume");
+  if (!(std::isfinite(lo) && std::isfinite(hi) && lo <= hi))
+    throw InvalidInput(fmt::format("value range [{}, {}] must be finite with lo <= hi", lo, hi));
+  prepared_ = std::make_unique<Prepared>(volume, std::pair{lo, hi});
+}
 VolumeRenderer::~VolumeRenderer() = default;
 VolumeRenderer::VolumeRenderer(VolumeRenderer&&) noexcept = default;
 VolumeRenderer& VolumeRenderer::operator=(VolumeRenderer&&) noexcept = default;
 
 ImageRGB VolumeRenderer::render(const VolumeRenderOptions& options) const {
   if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
-  return cast_rays(*volume_, options, prepared_->lo, prepared_->hi, &prepared_->packed);
+  return to_rgb(cast_rays(*volume_, options, prepared_->lo, prepared_->hi, &prepared_->packed, false));
+}
+
+ImageRGBA VolumeRenderer::render_layer(const VolumeRenderOptions& options) const {
+  if (options.width < 1 || options.height < 1) throw InvalidInput("image size must be positive");
+  if (options.mip) throw InvalidInput("maximum-intensity projection has no layer to composite");
+  return cast_rays(*volume_, options, prepared_->lo, prepared_->hi, &prepared_->packed, true);
 }
 
 }  // namespace tessera

@@ -66,7 +66,9 @@ void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color,
   const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f), termination = _mm256_set1_ps(o.termination);
   const __m256 infinity = _mm256_set1_ps(INFINITY);
 
-  __m256i k = _mm256_setzero_si256();
+  alignas(32) int k_in[8] = {};
+  for (int i = 0; i < count; ++i) k_in[i] = k_out[i];  // a loop, not std::copy_n: no AVX2 template copy to share
+  __m256i k = _mm256_load_si256(reinterpret_cast<const __m256i*>(k_in));
   __m256 red = zero, green = zero, blue = zero, a_acc = zero;
   // The sample index of a lane does not wait for its opacity (a lane past termination keeps stepping and adds
   // nothing), so that the next positions do not depend on the previous sample's gathers and shading: the loop's

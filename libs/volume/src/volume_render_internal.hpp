@@ -306,7 +306,8 @@ struct Caster {
 #define TESSERA_VOLUME_AVX2 1
 /// march() for up to 8 rays at once (AVX2 + FMA): each lane keeps its own sample index, so empty-block jumps and
 /// early termination stay per ray; the lanes' cell corners, table entries and block flags are gathered. Marches
-/// the regular samples only and returns each lane's next sample in k[]; the caller finishes every ray with march()
+/// the regular samples only, each lane from its k[] on entry, and returns each lane's next sample in k[]; the caller
+/// finishes every ray with march()
 /// (the shorter last segment). The same samples, skips and arithmetic as march(), up to rounding (FMA). Only for a
 /// CPU with AVX2 and FMA (cpu_features()), voxel indices below 2^31 and dims below 2^23.
 void march8(const Caster& cast, const RaySamples* rays, int count, Vec3f* color, float* alpha, int* k_out);

@@ -49,4 +49,13 @@ struct UnitResult {
 void farm_units(const Session& session, int count, const std::function<ImageRGB(int unit)>& render,
                 const std::function<void(UnitResult&& result)>& deliver);
 
+/// Sort-last compositing: each rank's `layer` is what its part of the scene adds to each pixel (color premultiplied
+/// by opacity, and opacity; all the same size), and `front_to_back` lists the ranks in visibility order (for parts
+/// that are slabs of a volume, nearest the eye first; a part a pixel's ray does not cross adds nothing there, so
+/// any order consistent along every ray will do). Binary swap (Ma et al. 1994): the first ranks in a count that is
+/// not a power of two fold into their neighbours in the order, then the remaining 2^k ranks halve the picture and
+/// trade halves k times, compositing with "over" in the order, and each sends its 1/2^k of the rows to rank 0.
+/// Returns the whole composited layer on rank 0, an empty image on the others.
+ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::vector<int>& front_to_back);
+
 }  // namespace tessera::mpi

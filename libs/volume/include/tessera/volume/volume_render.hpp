@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,21 @@ struct VolumeRenderOptions {
   Vec3f background{0.0f};
   /// Called (from worker threads, concurrently) with the number of pixels of each finished tile, for progress reports.
   std::function<void(int64_t pixels)> progress;
+
+  /// A brick of a volume split into slabs of z (sort-last rendering across MPI ranks, docs/farm.md): the volume
+  /// rendered holds slices [offset, offset + its dims.z) of a volume of `whole_dims`, and only the samples whose z, in
+  /// the whole volume's voxels, lies in [z_begin, z_end) are taken (all below z_end when `first`, all from z_begin
+  /// when `last`), at the positions a render of the whole volume samples. The slices z_begin - 1 and z_end + 1 must
+  /// be there where the whole volume has them (gradients). With the whole volume's value range, the bricks' layers
+  /// (VolumeRenderer::render_layer) composited front to back give the whole render, up to rounding and early ray
+  /// termination, which each brick applies to its own opacity.
+  struct Brick {
+    glm::ivec3 whole_dims{0};
+    int offset = 0;
+    int z_begin = 0, z_end = 0;
+    bool first = false, last = false;
+  };
+  std::optional<Brick> brick;
 };
 
 /// Ray-casts `volume` into an image (parallel tiles; identical for any thread count). Throws InvalidInput for an
@@ -111,12 +127,18 @@ class VolumeRenderer {
  public:
   /// Prepares `volume`. Throws InvalidInput for an empty volume.
   explicit VolumeRenderer(const Volume<float>& volume);
+  /// Prepares `volume` with the value range [lo, hi] rather than its own (a brick's, which must quantize and map
+  /// values as the whole volume does).
+  VolumeRenderer(const Volume<float>& volume, double lo, double hi);
   ~VolumeRenderer();
   VolumeRenderer(VolumeRenderer&&) noexcept;
   VolumeRenderer& operator=(VolumeRenderer&&) noexcept;
   /// Ray-casts the volume (see render_volume). Throws InvalidInput for a non-positive size or a step that
   /// render_volume refuses.
   ImageRGB render(const VolumeRenderOptions& options) const;
+  /// What the volume (or options.brick of it) adds to each pixel, without the background: color premultiplied by
+  /// opacity, and the opacity. render() is this layer over the background. Not for MIP (throws InvalidInput).
+  ImageRGBA render_layer(const VolumeRenderOptions& options) const;
 
  private:
   struct Prepared;
