@@ -540,3 +540,69 @@ TEST(VolumeRender, MipEndsWhenTheStepIsBelowTheUlpOfTheDistance) {
 
 }  // namespace
 }  // namespace tessera
+
+namespace tessera {
+namespace {
+
+// Sort-last rendering (docs/farm.md): a volume cut into slabs of z, each rendered as a brick that keeps only its
+// samples at the whole volume's positions, composited front to back ("over"), is the whole render. Early ray
+// termination off, as each brick applies it to its own opacity; both the 8-ray and the scalar paths; slab order
+// from the eye (in front of the volume, behind it, and inside its z range).
+TEST(VolumeRender, BrickLayersCompositedFrontToBackAreTheWholeRender) {
+  const auto whole = make_metaballs(36);
+  for (const Vec3 eye : {Vec3(0.4, 0.7, -2.5), Vec3(0.5, 0.8, 3.5), Vec3(3.5, 0.6, 0.45)}) {
+    for (const bool simd : {true, false}) {
+      SCOPED_TRACE(::testing::Message() << "eye " << eye.z << (simd ? " simd" : " scalar"));
+      auto o = metaball_view();
+      o.camera.eye = eye;
+      o.camera.center = Vec3(0.5);
+      o.termination = 1;
+      o.simd = simd;
+      const VolumeRenderer renderer(whole);
+      const ImageRGB reference = renderer.render(o);
+      // render() is the layer over the background.
+      const ImageRGBA full_layer = renderer.render_layer(o);
+      for (size_t i = 0; i < reference.pixels().size(); ++i) {
+        const Vec4f c = full_layer.pixels()[i];
+        ASSERT_EQ(Vec3f(c) + (1 - c.w) * o.background, reference.pixels()[i]);
+      }
+      const auto [lo, hi] = value_range(whole);
+      const glm::ivec3 dims = whole.dims();
+      const int bounds[] = {0, 9, 20, 35};  // cells [0, 9), [9, 20), [20, 35) of z
+      std::vector<ImageRGBA> layers;
+      for (int b = 0; b < 3; ++b) {
+        VolumeRenderOptions::Brick brick{dims, 0, bounds[b], bounds[b + 1], b == 0, b == 2};
+        const int z0 = std::max(0, brick.z_begin - 1), z1 = std::min(dims.z - 1, brick.z_end + 1);
+        brick.offset = z0;
+        Volume<float> part(glm::ivec3(dims.x, dims.y, z1 - z0 + 1), 0.0f, whole.spacing(),
+                           whole.to_world(Vec3(0, 0, z0)));
+        std::copy_n(&whole(0, 0, z0), part.voxel_count(), &part(0, 0, 0));
+        auto bo = o;
+        bo.brick = brick;
+        layers.push_back(VolumeRenderer(part, lo, hi).render_layer(bo));
+      }
+      // Front to back: ascending z when the eye is below the volume's z range, descending above it, and from the
+      // eye's slab outwards when it is inside (a ray crosses the slabs on one side of it only).
+      const double eye_z = (eye.z - whole.origin().z) / whole.spacing().z;
+      std::vector<int> order = eye_z < bounds[1]    ? std::vector{0, 1, 2}
+                               : eye_z >= bounds[2] ? std::vector{2, 1, 0}
+                                                    : std::vector{1, 2, 0};
+      double worst = 0;
+      for (size_t i = 0; i < reference.pixels().size(); ++i) {
+        Vec4f sum(0.0f);
+        for (const int b : order) {
+          const Vec4f c = layers[size_t(b)].pixels()[i];
+          sum += (1 - sum.w) * c;
+        }
+        const Vec3f composed = Vec3f(sum) + (1 - sum.w) * o.background;
+        const Vec3f d = glm::abs(composed - reference.pixels()[i]);
+        worst = std::max({worst, double(d.x), double(d.y), double(d.z)});
+      }
+      EXPECT_LT(worst, 1e-4);
+      EXPECT_GT(max_abs_difference(reference, ImageRGB(o.width, o.height, o.background)), 0.1);  // not empty
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera
