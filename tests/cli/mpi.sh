@@ -28,7 +28,7 @@ for n in 1 2 3 4; do
   run "$n" "$tessera" render whitted-moving --frame 5 -o "mpi$n/one.png" --size 90x70 --spp 4 --mpi --threads 1 \
     --stats > "stats$n.txt"
   cmp "mpi$n/one.png" local/one.png || fail "$n ranks: the tiled frame differs"
-  grep -q "^ranks=$n$" "stats$n.txt" && grep -q "^tiles=$((4 * n))$" "stats$n.txt" || fail "$(cat "stats$n.txt")"
+  grep -q "^ranks=$n$" "stats$n.txt" && grep -q "^tiles=$((16 * n))$" "stats$n.txt" || fail "$(cat "stats$n.txt")"
 done
 # --skip-existing on rank 0's word, and a movie in frame order whatever order the frames finish in.
 run 2 "$tessera" render whitted-moving --frames 3:8 -o mpi2/f_%04d.png --size 64x48 --spp 3 --mpi --skip-existing \

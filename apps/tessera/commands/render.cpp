@@ -97,8 +97,10 @@ struct Totals {
 };
 
 // Renders `part` of one frame of the scene.
+// Renders `part` of one frame of the scene; `prepared` is the scene's RayScene when the caller keeps one (the tiles of
+// a frame share it), else the ray tracer makes its own.
 ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptions& common, const Size2& size,
-                      const Part& part, PhaseTimer& timer, Totals& totals) {
+                      const Part& part, PhaseTimer& timer, Totals& totals, const RayScene* prepared = nullptr) {
   RenderSettings settings = render_settings(scene);
   if (size.width > 0) settings.width = size.width, settings.height = size.height;
   check_render_memory({settings.width, settings.height});  // a scene file's own size
@@ -132,7 +134,9 @@ ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptio
   } else {
     if (rect) settings.window = RenderSettings::Window{rect->x0, rect->y0, rect->x1, rect->y1};
     RenderStats stats;
-    image = timer.time("compute_s", [&] { return render(to_ray_scene(scene), settings, &stats); });
+    image = timer.time("compute_s", [&] {
+      return prepared ? render(*prepared, settings, &stats) : render(to_ray_scene(scene), settings, &stats);
+    });
     totals.seconds += stats.seconds;
     totals.eye_rays += double(stats.eye_rays);
     totals.rays += double(stats.rays);
@@ -206,27 +210,40 @@ bool run_render_mpi(const RenderArgs& a, const CommonOptions& common, const Anim
   }
   mpi::broadcast(session, frames);
   if (frames.empty()) return root;
-  // The frame's size, and the tiles each frame is cut into: as asked, else one per frame for an animation, or four
-  // per rank for a single frame (slow tiles balance); the rasterizer draws whole frames.
+  // The frame's size, and the tiles each frame is cut into: as asked, else four per frame for an animation (the last
+  // unit, which one rank finishes while the others wait, is then a quarter frame) or sixteen per rank for a single
+  // frame (slow tiles balance; a tile costs about 0.1 ms more, bench/farm/scaling.sh); the rasterizer draws whole
+  // frames.
   const Scene first = animated.at(frames.front());
   RenderSettings probe = render_settings(first);
   if (size.width > 0) probe.width = size.width, probe.height = size.height;
   const int width = probe.width, height = probe.height;
-  int tiles = a.tiles.value_or(frames.size() > 1 ? 1 : std::min(height, 4 * session.size()));
+  int tiles = a.tiles.value_or(std::min(height, frames.size() > 1 ? 4 : 16 * session.size()));
   if (a.backend == Backend::raster) tiles = 1;
   if (tiles < 1 || tiles > height)
     throw InvalidInput(fmt::format("--tiles: expected 1 to {} (the frame's rows), got {}", height, tiles));
-  std::optional<std::pair<int, Scene>> cached;  // the scene of the frame this rank rendered last
+  // The frame this rank rendered last, kept for its next tile of that frame: the scene and, for the ray tracer, its
+  // RayScene (the BVH).
+  struct Cached {
+    int frame;
+    Scene scene;
+    std::optional<RayScene> prepared;
+  };
+  std::optional<Cached> cached;
   const auto render_unit = [&](int unit) {
     const int frame = frames[size_t(unit / tiles)];
-    if (!cached || cached->first != frame) cached.emplace(frame, animated.at(frame));
+    if (!cached || cached->frame != frame) {
+      cached.emplace(Cached{frame, animated.at(frame), std::nullopt});
+      if (a.backend == Backend::raytrace) cached->prepared.emplace(to_ray_scene(cached->scene));
+    }
     Part part;
     if (tiles > 1) part.tile = TileSpec{unit % tiles, tiles};
     PhaseTimer unit_timer;
     Totals unit_totals;
     CommonOptions silent = common;
     silent.quiet = true;
-    return render_frame(cached->second, a, silent, size, part, unit_timer, unit_totals);
+    return render_frame(cached->scene, a, silent, size, part, unit_timer, unit_totals,
+                        cached->prepared ? &*cached->prepared : nullptr);
   };
   struct Pending {
     ImageRGB image;
@@ -403,7 +420,7 @@ void setup_render(CLI::App& cmd, CommonOptions& common) {
                "Render across the ranks of `mpirun -n R tessera render ... --mpi`: tiles of each frame handed out "
                "as ranks become free, written by rank 0 (docs/farm.md)");
   cmd.add_option("--tiles", a->tiles,
-                 "With --mpi: tiles per frame (default: 1 for several frames, 4 per rank for one frame)");
+                 "With --mpi: tiles per frame (default: 4 for several frames, 16 per rank for one frame)");
   cmd.add_option("--spp", a->spp, "Samples per pixel (default: the scene's)");
   cmd.add_option("--size", a->size, "Image size WxH (default: the scene's)")->check(size_format());
   cmd.add_option("--depth", a->depth, "Recursion depth, 1 = eye rays only (default: the scene's)");

@@ -304,7 +304,9 @@ void warn_if_empty(const ImageRGB& image, const VolumeRenderOptions& o, std::pai
 // `mpirun -n R tessera volume render ... --mpi`: rank r keeps slab r of the volume's cells along z (with the slices
 // its samples and gradients reach), renders what that slab adds to each pixel, and the layers are composited
 // sort-last, nearest the eye first, by binary swap (mpi::composite_layers). The picture on rank 0, empty elsewhere.
-ImageRGB render_bricks(const mpi::Session& session, Volume<float> whole, const VolumeRenderOptions& options) {
+// --stats: composite_s is the compositing's share of compute_s.
+ImageRGB render_bricks(const mpi::Session& session, Volume<float> whole, const VolumeRenderOptions& options,
+                       PhaseTimer& timer) {
   const int ranks = session.size(), rank = session.rank();
   const glm::ivec3 dims = whole.dims();
   const int cells = dims.z - 1;
@@ -332,7 +334,7 @@ ImageRGB render_bricks(const mpi::Session& session, Volume<float> whole, const V
   while (nearest + 1 < ranks && eye_z >= bound(nearest + 1)) ++nearest;
   for (int r = nearest; r < ranks; ++r) order.push_back(r);
   for (int r = nearest - 1; r >= 0; --r) order.push_back(r);
-  const ImageRGBA composite = mpi::composite_layers(session, layer, order);
+  const ImageRGBA composite = timer.time("composite_s", [&] { return mpi::composite_layers(session, layer, order); });
   if (rank != 0) return {};
   ImageRGB image(composite.width(), composite.height());
   for (size_t i = 0; i < image.pixels().size(); ++i) {
@@ -416,7 +418,7 @@ void setup_render(CLI::App& volume, CommonOptions& common) {
     const std::pair<double, double> range = value_range(v);
     ImageRGB image;
     if (session) {
-      image = timer.time("compute_s", [&] { return render_bricks(*session, std::move(*whole), o); });
+      image = timer.time("compute_s", [&] { return render_bricks(*session, std::move(*whole), o, timer); });
       whole.reset();
       if (!root) return;
     } else {

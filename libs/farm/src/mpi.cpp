@@ -77,12 +77,13 @@ void serve(const Session& session, int count, const std::function<ImageRGB(int)>
   const int others = session.size() - 1;
   try {
     while (delivered < count || released < others) {
-      // Results of this rank first, then every message waiting; when there is nothing, wait a little for either
-      // (a blocking MPI receive would spin a core that the local renderer needs).
+      // Results of this rank first, then every message waiting; when there is nothing, wait a millisecond for either
+      // (a blocking MPI receive would spin a core that the local renderer needs, and so would polling much more
+      // often; the other ranks ask for their next unit ahead, so the wait delays no one).
       std::deque<UnitResult> mine;
       {
         std::unique_lock lock(mutex);
-        ready.wait_for(lock, std::chrono::microseconds(200), [&] { return !local.empty() || local_done; });
+        ready.wait_for(lock, std::chrono::milliseconds(1), [&] { return !local.empty() || local_done; });
         mine.swap(local);
         if (local_error) std::rethrow_exception(local_error);
       }
@@ -117,14 +118,17 @@ void serve(const Session& session, int count, const std::function<ImageRGB(int)>
   worker.join();
 }
 
-// Ranks 1..: ask rank 0 for a unit, render it, send it back, until rank 0 answers -1.
+// Ranks 1..: ask rank 0 for a unit, and before rendering it ask for the next one, so that the answer (which rank 0
+// gives between its own polls) is there when the unit is done; send each result back, until rank 0 answers -1.
 void work(const std::function<ImageRGB(int)>& render) {
   try {
+    const int ask = 0;
+    MPI_Send(&ask, 1, MPI_INT, 0, kRequest, MPI_COMM_WORLD);
     for (;;) {
       int unit = 0;
-      MPI_Send(&unit, 1, MPI_INT, 0, kRequest, MPI_COMM_WORLD);
       MPI_Recv(&unit, 1, MPI_INT, 0, kAssign, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       if (unit < 0) return;
+      MPI_Send(&ask, 1, MPI_INT, 0, kRequest, MPI_COMM_WORLD);
       const UnitResult r = timed_render(render, unit);
       const Header h{unit, r.image.width(), r.image.height(), r.seconds};
       MPI_Send(&h, sizeof h, MPI_BYTE, 0, kHeader, MPI_COMM_WORLD);

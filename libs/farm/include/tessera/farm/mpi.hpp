@@ -42,10 +42,11 @@ struct UnitResult {
 };
 
 /// Works through units 0..count-1 on every rank. Each rank, rank 0 too (on a second thread, while its main thread
-/// serves the others), takes the next unit when it is free (dynamic assignment: slow units balance) and runs
-/// render(unit); rank 0's `deliver` receives every unit's result, on rank 0's main thread, in the order they finish.
-/// Returns on every rank once all units are delivered. An exception from render() or deliver() on any rank prints
-/// its message and aborts the whole job (MPI_Abort with exit code 1), as one failed rank cannot finish the work.
+/// serves the others), takes the next unit when it is free (dynamic assignment: slow units balance; ranks 1.. ask for
+/// their next unit as they start one, so none waits for an answer) and runs render(unit); rank 0's `deliver` receives
+/// every unit's result, on rank 0's main thread, in the order they finish. Returns on every rank once all units are
+/// delivered. An exception from render() or deliver() on any rank prints its message and aborts the whole job
+/// (MPI_Abort with exit code 1), as one failed rank cannot finish the work.
 void farm_units(const Session& session, int count, const std::function<ImageRGB(int unit)>& render,
                 const std::function<void(UnitResult&& result)>& deliver);
 
