@@ -153,14 +153,19 @@ py::tuple render_mesh_picture(py::handle value, int width, int height, py::dict 
   return py::make_tuple(to_python(std::move(picture.color)), to_python(std::move(picture.depth)), covered);
 }
 
+AnimatedScene animated_scene(const std::string& source, bool is_text, const std::string& base_dir) {
+  return is_text ? AnimatedScene(source, "scene", base_dir) : load_animated_scene(source);
+}
+
 py::object render_scene(const std::string& source, bool is_text, const std::string& base_dir, std::optional<int> width,
                         std::optional<int> height, std::optional<int> samples, std::optional<int> depth, uint64_t seed,
-                        const std::string& backend) {
+                        const std::string& backend, std::optional<int> frame) {
   const bool raster = choice<bool>(backend, {{"raytrace", false}, {"raster", true}}, "backend");
   ImageRGB image;
   {
     py::gil_scoped_release release;
-    const Scene scene = is_text ? parse_scene(source, "scene", base_dir) : load_scene_or_builtin(source);
+    const AnimatedScene animated = animated_scene(source, is_text, base_dir);
+    const Scene scene = animated.at(frame.value_or(animated.animation().first));
     RenderSettings settings = render_settings(scene);
     if (width) settings.width = *width;
     if (height) settings.height = *height;
@@ -224,7 +229,15 @@ py::tuple cast_rays(const RayCaster& caster, py::handle origins, py::handle dire
 void bind_rendering(py::module_& m) {
   m.def("_render_mesh", &render_mesh_picture, py::arg("mesh"), py::arg("width"), py::arg("height"), py::arg("options"));
   m.def("_render_scene", &render_scene, py::arg("source"), py::arg("is_text"), py::arg("base_dir"), py::arg("width"),
-        py::arg("height"), py::arg("samples"), py::arg("depth"), py::arg("seed"), py::arg("backend"));
+        py::arg("height"), py::arg("samples"), py::arg("depth"), py::arg("seed"), py::arg("backend"), py::arg("frame"));
+  m.def(
+      "_scene_animation",
+      [](const std::string& source, bool is_text, const std::string& base_dir) {
+        const AnimatedScene animated = animated_scene(source, is_text, base_dir);
+        const SceneAnimation& a = animated.animation();
+        return py::make_tuple(a.first, a.last, a.fps, a.shutter, animated.keyed());
+      },
+      py::arg("source"), py::arg("is_text"), py::arg("base_dir"));
   m.attr("builtin_scenes") = builtin_scene_names();
   py::class_<RayCaster, std::shared_ptr<RayCaster>>(m, "RayCaster",
                                                     R"(A mesh's bounding volume hierarchy for casting rays.

@@ -347,6 +347,17 @@ class Scene:
         """render_scene(self.source, size, **options)."""
         return render_scene(self.source, size, **options)
 
+    @property
+    def frames(self):
+        """The frames the scene spans, a range (range(0, 1) for a still scene; docs/scene-format.md "Animation")."""
+        first, last, _, _, _ = _tessera._scene_animation(*_scene_source(self.source))
+        return range(first, last + 1)
+
+    @property
+    def fps(self):
+        """The scene's frames per second."""
+        return _tessera._scene_animation(*_scene_source(self.source))[2]
+
     def __repr__(self):
         return f"tessera.Scene({self.source!r})" if not isinstance(self.source, dict) else "tessera.Scene({...})"
 
@@ -354,20 +365,25 @@ class Scene:
         return self.render(samples=1)._repr_png_()
 
 
-def render_scene(scene, size=None, *, samples=None, depth=None, seed=0, backend="raytrace", threads=None):
+def _scene_source(scene):
+    """(source, is_text, base folder) of a scene given as a Scene, a built-in name, a .json path or a dict."""
+    if isinstance(scene, Scene):
+        scene = scene.source
+    if isinstance(scene, dict):
+        return _json.dumps(scene), True, _os.getcwd()
+    return _os.fspath(scene), False, ""
+
+
+def render_scene(scene, size=None, *, samples=None, depth=None, seed=0, backend="raytrace", frame=None, threads=None):
     """Renders a scene (docs/scene-format.md) with the ray tracer (backend 'raytrace': recursive and distribution
     ray tracing) or the rasterizer ('raster'), as `tessera render` does.
 
     scene: a built-in name (tessera.builtin_scenes), a .json file, or a dict in the scene format (paths in it relative
     to the working folder). size (width, height), samples (per pixel) and depth (recursion) replace the scene's own.
-    Returns the Image (H, W, 3), linear.
+    frame: the frame of an animated scene (its keyed values there; Scene(...).frames lists them), by default its
+    first. Returns the Image (H, W, 3), linear.
     """
-    if isinstance(scene, Scene):
-        scene = scene.source
-    if isinstance(scene, dict):
-        source, is_text, base = _json.dumps(scene), True, _os.getcwd()
-    else:
-        source, is_text, base = _os.fspath(scene), False, ""
+    source, is_text, base = _scene_source(scene)
     width, height = (None, None) if size is None else _size(size)
     return _threaded(threads, lambda: _tessera._render_scene(source, is_text, base, width, height, samples, depth,
-                                                             seed, backend))
+                                                             seed, backend, frame))

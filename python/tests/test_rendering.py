@@ -54,6 +54,28 @@ def test_render_scene_equals_the_cli(tmp_path, cli):
         tessera.render_scene(scene)
 
 
+def test_frames_of_an_animated_scene_equal_the_cli(tmp_path, cli):
+    scene = tessera.Scene("whitted-moving")
+    assert scene.frames == range(0, 48) and scene.fps == 24
+    assert tessera.Scene("whitted").frames == range(0, 1)
+    cli("render", "whitted-moving", "--frames", "11:12", "-o", tmp_path / "f_%02d.pfm", "--size", "40x30", "--spp", 2,
+        "--quiet")
+    for frame in (11, 12):
+        image = tessera.render_scene("whitted-moving", size=(40, 30), samples=2, frame=frame)
+        assert np.array_equal(image, tessera.read_image(tmp_path / f"f_{frame}.pfm")[..., :3])
+    assert not np.array_equal(tessera.render_scene("whitted-moving", (40, 30), samples=2, frame=0),
+                              tessera.render_scene("whitted-moving", (40, 30), samples=2, frame=12))
+    with pytest.raises(tessera.InvalidInput, match="frame 48 is outside the scene's frames 0..47"):
+        tessera.render_scene("whitted-moving", (8, 6), frame=48)
+    keyed = {"animation": {"frames": [0, 10]},
+             "camera": {"eye": {"keys": [[0, [0, 0, 5]], [10, [0, 0, 3]]]}, "center": [0, 0, 0]},
+             "materials": {"m": {"diffuse": 0.8}},
+             "objects": [{"type": "sphere", "radius": 1, "material": "m"}]}
+    assert tessera.Scene(keyed).frames == range(0, 11)
+    near, far = (tessera.render_scene(keyed, (32, 32), frame=f) for f in (10, 0))
+    assert (near.sum(axis=2) > 0.05).sum() > (far.sum(axis=2) > 0.05).sum()  # the sphere grows as the eye nears
+
+
 def test_ray_casting_hits_the_box_where_planes_say():
     caster = tessera.RayCaster(tessera.box())
     rng = np.random.default_rng(3)
