@@ -2,7 +2,7 @@
 # Real mpirun ranks on this machine (Open MPI, --oversubscribe): `render --mpi` of an animation and of one frame in
 # tiles gives the bytes of a one-process render for 1 to 4 ranks, and `volume render --mpi` (slabs of z composited by
 # binary swap) is the one-process picture within 1/255 (early ray termination off on both, as each brick applies it
-# to its own opacity). Exits 77 (skipped) when Tessera was built without MPI or mpirun is missing.
+# to its own opacity), and `volume isosurface --mpi` (slabs welded on rank 0) is the one-process mesh. Exits 77 (skipped) when Tessera was built without MPI or mpirun is missing.
 set -euo pipefail
 tessera="$1"
 scratch="$2"
@@ -60,6 +60,35 @@ assert max(a) > 0.1, "the picture is empty"
 PY
   done
 done
+# Iso-surfaces: slabs of z extracted in the whole volume's coordinates and welded on rank 0 give the one-process mesh:
+# the same vertices (as written, bit for bit) and the same triangles, classic and topological.
+for volume in "${volumes[@]}"; do
+  for mode in "" --topological; do
+    "$tessera" volume isosurface "$volume" -o i1.obj $mode --quiet
+    for n in 2 3 4; do
+      run "$n" "$tessera" volume isosurface "$volume" -o "i$n.obj" $mode --mpi --threads 1 --quiet
+      /usr/bin/python3 - i1.obj "i$n.obj" <<'PY' || fail "$volume $mode: the iso-surface on $n ranks differs"
+import sys
+def load(path):
+    vertices, faces = [], []
+    for line in open(path):
+        if line.startswith("v "):
+            vertices.append(tuple(line.split()[1:4]))
+        elif line.startswith("f "):
+            faces.append([int(t.split("/")[0]) - 1 for t in line.split()[1:]])
+    # A triangle by its corners' positions, rotated to start at the smallest (orientation kept).
+    def key(f):
+        c = [vertices[i] for i in f]
+        k = c.index(min(c))
+        return tuple(c[k:] + c[:k])
+    return sorted(vertices), sorted(key(f) for f in faces)
+a, b = load(sys.argv[1]), load(sys.argv[2])
+assert len(a[0]) > 100 and a == b, (len(a[0]), len(b[0]), len(a[1]), len(b[1]))
+PY
+    done
+  done
+done
+
 status() { set +e; "$@" > /dev/null 2>&1; echo $?; set -e; }
 test "$(status run 2 "$tessera" volume render gyroid:20 -o m.png --mip --mpi)" != 0
 test "$(status run 2 "$tessera" render whitted-moving --frame 1 --tile 0/2 -o t.png --mpi)" != 0

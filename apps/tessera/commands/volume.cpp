@@ -1,6 +1,7 @@
 // tessera volume info|slice|contour|isosurface|render: volume data from raw/NRRD/MetaImage files or procedural names.
 #include <fmt/format.h>
 
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -14,6 +15,7 @@
 #include "tessera/image/image_io.hpp"
 #include "tessera/mesh/measure.hpp"
 #include "tessera/mesh/mesh_io.hpp"
+#include "tessera/mesh/soup.hpp"
 #include "tessera/raster2d/canvas.hpp"
 #include "tessera/volume/marching_cubes.hpp"
 #include "tessera/volume/marching_squares.hpp"
@@ -242,6 +244,67 @@ void setup_contour(CLI::App& volume, CommonOptions& common) {
   });
 }
 
+// `mpirun -n R tessera volume isosurface ... --mpi`: rank r extracts the cell layers of slab r (with the slices beyond
+// them that its normals read), in the whole volume's coordinates, and rank 0 joins the pieces, welding the vertices
+// that neighbouring slabs both put on their shared plane (bit-identical: the same voxels and arithmetic). The mesh on
+// rank 0, empty elsewhere.
+PolyMesh isosurface_bricks(const mpi::Session& session, const Volume<float>& v, const MarchingCubesOptions& options) {
+  const int ranks = session.size(), rank = session.rank();
+  const glm::ivec3 dims = v.dims();
+  const int cells = dims.z - 1;
+  if (cells < ranks)
+    throw InvalidInput(fmt::format("--mpi: {} ranks cannot share the {} cell layers of z", ranks, std::max(cells, 0)));
+  const auto bound = [&](int r) { return int(int64_t(r) * cells / ranks); };
+  const int z0 = std::max(0, bound(rank) - 1), z1 = std::min(dims.z - 1, bound(rank + 1) + 1);
+  VoxelGrid brick{&v(0, 0, z0), glm::ivec3(dims.x, dims.y, z1 - z0 + 1), v.spacing(), v.origin(), z0};
+  MarchingCubesOptions o = options;
+  o.first_layer = bound(rank) - z0;
+  o.end_layer = bound(rank + 1) - z0;
+  const PolyMesh piece = marching_cubes(brick, o);
+  // On the wire: vertex and face counts, positions, normals (as many as positions, or none), then the faces'
+  // vertex indices (marching cubes gives triangles only).
+  std::string bytes;
+  const auto put = [&](const void* data, size_t size) { bytes.append(static_cast<const char*>(data), size); };
+  const uint64_t counts[3] = {piece.positions.size(), piece.normals.size(), piece.face_vertices.size()};
+  put(counts, sizeof counts);
+  put(piece.positions.data(), piece.positions.size() * sizeof(Vec3));
+  put(piece.normals.data(), piece.normals.size() * sizeof(Vec3));
+  put(piece.face_vertices.data(), piece.face_vertices.size() * sizeof(uint32_t));
+  const std::vector<std::string> parts = mpi::gather(session, bytes);
+  if (rank != 0) return {};
+  std::vector<Vec3> positions, normals;
+  std::vector<uint32_t> corners;
+  for (const std::string& part : parts) {
+    uint64_t n[3];
+    std::memcpy(n, part.data(), sizeof n);
+    const char* at = part.data() + sizeof n;
+    const auto base = uint32_t(positions.size());
+    const auto take = [&](auto& out, uint64_t count) {
+      const size_t first = out.size();
+      out.resize(first + count);
+      std::memcpy(out.data() + first, at, count * sizeof(out[0]));
+      at += count * sizeof(out[0]);
+    };
+    take(positions, n[0]);
+    take(normals, n[1]);
+    const size_t first = corners.size();
+    take(corners, n[2]);
+    for (size_t i = first; i < corners.size(); ++i) corners[i] += base;
+  }
+  const WeldedPoints welded = weld_points(positions);
+  PolyMesh mesh;
+  mesh.positions = welded.points;
+  if (!normals.empty()) {
+    mesh.normals.resize(mesh.positions.size());
+    for (size_t i = 0; i < normals.size(); ++i) mesh.normals[welded.remap[i]] = normals[i];
+  }
+  mesh.face_vertices.reserve(corners.size());
+  for (const uint32_t c : corners) mesh.face_vertices.push_back(welded.remap[c]);
+  mesh.face_offsets.resize(corners.size() / 3 + 1);
+  for (size_t f = 0; f < mesh.face_offsets.size(); ++f) mesh.face_offsets[f] = uint32_t(3 * f);
+  return mesh;
+}
+
 void setup_isosurface(CLI::App& volume, CommonOptions& common) {
   auto* cmd = volume.add_subcommand("isosurface", "Marching-cubes iso-surface as a mesh file");
   auto in = std::make_shared<VolumeInput>();
@@ -252,15 +315,24 @@ void setup_isosurface(CLI::App& volume, CommonOptions& common) {
   cmd->add_option("--iso", *iso, "Iso value (inside is value >= iso; default: Otsu's threshold of the volume)");
   cmd->add_option("-o,--output", *output, "Output mesh (.obj, .ply, .off, .stl)")->required();
   cmd->add_flag("--topological", options->topological, "Resolve ambiguous faces with the asymptotic decider");
+  auto mpi = std::make_shared<bool>(false);
+  cmd->add_flag("--mpi", *mpi,
+                "Extract across the ranks of `mpirun -n R tessera volume isosurface ... --mpi`: each takes a slab of "
+                "z, rank 0 joins and welds the pieces (docs/farm.md)");
   add_common_options(*cmd, common);
-  cmd->callback([in, options, output, iso, &common] {
+  cmd->callback([in, options, output, iso, mpi, &common] {
     PhaseTimer timer;
+    std::optional<mpi::Session> session;
+    if (*mpi) session.emplace();
+    const bool root = !session || session->rank() == 0;
     const Volume<float> v = timer.time("read_s", [&] { return to_float(in->read()); });
     MarchingCubesOptions o = *options;
-    o.iso = iso_or_threshold(*iso, v, common.quiet);
+    o.iso = iso_or_threshold(*iso, v, common.quiet || !root);
     const auto [lo, hi] = value_range(v);
-    warn_outside(o.iso, lo, hi, "volume");
-    const PolyMesh mesh = timer.time("compute_s", [&] { return marching_cubes(v, o); });
+    if (root) warn_outside(o.iso, lo, hi, "volume");
+    const PolyMesh mesh =
+        timer.time("compute_s", [&] { return session ? isosurface_bricks(*session, v, o) : marching_cubes(v, o); });
+    if (!root) return;
     timer.time("write_s", [&] { write_mesh(*output, mesh); });
     if (common.stats) {
       const std::string triangles = stat_value(double(mesh.face_count())),

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <climits>
 #include <condition_variable>
 #include <cstdio>
+#include <cstring>
 #include <deque>
 #include <exception>
 #include <mutex>
@@ -244,6 +246,26 @@ ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::v
   return whole;
 }
 
+std::vector<std::string> gather(const Session& session, const std::string& mine) {
+  if (mine.size() > size_t(INT_MAX)) throw InvalidInput("MPI: a rank's part is over 2 GiB");
+  const int size = int(mine.size());
+  std::vector<int> sizes(size_t(session.size())), offsets(size_t(session.size()) + 1, 0);
+  MPI_Gather(&size, 1, MPI_INT, sizes.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::string all;
+  if (session.rank() == 0) {
+    for (size_t r = 0; r < sizes.size(); ++r) {
+      if (int64_t(offsets[r]) + sizes[r] > INT_MAX) throw InvalidInput("MPI: the parts together are over 2 GiB");
+      offsets[r + 1] = offsets[r] + sizes[r];
+    }
+    all.resize(size_t(offsets.back()));
+  }
+  MPI_Gatherv(mine.data(), size, MPI_BYTE, all.data(), sizes.data(), offsets.data(), MPI_BYTE, 0, MPI_COMM_WORLD);
+  std::vector<std::string> parts;
+  if (session.rank() == 0)
+    for (size_t r = 0; r < sizes.size(); ++r) parts.push_back(all.substr(size_t(offsets[r]), size_t(sizes[r])));
+  return parts;
+}
+
 void broadcast(const Session&, std::vector<int>& values) {
   int size = int(values.size());
   MPI_Bcast(&size, 1, MPI_INT, 0, MPI_COMM_WORLD);
@@ -271,6 +293,10 @@ Session::Session() {
 Session::~Session() = default;
 
 void broadcast(const Session&, std::vector<int>&) { throw InvalidInput("MPI: this Tessera was built without MPI"); }
+
+std::vector<std::string> gather(const Session&, const std::string&) {
+  throw InvalidInput("MPI: this Tessera was built without MPI");
+}
 
 ImageRGBA composite_layers(const Session&, ImageRGBA, const std::vector<int>&) {
   throw InvalidInput("MPI: this Tessera was built without MPI");

@@ -95,6 +95,7 @@ class Extractor {
         data_(v.voxels),
         spacing_(v.spacing),
         origin_(v.origin),
+        z_offset_(v.z_offset),
         plane_(size_t(d_.x) * size_t(d_.y)),
         per_difference_(std::min({v.spacing.x, v.spacing.y, v.spacing.z}) / v.spacing),
         words_(size_t(d_.x + 63) / 64) {}
@@ -108,10 +109,13 @@ class Extractor {
     if (d_.x < 2 || d_.y < 2 || d_.z < 2) return 0;
     // The valid bits of a row's last word for cells and x-edges (x < nx - 1).
     edge_tail_ = (Word(1) << (d_.x - 1 - 64 * int(words_ - 1))) - 1;
-    const int layers = d_.z - 1, per = std::max(1, o_.slab_layers);
+    const int layer0 = std::clamp(o_.first_layer, 0, d_.z - 1);
+    const int layer1 = std::clamp(o_.end_layer < 0 ? d_.z - 1 : o_.end_layer, layer0, d_.z - 1);
+    const int layers = layer1 - layer0, per = std::max(1, o_.slab_layers);
+    if (layers == 0) return 0;
     const int slabs = (layers + per - 1) / per;
     slab_first_.resize(size_t(slabs) + 1);
-    for (int s = 0; s <= slabs; ++s) slab_first_[size_t(s)] = std::min(s * per, layers);
+    for (int s = 0; s <= slabs; ++s) slab_first_[size_t(s)] = layer0 + std::min(s * per, layers);
     slabs_ = slabs;
 
     // Pass 1: counts per slab, then every slab's first vertex, triangle and center vertex.
@@ -253,7 +257,7 @@ class Extractor {
     q[axis] += 1;
     const double a = data_[at(p.x, p.y, p.z)], b = data_[at(q.x, q.y, q.z)];
     const double t = std::clamp((double(o_.iso) - a) / (b - a), kEdgeNudge, 1.0 - kEdgeNudge);
-    Vec3 grid(p);
+    Vec3 grid(p.x, p.y, p.z + z_offset_);  // the whole volume's voxel coordinates (integers: exact)
     grid[axis] += t;
     Vec3 normal(0.0);
     if (o_.normals) {
@@ -451,6 +455,7 @@ class Extractor {
   glm::ivec3 d_;
   const float* data_;
   Vec3 spacing_, origin_;
+  int z_offset_;
   size_t plane_;
   Vec3 per_difference_;  ///< smallest spacing / spacing: a difference over one voxel, scaled as gradient() returns
   size_t words_;

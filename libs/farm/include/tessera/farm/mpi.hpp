@@ -4,6 +4,7 @@
 // (libopenmpi-dev) is found; elsewhere Session refuses to start.
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "tessera/image/image.hpp"
@@ -33,6 +34,9 @@ class Session {
 
 /// Rank 0's `values` on every rank (MPI_Bcast of the size, then the values).
 void broadcast(const Session& session, std::vector<int>& values);
+
+/// Every rank's `mine`, in rank order, on rank 0 (MPI_Gather of the sizes, then MPI_Gatherv); empty on the others.
+std::vector<std::string> gather(const Session& session, const std::string& mine);
 
 /// One finished unit: its index, its pixels and the seconds render() took.
 struct UnitResult {

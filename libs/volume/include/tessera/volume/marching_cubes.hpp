@@ -21,6 +21,10 @@ struct MarchingCubesOptions {
   bool topological = false;  ///< resolve ambiguous faces by the asymptotic decider (Nielson & Hamann 1991)
   bool normals = true;       ///< per-vertex normals from the interpolated central-difference gradient
   int slab_layers = 8;       ///< cell layers per parallel work item (any value gives the same mesh)
+  /// Only the cell layers [first_layer, end_layer) of z (end_layer -1: to the last): a brick of a volume split among
+  /// MPI ranks, whose slices beyond its layers are there for the normals' central differences. The brick's top plane
+  /// gets its vertices too, the same as the next brick's bottom plane (welded when the bricks' meshes are joined).
+  int first_layer = 0, end_layer = -1;
 };
 
 /// Float voxels held elsewhere (a numpy array, a mapped file), laid out as Volume's (x fastest, then y, then z), with
@@ -29,10 +33,13 @@ struct VoxelGrid {
   const float* voxels = nullptr;  ///< dims.x * dims.y * dims.z values
   glm::ivec3 dims{0};
   Vec3 spacing{1.0}, origin{0.0};
+  /// The grid's slice 0 is slice z_offset of the volume that `origin` places (a brick of a split volume): vertices
+  /// come out where that volume's own extraction puts them, bit for bit.
+  int z_offset = 0;
 
   /// The grid of a volume (valid while it lives).
   static VoxelGrid of(const Volume<float>& volume) {
-    return {volume.voxels().data(), volume.dims(), volume.spacing(), volume.origin()};
+    return {volume.voxels().data(), volume.dims(), volume.spacing(), volume.origin(), 0};
   }
 };
 
