@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -149,6 +150,49 @@ TEST(MarchingCubes, VoxelGridEqualsTheVolume) {
   EXPECT_THROW(marching_cubes(VoxelGrid{nullptr, v.dims()}), InvalidInput);
   EXPECT_THROW(marching_cubes(VoxelGrid{copy.data(), {0, 4, 4}}), InvalidInput);
   EXPECT_THROW(marching_cubes(VoxelGrid{copy.data(), v.dims(), Vec3(1, 0, 1)}), InvalidInput);
+}
+
+// A volume cut into slabs of cell layers (as `volume isosurface --mpi` cuts it), each extracted from a brick that
+// holds its layers and one slice beyond each end, in the whole volume's coordinates: the pieces hold the whole
+// mesh's vertices bit for bit (with their normals), the shared planes' vertices twice, and together its triangles.
+TEST(MarchingCubes, SlabsOfLayersAreTheWholeMesh) {
+  auto v = make_gyroid(30);
+  v.set_spacing(Vec3(0.5, 0.75, 1.3));
+  v.set_origin(Vec3(-1.1, 2, 0.37));
+  for (const bool topological : {false, true}) {
+    const MarchingCubesOptions options{.iso = 0.2f, .topological = topological};
+    const PolyMesh whole = marching_cubes(v, options);
+    std::map<std::array<double, 3>, Vec3> normal_of;
+    for (size_t i = 0; i < whole.positions.size(); ++i)
+      normal_of[{whole.positions[i].x, whole.positions[i].y, whole.positions[i].z}] = whole.normals[i];
+    const auto triangle = [](const PolyMesh& m, size_t f) {
+      std::array<std::array<double, 3>, 3> t;
+      for (int k = 0; k < 3; ++k) {
+        const Vec3& p = m.positions[m.face_vertices[3 * f + size_t(k)]];
+        t[size_t(k)] = {p.x, p.y, p.z};
+      }
+      std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());  // same triangle, same orientation
+      return t;
+    };
+    std::multiset<std::array<std::array<double, 3>, 3>> expected, pieces;
+    for (size_t f = 0; f < whole.face_count(); ++f) expected.insert(triangle(whole, f));
+    const int bounds[] = {0, 7, 8, 19, 29};  // layers of z: 29 cells, one slab a single layer thick
+    for (int b = 0; b < 4; ++b) {
+      const int z0 = std::max(0, bounds[b] - 1), z1 = std::min(v.dims().z - 1, bounds[b + 1] + 1);
+      const VoxelGrid brick{&v(0, 0, z0), {v.dims().x, v.dims().y, z1 - z0 + 1}, v.spacing(), v.origin(), z0};
+      MarchingCubesOptions o = options;
+      o.first_layer = bounds[b] - z0;
+      o.end_layer = bounds[b + 1] - z0;
+      const PolyMesh piece = marching_cubes(brick, o);
+      for (size_t i = 0; i < piece.positions.size(); ++i) {
+        const auto it = normal_of.find({piece.positions[i].x, piece.positions[i].y, piece.positions[i].z});
+        ASSERT_NE(it, normal_of.end()) << "slab " << b << " made a vertex the whole mesh lacks";
+        EXPECT_EQ(it->second, piece.normals[i]);
+      }
+      for (size_t f = 0; f < piece.face_count(); ++f) pieces.insert(triangle(piece, f));
+    }
+    EXPECT_EQ(pieces, expected) << (topological ? "topological" : "classic");
+  }
 }
 
 // Issue 24, class 2 (fuzzer finding): gradients were floats, so finite values of both signs near float's limit, or
