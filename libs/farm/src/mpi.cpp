@@ -141,27 +141,18 @@ void work(const std::function<ImageRGB(int)>& render) {
   }
 }
 
-// front over back, rows [y0, y1) of `front` (and of `back`, which holds just those rows from row 0) into `front`.
-void over(ImageRGBA& front, int y0, int y1, const std::vector<float>& back) {
-  const auto width = size_t(front.width());
-  for (int y = y0; y < y1; ++y)
-    for (size_t x = 0; x < width; ++x) {
-      glm::vec4& f = front.row(y)[x];
-      const float* b = &back[4 * ((size_t(y - y0)) * width + x)];
-      const float t = 1 - f.w;
-      f = glm::vec4(f.x + t * b[0], f.y + t * b[1], f.z + t * b[2], f.w + t * b[3]);
-    }
-}
-
-// back over nothing, then `front` (rows [y0, y1) from row 0) over it: the result in `image`'s rows.
-void under(ImageRGBA& image, int y0, int y1, const std::vector<float>& front) {
+// Rows [y0, y1) of `image` composited with `other` (the same rows, from row 0) by "over", the result in `image`:
+// `image` in front when `in_front`, else behind.
+void composite_rows(ImageRGBA& image, int y0, int y1, const std::vector<float>& other, bool in_front) {
   const auto width = size_t(image.width());
   for (int y = y0; y < y1; ++y)
     for (size_t x = 0; x < width; ++x) {
-      glm::vec4& b = image.row(y)[x];
-      const float* f = &front[4 * ((size_t(y - y0)) * width + x)];
-      const float t = 1 - f[3];
-      b = glm::vec4(f[0] + t * b.x, f[1] + t * b.y, f[2] + t * b.z, f[3] + t * b.w);
+      glm::vec4& mine = image.row(y)[x];
+      const float* o = &other[4 * (size_t(y - y0) * width + x)];
+      const glm::vec4 theirs(o[0], o[1], o[2], o[3]);
+      const glm::vec4& front = in_front ? mine : theirs;
+      const glm::vec4& back = in_front ? theirs : mine;
+      mine = front + (1 - front.w) * back;
     }
 }
 
@@ -199,7 +190,7 @@ ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::v
     received.resize(size_t(floats(layer, 0, height)));
     MPI_Recv(received.data(), int(received.size()), MPI_FLOAT, front_to_back[size_t(position + 1)], kPixels,
              MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    over(layer, 0, height, received);
+    composite_rows(layer, 0, height, received, true);
   }
   // The 2^k participants, in visibility order, and this rank's index among them.
   const auto participant = [&](int v) { return front_to_back[size_t(v < extra ? 2 * v : v + extra)]; };
@@ -215,10 +206,7 @@ ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::v
     MPI_Sendrecv(rows_of(layer, give0), floats(layer, give0, give1), MPI_FLOAT, participant(partner), kPixels,
                  received.data(), int(received.size()), MPI_FLOAT, participant(partner), kPixels, MPI_COMM_WORLD,
                  MPI_STATUS_IGNORE);
-    if (front)
-      over(layer, keep0, keep1, received);
-    else
-      under(layer, keep0, keep1, received);
+    composite_rows(layer, keep0, keep1, received, front);
     y0 = keep0, y1 = keep1;
   }
   // Gather: every participant's rows to rank 0.
