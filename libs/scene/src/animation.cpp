@@ -128,6 +128,7 @@ Json evaluate(const Track& track, double frame) {
 }
 
 // Checks every keyed value in `v` (so that a bad key fails on loading, whatever frame is asked for); true if any.
+// The recursion is as deep as the document, which parse_scene_json bounds (64 levels).
 bool check_keyed(const Json& v, const std::string& name, const std::string& path) {
   if (is_keyed(v)) return read_track(v, name, path), true;
   bool any = false;

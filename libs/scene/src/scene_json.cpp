@@ -40,11 +40,11 @@ struct LocatingParser : nlohmann::detail::json_sax_dom_parser<Json> {
     return Base::parse_error(byte, token, e);
   }
   bool start_object(size_t n) {
-    frames_.push_back({child_path(), false});
+    enter(false);
     return Base::start_object(n);
   }
   bool start_array(size_t n) {
-    frames_.push_back({child_path(), true});
+    enter(true);
     return Base::start_array(n);
   }
   bool end_object() {
@@ -78,6 +78,15 @@ struct LocatingParser : nlohmann::detail::json_sax_dom_parser<Json> {
     std::set<std::string> keys;
     std::string last_key;
   };
+  /// Opens an object or array, refusing nesting deeper than kMaxDepth: the format needs a few levels, and a million
+  /// '[' would cost the paths' memory (each level keeps its own) and the recursion of whatever walks the document.
+  void enter(bool array) {
+    if (frames_.size() >= kMaxDepth)
+      throw InvalidInput(located(name_, fmt::format("{}: objects and arrays nested deeper than {} levels",
+                                                    printable(frames_.back().path), kMaxDepth)));
+    frames_.push_back({child_path(), array});
+  }
+  static constexpr size_t kMaxDepth = 64;
   /// The path of the value that starts now; counts it when it is an array element.
   std::string child_path() {
     if (frames_.empty()) return "";

@@ -13,7 +13,8 @@ namespace tessera::detail {
 
 using Json = nlohmann::json;
 
-/// Parses scene JSON text; throws InvalidInput "name: byte N: ..." for malformed JSON or a duplicate key.
+/// Parses scene JSON text; throws InvalidInput "name: byte N: ..." for malformed JSON, and naming the path for a
+/// duplicate key or objects and arrays nested deeper than 64 levels.
 Json parse_scene_json(std::string_view text, const std::string& name);
 
 /// The scene a document describes (keyed values already evaluated); throws InvalidInput naming the JSON path.

@@ -125,6 +125,9 @@ TEST(Animation, BadKeysAndTimeLinesNameTheirPath) {
   expect_error(scene_json("[0, 0, 5]", "[]", R"({"fps": 0})"), "animation.fps");
   expect_error(scene_json("[0, 0, 5]", "[]", R"({"shutter": 2})"), "animation.shutter");
   expect_error(scene_json("[0, 0, 5]", "[]", R"({"speed": 2})"), "animation.speed: unknown key");
+  // A million nested arrays (each level's path kept, and a recursive walk's stack) are refused at depth 64.
+  expect_error(R"({"objects": )" + std::string(1'000'000, '[') + std::string(1'000'000, ']') + "}",
+               "objects and arrays nested deeper than 64 levels");
   // A value that is valid at some frames only fails at those: the eye meets the center at frame 5.
   const AnimatedScene crossing(scene_json(R"({"keys": [[0, [0, 0, 5]], [10, [0, 0, -5]]]})"), "s.json", {});
   EXPECT_NO_THROW(crossing.at(4));
