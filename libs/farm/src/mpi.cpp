@@ -183,12 +183,12 @@ ImageRGBA composite_layers(const Session& session, ImageRGBA layer, const std::v
   // Fold: positions 2i + 1 (i < extra) hand their layer to 2i, in front of them.
   if (position < 2 * extra) {
     if (position % 2 == 1) {
-      MPI_Send(rows_of(layer, 0), floats(layer, 0, height), MPI_FLOAT, front_to_back[size_t(position - 1)], kPixels,
+      MPI_Send(rows_of(layer, 0), floats(layer, 0, height), MPI_FLOAT, front_to_back[size_t(position) - 1], kPixels,
                MPI_COMM_WORLD);
       return {};
     }
     received.resize(size_t(floats(layer, 0, height)));
-    MPI_Recv(received.data(), int(received.size()), MPI_FLOAT, front_to_back[size_t(position + 1)], kPixels,
+    MPI_Recv(received.data(), int(received.size()), MPI_FLOAT, front_to_back[size_t(position) + 1], kPixels,
              MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     composite_rows(layer, 0, height, received, true);
   }
