@@ -41,6 +41,12 @@ grep -q '^frames=1$' skip.txt && grep -q '^skipped=3$' skip.txt || fail "skip: $
 test "$(stat -c %Y seq/f_0011.png)" = "$before"
 "$tessera" render whitted-moving --frame 12 -o one.png --size 48x36 --spp 2 --quiet
 cmp one.png seq/f_0012.png || fail "the re-rendered frame differs"
+# Other settings make other pictures: with another --spp nothing is skipped, and the entries say what made them.
+"$tessera" render whitted-moving --frames 10:11 -o seq/f_%04d.png --size 48x36 --spp 3 --skip-existing --stats \
+  --quiet > respp.txt
+grep -q '^frames=2$' respp.txt && grep -q '^skipped=0$' respp.txt || fail "other settings: $(cat respp.txt)"
+grep -q '"settings": "scene [0-9a-f]* size 48x36 spp 3 depth scene seed 0 backend raytrace shadows map srgb 0"' \
+  seq/frames.json || fail "no settings in frames.json"
 
 # Every split of a frame assembles into the unsplit frame's bytes: ray tracer with motion blur (tile K on K % 2 + 1
 # threads) and rasterizer, PNG and PFM.

@@ -146,23 +146,39 @@ ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptio
   return image;
 }
 
+// What decides a rendered picture's pixels, for the manifest: the scene's bytes (a file's or a built-in's) and every
+// option that changes pixels. A rerun with --skip-existing renders again what other settings made.
+std::string render_fingerprint(const RenderArgs& a, const CommonOptions& common) {
+  std::error_code ec;
+  const uint32_t scene = fs::is_regular_file(a.scene, ec) ? file_crc32(a.scene) : crc32_of(builtin_scene_text(a.scene));
+  return fmt::format("scene {:08x} size {} spp {} depth {} seed {} backend {} shadows {} srgb {}", scene,
+                     a.size.empty() ? "scene" : a.size, a.spp ? std::to_string(*a.spp) : "scene",
+                     a.depth ? std::to_string(*a.depth) : "scene", a.seed,
+                     a.backend == Backend::raster ? "raster" : "raytrace",
+                     a.shadow_method == RasterShadows::map ? "map" : "volumes", common.srgb ? 1 : 0);
+}
+
 // Where frames (or a tile of each) go and how: image files, recorded in the folder's manifest (frames.json) for a
 // farm so that a resubmitted task can skip what is already there and whole, or a movie.
 struct Output {
   fs::path pattern;
   bool farm = false;
   std::optional<TileSpec> tile;
+  std::string settings;  // what makes the pictures (render_fingerprint), recorded with each file
 
   fs::path folder() const { return pattern.parent_path().empty() ? fs::path(".") : pattern.parent_path(); }
   fs::path file(int frame) const {
     const fs::path frame_file = numbered_frame_path(pattern, frame);
     return tile ? tile_file(frame_file, *tile) : frame_file;
   }
-  // Written whole by an earlier run: it matches its manifest entry or, without one, exists (writes are atomic).
+  // Written whole by an earlier run with these settings: it matches its manifest entry (bytes, CRC-32 and settings)
+  // or, without one, exists (writes are atomic; such a file's settings are unknown).
   bool done(const Manifest& manifest, int frame) const {
     const std::string name = file(frame).filename().string();
     std::error_code ec;
-    return manifest.find(name) ? manifest.verified(folder(), name) : fs::is_regular_file(file(frame), ec);
+    if (const ManifestEntry* entry = manifest.find(name))
+      return (entry->settings.empty() || entry->settings == settings) && manifest.verified(folder(), name);
+    return fs::is_regular_file(file(frame), ec);
   }
   // Writes a rendered frame (or tile) that took `seconds`: into the movie when there is one, else to its file.
   void write(const ImageRGB& image, int frame, double seconds, const CommonOptions& common,
@@ -179,7 +195,8 @@ struct Output {
                                        .crc32 = file_crc32(path),
                                        .bytes = uint64_t(fs::file_size(path)),
                                        .seconds = seconds,
-                                       .host = host_name()});
+                                       .host = host_name(),
+                                       .settings = settings});
     });
     if (farm && !common.quiet && common.progress != "none")
       std::fputs(fmt::format("tessera render: frame {} -> {} ({:.3f} s)\n", frame, path.string(), seconds).c_str(),
@@ -341,7 +358,7 @@ void run_render(const RenderArgs& a, const CommonOptions& common) {
 
   // A crop is not part of a farm's frames: it is neither recorded in frames.json nor skipped.
   const bool farm_output = (frames && !movie && !part.crop) || part.tile;
-  const Output out{output, farm_output, part.tile};
+  const Output out{output, farm_output, part.tile, render_fingerprint(a, common)};
   PhaseTimer timer;
   const AnimatedScene animated = timer.time("read_s", [&] { return load_animated_scene(a.scene); });
   const FrameRange range = frames.value_or(FrameRange{animated.animation().first, animated.animation().first});

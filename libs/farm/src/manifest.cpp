@@ -46,6 +46,7 @@ Json to_json(const ManifestEntry& e) {
             {"seconds", e.seconds},
             {"host", e.host}};
   if (e.tile >= 0) j["tile"] = {e.tile, e.tiles};
+  if (!e.settings.empty()) j["settings"] = e.settings;
   return j;
 }
 
@@ -57,6 +58,7 @@ ManifestEntry from_json(const Json& j, const std::string& where) {
     e.bytes = j.at("bytes").get<uint64_t>();
     e.seconds = j.at("seconds").get<double>();
     e.host = j.value("host", "");
+    e.settings = j.value("settings", "");
     if (j.contains("tile")) {
       e.tile = j["tile"].at(0).get<int>();
       e.tiles = j["tile"].at(1).get<int>();
@@ -108,8 +110,9 @@ bool Manifest::verified(const fs::path& folder, const std::string& file) const {
   return file_crc32(path) == e->crc32;
 }
 
-uint32_t file_crc32(const fs::path& path) {
-  const std::string bytes = read_file(path);
+uint32_t file_crc32(const fs::path& path) { return crc32_of(read_file(path)); }
+
+uint32_t crc32_of(std::string_view bytes) {
   uLong crc = crc32(0L, Z_NULL, 0);
   for (size_t at = 0; at < bytes.size(); at += 1u << 30) {
     const size_t n = std::min(bytes.size() - at, size_t(1) << 30);

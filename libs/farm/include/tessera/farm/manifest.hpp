@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <string_view>
 
 namespace tessera {
 
@@ -16,6 +17,9 @@ struct ManifestEntry {
   uint64_t bytes = 0;        ///< the file's size
   double seconds = 0;        ///< render time (not reading or writing)
   std::string host;          ///< the machine that rendered it
+  /// What made it, as the writer describes it (the scene's checksum and the render options), so that a rerun with
+  /// other settings does not take the file for its own; empty when not recorded.
+  std::string settings;
 };
 
 /// The manifest of one folder: file name (relative to the folder) -> entry.
@@ -44,6 +48,8 @@ class Manifest {
 
 /// zlib's CRC-32 of a file's bytes. Throws IoError when it cannot be read.
 uint32_t file_crc32(const std::filesystem::path& path);
+/// zlib's CRC-32 of bytes.
+uint32_t crc32_of(std::string_view bytes);
 
 /// This machine's host name (for manifest entries).
 std::string host_name();
