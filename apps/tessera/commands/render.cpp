@@ -150,7 +150,8 @@ ImageRGB render_frame(const Scene& scene, const RenderArgs& a, const CommonOptio
 // option that changes pixels. A rerun with --skip-existing renders again what other settings made.
 std::string render_fingerprint(const RenderArgs& a, const CommonOptions& common) {
   std::error_code ec;
-  const uint32_t scene = fs::is_regular_file(a.scene, ec) ? file_crc32(a.scene) : crc32_of(builtin_scene_text(a.scene));
+  // A path that exists is the scene, as load_animated_scene decides (a folder is refused there, and here alike).
+  const uint32_t scene = fs::exists(a.scene, ec) ? file_crc32(a.scene) : crc32_of(builtin_scene_text(a.scene));
   return fmt::format("scene {:08x} size {} spp {} depth {} seed {} backend {} shadows {} srgb {}", scene,
                      a.size.empty() ? "scene" : a.size, a.spp ? std::to_string(*a.spp) : "scene",
                      a.depth ? std::to_string(*a.depth) : "scene", a.seed,
